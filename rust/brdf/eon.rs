@@ -1,0 +1,108 @@
+//! Energy-preserving Oren–Nayar (Portsmouth, Kutz, Hill, JCGT 14(1) 2025; research page §2c):
+//! Fujii's single-scattering form plus an analytic multiple-scattering lobe so that a white
+//! surface reflects all light at every incidence. Roughness `r ∈ [0, 1]` is OpenPBR's
+//! `base_diffuse_roughness`, not the Oren–Nayar σ. matte uses the **exact** FON albedo E_F
+//! (closed form G(μ)), not the polynomial fit, so the white furnace is 1 to float precision.
+
+use super::frame::{azimuthal_dot, both_above};
+use super::model::{Albedo, AlbedoMethod, DiffuseBrdf};
+use super::params::{ParamError, Params};
+use glam::Vec3;
+use std::f64::consts::PI;
+
+const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
+const C2: f64 = 2.0 / 3.0 - 28.0 / (15.0 * PI);
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Eon {
+    r: f32,
+    /// `A_F = 1/(1 + c1 r)`.
+    a_f: f32,
+    /// `B_F = r A_F`.
+    b_f: f32,
+    /// `Ē_F = A_F (1 + c2 r)`: cosine-weighted average of E_F.
+    e_avg: f32,
+}
+
+/// `G(μ) = S (acos μ − S μ) + (2/3)[(S/μ)(1 − S³) − S]`, `S = √(1−μ²)`, the azimuth-integrated
+/// Fujii term. `(S/μ)(1 − S³)` is rewritten as `S μ (1+S+S²)/(1+S)` (using `1−S = μ²/(1+S)`):
+/// no division by μ and no cancellation near grazing.
+#[inline]
+fn fon_g(mu: f64) -> f64 {
+    let mu = mu.clamp(0.0, 1.0);
+    let s = (1.0 - mu * mu).sqrt();
+    let t = s * mu * (1.0 + s + s * s) / (1.0 + s);
+    s * (mu.acos() - s * mu) + (2.0 / 3.0) * (t - s)
+}
+
+#[inline]
+fn fon_g_f32(mu: f32) -> f32 {
+    let mu = mu.clamp(0.0, 1.0);
+    let s = (1.0 - mu * mu).sqrt();
+    let t = s * mu * (1.0 + s + s * s) / (1.0 + s);
+    s * (mu.acos() - s * mu) + (2.0 / 3.0) * (t - s)
+}
+
+impl Eon {
+    pub const DEFAULT_ROUGHNESS: f64 = 0.3;
+
+    pub fn new(r: f64) -> Result<Self, ParamError> {
+        if !(0.0..=1.0).contains(&r) {
+            return Err(ParamError::new("roughness", format!("must lie in [0, 1] (got {r})")));
+        }
+        let a_f = 1.0 / (1.0 + C1 * r);
+        Ok(Self { r: r as f32, a_f: a_f as f32, b_f: (r * a_f) as f32, e_avg: (a_f * (1.0 + C2 * r)) as f32 })
+    }
+
+    pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
+        Self::new(p.number("roughness", Self::DEFAULT_ROUGHNESS)?)
+    }
+
+    pub fn roughness(&self) -> f32 {
+        self.r
+    }
+
+    /// Exact single-scattering (FON) albedo `E_F(μ) = A_F + (B_F/π) G(μ)` for ρ = 1.
+    pub fn fon_albedo(&self, mu: f64) -> f64 {
+        self.a_f as f64 + self.b_f as f64 / PI * fon_g(mu)
+    }
+
+    #[inline]
+    fn fon_albedo_f32(&self, mu: f32) -> f32 {
+        self.a_f + self.b_f * std::f32::consts::FRAC_1_PI * fon_g_f32(mu)
+    }
+
+    /// `ρ_ms = ρ² Ē / (1 − ρ(1 − Ē))`: the reference code's form (the OpenPBR text has a
+    /// spurious extra 1/π, research page §2c).
+    #[inline]
+    fn rho_ms(&self, rho: f32) -> f32 {
+        rho * rho * self.e_avg / (1.0 - rho * (1.0 - self.e_avg)).max(1e-7)
+    }
+}
+
+impl DiffuseBrdf for Eon {
+    #[inline]
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        if !both_above(wi, wo) {
+            return [0.0; N];
+        }
+        let s = azimuthal_dot(wi, wo);
+        let s_over_t = if s > 0.0 { s / wi.z.max(wo.z) } else { s };
+        let single = self.a_f * (1.0 + self.r * s_over_t);
+        let lobe = (1.0 - self.fon_albedo_f32(wi.z)).max(1e-7) * (1.0 - self.fon_albedo_f32(wo.z)).max(1e-7)
+            / (1.0 - self.e_avg).max(1e-7);
+        reflectance.map(|rho| std::f32::consts::FRAC_1_PI * (rho * single + self.rho_ms(rho) * lobe))
+    }
+
+    /// `E = ρ E_F(μi) + ρ_ms (1 − E_F(μi))` (research page §2c).
+    fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
+        if cos_theta_i <= 0.0 {
+            return Albedo { value: 0.0, method: AlbedoMethod::ClosedForm };
+        }
+        let e_f = self.fon_albedo(cos_theta_i);
+        let rho = reflectance as f64;
+        let e_avg = self.e_avg as f64;
+        let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
+        Albedo { value: rho * e_f + rho_ms * (1.0 - e_f), method: AlbedoMethod::ClosedForm }
+    }
+}

@@ -1,0 +1,42 @@
+//! Measures the fast path (table) against the reference integral over the whole domain of
+//! directions up to a maximum polar angle, at quasi-random configurations (R3 sequence:
+//! deterministic, evenly spread, no RNG dependency).
+
+use super::Ginneken;
+use crate::brdf::frame::spherical_direction_f64;
+use crate::brdf::model::DiffuseBrdf;
+
+#[derive(Clone, Copy, Debug)]
+pub struct FastPathError {
+    /// Largest |fast − reference| / reference.
+    pub max_relative: f64,
+    /// Mean of the same.
+    pub mean_relative: f64,
+    /// (θi, θo, Δφ) in degrees where the maximum occurs.
+    pub worst: (f64, f64, f64),
+    pub samples: usize,
+}
+
+/// Compares [`DiffuseBrdf::eval`] with [`Ginneken::eval_reference`] at `samples` configurations
+/// with θi, θo uniform in [0, max_theta_deg] and Δφ uniform in [0°, 180°].
+pub fn fast_path_error(model: &Ginneken, max_theta_deg: f64, samples: usize) -> FastPathError {
+    // R3 quasi-random sequence (Roberts 2018): additive recurrence with powers of 1/φ₃.
+    let g = 1.220_744_084_605_759_5_f64;
+    let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];
+    let (mut max_rel, mut sum_rel, mut worst) = (0.0f64, 0.0f64, (0.0, 0.0, 0.0));
+    for k in 0..samples {
+        let x: Vec<f64> = alpha.iter().map(|a| (0.5 + a * (k as f64 + 1.0)).fract()).collect();
+        let (ti, to, ph) = (x[0] * max_theta_deg, x[1] * max_theta_deg, x[2] * 180.0);
+        let wi = spherical_direction_f64(ti.to_radians(), 0.0);
+        let wo = spherical_direction_f64(to.to_radians(), ph.to_radians());
+        let reference = model.eval_reference(wi, wo, 1.0);
+        let fast = model.eval(wi.as_vec3(), wo.as_vec3(), [1.0])[0] as f64;
+        let rel = (fast - reference).abs() / reference;
+        sum_rel += rel;
+        if rel > max_rel {
+            max_rel = rel;
+            worst = (ti, to, ph);
+        }
+    }
+    FastPathError { max_relative: max_rel, mean_relative: sum_rel / samples as f64, worst, samples }
+}

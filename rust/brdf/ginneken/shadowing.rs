@@ -1,0 +1,124 @@
+//! Shadowing and masking of the Gaussian rough surface (research page §4c–4d).
+//!
+//! Smith's `Λ(θ) = ½ [√(2/π) e^{−a²/2}/a − erfc(a/√2)]`, `a = cot θ / m`, m the per-axis rms
+//! slope. The seed paper's `Σ(r, θ)` is this Λ with r = m (its eq. 5 has the same exponent
+//! `−cot²θ/(2r²)`). The kernels never use Λ alone: they use `μ Λ(μ)`, which stays finite at
+//! grazing (`→ m sin θ/√(2π)`), so that `P_ill+vis / (μi μo)` has no 0·∞.
+//!
+//! Joint illumination + visibility (van Ginneken et al. 1998; Heitz 2014 eq. 101):
+//! `P = 1 / (1 + Λ(θmax) + α(φ) Λ(θmin))`, `α(φ) = 4.41 φ / (4.41 φ + 1)`, φ = |Δφ| ∈ [0, π]
+//! in radians. The `height_correlated` alternative is `1 / (1 + Λi + Λo)`.
+
+use std::f64::consts::PI;
+
+/// Which joint masking-shadowing function to use.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shadowing {
+    /// van Ginneken et al.'s azimuth-dependent correlation (the seed's eq. 5).
+    VanGinneken,
+    /// Smith height-correlated, no azimuth dependence.
+    HeightCorrelated,
+}
+
+impl Shadowing {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Shadowing::VanGinneken => "vginneken",
+            Shadowing::HeightCorrelated => "height_correlated",
+        }
+    }
+}
+
+/// `μ Λ(θ)` for a direction with cosine `mu` and sine `sin` (f64 reference).
+pub fn mu_lambda(mu: f64, sin: f64, m: f64) -> f64 {
+    if sin <= 0.0 || mu <= 0.0 {
+        return 0.0; // normal incidence: Λ(0) = 0
+    }
+    let a = mu / (m * sin);
+    if a > 12.0 {
+        return 0.0; // e^{−72}: below f64 resolution of the sum it enters
+    }
+    let v = 0.5 * ((2.0 / PI).sqrt() * m * sin * (-0.5 * a * a).exp() - mu * libm::erfc(a / std::f64::consts::SQRT_2));
+    v.max(0.0)
+}
+
+/// f32 version of [`mu_lambda`] for the hot path.
+#[inline]
+pub fn mu_lambda_f32(mu: f32, sin: f32, m: f32) -> f32 {
+    if sin <= 0.0 || mu <= 0.0 {
+        return 0.0;
+    }
+    let a = mu / (m * sin);
+    if a > 9.0 {
+        return 0.0; // e^{−40.5}: far below f32 resolution
+    }
+    const SQRT_2_OVER_PI: f32 = 0.797_884_6;
+    let v = 0.5 * (SQRT_2_OVER_PI * m * sin * (-0.5 * a * a).exp() - mu * libm::erfcf(a * std::f32::consts::FRAC_1_SQRT_2));
+    v.max(0.0)
+}
+
+/// `α(φ) = 4.41 φ/(4.41 φ + 1)` with φ folded into [0, π] from `cos Δφ`.
+#[inline]
+pub fn azimuth_correlation(cos_phi: f64) -> f64 {
+    let phi = cos_phi.clamp(-1.0, 1.0).acos();
+    4.41 * phi / (4.41 * phi + 1.0)
+}
+
+#[inline]
+pub fn azimuth_correlation_f32(cos_phi: f32) -> f32 {
+    let phi = cos_phi.clamp(-1.0, 1.0).acos();
+    4.41 * phi / (4.41 * phi + 1.0)
+}
+
+/// `μi μo / P_ill+vis`: the denominator of the van Ginneken BRDF, finite for all μ > 0.
+/// Arguments are cosines, sines and `μΛ` of both directions.
+#[inline]
+pub fn visibility_denominator<T>(shadowing: Shadowing, mu_i: T, mu_o: T, ml_i: T, ml_o: T, alpha: impl FnOnce() -> T) -> T
+where
+    T: Copy + PartialOrd + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
+{
+    match shadowing {
+        Shadowing::HeightCorrelated => mu_i * mu_o + mu_o * ml_i + mu_i * ml_o,
+        Shadowing::VanGinneken => {
+            // θmax belongs to the smaller cosine: P = 1/(1 + Λ(μmin) + α Λ(μmax)).
+            let (mu_min, ml_min, mu_max, ml_max) = if mu_i <= mu_o { (mu_i, ml_i, mu_o, ml_o) } else { (mu_o, ml_o, mu_i, ml_i) };
+            mu_min * mu_max + mu_max * ml_min + alpha() * mu_min * ml_max
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::brdf::quadrature::GaussLegendre;
+
+    /// Smith's definition: `Λ = (1/cot θ) ∫_{cot θ}^{∞} (q − cot θ) p(q) dq`, p the 1-D slope
+    /// density N(0, m²) along the direction's azimuth.
+    fn lambda_by_definition(theta: f64, m: f64) -> f64 {
+        let cot = 1.0 / theta.tan();
+        let gl = GaussLegendre::new(200);
+        let p = |q: f64| (-(q * q) / (2.0 * m * m)).exp() / ((2.0 * PI).sqrt() * m);
+        gl.integrate(cot, cot + 40.0 * m, |q| (q - cot) * p(q)) / cot
+    }
+
+    #[test]
+    fn lambda_closed_form_matches_smith_definition() {
+        for &m in &[0.1, 0.3, 0.5, 1.0] {
+            for deg in [10.0f64, 30.0, 60.0, 75.0, 85.0, 89.0] {
+                let t = deg.to_radians();
+                let got = mu_lambda(t.cos(), t.sin(), m) / t.cos();
+                let want = lambda_by_definition(t, m);
+                assert!((got - want).abs() <= 1e-9 + 1e-7 * want, "m={m} θ={deg}: {got} vs {want}");
+                let got32 = mu_lambda_f32(t.cos() as f32, t.sin() as f32, m as f32) as f64 / t.cos();
+                assert!((got32 - want).abs() <= 2e-6 + 1e-4 * want, "f32 m={m} θ={deg}: {got32} vs {want}");
+            }
+        }
+    }
+
+    #[test]
+    fn correlation_limits() {
+        assert_eq!(azimuth_correlation(1.0), 0.0);
+        assert!((azimuth_correlation(0.0) - 0.874).abs() < 1e-3);
+        assert!((azimuth_correlation(-1.0) - 0.933).abs() < 1e-3);
+    }
+}

@@ -1,0 +1,120 @@
+//! The diffuse BRDF kernels: one file per model, pure functions over local-frame directions,
+//! no renderer or FFI types. [`Bsdf`] is the closed set of models matte offers, constructed
+//! from the plugin names and parameters of `shared/docs/brdf-models.md`.
+
+pub mod eon;
+pub mod fresnel;
+pub mod frame;
+pub mod ginneken;
+pub mod lambert;
+pub mod model;
+pub mod oren_nayar;
+pub mod params;
+pub mod quadrature;
+pub mod sampling;
+pub mod wolff;
+
+pub use eon::Eon;
+pub use ginneken::Ginneken;
+pub use lambert::Lambert;
+pub use model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
+pub use oren_nayar::{OrenNayar, OrenNayarModel};
+pub use params::{ParamError, ParamValue, Params};
+pub use wolff::{Wolff, WolffNormalization};
+
+use glam::{Vec2, Vec3};
+
+/// The plugin names, in the order of the table in `brdf-models.md`.
+pub const BSDF_TYPES: &[&str] = &["lambert", "oren_nayar", "eon", "wolff", "ginneken"];
+
+/// One of matte's diffuse models with its (validated) parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Bsdf {
+    Lambert(Lambert),
+    OrenNayar(OrenNayar),
+    Eon(Eon),
+    Wolff(Wolff),
+    Ginneken(Ginneken),
+}
+
+macro_rules! dispatch {
+    ($self:expr, $b:ident => $e:expr) => {
+        match $self {
+            Bsdf::Lambert($b) => $e,
+            Bsdf::OrenNayar($b) => $e,
+            Bsdf::Eon($b) => $e,
+            Bsdf::Wolff($b) => $e,
+            Bsdf::Ginneken($b) => $e,
+        }
+    };
+}
+
+impl Bsdf {
+    /// Builds the model `kind` (a plugin name) from its parameters. `reflectance` is not a
+    /// model parameter here: it is per channel and per call (textures). Unknown names,
+    /// unknown parameters and out-of-range values are errors naming the parameter.
+    pub fn from_params(kind: &str, mut params: Params) -> Result<Self, ParamError> {
+        let (bsdf, known): (Bsdf, &[&str]) = match kind {
+            "lambert" => (Bsdf::Lambert(Lambert), &[]),
+            "oren_nayar" => (Bsdf::OrenNayar(OrenNayar::from_params(&mut params)?), &["sigma", "model"]),
+            "eon" => (Bsdf::Eon(Eon::from_params(&mut params)?), &["roughness"]),
+            "wolff" => (Bsdf::Wolff(Wolff::from_params(&mut params)?), &["int_ior", "ext_ior", "normalization"]),
+            "ginneken" => (Bsdf::Ginneken(Ginneken::from_params(&mut params)?), &["roughness", "shadowing"]),
+            other => {
+                return Err(ParamError::new("type", format!("unknown bsdf type \"{other}\" (known: {})", BSDF_TYPES.join(", "))));
+            }
+        };
+        params.finish(kind, known)?;
+        Ok(bsdf)
+    }
+
+    /// The plugin name.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Bsdf::Lambert(_) => "lambert",
+            Bsdf::OrenNayar(_) => "oren_nayar",
+            Bsdf::Eon(_) => "eon",
+            Bsdf::Wolff(_) => "wolff",
+            Bsdf::Ginneken(_) => "ginneken",
+        }
+    }
+
+    /// The effective parameters (defaults filled in), for printing and `to_string`.
+    pub fn parameters(&self) -> Vec<(&'static str, ParamValue)> {
+        use ParamValue::{Number, Text};
+        match self {
+            Bsdf::Lambert(_) => vec![],
+            Bsdf::OrenNayar(b) => vec![("sigma", Number(b.sigma() as f64)), ("model", Text(b.model().as_str().into()))],
+            Bsdf::Eon(b) => vec![("roughness", Number(b.roughness() as f64))],
+            Bsdf::Wolff(b) => vec![
+                ("int_ior", Number(b.int_ior() as f64)),
+                ("ext_ior", Number(b.ext_ior() as f64)),
+                ("normalization", Text(b.normalization().as_str().into())),
+            ],
+            Bsdf::Ginneken(b) => {
+                vec![("roughness", Number(b.roughness() as f64)), ("shadowing", Text(b.shadowing().as_str().into()))]
+            }
+        }
+    }
+}
+
+impl DiffuseBrdf for Bsdf {
+    #[inline]
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        dispatch!(self, b => b.eval(wi, wo, reflectance))
+    }
+
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        dispatch!(self, b => b.pdf(wi, wo))
+    }
+
+    #[inline]
+    fn sample_direction(&self, wi: Vec3, u: Vec2) -> Option<(Vec3, f32)> {
+        dispatch!(self, b => b.sample_direction(wi, u))
+    }
+
+    fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
+        dispatch!(self, b => b.albedo(cos_theta_i, reflectance))
+    }
+}

@@ -1,0 +1,160 @@
+//! `matte brdf` and `matte albedo`: one model, evaluated by the kernels, printed as JSON.
+//! Schema in README.md ("Command line").
+
+use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params, frame::spherical_direction};
+use clap::Args;
+use serde_json::{Map, Value, json};
+
+#[derive(Args, Debug)]
+pub struct BsdfSpec {
+    /// Plugin name: lambert, oren_nayar, eon, wolff, ginneken.
+    #[arg(long = "bsdf", value_name = "TYPE")]
+    pub kind: String,
+    /// Model parameter NAME=VALUE (repeatable), e.g. sigma=0.3, model=full, int_ior=bk7.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    pub params: Vec<String>,
+}
+
+impl BsdfSpec {
+    pub fn build(&self) -> Result<Bsdf, String> {
+        let mut params = Params::new();
+        for p in &self.params {
+            let (name, value) = p.split_once('=').ok_or_else(|| format!("--param \"{p}\": expected NAME=VALUE"))?;
+            params.push(name.trim(), ParamValue::parse(value));
+        }
+        Bsdf::from_params(&self.kind, params).map_err(|e| format!("bsdf \"{}\": {e}", self.kind))
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct BrdfArgs {
+    #[command(flatten)]
+    pub spec: BsdfSpec,
+    /// Reflectance (albedo parameter) in [0, 1].
+    #[arg(long, default_value_t = 0.5)]
+    pub reflectance: f64,
+    /// Polar angle of wi (towards the light), degrees.
+    #[arg(long = "theta-i", required_unless_present = "grid", allow_negative_numbers = true)]
+    pub theta_i: Option<f64>,
+    /// Polar angle of wo (towards the viewer), degrees.
+    #[arg(long = "theta-o", required_unless_present = "grid", allow_negative_numbers = true)]
+    pub theta_o: Option<f64>,
+    /// Azimuth difference φo − φi, degrees (0: viewer on the light's side).
+    #[arg(long, required_unless_present = "grid", allow_negative_numbers = true)]
+    pub phi: Option<f64>,
+    /// Evaluate on an N×N×N grid instead: θ in [0, 90) step 90/N, φ in [0, 180] in N steps.
+    #[arg(long, conflicts_with_all = ["theta_i", "theta_o", "phi"])]
+    pub grid: Option<usize>,
+}
+
+#[derive(Args, Debug)]
+pub struct AlbedoArgs {
+    #[command(flatten)]
+    pub spec: BsdfSpec,
+    /// Polar angle of incidence, degrees.
+    #[arg(long = "theta-i", allow_negative_numbers = true)]
+    pub theta_i: f64,
+    /// Reflectance in [0, 1]; 1 gives the white-furnace value.
+    #[arg(long, default_value_t = 1.0)]
+    pub reflectance: f64,
+}
+
+fn check_reflectance(r: f64) -> Result<f32, String> {
+    if (0.0..=1.0).contains(&r) { Ok(r as f32) } else { Err(format!("--reflectance must lie in [0, 1] (got {r})")) }
+}
+
+fn check_angle(name: &str, deg: f64, max: f64) -> Result<f64, String> {
+    if deg.is_finite() && (0.0..=max).contains(&deg) { Ok(deg) } else { Err(format!("--{name} must lie in [0, {max}] degrees (got {deg})")) }
+}
+
+fn header(bsdf: &Bsdf, reflectance: f64) -> Map<String, Value> {
+    let mut params = Map::new();
+    for (name, value) in bsdf.parameters() {
+        params.insert(
+            name.into(),
+            match value {
+                ParamValue::Number(x) => json!(x),
+                ParamValue::Text(s) => json!(s),
+            },
+        );
+    }
+    let mut out = Map::new();
+    out.insert("bsdf".into(), json!(bsdf.kind()));
+    out.insert("params".into(), Value::Object(params));
+    out.insert("reflectance".into(), json!(reflectance));
+    out
+}
+
+/// wi at azimuth 0, wo at azimuth φ (degrees in, local-frame directions out).
+fn directions(theta_i: f64, theta_o: f64, phi: f64) -> (glam::Vec3, glam::Vec3) {
+    (
+        spherical_direction(theta_i.to_radians() as f32, 0.0),
+        spherical_direction(theta_o.to_radians() as f32, phi.to_radians() as f32),
+    )
+}
+
+pub fn run_brdf(a: &BrdfArgs) -> Result<(), String> {
+    let bsdf = a.spec.build()?;
+    let rho = check_reflectance(a.reflectance)?;
+    let mut out = header(&bsdf, a.reflectance);
+    if let Some(n) = a.grid {
+        if !(1..=256).contains(&n) {
+            return Err(format!("--grid must lie in [1, 256] (got {n})"));
+        }
+        let thetas: Vec<f64> = (0..n).map(|k| 90.0 * k as f64 / n as f64).collect();
+        let phis: Vec<f64> = (0..n).map(|k| if n == 1 { 0.0 } else { 180.0 * k as f64 / (n - 1) as f64 }).collect();
+        let mut f = Vec::with_capacity(n);
+        let mut pdf = Vec::with_capacity(n);
+        for &ti in &thetas {
+            let (mut f_i, mut p_i) = (Vec::with_capacity(n), Vec::with_capacity(n));
+            for &to in &thetas {
+                let (mut f_o, mut p_o) = (Vec::with_capacity(n), Vec::with_capacity(n));
+                for &ph in &phis {
+                    let (wi, wo) = directions(ti, to, ph);
+                    f_o.push(bsdf.eval(wi, wo, [rho])[0]);
+                    p_o.push(bsdf.pdf(wi, wo));
+                }
+                f_i.push(f_o);
+                p_i.push(p_o);
+            }
+            f.push(f_i);
+            pdf.push(p_i);
+        }
+        out.insert("grid".into(), json!(n));
+        out.insert("theta_i".into(), json!(thetas));
+        out.insert("theta_o".into(), json!(thetas));
+        out.insert("phi".into(), json!(phis));
+        out.insert("f".into(), json!(f));
+        out.insert("pdf".into(), json!(pdf));
+    } else {
+        let (ti, to, ph) = (a.theta_i.unwrap_or(0.0), a.theta_o.unwrap_or(0.0), a.phi.unwrap_or(0.0));
+        let ti = check_angle("theta-i", ti, 180.0)?;
+        let to = check_angle("theta-o", to, 180.0)?;
+        if !ph.is_finite() {
+            return Err(format!("--phi must be a finite angle (got {ph})"));
+        }
+        let (wi, wo) = directions(ti, to, ph);
+        let f = bsdf.eval(wi, wo, [rho])[0];
+        out.insert("theta_i".into(), json!(ti));
+        out.insert("theta_o".into(), json!(to));
+        out.insert("phi".into(), json!(ph));
+        out.insert("f".into(), json!(f));
+        out.insert("f_cos".into(), json!(f * wo.z.max(0.0)));
+        out.insert("pdf".into(), json!(bsdf.pdf(wi, wo)));
+    }
+    println!("{}", Value::Object(out));
+    Ok(())
+}
+
+pub fn run_albedo(a: &AlbedoArgs) -> Result<(), String> {
+    let bsdf = a.spec.build()?;
+    let rho = check_reflectance(a.reflectance)?;
+    let ti = check_angle("theta-i", a.theta_i, 180.0)?;
+    let albedo = bsdf.albedo(ti.to_radians().cos(), rho);
+    let mut out = header(&bsdf, a.reflectance);
+    out.insert("theta_i".into(), json!(ti));
+    out.insert("albedo".into(), json!(albedo.value));
+    out.insert("method".into(), json!(albedo.method.as_str()));
+    println!("{}", Value::Object(out));
+    Ok(())
+}

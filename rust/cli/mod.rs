@@ -1,0 +1,46 @@
+//! The `matte` command line. Every subcommand prints JSON or a text table on stdout; invalid
+//! input ends with a one-line error on stderr and a non-zero exit code.
+
+mod brdf_cmd;
+mod tables;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser, Debug)]
+#[command(name = "matte", version, about = "Diffuse reflection models for global illumination, checked against Mitsuba 3")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Evaluate one BSDF at one configuration (or on a grid) and print JSON.
+    Brdf(brdf_cmd::BrdfArgs),
+    /// Directional albedo (white furnace, reflectance 1 unless given) as JSON.
+    Albedo(brdf_cmd::AlbedoArgs),
+    /// Print matte's values for the reference configurations of Tables 1-2
+    /// (brdf-models-research.md §6) and the van Ginneken fast-path error.
+    Tables(tables::TablesArgs),
+}
+
+/// Parses the command line; usage errors become one line (clap's own multi-line report is
+/// kept for `--help` and `--version`).
+pub fn parse() -> Result<Cli, String> {
+    Cli::try_parse().map_err(|e| {
+        use clap::error::ErrorKind;
+        if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand) {
+            e.exit();
+        }
+        let text = e.to_string();
+        text.lines().next().unwrap_or("invalid arguments").trim_start_matches("error: ").to_string()
+    })
+}
+
+pub fn run(cli: Cli) -> Result<(), String> {
+    match cli.command {
+        Command::Brdf(a) => brdf_cmd::run_brdf(&a),
+        Command::Albedo(a) => brdf_cmd::run_albedo(&a),
+        Command::Tables(a) => tables::run(&a),
+    }
+}

@@ -1,0 +1,114 @@
+//! `matte tables`: matte's values for the reference configurations of
+//! `brdf-models-research.md` §6 (Table 1: f at ρ = 0.8; Table 2: white-furnace albedo), so a
+//! reader can hold them against the published numbers, plus the van Ginneken fast path's
+//! measured error against the reference integral.
+
+use crate::brdf::ginneken::accuracy::fast_path_error;
+use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params, frame::spherical_direction};
+use clap::Args;
+
+#[derive(Args, Debug)]
+pub struct TablesArgs {
+    /// Configurations used to measure the van Ginneken fast path (0 skips it).
+    #[arg(long, default_value_t = 20000)]
+    pub error_samples: usize,
+}
+
+/// (label, type, parameters) of the rows, in the research page's notation.
+const ROWS: &[(&str, &str, &[(&str, &str)])] = &[
+    ("Lambert", "lambert", &[]),
+    ("QON s=0.25", "oren_nayar", &[("sigma", "0.25")]),
+    ("QON s=0.3", "oren_nayar", &[("sigma", "0.3")]),
+    ("QON s=0.5", "oren_nayar", &[("sigma", "0.5")]),
+    ("QON s=1.0", "oren_nayar", &[("sigma", "1.0")]),
+    ("fullON s=0.5 (+L2)", "oren_nayar", &[("sigma", "0.5"), ("model", "full")]),
+    ("fullON s=1.0 (+L2)", "oren_nayar", &[("sigma", "1.0"), ("model", "full")]),
+    ("EON r=0.5", "eon", &[("roughness", "0.5")]),
+    ("EON r=1", "eon", &[("roughness", "1.0")]),
+    ("Wolff raw n=1.5", "wolff", &[("int_ior", "1.5"), ("normalization", "raw")]),
+    ("Wolff normal n=1.5", "wolff", &[("int_ior", "1.5"), ("normalization", "normal")]),
+    ("Wolff phys n=1.5", "wolff", &[("int_ior", "1.5")]),
+    ("vG m=0.3", "ginneken", &[("roughness", "0.3")]),
+    ("vG m=0.3 (height-corr.)", "ginneken", &[("roughness", "0.3"), ("shadowing", "height_correlated")]),
+    ("vG m=0.5", "ginneken", &[("roughness", "0.5")]),
+];
+
+const TABLE1_COLUMNS: &[(f64, f64, f64)] = &[
+    (0.0, 0.0, 0.0),
+    (30.0, 30.0, 0.0),
+    (60.0, 60.0, 0.0),
+    (60.0, 60.0, 180.0),
+    (45.0, 45.0, 90.0),
+    (75.0, 75.0, 0.0),
+    (75.0, 75.0, 180.0),
+    (80.0, 10.0, 0.0),
+    (10.0, 80.0, 0.0),
+    (60.0, 20.0, 180.0),
+];
+
+const TABLE2_ANGLES: &[f64] = &[0.0, 30.0, 60.0, 80.0, 89.0];
+
+fn build(kind: &str, params: &[(&str, &str)]) -> Result<Bsdf, String> {
+    let mut p = Params::new();
+    for (n, v) in params {
+        p.push(n, ParamValue::parse(v));
+    }
+    Bsdf::from_params(kind, p).map_err(|e| e.to_string())
+}
+
+pub fn run(args: &TablesArgs) -> Result<(), String> {
+    let models: Vec<(&str, Bsdf)> = ROWS.iter().map(|(l, k, p)| build(k, p).map(|b| (*l, b))).collect::<Result<_, _>>()?;
+
+    println!("Table 1: f(wi, wo) in 1/sr, reflectance 0.8 (columns: θi/θo/Δφ in degrees)");
+    print!("{:<26}", "model");
+    for (ti, to, ph) in TABLE1_COLUMNS {
+        print!("{:>10}", format!("{ti}/{to}/{ph}"));
+    }
+    println!();
+    for (label, bsdf) in &models {
+        print!("{label:<26}");
+        for &(ti, to, ph) in TABLE1_COLUMNS {
+            let wi = spherical_direction((ti as f32).to_radians(), 0.0);
+            let wo = spherical_direction((to as f32).to_radians(), (ph as f32).to_radians());
+            print!("{:>10.5}", bsdf.eval(wi, wo, [0.8])[0]);
+        }
+        println!();
+    }
+
+    println!("\nTable 2: directional albedo E(θi), reflectance 1 (white furnace)");
+    print!("{:<26}", "model");
+    for t in TABLE2_ANGLES {
+        print!("{:>9}", format!("{t}°"));
+    }
+    println!("  method");
+    for (label, bsdf) in &models {
+        print!("{label:<26}");
+        let mut method = "";
+        for t in TABLE2_ANGLES {
+            let a = bsdf.albedo(t.to_radians().cos(), 1.0);
+            method = a.method.as_str();
+            print!("{:>9.4}", a.value);
+        }
+        println!("  {method}");
+    }
+
+    if args.error_samples > 0 {
+        println!("\nvan Ginneken fast path vs reference integral ({} quasi-random configurations each)", args.error_samples);
+        for (label, bsdf) in &models {
+            if let Bsdf::Ginneken(g) = bsdf {
+                for max_theta in [80.0, 85.0, 89.0] {
+                    let e = fast_path_error(g, max_theta, args.error_samples);
+                    println!(
+                        "{label:<26} θ ≤ {max_theta}°: max {:.3} %, mean {:.4} % (worst at {:.1}/{:.1}/{:.1})",
+                        100.0 * e.max_relative,
+                        100.0 * e.mean_relative,
+                        e.worst.0,
+                        e.worst.1,
+                        e.worst.2
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,8 @@
+//! matte: diffuse reflection models for global illumination (Lambert, Oren–Nayar, EON,
+//! Wolff, van Ginneken et al.), as studied by Diepstraten & Borgo (EG 2006 short papers).
+//!
+//! * [`brdf`]: the kernels, one pure implementation per model, used by everything else.
+//! * [`cli`]: the `matte` command line (`brdf`, `albedo`, `tables`).
+
+pub mod brdf;
+pub mod cli;

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# Idempotent set-up of matte's Python side:
+#   1. the Debian package libllvm19 (Dr.Jit's llvm_* variants load it at run
+#      time; LLVM 15, which Debian 12 also ships, makes Dr.Jit 1.5.0 abort);
+#   2. <repo>/.venv with validation/requirements.txt installed, re-installed
+#      only when that file changed since the last successful install.
+# Prints one line saying what it did. Safe to run from anywhere, any number of times.
+set -euo pipefail
+
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+LIBLLVM=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1   # provided by libllvm19
+VENV=.venv
+REQ=validation/requirements.txt
+STAMP="$VENV/.matte-requirements.sha256"
+did=()
+
+# Run a command quietly; show its output only if it fails.
+quiet() {
+    local log rc=0
+    log=$(mktemp)
+    "$@" >"$log" 2>&1 || rc=$?
+    if [ "$rc" -ne 0 ]; then cat "$log" >&2; fi
+    rm -f "$log"
+    return "$rc"
+}
+
+# --- 1. libLLVM 19 -----------------------------------------------------------
+if [ ! -e "$LIBLLVM" ]; then
+    SUDO=()
+    if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
+    apt_install() {
+        "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
+            apt-get install -y -q --no-install-recommends libllvm19
+    }
+    # Try without refreshing the package lists first; update only if needed.
+    if ! apt_install >/dev/null 2>&1; then
+        quiet "${SUDO[@]}" apt-get update -q
+        quiet apt_install
+    fi
+    [ -e "$LIBLLVM" ] || { echo "setup_venv: libllvm19 installed but $LIBLLVM is missing" >&2; exit 1; }
+    did+=("installed libllvm19")
+fi
+
+# --- 2. virtualenv -----------------------------------------------------------
+if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c '' 2>/dev/null; then
+    rm -rf "$VENV"
+    python3 -m venv "$VENV"
+    did+=("created $VENV")
+fi
+
+# --- 3. requirements ---------------------------------------------------------
+want=$( { sha256sum "$REQ" | cut -d' ' -f1; "$VENV/bin/python" -c 'import sys; print(sys.version)'; } | sha256sum | cut -d' ' -f1)
+have=$(cat "$STAMP" 2>/dev/null || true)
+if [ "$want" != "$have" ]; then
+    "$VENV/bin/python" -m pip install -q --disable-pip-version-check -r "$REQ"
+    echo "$want" >"$STAMP"
+    did+=("installed $REQ")
+fi
+
+if [ ${#did[@]} -eq 0 ]; then
+    echo "setup_venv: up to date (libllvm19 present, $VENV matches $REQ)"
+else
+    msg=$(IFS=';'; echo "${did[*]}")
+    echo "setup_venv: ${msg//;/, }"
+fi
