@@ -87,8 +87,9 @@ impl DiffuseBrdf for Eon {
             return [0.0; N];
         }
         let s = azimuthal_dot(wi, wo);
-        let s_over_t = if s > 0.0 { s / wi.z.max(wo.z) } else { s };
-        let single = self.a_f * (1.0 + self.r * s_over_t);
+        let s_over_t = if s > 0.0 { s / wi.z.max(wo.z).max(1e-7) } else { s };
+        // ≥ 0 exactly for r ≤ 1 (s ≥ −1); the clamp removes f32 rounding at Δφ = π, grazing.
+        let single = (self.a_f * (1.0 + self.r * s_over_t)).max(0.0);
         let lobe = (1.0 - self.fon_albedo_f32(wi.z)).max(1e-7) * (1.0 - self.fon_albedo_f32(wo.z)).max(1e-7)
             / (1.0 - self.e_avg).max(1e-7);
         reflectance.map(|rho| std::f32::consts::FRAC_1_PI * (rho * single + self.rho_ms(rho) * lobe))

@@ -95,7 +95,10 @@ impl OrenNayar {
         let c2 = if cos_phi >= 0.0 { self.b * sin_alpha } else { self.b * (sin_alpha - two_beta_pi.powi(3)) };
         let four_ab = 4.0 * alpha * beta * FRAC_1_PI * FRAC_1_PI;
         let c3 = self.c3 * four_ab * four_ab;
-        let direct = self.a + cos_phi * c2 * tan_beta + (1.0 - cos_phi.abs()) * c3 * tan_half_sum;
+        // The 1994 fit of the direct term goes negative in forward-grazing configurations at
+        // large σ (σ = 1, θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1); radiance from
+        // one bounce cannot be, so it is clamped at 0. The interreflection term is ≥ 0 as is.
+        let direct = (self.a + cos_phi * c2 * tan_beta + (1.0 - cos_phi.abs()) * c3 * tan_half_sum).max(0.0);
         let inter = self.l2 * (1.0 - cos_phi * two_beta_pi * two_beta_pi);
         reflectance.map(|rho| FRAC_1_PI * rho * (direct + rho * inter))
     }
@@ -109,9 +112,10 @@ impl DiffuseBrdf for OrenNayar {
         }
         match self.model {
             OrenNayarModel::Qualitative => {
-                // Trig-free form: max(0, cos Δφ) sin α tan β = max(0, s) / max(μi, μo).
+                // Trig-free form: max(0, cos Δφ) sin α tan β = max(0, s) / max(μi, μo). The
+                // denominator is cos β; clamped as tan β is in the full model (both grazing).
                 let s = azimuthal_dot(wi, wo).max(0.0);
-                let g = self.a + self.b * s / wi.z.max(wo.z);
+                let g = self.a + self.b * s / wi.z.max(wo.z).max(1e-7);
                 reflectance.map(|rho| rho * FRAC_1_PI * g)
             }
             OrenNayarModel::Full => self.eval_full(wi, wo, reflectance),

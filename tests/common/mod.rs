@@ -1,0 +1,191 @@
+//! Helpers shared by the integration tests: a PCG32 generator (O'Neill's pcg32, the
+//! generator Mitsuba's samplers use), the catalogue of model configurations every property
+//! test runs over, and Mitsuba's chi-square goodness-of-fit test re-implemented
+//! (`src/python/python/chi2.py` and `mitsuba::math::chi2` of v3.9.1).
+#![allow(dead_code)]
+
+use glam::{Vec2, Vec3};
+use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+use statrs::distribution::{ChiSquared, ContinuousCDF};
+use std::f64::consts::PI;
+
+pub struct Pcg32 {
+    state: u64,
+    inc: u64,
+}
+
+impl Pcg32 {
+    pub fn new(seed: u64, stream: u64) -> Self {
+        let mut r = Pcg32 { state: 0, inc: (stream << 1) | 1 };
+        r.next_u32();
+        r.state = r.state.wrapping_add(seed);
+        r.next_u32();
+        r
+    }
+
+    pub fn next_u32(&mut self) -> u32 {
+        let old = self.state;
+        self.state = old.wrapping_mul(0x5851_f42d_4c95_7f2d).wrapping_add(self.inc);
+        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
+        let rot = (old >> 59) as u32;
+        xorshifted.rotate_right(rot)
+    }
+
+    /// Uniform in [0, 1).
+    pub fn next_f32(&mut self) -> f32 {
+        f32::from_bits((self.next_u32() >> 9) | 0x3f80_0000) - 1.0
+    }
+
+    pub fn next_f64(&mut self) -> f64 {
+        ((self.next_u32() as u64) << 21 ^ (self.next_u32() as u64)) as f64 / (1u64 << 53) as f64
+    }
+
+    pub fn next_vec2(&mut self) -> Vec2 {
+        Vec2::new(self.next_f32(), self.next_f32())
+    }
+
+    /// Uniform direction on the upper hemisphere.
+    pub fn upper_hemisphere(&mut self) -> Vec3 {
+        let z = self.next_f32();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        let phi = 2.0 * std::f32::consts::PI * self.next_f32();
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+/// Builds a model from `(name, value)` pairs, panicking on rejection (test inputs are valid).
+pub fn model(kind: &str, params: &[(&str, &str)]) -> Bsdf {
+    let mut p = Params::new();
+    for (n, v) in params {
+        p.push(n, ParamValue::parse(v));
+    }
+    Bsdf::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
+}
+
+/// Every model with defaults and with low / high roughness (and each option).
+pub fn catalogue() -> Vec<(String, Bsdf)> {
+    let cfgs: &[(&str, &[(&str, &str)])] = &[
+        ("lambert", &[]),
+        ("oren_nayar", &[]),
+        ("oren_nayar", &[("sigma", "0.1")]),
+        ("oren_nayar", &[("sigma", "1.0")]),
+        ("oren_nayar", &[("sigma", "0.1"), ("model", "full")]),
+        ("oren_nayar", &[("sigma", "1.0"), ("model", "full")]),
+        ("eon", &[]),
+        ("eon", &[("roughness", "0.05")]),
+        ("eon", &[("roughness", "1")]),
+        ("wolff", &[]),
+        ("wolff", &[("int_ior", "2.4"), ("normalization", "normal")]),
+        ("wolff", &[("int_ior", "bk7"), ("ext_ior", "water"), ("normalization", "raw")]),
+        ("ginneken", &[]),
+        ("ginneken", &[("roughness", "0.1")]),
+        ("ginneken", &[("roughness", "0.8"), ("shadowing", "height_correlated")]),
+    ];
+    cfgs.iter().map(|(k, p)| (format!("{k} {p:?}"), model(k, p))).collect()
+}
+
+/// Mitsuba's `SphericalDomain`: (φ, −cos θ) ∈ [−π, π] × [−1, 1] to a direction.
+fn map_forward(x: f64, y: f64) -> Vec3 {
+    let cos_theta = -y;
+    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+    Vec3::new((x.cos() * sin_theta) as f32, (x.sin() * sin_theta) as f32, cos_theta as f32)
+}
+
+fn map_backward(w: Vec3) -> (f64, f64) {
+    ((w.y as f64).atan2(w.x as f64), -(w.z as f64))
+}
+
+pub struct Chi2Outcome {
+    pub p_value: f64,
+    pub statistic: f64,
+    pub dof: usize,
+}
+
+/// Mitsuba's `ChiSquareTest` with its defaults (10^6 samples, res 101 → 50 × 101 cells, ires 4
+/// trapezoid rule per cell, pooling below 5) for `bsdf.sample_direction` against `bsdf.pdf`
+/// at incidence `wi`. Returns `Err` for the hard failures (sample outside the domain, sample
+/// in a cell of zero expected count, pdf integrating to > 1.1).
+pub fn chi2_sampling<B: DiffuseBrdf>(bsdf: &B, wi: Vec3, seed: u64) -> Result<Chi2Outcome, String> {
+    const SAMPLES: usize = 1_000_000;
+    let (nx, ny, ires) = (50usize, 101usize, 4usize);
+    let (x0, x1, y0, y1) = (-PI, PI, -1.0, 1.0);
+    let mut hist = vec![0.0f64; nx * ny];
+    let mut rng = Pcg32::new(seed, 0xda3e_39cb_94b9_5bdb);
+    for _ in 0..SAMPLES {
+        let u = rng.next_vec2();
+        let Some(s) = bsdf.sample(wi, u, [0.5]) else { continue };
+        if !(s.weight[0] > 0.0) {
+            continue; // Mitsuba's BSDFAdapter gives zero-weight samples no histogram mass
+        }
+        if (s.wo.length() - 1.0).abs() > 1e-3 {
+            return Err(format!("sample {:?} is not a unit vector", s.wo));
+        }
+        let (x, y) = map_backward(s.wo);
+        let ix = (((x - x0) / (x1 - x0) * nx as f64) as isize).clamp(0, nx as isize - 1) as usize;
+        let iy = (((y - y0) / (y1 - y0) * ny as f64) as isize).clamp(0, ny as isize - 1) as usize;
+        hist[iy * nx + ix] += 1.0;
+    }
+    // Expected counts: pdf integrated over each cell (trapezoid rule, as chi2.py).
+    let (cw, ch) = ((x1 - x0) / nx as f64, (y1 - y0) / ny as f64);
+    let (sx, sy) = (cw / (ires - 1) as f64, ch / (ires - 1) as f64);
+    let mut expected = vec![0.0f64; nx * ny];
+    for cy in 0..ny {
+        for cx in 0..nx {
+            let mut sum = 0.0;
+            for j in 0..ires {
+                for i in 0..ires {
+                    let x = x0 + cx as f64 * cw + (i as f64 + 1e-4) * (1.0 - 2e-4) * sx;
+                    let y = y0 + cy as f64 * ch + (j as f64 + 1e-4) * (1.0 - 2e-4) * sy;
+                    let w = if i == 0 || i == ires - 1 { 0.5 } else { 1.0 } * if j == 0 || j == ires - 1 { 0.5 } else { 1.0 };
+                    let pdf = bsdf.pdf(wi, map_forward(x, y)) as f64;
+                    if pdf < 0.0 || !pdf.is_finite() {
+                        return Err(format!("pdf {pdf} at ({x}, {y})"));
+                    }
+                    sum += w * pdf;
+                }
+            }
+            expected[cy * nx + cx] = sum * sx * sy * SAMPLES as f64;
+        }
+    }
+    let pdf_sum: f64 = expected.iter().sum::<f64>() / SAMPLES as f64;
+    if pdf_sum > 1.1 {
+        return Err(format!("pdf integrates to {pdf_sum}"));
+    }
+    let mut order: Vec<usize> = (0..nx * ny).collect();
+    order.sort_by(|&a, &b| expected[a].total_cmp(&expected[b]));
+    if order.iter().any(|&k| expected[k] == 0.0 && hist[k] != 0.0) {
+        return Err("samples in a cell with expected frequency 0".into());
+    }
+    // mitsuba::math::chi2 with pool threshold 5.
+    let (mut chsq, mut pooled_obs, mut pooled_exp, mut dof) = (0.0, 0.0, 0.0, 0usize);
+    for &k in &order {
+        let (o, e) = (hist[k], expected[k]);
+        if e == 0.0 && o == 0.0 {
+            continue;
+        }
+        if e < 5.0 {
+            pooled_obs += o;
+            pooled_exp += e;
+            if pooled_exp > 5.0 {
+                chsq += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
+                pooled_obs = 0.0;
+                pooled_exp = 0.0;
+                dof += 1;
+            }
+        } else {
+            chsq += (o - e) * (o - e) / e;
+            dof += 1;
+        }
+    }
+    let dof = dof.saturating_sub(1);
+    if dof < 1 {
+        return Err("too few degrees of freedom".into());
+    }
+    let p_value = ChiSquared::new(dof as f64).map_err(|e| e.to_string())?.sf(chsq);
+    Ok(Chi2Outcome { p_value, statistic: chsq, dof })
+}
+
+/// Šidák-corrected significance level for `test_count` tests at overall level 0.01.
+pub fn sidak(test_count: usize) -> f64 {
+    1.0 - (1.0 - 0.01f64).powf(1.0 / test_count as f64)
+}
