@@ -1,1 +1,72 @@
-fn main() {}
+//! ns per eval and per sample for each model (default parameters, one reflectance channel
+//! and RGB), over 4096 precomputed random direction pairs cycled so that branch prediction
+//! and caches see renderer-like variety. Run: `cargo bench --bench kernels`.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use glam::{Vec2, Vec3};
+use matte::brdf::{BSDF_TYPES, Bsdf, DiffuseBrdf, Params};
+use std::hint::black_box;
+
+fn pairs(n: usize) -> Vec<(Vec3, Vec3, Vec2)> {
+    // xorshift64*: deterministic, no dependency
+    let mut s = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = || {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut dir = |a: f32, b: f32| {
+        let z = a;
+        let r = (1.0 - z * z).sqrt();
+        let p = 2.0 * std::f32::consts::PI * b;
+        Vec3::new(r * p.cos(), r * p.sin(), z)
+    };
+    (0..n).map(|_| (dir(next(), next()), dir(next(), next()), Vec2::new(next(), next()))).collect()
+}
+
+fn kernels(c: &mut Criterion) {
+    let data = pairs(4096);
+    let mut group = c.benchmark_group("kernel");
+    group.throughput(Throughput::Elements(data.len() as u64));
+    for kind in BSDF_TYPES {
+        let bsdf = Bsdf::from_params(kind, Params::new()).unwrap();
+        group.bench_function(format!("{kind}/eval"), |b| {
+            b.iter(|| {
+                let mut acc = 0.0f32;
+                for (wi, wo, _) in &data {
+                    acc += bsdf.eval(black_box(*wi), black_box(*wo), [0.5])[0];
+                }
+                black_box(acc)
+            })
+        });
+        group.bench_function(format!("{kind}/eval_rgb"), |b| {
+            b.iter(|| {
+                let mut acc = 0.0f32;
+                for (wi, wo, _) in &data {
+                    acc += bsdf.eval(black_box(*wi), black_box(*wo), [0.8, 0.5, 0.2])[1];
+                }
+                black_box(acc)
+            })
+        });
+        group.bench_function(format!("{kind}/sample"), |b| {
+            b.iter(|| {
+                let mut acc = 0.0f32;
+                for (wi, _, u) in &data {
+                    if let Some(s) = bsdf.sample(black_box(*wi), black_box(*u), [0.5]) {
+                        acc += s.weight[0];
+                    }
+                }
+                black_box(acc)
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2)).warm_up_time(std::time::Duration::from_millis(500));
+    targets = kernels
+}
+criterion_main!(benches);

@@ -19,7 +19,7 @@ use super::frame::{azimuthal_dot, both_above, sin_theta};
 use super::model::DiffuseBrdf;
 use super::params::{ParamError, Params};
 use glam::Vec3;
-use shadowing::{Shadowing, azimuth_correlation, azimuth_correlation_f32, mu_lambda, mu_lambda_f32, visibility_denominator};
+use shadowing::{Shadowing, azimuth_correlation, azimuth_correlation_f32, mu_lambda, visibility_denominator};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
 use std::f32::consts::FRAC_1_PI;
 use std::sync::Arc;
@@ -109,8 +109,9 @@ impl DiffuseBrdf for Ginneken {
         let (si, so) = (sin_theta(wi), sin_theta(wo));
         let sin_prod = si * so;
         let cos_phi = if sin_prod > 1e-12 { (azimuthal_dot(wi, wo) / sin_prod).clamp(-1.0, 1.0) } else { 1.0 };
-        let integral = self.table.lookup(table::axis_of_cos(mu_i), table::axis_of_cos(mu_o), cos_phi);
-        let den = visibility_denominator(self.shadowing, mu_i, mu_o, mu_lambda_f32(mu_i, si, self.m), mu_lambda_f32(mu_o, so, self.m), || {
+        let (x_i, x_o) = (table::axis_of_cos(mu_i), table::axis_of_cos(mu_o));
+        let integral = self.table.lookup(x_i, x_o, cos_phi);
+        let den = visibility_denominator(self.shadowing, mu_i, mu_o, self.table.mu_lambda(x_i), self.table.mu_lambda(x_o), || {
             azimuth_correlation_f32(cos_phi)
         });
         let g = FRAC_1_PI * integral / den;

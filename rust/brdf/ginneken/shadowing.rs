@@ -42,21 +42,6 @@ pub fn mu_lambda(mu: f64, sin: f64, m: f64) -> f64 {
     v.max(0.0)
 }
 
-/// f32 version of [`mu_lambda`] for the hot path.
-#[inline]
-pub fn mu_lambda_f32(mu: f32, sin: f32, m: f32) -> f32 {
-    if sin <= 0.0 || mu <= 0.0 {
-        return 0.0;
-    }
-    let a = mu / (m * sin);
-    if a > 9.0 {
-        return 0.0; // e^{−40.5}: far below f32 resolution
-    }
-    const SQRT_2_OVER_PI: f32 = 0.797_884_6;
-    let v = 0.5 * (SQRT_2_OVER_PI * m * sin * (-0.5 * a * a).exp() - mu * libm::erfcf(a * std::f32::consts::FRAC_1_SQRT_2));
-    v.max(0.0)
-}
-
 /// `α(φ) = 4.41 φ/(4.41 φ + 1)` with φ folded into [0, π] from `cos Δφ`.
 #[inline]
 pub fn azimuth_correlation(cos_phi: f64) -> f64 {
@@ -109,8 +94,6 @@ mod tests {
                 let got = mu_lambda(t.cos(), t.sin(), m) / t.cos();
                 let want = lambda_by_definition(t, m);
                 assert!((got - want).abs() <= 1e-9 + 1e-7 * want, "m={m} θ={deg}: {got} vs {want}");
-                let got32 = mu_lambda_f32(t.cos() as f32, t.sin() as f32, m as f32) as f64 / t.cos();
-                assert!((got32 - want).abs() <= 2e-6 + 1e-4 * want, "f32 m={m} θ={deg}: {got32} vs {want}");
             }
         }
     }

@@ -12,6 +12,7 @@
 //! * `c = cos Δφ` ∈ [−1, 1]: `I` is linear in `c` wherever no facet is clamped.
 //! `I(θi, θo, Δφ) = I(θo, θi, Δφ)`, so only `x_i ≤ x_o` is integrated and the rest mirrored.
 
+use super::shadowing::mu_lambda;
 use super::slope_integral::SlopeIntegrator;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -21,6 +22,9 @@ use std::sync::{Arc, Mutex, OnceLock, Weak};
 pub const U_NODES: usize = 80;
 /// Nodes along the `cos Δφ` axis.
 pub const C_NODES: usize = 32;
+/// Nodes of the 1-D table of `μΛ(μ)` (same axis): replaces `erfc` and `exp` per direction;
+/// interpolation error < 1e-6 of the denominator it enters (covered by the fast-path test).
+pub const LAMBDA_NODES: usize = 1024;
 /// Gauss–Legendre nodes per radial piece when building (converged to ~1e-7, see tests).
 const BUILD_NODES: usize = 24;
 
@@ -31,6 +35,8 @@ pub struct SlopeTable {
     n_c: usize,
     /// `data[(iu_i * U_NODES + iu_o) * C_NODES + ic]`.
     data: Vec<f32>,
+    /// `μΛ(μ)` at [`LAMBDA_NODES`] points of the direction axis.
+    mu_lambda: Vec<f32>,
 }
 
 impl SlopeTable {
@@ -67,7 +73,13 @@ impl SlopeTable {
                 }
             }
         }
-        Self { m, n_u, n_c, data }
+        let mu_lambda = (0..LAMBDA_NODES)
+            .map(|k| {
+                let mu = cos_of_axis(k as f64 / (LAMBDA_NODES - 1) as f64);
+                mu_lambda(mu, (1.0 - mu * mu).max(0.0).sqrt(), m) as f32
+            })
+            .collect();
+        Self { m, n_u, n_c, data, mu_lambda }
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -127,6 +139,16 @@ pub fn axis_of_cos(mu: f32) -> f32 {
 pub fn cos_of_axis(x: f64) -> f64 {
     let y = 1.0 - x;
     y * y / (y * y + x * x)
+}
+
+impl SlopeTable {
+    /// `μΛ(μ)` at axis coordinate `x` ([`axis_of_cos`]), linearly interpolated.
+    #[inline]
+    pub fn mu_lambda(&self, x: f32) -> f32 {
+        let (i, f) = cell(x, LAMBDA_NODES);
+        let t = &self.mu_lambda;
+        t[i] + f * (t[i + 1] - t[i])
+    }
 }
 
 /// Lower node index and fraction for `x ∈ [0, 1]` on a grid of `n` nodes (clamped so that
