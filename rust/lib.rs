@@ -3,6 +3,8 @@
 //!
 //! * [`brdf`]: the kernels, one pure implementation per model, used by everything else.
 //! * [`cli`]: the `matte` command line (`brdf`, `albedo`, `tables`).
+//! * [`ffi`]: the `cxx` bridge the Mitsuba plugin (`cpp/`) calls.
 
 pub mod brdf;
 pub mod cli;
+pub mod ffi;

@@ -1,0 +1,318 @@
+/*
+ * matte's Mitsuba 3 BSDF: one class for every matte model, whose math is the Rust kernels
+ * (rust/brdf/) called through the cxx bridge (rust/ffi/). Mitsuba loads the plugin under the
+ * name of the `<bsdf type="...">` (lambert, oren_nayar, eon, wolff, ginneken); that name
+ * selects the model.
+ *
+ * Parameters (brdf-models.md; all optional):
+ *
+ *   reflectance  spectrum or texture    albedo parameter ρ (default 0.5), evaluated per channel
+ *   oren_nayar:  sigma (float, radians, 0.3), model ("qualitative" | "full")
+ *   eon:         roughness (float in [0, 1], 0.3)
+ *   wolff:       int_ior, ext_ior (float or a Mitsuba IOR name, 1.4 / 1.0),
+ *                normalization ("physical" | "normal" | "raw")
+ *   ginneken:    roughness (float > 0, rms slope, 0.3), shadowing ("vginneken" | "height_correlated")
+ *
+ * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
+ * cosine-weighted. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
+ *
+ * Variants: scalar_rgb and scalar_spectral call the kernels per lane. The llvm variants
+ * (llvm_ad_rgb, llvm_ad_mono, llvm_ad_spectral) run in Dr.Jit's *evaluated* mode: the
+ * inputs are evaluated, their host buffers handed to a Rust batch function and the results
+ * loaded back. A Rust function cannot be traced into a Dr.Jit kernel, so calling the
+ * plugin inside a symbolic loop or call raises an error that says which flags to switch off.
+ * Gradients do not flow through the kernels: parameters are exposed as non-differentiable.
+ */
+#pragma once
+
+#include <mitsuba/core/properties.h>
+#include <mitsuba/core/string.h>
+#include <mitsuba/render/bsdf.h>
+#include <mitsuba/render/texture.h>
+
+#include "rust/cxx.h"  // rust::Error (the generated header declares only what it uses)
+#include "matte/rust/ffi/bridge.rs.h"
+
+#include <cstring>
+#include <optional>
+#include <vector>
+
+NAMESPACE_BEGIN(mitsuba)
+
+template <typename Float, typename Spectrum>
+class MatteBSDF final : public BSDF<Float, Spectrum> {
+public:
+    MI_IMPORT_BASE(BSDF, m_flags, m_components)
+    MI_IMPORT_TYPES(Texture)
+
+    MatteBSDF(const Properties &props) : Base(props), m_kind(props.plugin_name()) {
+        m_reflectance = props.get_texture<Texture>("reflectance", .5f);
+        // Hand every scalar property to the Rust parser, which validates names and values
+        // (one parser for plugin, renderer and CLI). Anything else stays unqueried, so
+        // Mitsuba reports it as an unreferenced property.
+        std::vector<std::string> names;
+        for (const auto &p : props)
+            names.emplace_back(p.name());
+        for (const std::string &name : names) {
+            if (name == "reflectance")
+                continue;
+            switch (props.type(name)) {
+                case Properties::Type::Float:
+                case Properties::Type::Integer:
+                    m_params.push_back(number_param(name, props.get<double>(name)));
+                    break;
+                case Properties::Type::String:
+                    m_params.push_back(text_param(name, props.get<std::string>(name)));
+                    break;
+                case Properties::Type::Bool:
+                    m_params.push_back(text_param(name, props.get<bool>(name) ? "true" : "false"));
+                    break;
+                default:
+                    break;
+            }
+        }
+        build_model();
+        m_flags = BSDFFlags::DiffuseReflection | BSDFFlags::FrontSide;
+        m_components.push_back(m_flags);
+    }
+
+    void traverse(TraversalCallback *cb) override {
+        cb->put("reflectance", m_reflectance, ParamFlags::NonDifferentiable);
+        for (auto &[name, value] : m_numeric)
+            cb->put(name, value, ParamFlags::NonDifferentiable);
+    }
+
+    void parameters_changed(const std::vector<std::string> & /*keys*/ = {}) override {
+        // Numeric parameters may have been edited through mi.traverse(): rebuild the model
+        // with the new values (validated again by the kernels).
+        for (auto &[name, value] : m_numeric) {
+            bool found = false;
+            for (auto &p : m_params)
+                if (std::string(p.name) == name) {
+                    p.is_number = true;
+                    p.number = (double) value;
+                    found = true;
+                }
+            if (!found)
+                m_params.push_back(number_param(name, (double) value));
+        }
+        build_model();
+    }
+
+    std::pair<BSDFSample3f, Spectrum> sample(const BSDFContext &ctx,
+                                             const SurfaceInteraction3f &si,
+                                             Float /* sample1 */,
+                                             const Point2f &sample2,
+                                             Mask active) const override {
+        MI_MASKED_FUNCTION(ProfilerPhase::BSDFSample, active);
+        Float cos_theta_i = Frame3f::cos_theta(si.wi);
+        BSDFSample3f bs = dr::zeros<BSDFSample3f>();
+        active &= cos_theta_i > 0.f;
+        if (unlikely(dr::none_or<false>(active) ||
+                     !ctx.is_enabled(BSDFFlags::DiffuseReflection)))
+            return { bs, 0.f };
+
+        UnpolarizedSpectrum value = m_reflectance->eval(si, active);
+        if constexpr (!dr::is_jit_v<Float>) {
+            float rho[Channels], weight[Channels];
+            for (size_t c = 0; c < Channels; ++c)
+                rho[c] = (float) value[c];
+            matte::ffi::Vec3f wo{ 0.f, 0.f, 1.f };
+            float pdf = (*m_model)->sample(to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
+                                        rust::Slice<const float>(rho, Channels), wo,
+                                        rust::Slice<float>(weight, Channels));
+            bs.wo = Vector3f(wo.x, wo.y, wo.z);
+            bs.pdf = pdf;
+            for (size_t c = 0; c < Channels; ++c)
+                value[c] = weight[c];
+        } else {
+            require_evaluated_mode("sample");
+            size_t n = dr::width(si.wi, sample2, value, active);
+            std::vector<float> wi(3 * n), u(2 * n), rho(Channels * n), wo(3 * n),
+                weight(Channels * n), pdf(n);
+            to_host(si.wi, n, wi.data());
+            to_host(sample2, n, u.data());
+            to_host(value, n, rho.data());
+            (*m_model)->sample_batch(rust::Slice<const float>(wi.data(), wi.size()),
+                                  rust::Slice<const float>(u.data(), u.size()),
+                                  rust::Slice<const float>(rho.data(), rho.size()), Channels,
+                                  rust::Slice<float>(wo.data(), wo.size()),
+                                  rust::Slice<float>(weight.data(), weight.size()),
+                                  rust::Slice<float>(pdf.data(), pdf.size()));
+            bs.wo = Vector3f(load(wo.data(), n), load(wo.data() + n, n), load(wo.data() + 2 * n, n));
+            bs.pdf = load(pdf.data(), n);
+            for (size_t c = 0; c < Channels; ++c)
+                value[c] = load(weight.data() + c * n, n);
+        }
+        bs.eta = 1.f;
+        bs.sampled_type = +BSDFFlags::DiffuseReflection;
+        bs.sampled_component = 0;
+        return { bs, depolarizer<Spectrum>(value) & (active && bs.pdf > 0.f) };
+    }
+
+    Spectrum eval(const BSDFContext &ctx, const SurfaceInteraction3f &si,
+                  const Vector3f &wo, Mask active) const override {
+        MI_MASKED_FUNCTION(ProfilerPhase::BSDFEvaluate, active);
+        if (!ctx.is_enabled(BSDFFlags::DiffuseReflection))
+            return 0.f;
+        return eval_pdf_impl(si, wo, active).first;
+    }
+
+    Float pdf(const BSDFContext &ctx, const SurfaceInteraction3f &si,
+              const Vector3f &wo, Mask active) const override {
+        MI_MASKED_FUNCTION(ProfilerPhase::BSDFEvaluate, active);
+        if (!ctx.is_enabled(BSDFFlags::DiffuseReflection))
+            return 0.f;
+        if constexpr (!dr::is_jit_v<Float>) {
+            if (!(active && Frame3f::cos_theta(si.wi) > 0.f && Frame3f::cos_theta(wo) > 0.f))
+                return 0.f;
+            return (*m_model)->pdf(to_ffi(si.wi), to_ffi(wo));
+        } else {
+            return eval_pdf_impl(si, wo, active).second;
+        }
+    }
+
+    std::pair<Spectrum, Float> eval_pdf(const BSDFContext &ctx,
+                                        const SurfaceInteraction3f &si,
+                                        const Vector3f &wo,
+                                        Mask active) const override {
+        MI_MASKED_FUNCTION(ProfilerPhase::BSDFEvaluate, active);
+        if (!ctx.is_enabled(BSDFFlags::DiffuseReflection))
+            return { 0.f, 0.f };
+        return eval_pdf_impl(si, wo, active);
+    }
+
+    Spectrum eval_diffuse_reflectance(const SurfaceInteraction3f &si,
+                                      Mask active) const override {
+        return m_reflectance->eval(si, active);
+    }
+
+    std::string to_string() const override {
+        std::ostringstream oss;
+        oss << "MatteBSDF[" << std::endl
+            << "  type = \"" << m_kind << "\"," << std::endl
+            << "  reflectance = " << string::indent(m_reflectance) << "," << std::endl;
+        for (const auto &p : (*m_model)->describe_parameters()) {
+            oss << "  " << std::string(p.name) << " = ";
+            if (p.is_number)
+                oss << p.number;
+            else
+                oss << "\"" << std::string(p.text) << "\"";
+            oss << "," << std::endl;
+        }
+        oss << "]";
+        return oss.str();
+    }
+
+    MI_DECLARE_CLASS(MatteBSDF)
+
+private:
+    static constexpr size_t Channels = dr::size_v<UnpolarizedSpectrum>;
+    using FloatD = dr::detached_t<Float>;
+
+    static matte::ffi::Param number_param(const std::string &name, double x) {
+        return matte::ffi::Param{ rust::String(name), true, x, rust::String() };
+    }
+    static matte::ffi::Param text_param(const std::string &name, const std::string &s) {
+        return matte::ffi::Param{ rust::String(name), false, 0.0, rust::String(s) };
+    }
+
+    void build_model() {
+        try {
+            m_model.emplace(matte::ffi::model_new(
+                rust::Str(m_kind.data(), m_kind.size()),
+                rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size())));
+        } catch (const rust::Error &e) {
+            Throw("bsdf \"%s\": %s", m_kind, e.what());
+        }
+        m_numeric.clear();
+        for (const auto &p : (*m_model)->numeric_parameters())
+            m_numeric.emplace_back(std::string(p.name), (ScalarFloat) p.number);
+    }
+
+    static matte::ffi::Vec3f to_ffi(const Vector3f &v) {
+        if constexpr (!dr::is_jit_v<Float>)
+            return matte::ffi::Vec3f{ (float) v.x(), (float) v.y(), (float) v.z() };
+        else
+            return matte::ffi::Vec3f{ 0.f, 0.f, 0.f };
+    }
+
+    void require_evaluated_mode(const char *method) const {
+        if (jit_flag(JitFlag::SymbolicScope))
+            Throw("bsdf \"%s\": %s() was called while Dr.Jit records a symbolic loop or call. "
+                  "matte's kernels are Rust code, which cannot be traced into a Dr.Jit kernel, "
+                  "so its llvm variants need evaluated mode: call "
+                  "dr.set_flag(dr.JitFlag.SymbolicLoops, False) and "
+                  "dr.set_flag(dr.JitFlag.SymbolicCalls, False) before rendering.",
+                  m_kind, method);
+    }
+
+    /// Copies a JIT array (or each component of a JIT vector) of width 1 or n to host memory,
+    /// component-major.
+    template <typename T> static void to_host(const T &value, size_t n, float *dst) {
+        if constexpr (dr::depth_v<T> > 1) {
+            for (size_t c = 0; c < dr::size_v<T>; ++c)
+                to_host(value.entry(c), n, dst + c * n);
+        } else {
+            FloatD v = dr::detach<false>(value);
+            dr::eval(v);
+            dr::sync_thread();
+            size_t w = dr::width(v);
+            const float *src = v.data();
+            if (w == n)
+                std::memcpy(dst, src, n * sizeof(float));
+            else
+                std::fill(dst, dst + n, src[0]);
+        }
+    }
+
+    static Float load(const float *src, size_t n) { return Float(dr::load<FloatD>(src, n)); }
+
+    /// f·cos θo and the pdf: the kernels for every active lane, 0 elsewhere.
+    std::pair<Spectrum, Float> eval_pdf_impl(const SurfaceInteraction3f &si, const Vector3f &wo,
+                                             Mask active) const {
+        Float cos_theta_i = Frame3f::cos_theta(si.wi), cos_theta_o = Frame3f::cos_theta(wo);
+        active &= cos_theta_i > 0.f && cos_theta_o > 0.f;
+        UnpolarizedSpectrum value = m_reflectance->eval(si, active);
+        Float pdf;
+        if constexpr (!dr::is_jit_v<Float>) {
+            if (!active)
+                return { 0.f, 0.f };
+            float rho[Channels], f[Channels];
+            for (size_t c = 0; c < Channels; ++c)
+                rho[c] = (float) value[c];
+            auto a = to_ffi(si.wi), b = to_ffi(wo);
+            (*m_model)->eval(a, b, rust::Slice<const float>(rho, Channels), rust::Slice<float>(f, Channels));
+            for (size_t c = 0; c < Channels; ++c)
+                value[c] = f[c] * cos_theta_o;
+            pdf = (*m_model)->pdf(a, b);
+        } else {
+            require_evaluated_mode("eval");
+            size_t n = dr::width(si.wi, wo, value, active);
+            std::vector<float> wi_h(3 * n), wo_h(3 * n), rho(Channels * n), f(Channels * n), pdf_h(n);
+            to_host(si.wi, n, wi_h.data());
+            to_host(wo, n, wo_h.data());
+            to_host(value, n, rho.data());
+            (*m_model)->eval_pdf_batch(rust::Slice<const float>(wi_h.data(), wi_h.size()),
+                                    rust::Slice<const float>(wo_h.data(), wo_h.size()),
+                                    rust::Slice<const float>(rho.data(), rho.size()), Channels,
+                                    rust::Slice<float>(f.data(), f.size()),
+                                    rust::Slice<float>(pdf_h.data(), pdf_h.size()));
+            for (size_t c = 0; c < Channels; ++c)
+                value[c] = load(f.data() + c * n, n) * cos_theta_o;
+            pdf = dr::select(active, load(pdf_h.data(), n), 0.f);
+        }
+        return { depolarizer<Spectrum>(value) & active, pdf };
+    }
+
+    std::string m_kind;
+    ref<Texture> m_reflectance;
+    std::vector<matte::ffi::Param> m_params;
+    std::vector<std::pair<std::string, ScalarFloat>> m_numeric;
+    /// Always set after construction (optional only because rust::Box has no empty state).
+    std::optional<rust::Box<matte::ffi::Model>> m_model;
+
+    MI_TRAVERSE_CB(Base, m_reflectance)
+};
+
+NAMESPACE_END(mitsuba)
