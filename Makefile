@@ -1,10 +1,24 @@
-# The two entry points the README documents. Each installs what it needs by itself.
+# The two entry points the README documents. Each installs what it needs by itself:
 #   make main   the main job
-#   make test   every test
-.PHONY: main test
+#   make test   every test (Rust, then the Mitsuba plugin's pytest suite); .ci/run calls it
+.PHONY: main test venv plugin
 
-main:
+PY     := .venv/bin/python
+PLUGIN := validation/matte_mitsuba/plugins/matte_bsdfs.so
+SOURCES := $(shell find rust cpp -type f) Cargo.toml Cargo.lock build.rs
+
+main: plugin
 	cargo run --release --quiet -- tables
 
-test:
+test: plugin
 	cargo test --quiet
+	$(PY) -m pytest -q tests/plugin
+
+# Debian's libllvm19, .venv with the pinned wheels (fast when already done).
+venv:
+	@validation/setup_venv.sh
+
+plugin: venv $(PLUGIN)
+
+$(PLUGIN): $(SOURCES) validation/requirements.txt
+	@cpp/build_plugin.sh

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds matte's Mitsuba plugin (recipe: shared/docs/mitsuba-plugin.md):
-#   1. the Rust staticlib (kernels + cxx bridge glue, `cargo build --release --lib`);
+#   1. the Rust staticlib (kernels + cxx bridge glue) and the `matte` binary;
 #   2. cpp/plugin.cpp against the pinned wheels' headers (.venv, set up by
 #      validation/setup_venv.sh), with -march=x86-64-v3 to match the wheel's Dr.Jit ABI;
 #   3. one shared library exporting only init_plugin, and <type>.so links to it for every
@@ -13,7 +13,7 @@ OUT=validation/matte_mitsuba/plugins
 OBJ=target/plugin
 mkdir -p "$OUT" "$OBJ"
 
-cargo build --release --lib --quiet
+cargo build --release --quiet   # libmatte.a, the cxx headers, and the matte binary
 
 CXXFLAGS=(-std=c++17 -O3 -fPIC -fvisibility=hidden -fno-strict-aliasing -march=x86-64-v3
           -DMI_ENABLE_LLVM=1 -DMI_ENABLE_CUDA=1 -DMI_ENABLE_EMBREE=1 -DMI_ENABLE_AUTODIFF=1 -DNDEBUG

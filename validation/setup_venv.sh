@@ -58,6 +58,13 @@ if [ "$want" != "$have" ]; then
     did+=("installed $REQ")
 fi
 
+# --- 4. make `import matte_mitsuba` work in the venv ------------------------------
+PTH="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/matte.pth"
+if [ "$(cat "$PTH" 2>/dev/null)" != "$PWD/validation" ]; then
+    echo "$PWD/validation" >"$PTH"
+    did+=("added validation/ to the venv's path (matte_mitsuba)")
+fi
+
 if [ ${#did[@]} -eq 0 ]; then
     echo "setup_venv: up to date (libllvm19 present, $VENV matches $REQ)"
 else

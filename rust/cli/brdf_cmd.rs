@@ -34,17 +34,21 @@ pub struct BrdfArgs {
     #[arg(long, default_value_t = 0.5)]
     pub reflectance: f64,
     /// Polar angle of wi (towards the light), degrees.
-    #[arg(long = "theta-i", required_unless_present = "grid", allow_negative_numbers = true)]
+    #[arg(long = "theta-i", required_unless_present_any = ["grid", "pairs"], allow_negative_numbers = true)]
     pub theta_i: Option<f64>,
     /// Polar angle of wo (towards the viewer), degrees.
-    #[arg(long = "theta-o", required_unless_present = "grid", allow_negative_numbers = true)]
+    #[arg(long = "theta-o", required_unless_present_any = ["grid", "pairs"], allow_negative_numbers = true)]
     pub theta_o: Option<f64>,
     /// Azimuth difference φo − φi, degrees (0: viewer on the light's side).
-    #[arg(long, required_unless_present = "grid", allow_negative_numbers = true)]
+    #[arg(long, required_unless_present_any = ["grid", "pairs"], allow_negative_numbers = true)]
     pub phi: Option<f64>,
     /// Evaluate on an N×N×N grid instead: θ in [0, 90) step 90/N, φ in [0, 180] in N steps.
-    #[arg(long, conflicts_with_all = ["theta_i", "theta_o", "phi"])]
+    #[arg(long, conflicts_with_all = ["theta_i", "theta_o", "phi", "pairs"])]
     pub grid: Option<usize>,
+    /// Evaluate at direction pairs read from a file ("-": stdin), one pair per line as six
+    /// numbers `wi.x wi.y wi.z wo.x wo.y wo.z` (local frame, unit vectors).
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["theta_i", "theta_o", "phi"])]
+    pub pairs: Option<String>,
 }
 
 #[derive(Args, Debug)]
@@ -97,7 +101,13 @@ pub fn run_brdf(a: &BrdfArgs) -> Result<(), String> {
     let bsdf = a.spec.build()?;
     let rho = check_reflectance(a.reflectance)?;
     let mut out = header(&bsdf, a.reflectance);
-    if let Some(n) = a.grid {
+    if let Some(path) = &a.pairs {
+        let (wi, wo) = read_pairs(path)?;
+        let f: Vec<f32> = wi.iter().zip(&wo).map(|(a, b)| bsdf.eval(*a, *b, [rho])[0]).collect();
+        let pdf: Vec<f32> = wi.iter().zip(&wo).map(|(a, b)| bsdf.pdf(*a, *b)).collect();
+        out.insert("f".into(), json!(f));
+        out.insert("pdf".into(), json!(pdf));
+    } else if let Some(n) = a.grid {
         if !(1..=256).contains(&n) {
             return Err(format!("--grid must lie in [1, 256] (got {n})"));
         }
@@ -144,6 +154,31 @@ pub fn run_brdf(a: &BrdfArgs) -> Result<(), String> {
     }
     println!("{}", Value::Object(out));
     Ok(())
+}
+
+/// Reads `wi.x wi.y wi.z wo.x wo.y wo.z` lines; errors name the line.
+fn read_pairs(path: &str) -> Result<(Vec<glam::Vec3>, Vec<glam::Vec3>), String> {
+    let text = if path == "-" {
+        std::io::read_to_string(std::io::stdin()).map_err(|e| format!("--pairs: reading stdin: {e}"))?
+    } else {
+        std::fs::read_to_string(path).map_err(|e| format!("--pairs: {path}: {e}"))?
+    };
+    let (mut wi, mut wo) = (Vec::new(), Vec::new());
+    for (k, line) in text.lines().enumerate() {
+        if line.trim().is_empty() {
+            continue;
+        }
+        let v: Vec<f32> = line
+            .split_whitespace()
+            .map(|t| t.parse::<f32>().map_err(|_| format!("--pairs: {path}:{}: \"{t}\" is not a number", k + 1)))
+            .collect::<Result<_, _>>()?;
+        if v.len() != 6 || v.iter().any(|x| !x.is_finite()) {
+            return Err(format!("--pairs: {path}:{}: expected six finite numbers, got \"{}\"", k + 1, line.trim()));
+        }
+        wi.push(glam::Vec3::new(v[0], v[1], v[2]));
+        wo.push(glam::Vec3::new(v[3], v[4], v[5]));
+    }
+    Ok((wi, wo))
 }
 
 pub fn run_albedo(a: &AlbedoArgs) -> Result<(), String> {

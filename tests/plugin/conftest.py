@@ -1,0 +1,76 @@
+"""Shared helpers for the Mitsuba plugin tests (run by `make test` after the plugin build).
+
+The oracle for the plugin's values is the Rust kernel reached through the `matte` binary
+(`matte brdf --pairs`), a separate process built from the same sources, and Mitsuba's own
+built-in plugins and `mitsuba.chi2` where they apply.
+"""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+MATTE = os.path.join(REPO, "target", "release", "matte")
+SCENES = os.path.join(REPO, "mitsuba_scenes")
+
+# (type, parameters) exercised by the agreement tests: defaults plus every option.
+CONFIGS = [
+    ("lambert", {}),
+    ("oren_nayar", {}),
+    ("oren_nayar", {"sigma": 0.8, "model": "full"}),
+    ("eon", {}),
+    ("eon", {"roughness": 1.0}),
+    ("wolff", {}),
+    ("wolff", {"int_ior": "bk7", "ext_ior": 1.1, "normalization": "normal"}),
+    ("wolff", {"int_ior": 1.8, "normalization": "raw"}),
+    ("ginneken", {}),
+    ("ginneken", {"roughness": 0.7, "shadowing": "height_correlated"}),
+]
+
+
+def config_id(cfg):
+    kind, params = cfg
+    return kind + "".join(f"-{k}={v}" for k, v in params.items())
+
+
+def kernel_f(kind, params, reflectance, wi, wo):
+    """f (no cosine) from the Rust kernel via `matte brdf --pairs -`, for float32 (n, 3) arrays."""
+    lines = "\n".join(
+        " ".join(repr(float(x)) for x in (*a, *b)) for a, b in zip(wi.astype(np.float32), wo.astype(np.float32)))
+    args = [MATTE, "brdf", "--bsdf", kind, "--reflectance", repr(float(reflectance)), "--pairs", "-"]
+    for k, v in params.items():
+        args += ["--param", f"{k}={v}"]
+    out = subprocess.run(args, input=lines, capture_output=True, text=True, check=True)
+    return np.array(json.loads(out.stdout)["f"], dtype=np.float64)
+
+
+def random_pairs(n, seed):
+    """float32 unit direction pairs; most above the surface, ~10 % with a direction below."""
+    rng = np.random.default_rng(seed)
+
+    def dirs(m):
+        z = rng.uniform(-0.1, 1.0, m)
+        phi = rng.uniform(0, 2 * np.pi, m)
+        r = np.sqrt(np.maximum(0.0, 1 - z * z))
+        return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1).astype(np.float32)
+
+    return dirs(n), dirs(n)
+
+
+@pytest.fixture
+def mi_variant(request):
+    """Sets the Mitsuba variant given by the test's parameter and imports matte_mitsuba."""
+    import mitsuba as mi
+    import drjit as dr
+    mi.set_variant(request.param)
+    import matte_mitsuba
+    matte_mitsuba.register()
+    if request.param.startswith("llvm"):
+        matte_mitsuba.evaluated_mode()
+        yield mi
+        dr.set_flag(dr.JitFlag.SymbolicLoops, True)
+        dr.set_flag(dr.JitFlag.SymbolicCalls, True)
+    else:
+        yield mi
