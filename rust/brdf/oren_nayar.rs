@@ -95,12 +95,13 @@ impl OrenNayar {
         let c2 = if cos_phi >= 0.0 { self.b * sin_alpha } else { self.b * (sin_alpha - two_beta_pi.powi(3)) };
         let four_ab = 4.0 * alpha * beta * FRAC_1_PI * FRAC_1_PI;
         let c3 = self.c3 * four_ab * four_ab;
-        // The 1994 fit of the direct term goes negative in forward-grazing configurations at
-        // large σ (σ = 1, θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1); radiance from
-        // one bounce cannot be, so it is clamped at 0. The interreflection term is ≥ 0 as is.
-        let direct = (self.a + cos_phi * c2 * tan_beta + (1.0 - cos_phi.abs()) * c3 * tan_half_sum).max(0.0);
+        let direct = self.a + cos_phi * c2 * tan_beta + (1.0 - cos_phi.abs()) * c3 * tan_half_sum;
         let inter = self.l2 * (1.0 - cos_phi * two_beta_pi * two_beta_pi);
-        reflectance.map(|rho| FRAC_1_PI * rho * (direct + rho * inter))
+        // The 1994 fit goes negative in forward-grazing configurations at large σ (σ = 1,
+        // θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1 and, for ρ < 1, the ρ² term).
+        // A BRDF cannot be negative: the total is clamped at 0, which leaves the published
+        // model untouched wherever it is valid (Table 2's albedos are unchanged).
+        reflectance.map(|rho| (FRAC_1_PI * rho * (direct + rho * inter)).max(0.0))
     }
 }
 
