@@ -114,35 +114,26 @@ public:
 
         UnpolarizedSpectrum value = m_reflectance->eval(si, active);
         if constexpr (!dr::is_jit_v<Float>) {
-            float rho[Channels], weight[Channels];
-            for (size_t c = 0; c < Channels; ++c)
-                rho[c] = (float) value[c];
+            matte::ffi::Channels weight{};
             matte::ffi::Vec3f wo{ 0.f, 0.f, 1.f };
             float pdf = (*m_model)->sample(to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
-                                        rust::Slice<const float>(rho, Channels), wo,
-                                        rust::Slice<float>(weight, Channels));
+                                           to_channels(value), wo, weight);
             bs.wo = Vector3f(wo.x, wo.y, wo.z);
             bs.pdf = pdf;
             for (size_t c = 0; c < Channels; ++c)
-                value[c] = weight[c];
+                value[c] = weight.v[c];
         } else {
             require_evaluated_mode("sample");
             size_t n = dr::width(si.wi, sample2, value, active);
-            std::vector<float> wi(3 * n), u(2 * n), rho(Channels * n), wo(3 * n),
-                weight(Channels * n), pdf(n);
-            to_host(si.wi, n, wi.data());
-            to_host(sample2, n, u.data());
-            to_host(value, n, rho.data());
-            (*m_model)->sample_batch(rust::Slice<const float>(wi.data(), wi.size()),
-                                  rust::Slice<const float>(u.data(), u.size()),
-                                  rust::Slice<const float>(rho.data(), rho.size()), Channels,
-                                  rust::Slice<float>(wo.data(), wo.size()),
-                                  rust::Slice<float>(weight.data(), weight.size()),
-                                  rust::Slice<float>(pdf.data(), pdf.size()));
-            bs.wo = Vector3f(load(wo.data(), n), load(wo.data() + n, n), load(wo.data() + 2 * n, n));
-            bs.pdf = load(pdf.data(), n);
+            std::vector<FloatD> in = evaluated(n, si.wi, sample2, value);
+            std::vector<FloatD> out = allocated(n, Channels + 4);  // weight, pdf, wo
+            matte::ffi::LanesIn lanes_in = lanes(in, 2, n);  // wi, u (2-D sample), reflectance
+            matte::ffi::LanesOut lanes_out = lanes(out, n);
+            (*m_model)->sample_lanes(lanes_in, lanes_out);
             for (size_t c = 0; c < Channels; ++c)
-                value[c] = load(weight.data() + c * n, n);
+                value[c] = Float(out[c]);
+            bs.pdf = Float(out[Channels]);
+            bs.wo = Vector3f(Float(out[Channels + 1]), Float(out[Channels + 2]), Float(out[Channels + 3]));
         }
         bs.eta = 1.f;
         bs.sampled_type = +BSDFFlags::DiffuseReflection;
@@ -247,26 +238,77 @@ private:
                   m_kind, method);
     }
 
-    /// Copies a JIT array (or each component of a JIT vector) of width 1 or n to host memory,
-    /// component-major.
-    template <typename T> static void to_host(const T &value, size_t n, float *dst) {
+    /// The lane's channels as the plain struct the kernels take (no FFI call to build it).
+    static matte::ffi::Channels to_channels(const UnpolarizedSpectrum &value) {
+        matte::ffi::Channels c{};
+        for (size_t k = 0; k < Channels; ++k)
+            c.v[k] = (float) value[k];
+        c.n = Channels;
+        return c;
+    }
+
+    /// Flattens JIT floats and vectors into their scalar components (detached from AD).
+    template <typename T> static void collect(const T &value, std::vector<FloatD> &out) {
         if constexpr (dr::depth_v<T> > 1) {
             for (size_t c = 0; c < dr::size_v<T>; ++c)
-                to_host(value.entry(c), n, dst + c * n);
+                collect(value.entry(c), out);
         } else {
-            FloatD v = dr::detach<false>(value);
-            dr::eval(v);
-            dr::sync_thread();
-            size_t w = dr::width(v);
-            const float *src = v.data();
-            if (w == n)
-                std::memcpy(dst, src, n * sizeof(float));
-            else
-                std::fill(dst, dst + n, src[0]);
+            out.push_back(dr::detach<false>(value));
         }
     }
 
-    static Float load(const float *src, size_t n) { return Float(dr::load<FloatD>(src, n)); }
+    /// The float components of `values`, detached, broadcast to width `n` and evaluated in
+    /// one Dr.Jit launch: their buffers are handed to Rust as they are, without copies.
+    template <typename... Ts> static std::vector<FloatD> evaluated(size_t n, const Ts &...values) {
+        std::vector<FloatD> flat;
+        (collect(values, flat), ...);
+        for (FloatD &v : flat) {
+            if (dr::width(v) != n)
+                v = dr::full<FloatD>(v.entry(0), n);  // e.g. a uniform reflectance
+            dr::schedule(v);
+        }
+        dr::eval();
+        dr::sync_thread();
+        return flat;
+    }
+
+    /// `count` uninitialised buffers of width `n` for Rust to fill.
+    static std::vector<FloatD> allocated(size_t n, size_t count) {
+        std::vector<FloatD> out(count);
+        for (FloatD &v : out) {
+            v = dr::empty<FloatD>(n);
+            dr::schedule(v);
+        }
+        dr::eval();
+        return out;
+    }
+
+    static rust::Slice<const float> view(const FloatD &v, size_t n) {
+        return rust::Slice<const float>(v.data(), n);
+    }
+    static rust::Slice<float> view(FloatD &v, size_t n) { return rust::Slice<float>(v.data(), n); }
+
+    /// Inputs: `wi` (3), then `directional` components (wo: 3, or the 2-D sample), then the
+    /// reflectance channels.
+    static matte::ffi::LanesIn lanes(const std::vector<FloatD> &in, size_t directional, size_t n) {
+        auto at = [&](size_t k) { return k < in.size() ? view(in[k], n) : rust::Slice<const float>(); };
+        size_t rho = 3 + directional;
+        return matte::ffi::LanesIn{ at(0), at(1), at(2), at(3), at(4),
+                                    directional == 3 ? at(5) : rust::Slice<const float>(),
+                                    Channels > 0 ? at(rho) : rust::Slice<const float>(),
+                                    Channels > 1 ? at(rho + 1) : rust::Slice<const float>(),
+                                    Channels > 2 ? at(rho + 2) : rust::Slice<const float>(),
+                                    Channels > 3 ? at(rho + 3) : rust::Slice<const float>(),
+                                    Channels };
+    }
+
+    /// Outputs: the channels, the pdf, then (when present) wo.
+    static matte::ffi::LanesOut lanes(std::vector<FloatD> &out, size_t n) {
+        auto at = [&](size_t k) { return k < out.size() ? view(out[k], n) : rust::Slice<float>(); };
+        auto channel = [&](size_t c) { return c < Channels ? at(c) : rust::Slice<float>(); };
+        return matte::ffi::LanesOut{ channel(0), channel(1), channel(2), channel(3), at(Channels),
+                                     at(Channels + 1), at(Channels + 2), at(Channels + 3) };
+    }
 
     /// f·cos θo and the pdf: the kernels for every active lane, 0 elsewhere.
     std::pair<Spectrum, Float> eval_pdf_impl(const SurfaceInteraction3f &si, const Vector3f &wo,
@@ -278,29 +320,21 @@ private:
         if constexpr (!dr::is_jit_v<Float>) {
             if (!active)
                 return { 0.f, 0.f };
-            float rho[Channels], f[Channels];
+            matte::ffi::Channels f{};
+            pdf = (*m_model)->eval_pdf(to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
             for (size_t c = 0; c < Channels; ++c)
-                rho[c] = (float) value[c];
-            auto a = to_ffi(si.wi), b = to_ffi(wo);
-            (*m_model)->eval(a, b, rust::Slice<const float>(rho, Channels), rust::Slice<float>(f, Channels));
-            for (size_t c = 0; c < Channels; ++c)
-                value[c] = f[c] * cos_theta_o;
-            pdf = (*m_model)->pdf(a, b);
+                value[c] = f.v[c] * cos_theta_o;
         } else {
             require_evaluated_mode("eval");
             size_t n = dr::width(si.wi, wo, value, active);
-            std::vector<float> wi_h(3 * n), wo_h(3 * n), rho(Channels * n), f(Channels * n), pdf_h(n);
-            to_host(si.wi, n, wi_h.data());
-            to_host(wo, n, wo_h.data());
-            to_host(value, n, rho.data());
-            (*m_model)->eval_pdf_batch(rust::Slice<const float>(wi_h.data(), wi_h.size()),
-                                    rust::Slice<const float>(wo_h.data(), wo_h.size()),
-                                    rust::Slice<const float>(rho.data(), rho.size()), Channels,
-                                    rust::Slice<float>(f.data(), f.size()),
-                                    rust::Slice<float>(pdf_h.data(), pdf_h.size()));
+            std::vector<FloatD> in = evaluated(n, si.wi, wo, value);
+            std::vector<FloatD> out = allocated(n, Channels + 1);  // f, pdf
+            matte::ffi::LanesIn lanes_in = lanes(in, 3, n);  // wi, wo, reflectance
+            matte::ffi::LanesOut lanes_out = lanes(out, n);
+            (*m_model)->eval_pdf_lanes(lanes_in, lanes_out);
             for (size_t c = 0; c < Channels; ++c)
-                value[c] = load(f.data() + c * n, n) * cos_theta_o;
-            pdf = dr::select(active, load(pdf_h.data(), n), 0.f);
+                value[c] = Float(out[c]) * cos_theta_o;
+            pdf = dr::select(active, Float(out[Channels]), 0.f);
         }
         return { depolarizer<Spectrum>(value) & active, pdf };
     }

@@ -11,7 +11,8 @@
 mod bridge;
 
 use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
-use bridge::ffi::{Param, Vec3f};
+use bridge::ffi::{Channels, LanesIn, LanesOut, Param, Vec3f};
+use rayon::prelude::*;
 use glam::{Vec2, Vec3};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -46,14 +47,30 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
     }
 }
 
-/// Calls `f` with the reflectance as a fixed-size array of the variant's channel count.
+/// Runs a kernel call generic over the channel count with the lane's `n` channels.
 #[inline]
-fn with_channels(reflectance: &[f32], out: &mut [f32], f: impl Fn([f32; MAX_CHANNELS]) -> [f32; MAX_CHANNELS]) {
-    let n = reflectance.len().min(out.len()).min(MAX_CHANNELS);
-    let mut rho = [0.0f32; MAX_CHANNELS];
-    rho[..n].copy_from_slice(&reflectance[..n]);
-    let r = f(rho);
-    out[..n].copy_from_slice(&r[..n]);
+fn per_channels(c: &Channels, f: impl Fn(&[f32]) -> [f32; MAX_CHANNELS]) -> [f32; MAX_CHANNELS] {
+    f(&c.v[..c.n.min(MAX_CHANNELS)])
+}
+
+/// Evaluates `bsdf` for 1, 3 or 4 channels (Mitsuba's mono, RGB and spectral variants).
+#[inline]
+fn eval_channels(bsdf: &Bsdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; MAX_CHANNELS] {
+    match *rho {
+        [a] => {
+            let [x] = bsdf.eval(wi, wo, [a]);
+            [x, 0.0, 0.0, 0.0]
+        }
+        [a, b, c] => {
+            let [x, y, z] = bsdf.eval(wi, wo, [a, b, c]);
+            [x, y, z, 0.0]
+        }
+        _ => {
+            let mut r = [0.0; MAX_CHANNELS];
+            r[..rho.len()].copy_from_slice(rho);
+            bsdf.eval(wi, wo, r)
+        }
+    }
 }
 
 impl Model {
@@ -77,14 +94,12 @@ impl Model {
             .collect()
     }
 
-    /// `f(wi, wo)` without the cosine, per channel.
-    fn eval(&self, wi: &Vec3f, wo: &Vec3f, reflectance: &[f32], out: &mut [f32]) {
+    /// `f(wi, wo)` without the cosine, per channel; returns the pdf.
+    fn eval_pdf(&self, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
         let (wi, wo) = (v3(wi), v3(wo));
-        match reflectance.len() {
-            1 => out[..1].copy_from_slice(&self.bsdf.eval(wi, wo, [reflectance[0]])),
-            3 if out.len() >= 3 => out[..3].copy_from_slice(&self.bsdf.eval(wi, wo, [reflectance[0], reflectance[1], reflectance[2]])),
-            _ => with_channels(reflectance, out, |rho| self.bsdf.eval(wi, wo, rho)),
-        }
+        f.v = per_channels(reflectance, |rho| eval_channels(&self.bsdf, wi, wo, rho));
+        f.n = reflectance.n;
+        self.bsdf.pdf(wi, wo)
     }
 
     fn pdf(&self, wi: &Vec3f, wo: &Vec3f) -> f32 {
@@ -92,77 +107,97 @@ impl Model {
     }
 
     /// Samples `wo`; writes it and the weight `f cos θo / pdf`; returns the pdf (0: no sample).
-    fn sample(&self, wi: &Vec3f, u1: f32, u2: f32, reflectance: &[f32], wo: &mut Vec3f, weight: &mut [f32]) -> f32 {
+    fn sample(&self, wi: &Vec3f, u1: f32, u2: f32, reflectance: &Channels, wo: &mut Vec3f, weight: &mut Channels) -> f32 {
         let wi = v3(wi);
+        weight.n = reflectance.n;
         let Some((dir, pdf)) = self.bsdf.sample_direction(wi, Vec2::new(u1, u2)) else {
-            weight.iter_mut().for_each(|w| *w = 0.0);
+            weight.v = [0.0; MAX_CHANNELS];
             return 0.0;
         };
         *wo = Vec3f { x: dir.x, y: dir.y, z: dir.z };
         let scale = dir.z / pdf;
-        self.eval(&Vec3f { x: wi.x, y: wi.y, z: wi.z }, wo, reflectance, weight);
-        weight.iter_mut().take(reflectance.len()).for_each(|w| *w *= scale);
+        weight.v = per_channels(reflectance, |rho| eval_channels(&self.bsdf, wi, dir, rho)).map(|x| x * scale);
         pdf
     }
 
-    /// Batch form of [`Self::eval`] + [`Self::pdf`] for the JIT variants (evaluated mode):
-    /// structure-of-arrays inputs of `n` lanes; `reflectance` and `f_out` are channel-major
-    /// (`channels × n`). Returns f without the cosine.
-    #[allow(clippy::too_many_arguments)]
-    fn eval_pdf_batch(&self, wi: &[f32], wo: &[f32], reflectance: &[f32], channels: usize, f_out: &mut [f32], pdf_out: &mut [f32]) {
-        let n = pdf_out.len();
-        if channels == 0 || wi.len() < 3 * n || wo.len() < 3 * n || reflectance.len() < channels * n || f_out.len() < channels * n {
-            return;
-        }
-        let mut rho = [0.0f32; MAX_CHANNELS];
-        for k in 0..n {
-            let a = Vec3::new(wi[k], wi[n + k], wi[2 * n + k]);
-            let b = Vec3::new(wo[k], wo[n + k], wo[2 * n + k]);
-            for c in 0..channels.min(MAX_CHANNELS) {
-                rho[c] = reflectance[c * n + k];
-            }
-            let f = self.bsdf.eval(a, b, rho);
-            for c in 0..channels.min(MAX_CHANNELS) {
-                f_out[c * n + k] = f[c];
-            }
-            pdf_out[k] = self.bsdf.pdf(a, b);
-        }
+    /// [`Self::eval_pdf`] for every lane of a JIT wavefront (evaluated mode), in parallel.
+    fn eval_pdf_lanes(&self, input: &LanesIn, output: &mut LanesOut) {
+        self.for_each_lane(input, output, false);
     }
 
-    /// Batch form of [`Self::sample`]: `u` is `2 × n`, `wo_out` is `3 × n`, `weight_out`
-    /// channel-major; `pdf_out` 0 where no direction was drawn.
-    #[allow(clippy::too_many_arguments)]
-    fn sample_batch(&self, wi: &[f32], u: &[f32], reflectance: &[f32], channels: usize, wo_out: &mut [f32], weight_out: &mut [f32], pdf_out: &mut [f32]) {
-        let n = pdf_out.len();
-        if channels == 0 || wi.len() < 3 * n || u.len() < 2 * n || reflectance.len() < channels * n || wo_out.len() < 3 * n || weight_out.len() < channels * n {
+    /// [`Self::sample`] for every lane: `v_x`, `v_y` hold the two uniform numbers.
+    fn sample_lanes(&self, input: &LanesIn, output: &mut LanesOut) {
+        self.for_each_lane(input, output, true);
+    }
+
+    fn for_each_lane(&self, input: &LanesIn, output: &mut LanesOut, sample: bool) {
+        let n = output.pdf.len();
+        let channels = input.channels.min(MAX_CHANNELS);
+        let rho_in = [input.rho_0, input.rho_1, input.rho_2, input.rho_3];
+        let inputs_ok = channels >= 1
+            && [input.wi_x, input.wi_y, input.wi_z, input.v_x, input.v_y].iter().all(|s| s.len() == n)
+            && (sample || input.v_z.len() == n)
+            && rho_in[..channels].iter().all(|s| s.len() == n);
+        let outputs_ok = [&output.out_0, &output.out_1, &output.out_2, &output.out_3][..channels].iter().all(|s| s.len() == n)
+            && (!sample || [&output.wo_x, &output.wo_y, &output.wo_z].iter().all(|s| s.len() == n));
+        if !inputs_ok || !outputs_ok {
+            // A bug in the C++ caller; never panic across the boundary: give zero (no
+            // contribution, no sample) wherever we can write.
+            output.pdf.iter_mut().for_each(|p| *p = 0.0);
             return;
         }
-        let mut rho = [0.0f32; MAX_CHANNELS];
-        for k in 0..n {
-            let a = Vec3::new(wi[k], wi[n + k], wi[2 * n + k]);
-            for c in 0..channels.min(MAX_CHANNELS) {
-                rho[c] = reflectance[c * n + k];
-            }
-            match self.bsdf.sample(a, Vec2::new(u[k], u[n + k]), rho) {
-                Some(s) => {
-                    wo_out[k] = s.wo.x;
-                    wo_out[n + k] = s.wo.y;
-                    wo_out[2 * n + k] = s.wo.z;
-                    for c in 0..channels.min(MAX_CHANNELS) {
-                        weight_out[c * n + k] = s.weight[c];
-                    }
-                    pdf_out[k] = s.pdf;
-                }
-                None => {
-                    for c in 0..channels.min(MAX_CHANNELS) {
-                        weight_out[c * n + k] = 0.0;
-                    }
-                    wo_out[k] = 0.0;
-                    wo_out[n + k] = 0.0;
-                    wo_out[2 * n + k] = 1.0;
-                    pdf_out[k] = 0.0;
-                }
-            }
+        // Disjoint chunks of every output, processed in parallel (Dr.Jit's own threads are
+        // idle while it waits for us).
+        const CHUNK: usize = 8192;
+        fn split(s: &mut [f32], n: usize) -> Vec<&mut [f32]> {
+            if s.is_empty() { (0..n.div_ceil(CHUNK)).map(|_| Default::default()).collect() } else { s.chunks_mut(CHUNK).collect() }
         }
+        let LanesOut { out_0, out_1, out_2, out_3, pdf, wo_x, wo_y, wo_z } = output;
+        let mut outs: Vec<[&mut [f32]; 8]> = Vec::new();
+        let mut parts = [out_0, out_1, out_2, out_3, pdf, wo_x, wo_y, wo_z]
+            .map(|s| split(s, n))
+            .map(|v| v.into_iter());
+        while let Some(p) = parts[4].next() {
+            let mut next = |k: usize| parts[k].next().unwrap_or_default();
+            let (o0, o1, o2, o3) = (next(0), next(1), next(2), next(3));
+            let (x, y, z) = (next(5), next(6), next(7));
+            outs.push([o0, o1, o2, o3, p, x, y, z]);
+        }
+        outs.into_par_iter().enumerate().for_each(|(chunk, o)| {
+            let base = chunk * CHUNK;
+            for i in 0..o[4].len() {
+                let k = base + i;
+                let wi = Vec3::new(input.wi_x[k], input.wi_y[k], input.wi_z[k]);
+                let mut rho = [0.0f32; MAX_CHANNELS];
+                for c in 0..channels {
+                    rho[c] = rho_in[c][k];
+                }
+                let rho = &rho[..channels];
+                let (values, pdf) = if sample {
+                    match self.bsdf.sample_direction(wi, Vec2::new(input.v_x[k], input.v_y[k])) {
+                        Some((wo, pdf)) => {
+                            o[5][i] = wo.x;
+                            o[6][i] = wo.y;
+                            o[7][i] = wo.z;
+                            let scale = wo.z / pdf;
+                            (eval_channels(&self.bsdf, wi, wo, rho).map(|x| x * scale), pdf)
+                        }
+                        None => {
+                            o[5][i] = 0.0;
+                            o[6][i] = 0.0;
+                            o[7][i] = 1.0;
+                            ([0.0; MAX_CHANNELS], 0.0)
+                        }
+                    }
+                } else {
+                    let wo = Vec3::new(input.v_x[k], input.v_y[k], input.v_z[k]);
+                    (eval_channels(&self.bsdf, wi, wo, rho), self.bsdf.pdf(wi, wo))
+                };
+                for c in 0..channels {
+                    o[c][i] = values[c];
+                }
+                o[4][i] = pdf;
+            }
+        });
     }
 }
