@@ -125,9 +125,10 @@ public:
         } else {
             require_evaluated_mode("sample");
             size_t n = dr::width(si.wi, sample2, value, active);
+            MaskD mask = evaluated_mask(active, n);
             std::vector<FloatD> in = evaluated(n, si.wi, sample2, value);
             std::vector<FloatD> out = allocated(n, Channels + 4);  // weight, pdf, wo
-            matte::ffi::LanesIn lanes_in = lanes(in, 2, n);  // wi, u (2-D sample), reflectance
+            matte::ffi::LanesIn lanes_in = lanes(in, 2, n, mask);  // wi, u (2-D sample), reflectance
             matte::ffi::LanesOut lanes_out = lanes(out, n);
             (*m_model)->sample_lanes(lanes_in, lanes_out);
             for (size_t c = 0; c < Channels; ++c)
@@ -200,6 +201,7 @@ public:
 private:
     static constexpr size_t Channels = dr::size_v<UnpolarizedSpectrum>;
     using FloatD = dr::detached_t<Float>;
+    using MaskD = dr::mask_t<FloatD>;
 
     static matte::ffi::Param number_param(const std::string &name, double x) {
         return matte::ffi::Param{ rust::String(name), true, x, rust::String() };
@@ -257,19 +259,24 @@ private:
         }
     }
 
-    /// The float components of `values`, detached, broadcast to width `n` and evaluated in
-    /// one Dr.Jit launch: their buffers are handed to Rust as they are, without copies.
-    template <typename... Ts> static std::vector<FloatD> evaluated(size_t n, const Ts &...values) {
+    /// The float components of `values`, detached and evaluated in one Dr.Jit launch: their
+    /// buffers (width n, or width 1 for literals such as a uniform reflectance, which Rust
+    /// broadcasts) are handed to Rust as they are, without copies.
+    template <typename... Ts> static std::vector<FloatD> evaluated(size_t /* n */, const Ts &...values) {
         std::vector<FloatD> flat;
         (collect(values, flat), ...);
-        for (FloatD &v : flat) {
-            if (dr::width(v) != n)
-                v = dr::full<FloatD>(v.entry(0), n);  // e.g. a uniform reflectance
+        for (FloatD &v : flat)
             dr::schedule(v);
-        }
         dr::eval();
         dr::sync_thread();
         return flat;
+    }
+
+    /// The mask as a byte buffer of width n or 1 (scheduled; evaluated with the inputs).
+    static MaskD evaluated_mask(const Mask &active, size_t /* n */) {
+        MaskD m = dr::detach<false>(active);
+        dr::schedule(m);
+        return m;
     }
 
     /// `count` uninitialised buffers of width `n` for Rust to fill.
@@ -283,14 +290,16 @@ private:
         return out;
     }
 
-    static rust::Slice<const float> view(const FloatD &v, size_t n) {
-        return rust::Slice<const float>(v.data(), n);
+    static rust::Slice<const float> view(const FloatD &v, size_t /* n */) {
+        return rust::Slice<const float>(v.data(), dr::width(v));
     }
     static rust::Slice<float> view(FloatD &v, size_t n) { return rust::Slice<float>(v.data(), n); }
 
     /// Inputs: `wi` (3), then `directional` components (wo: 3, or the 2-D sample), then the
     /// reflectance channels.
-    static matte::ffi::LanesIn lanes(const std::vector<FloatD> &in, size_t directional, size_t n) {
+    static matte::ffi::LanesIn lanes(const std::vector<FloatD> &in, size_t directional, size_t n,
+                                     const MaskD &mask) {
+        static_assert(sizeof(bool) == 1, "Dr.Jit masks are handed over as bytes");
         auto at = [&](size_t k) { return k < in.size() ? view(in[k], n) : rust::Slice<const float>(); };
         size_t rho = 3 + directional;
         return matte::ffi::LanesIn{ at(0), at(1), at(2), at(3), at(4),
@@ -299,7 +308,8 @@ private:
                                     Channels > 1 ? at(rho + 1) : rust::Slice<const float>(),
                                     Channels > 2 ? at(rho + 2) : rust::Slice<const float>(),
                                     Channels > 3 ? at(rho + 3) : rust::Slice<const float>(),
-                                    Channels };
+                                    Channels,
+                                    rust::Slice<const uint8_t>((const uint8_t *) mask.data(), dr::width(mask)) };
     }
 
     /// Outputs: the channels, the pdf, then (when present) wo.
@@ -327,9 +337,10 @@ private:
         } else {
             require_evaluated_mode("eval");
             size_t n = dr::width(si.wi, wo, value, active);
+            MaskD mask = evaluated_mask(active, n);
             std::vector<FloatD> in = evaluated(n, si.wi, wo, value);
             std::vector<FloatD> out = allocated(n, Channels + 1);  // f, pdf
-            matte::ffi::LanesIn lanes_in = lanes(in, 3, n);  // wi, wo, reflectance
+            matte::ffi::LanesIn lanes_in = lanes(in, 3, n, mask);  // wi, wo, reflectance
             matte::ffi::LanesOut lanes_out = lanes(out, n);
             (*m_model)->eval_pdf_lanes(lanes_in, lanes_out);
             for (size_t c = 0; c < Channels; ++c)

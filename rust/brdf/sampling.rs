@@ -18,15 +18,13 @@ use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4};
 pub fn square_to_uniform_disk_concentric(u: Vec2) -> Vec2 {
     let x = 2.0f32.mul_add(u.x, -1.0);
     let y = 2.0f32.mul_add(u.y, -1.0);
-    if x == 0.0 && y == 0.0 {
-        return Vec2::ZERO;
-    }
+    // Selects rather than branches (the quadrant is random per sample), as Dr.Jit does.
     let quadrant_1_or_3 = x.abs() < y.abs();
-    let (r, rp) = if quadrant_1_or_3 { (y, x) } else { (x, y) };
-    let mut phi = FRAC_PI_4 * rp / r;
-    if quadrant_1_or_3 {
-        phi = FRAC_PI_2 - phi;
-    }
+    let r = if quadrant_1_or_3 { y } else { x };
+    let rp = if quadrant_1_or_3 { x } else { y };
+    let phi = FRAC_PI_4 * rp / r;
+    let phi = if quadrant_1_or_3 { FRAC_PI_2 - phi } else { phi };
+    let phi = if x == 0.0 && y == 0.0 { 0.0 } else { phi };
     let (s, c) = sincos_cephes(phi);
     Vec2::new(r * c, r * s)
 }

@@ -34,6 +34,9 @@ pub mod ffi {
         rho_2: &'a [f32],
         rho_3: &'a [f32],
         channels: usize,
+        /// Dr.Jit's mask (one byte per lane, 0 = inactive): inactive lanes get zeros without
+        /// evaluating the model. Most lanes are inactive after a few bounces.
+        active: &'a [u8],
     }
 
     /// Outputs into Dr.Jit-allocated buffers: per-channel values (f or weight), the pdf and,

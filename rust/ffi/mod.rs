@@ -134,10 +134,14 @@ impl Model {
         let n = output.pdf.len();
         let channels = input.channels.min(MAX_CHANNELS);
         let rho_in = [input.rho_0, input.rho_1, input.rho_2, input.rho_3];
+        // Inputs are width n or width 1 (a Dr.Jit literal such as a uniform reflectance, which
+        // is broadcast here rather than materialised n times by the caller).
+        let fits = |len: usize| len == n || len == 1;
         let inputs_ok = channels >= 1
-            && [input.wi_x, input.wi_y, input.wi_z, input.v_x, input.v_y].iter().all(|s| s.len() == n)
-            && (sample || input.v_z.len() == n)
-            && rho_in[..channels].iter().all(|s| s.len() == n);
+            && [input.wi_x, input.wi_y, input.wi_z, input.v_x, input.v_y].iter().all(|s| fits(s.len()))
+            && (sample || fits(input.v_z.len()))
+            && fits(input.active.len())
+            && rho_in[..channels].iter().all(|s| fits(s.len()));
         let outputs_ok = [&output.out_0, &output.out_1, &output.out_2, &output.out_3][..channels].iter().all(|s| s.len() == n)
             && (!sample || [&output.wo_x, &output.wo_y, &output.wo_z].iter().all(|s| s.len() == n));
         if !inputs_ok || !outputs_ok {
@@ -164,40 +168,75 @@ impl Model {
             outs.push([o0, o1, o2, o3, p, x, y, z]);
         }
         outs.into_par_iter().enumerate().for_each(|(chunk, o)| {
-            let base = chunk * CHUNK;
-            for i in 0..o[4].len() {
-                let k = base + i;
-                let wi = Vec3::new(input.wi_x[k], input.wi_y[k], input.wi_z[k]);
-                let mut rho = [0.0f32; MAX_CHANNELS];
-                for c in 0..channels {
-                    rho[c] = rho_in[c][k];
-                }
-                let rho = &rho[..channels];
-                let (values, pdf) = if sample {
-                    match self.bsdf.sample_direction(wi, Vec2::new(input.v_x[k], input.v_y[k])) {
-                        Some((wo, pdf)) => {
-                            o[5][i] = wo.x;
-                            o[6][i] = wo.y;
-                            o[7][i] = wo.z;
-                            let scale = wo.z / pdf;
-                            (eval_channels(&self.bsdf, wi, wo, rho).map(|x| x * scale), pdf)
-                        }
-                        None => {
-                            o[5][i] = 0.0;
-                            o[6][i] = 0.0;
-                            o[7][i] = 1.0;
-                            ([0.0; MAX_CHANNELS], 0.0)
-                        }
-                    }
+            let [o0, o1, o2, o3, pdf_out, wo_x, wo_y, wo_z] = o;
+            let len = pdf_out.len();
+            let range = chunk * CHUNK..chunk * CHUNK + len;
+            // Chunk-local views of equal length (width-1 inputs expanded into a chunk buffer),
+            // so that the loop below indexes without per-access branches or bounds checks.
+            fn local<'s>(s: &'s [f32], range: &std::ops::Range<usize>, buf: &'s mut Vec<f32>) -> &'s [f32] {
+                if s.len() == 1 {
+                    buf.resize(range.len(), s[0]);
+                    buf
                 } else {
-                    let wo = Vec3::new(input.v_x[k], input.v_y[k], input.v_z[k]);
-                    (eval_channels(&self.bsdf, wi, wo, rho), self.bsdf.pdf(wi, wo))
+                    &s[range.clone()]
+                }
+            }
+            let mut bufs: [Vec<f32>; 6 + MAX_CHANNELS] = Default::default();
+            let [b0, b1, b2, b3, b4, b5, r0, r1, r2, r3] = &mut bufs;
+            let wi_x = local(input.wi_x, &range, b0);
+            let wi_y = local(input.wi_y, &range, b1);
+            let wi_z = local(input.wi_z, &range, b2);
+            let v_x = local(input.v_x, &range, b3);
+            let v_y = local(input.v_y, &range, b4);
+            let v_z = if sample { &[][..] } else { local(input.v_z, &range, b5) };
+            let active_buf;
+            let active = if input.active.len() == 1 {
+                active_buf = vec![input.active[0]; len];
+                &active_buf[..]
+            } else {
+                &input.active[range.clone()]
+            };
+            let rho_local = [
+                local(rho_in[0], &range, r0),
+                if channels > 1 { local(rho_in[1], &range, r1) } else { &[][..] },
+                if channels > 2 { local(rho_in[2], &range, r2) } else { &[][..] },
+                if channels > 3 { local(rho_in[3], &range, r3) } else { &[][..] },
+            ];
+            let outs = [o0, o1, o2, o3];
+            for i in 0..len {
+                let (values, pdf, wo) = if active[i] == 0 {
+                    ([0.0; MAX_CHANNELS], 0.0, Vec3::Z)
+                } else {
+                    let wi = Vec3::new(wi_x[i], wi_y[i], wi_z[i]);
+                    let mut rho = [0.0f32; MAX_CHANNELS];
+                    for c in 0..channels {
+                        rho[c] = rho_local[c][i];
+                    }
+                    let rho = &rho[..channels];
+                    if sample {
+                        match self.bsdf.sample_direction(wi, Vec2::new(v_x[i], v_y[i])) {
+                            Some((wo, pdf)) => {
+                                let scale = wo.z / pdf;
+                                (eval_channels(&self.bsdf, wi, wo, rho).map(|x| x * scale), pdf, wo)
+                            }
+                            None => ([0.0; MAX_CHANNELS], 0.0, Vec3::Z),
+                        }
+                    } else {
+                        let wo = Vec3::new(v_x[i], v_y[i], v_z[i]);
+                        (eval_channels(&self.bsdf, wi, wo, rho), self.bsdf.pdf(wi, wo), wo)
+                    }
                 };
                 for c in 0..channels {
-                    o[c][i] = values[c];
+                    outs[c][i] = values[c];
                 }
-                o[4][i] = pdf;
+                pdf_out[i] = pdf;
+                if sample {
+                    wo_x[i] = wo.x;
+                    wo_y[i] = wo.y;
+                    wo_z[i] = wo.z;
+                }
             }
         });
     }
 }
+
