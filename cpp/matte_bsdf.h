@@ -236,7 +236,8 @@ private:
                   "matte's kernels are Rust code, which cannot be traced into a Dr.Jit kernel, "
                   "so its llvm variants need evaluated mode: call "
                   "dr.set_flag(dr.JitFlag.SymbolicLoops, False) and "
-                  "dr.set_flag(dr.JitFlag.SymbolicCalls, False) before rendering.",
+                  "dr.set_flag(dr.JitFlag.SymbolicCalls, False) before rendering "
+                  "(matte_mitsuba.evaluated_mode() does both; with the mitsuba tool: -W -W).",
                   m_kind, method);
     }
 

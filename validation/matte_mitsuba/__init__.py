@@ -8,8 +8,9 @@
 Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` through its process-wide
 file resolver; this package's folder holds ``plugins/{lambert,oren_nayar,eon,wolff,
 ginneken}.so`` (built by ``cpp/build_plugin.sh``), so prepending it is all that is needed.
-For the ``mitsuba`` command-line tool use ``-a``:  ``mitsuba -a <this folder> scene.xml``
-(``python -m matte_mitsuba`` prints the folder).
+For the ``mitsuba`` command-line tool use ``-a`` and a scalar variant or evaluated mode:
+``mitsuba -a <this folder> -m scalar_rgb scene.xml`` or ``mitsuba -a <this folder> -W -W
+scene.xml`` (``python -m matte_mitsuba`` prints the folder).
 
 Supported variants: scalar_rgb, scalar_spectral, llvm_ad_rgb, llvm_ad_mono and
 llvm_ad_spectral. The llvm variants need Dr.Jit's evaluated mode; see ``evaluated_mode``.
