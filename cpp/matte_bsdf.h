@@ -33,7 +33,6 @@
 #include "rust/cxx.h"  // rust::Error (the generated header declares only what it uses)
 #include "matte/rust/ffi/bridge.rs.h"
 
-#include <cstring>
 #include <optional>
 #include <vector>
 
@@ -125,10 +124,10 @@ public:
         } else {
             require_evaluated_mode("sample");
             size_t n = dr::width(si.wi, sample2, value, active);
-            MaskD mask = evaluated_mask(active, n);
-            std::vector<FloatD> in = evaluated(n, si.wi, sample2, value);
+            MaskD mask = scheduled_mask(active);
+            std::vector<FloatD> in = evaluated(si.wi, sample2, value);
             std::vector<FloatD> out = allocated(n, Channels + 4);  // weight, pdf, wo
-            matte::ffi::LanesIn lanes_in = lanes(in, 2, n, mask);  // wi, u (2-D sample), reflectance
+            matte::ffi::LanesIn lanes_in = lanes(in, 2, mask);  // wi, u (2-D sample), reflectance
             matte::ffi::LanesOut lanes_out = lanes(out, n);
             (*m_model)->sample_lanes(lanes_in, lanes_out);
             for (size_t c = 0; c < Channels; ++c)
@@ -263,7 +262,7 @@ private:
     /// The float components of `values`, detached and evaluated in one Dr.Jit launch: their
     /// buffers (width n, or width 1 for literals such as a uniform reflectance, which Rust
     /// broadcasts) are handed to Rust as they are, without copies.
-    template <typename... Ts> static std::vector<FloatD> evaluated(size_t /* n */, const Ts &...values) {
+    template <typename... Ts> static std::vector<FloatD> evaluated(const Ts &...values) {
         std::vector<FloatD> flat;
         (collect(values, flat), ...);
         for (FloatD &v : flat)
@@ -274,7 +273,7 @@ private:
     }
 
     /// The mask as a byte buffer of width n or 1 (scheduled; evaluated with the inputs).
-    static MaskD evaluated_mask(const Mask &active, size_t /* n */) {
+    static MaskD scheduled_mask(const Mask &active) {
         MaskD m = dr::detach<false>(active);
         dr::schedule(m);
         return m;
@@ -291,17 +290,17 @@ private:
         return out;
     }
 
-    static rust::Slice<const float> view(const FloatD &v, size_t /* n */) {
+    static rust::Slice<const float> view(const FloatD &v) {
         return rust::Slice<const float>(v.data(), dr::width(v));
     }
     static rust::Slice<float> view(FloatD &v, size_t n) { return rust::Slice<float>(v.data(), n); }
 
     /// Inputs: `wi` (3), then `directional` components (wo: 3, or the 2-D sample), then the
     /// reflectance channels.
-    static matte::ffi::LanesIn lanes(const std::vector<FloatD> &in, size_t directional, size_t n,
+    static matte::ffi::LanesIn lanes(const std::vector<FloatD> &in, size_t directional,
                                      const MaskD &mask) {
         static_assert(sizeof(bool) == 1, "Dr.Jit masks are handed over as bytes");
-        auto at = [&](size_t k) { return k < in.size() ? view(in[k], n) : rust::Slice<const float>(); };
+        auto at = [&](size_t k) { return k < in.size() ? view(in[k]) : rust::Slice<const float>(); };
         size_t rho = 3 + directional;
         return matte::ffi::LanesIn{ at(0), at(1), at(2), at(3), at(4),
                                     directional == 3 ? at(5) : rust::Slice<const float>(),
@@ -338,10 +337,10 @@ private:
         } else {
             require_evaluated_mode("eval");
             size_t n = dr::width(si.wi, wo, value, active);
-            MaskD mask = evaluated_mask(active, n);
-            std::vector<FloatD> in = evaluated(n, si.wi, wo, value);
+            MaskD mask = scheduled_mask(active);
+            std::vector<FloatD> in = evaluated(si.wi, wo, value);
             std::vector<FloatD> out = allocated(n, Channels + 1);  // f, pdf
-            matte::ffi::LanesIn lanes_in = lanes(in, 3, n, mask);  // wi, wo, reflectance
+            matte::ffi::LanesIn lanes_in = lanes(in, 3, mask);  // wi, wo, reflectance
             matte::ffi::LanesOut lanes_out = lanes(out, n);
             (*m_model)->eval_pdf_lanes(lanes_in, lanes_out);
             for (size_t c = 0; c < Channels; ++c)

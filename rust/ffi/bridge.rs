@@ -65,7 +65,6 @@ pub mod ffi {
         /// Builds `kind` (plugin name) from its parameters; throws `rust::Error` with a
         /// message naming the bad parameter.
         fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>>;
-        fn kind(self: &Model) -> String;
         fn describe_parameters(self: &Model) -> Vec<Param>;
         fn numeric_parameters(self: &Model) -> Vec<Param>;
         /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`.

@@ -4,9 +4,10 @@
 //! Panic policy: a Rust panic must never unwind into Mitsuba. Construction (the only place
 //! with non-trivial logic: parameter parsing, table building) runs under `catch_unwind` and
 //! turns a panic into a `rust::Error` exception the plugin rethrows as a Mitsuba exception.
-//! The per-sample functions are panic-free by construction (no allocation, no indexing that
-//! can go out of bounds, clamped table coordinates); were one to panic anyway, cxx's
-//! generated shim aborts the process instead of unwinding across the FFI boundary.
+//! The per-sample functions do not panic: lane slices are validated once per call (a
+//! mismatch yields "no contribution", not a panic), table coordinates are clamped; were one
+//! to panic anyway, cxx's generated shim aborts the process instead of unwinding across the
+//! FFI boundary.
 
 mod bridge;
 
@@ -47,10 +48,10 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
     }
 }
 
-/// Runs a kernel call generic over the channel count with the lane's `n` channels.
+/// The used channels of a [`Channels`].
 #[inline]
-fn per_channels(c: &Channels, f: impl Fn(&[f32]) -> [f32; MAX_CHANNELS]) -> [f32; MAX_CHANNELS] {
-    f(&c.v[..c.n.min(MAX_CHANNELS)])
+fn used(c: &Channels) -> &[f32] {
+    &c.v[..c.n.min(MAX_CHANNELS)]
 }
 
 /// Evaluates `bsdf` for 1, 3 or 4 channels (Mitsuba's mono, RGB and spectral variants).
@@ -74,10 +75,6 @@ fn eval_channels(bsdf: &Bsdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; MAX_CHAN
 }
 
 impl Model {
-    fn kind(&self) -> String {
-        self.bsdf.kind().to_string()
-    }
-
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
         self.describe_parameters().into_iter().filter(|p| p.is_number).collect()
@@ -97,7 +94,7 @@ impl Model {
     /// `f(wi, wo)` without the cosine, per channel; returns the pdf.
     fn eval_pdf(&self, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
         let (wi, wo) = (v3(wi), v3(wo));
-        f.v = per_channels(reflectance, |rho| eval_channels(&self.bsdf, wi, wo, rho));
+        f.v = eval_channels(&self.bsdf, wi, wo, used(reflectance));
         f.n = reflectance.n;
         self.bsdf.pdf(wi, wo)
     }
@@ -116,7 +113,7 @@ impl Model {
         };
         *wo = Vec3f { x: dir.x, y: dir.y, z: dir.z };
         let scale = dir.z / pdf;
-        weight.v = per_channels(reflectance, |rho| eval_channels(&self.bsdf, wi, dir, rho)).map(|x| x * scale);
+        weight.v = eval_channels(&self.bsdf, wi, dir, used(reflectance)).map(|x| x * scale);
         pdf
     }
 
@@ -132,111 +129,151 @@ impl Model {
 
     fn for_each_lane(&self, input: &LanesIn, output: &mut LanesOut, sample: bool) {
         let n = output.pdf.len();
-        let channels = input.channels.min(MAX_CHANNELS);
-        let rho_in = [input.rho_0, input.rho_1, input.rho_2, input.rho_3];
-        // Inputs are width n or width 1 (a Dr.Jit literal such as a uniform reflectance, which
-        // is broadcast here rather than materialised n times by the caller).
-        let fits = |len: usize| len == n || len == 1;
-        let inputs_ok = channels >= 1
-            && [input.wi_x, input.wi_y, input.wi_z, input.v_x, input.v_y].iter().all(|s| fits(s.len()))
-            && (sample || fits(input.v_z.len()))
-            && fits(input.active.len())
-            && rho_in[..channels].iter().all(|s| fits(s.len()));
-        let outputs_ok = [&output.out_0, &output.out_1, &output.out_2, &output.out_3][..channels].iter().all(|s| s.len() == n)
-            && (!sample || [&output.wo_x, &output.wo_y, &output.wo_z].iter().all(|s| s.len() == n));
-        if !inputs_ok || !outputs_ok {
-            // A bug in the C++ caller; never panic across the boundary: give zero (no
-            // contribution, no sample) wherever we can write.
+        if !lanes_are_consistent(input, output, n, sample) {
+            // A bug in the C++ caller; never panic across the boundary: no contribution and
+            // no sample anywhere.
             output.pdf.iter_mut().for_each(|p| *p = 0.0);
             return;
         }
         // Disjoint chunks of every output, processed in parallel (Dr.Jit's own threads are
         // idle while it waits for us).
-        const CHUNK: usize = 8192;
-        fn split(s: &mut [f32], n: usize) -> Vec<&mut [f32]> {
-            if s.is_empty() { (0..n.div_ceil(CHUNK)).map(|_| Default::default()).collect() } else { s.chunks_mut(CHUNK).collect() }
-        }
-        let LanesOut { out_0, out_1, out_2, out_3, pdf, wo_x, wo_y, wo_z } = output;
-        let mut outs: Vec<[&mut [f32]; 8]> = Vec::new();
-        let mut parts = [out_0, out_1, out_2, out_3, pdf, wo_x, wo_y, wo_z]
-            .map(|s| split(s, n))
-            .map(|v| v.into_iter());
-        while let Some(p) = parts[4].next() {
-            let mut next = |k: usize| parts[k].next().unwrap_or_default();
-            let (o0, o1, o2, o3) = (next(0), next(1), next(2), next(3));
-            let (x, y, z) = (next(5), next(6), next(7));
-            outs.push([o0, o1, o2, o3, p, x, y, z]);
-        }
-        outs.into_par_iter().enumerate().for_each(|(chunk, o)| {
-            let [o0, o1, o2, o3, pdf_out, wo_x, wo_y, wo_z] = o;
-            let len = pdf_out.len();
-            let range = chunk * CHUNK..chunk * CHUNK + len;
-            // Chunk-local views of equal length (width-1 inputs expanded into a chunk buffer),
-            // so that the loop below indexes without per-access branches or bounds checks.
-            fn local<'s>(s: &'s [f32], range: &std::ops::Range<usize>, buf: &'s mut Vec<f32>) -> &'s [f32] {
-                if s.len() == 1 {
-                    buf.resize(range.len(), s[0]);
-                    buf
-                } else {
-                    &s[range.clone()]
-                }
-            }
-            let mut bufs: [Vec<f32>; 6 + MAX_CHANNELS] = Default::default();
-            let [b0, b1, b2, b3, b4, b5, r0, r1, r2, r3] = &mut bufs;
-            let wi_x = local(input.wi_x, &range, b0);
-            let wi_y = local(input.wi_y, &range, b1);
-            let wi_z = local(input.wi_z, &range, b2);
-            let v_x = local(input.v_x, &range, b3);
-            let v_y = local(input.v_y, &range, b4);
-            let v_z = if sample { &[][..] } else { local(input.v_z, &range, b5) };
-            let active_buf;
-            let active = if input.active.len() == 1 {
-                active_buf = vec![input.active[0]; len];
-                &active_buf[..]
-            } else {
-                &input.active[range.clone()]
-            };
-            let rho_local = [
-                local(rho_in[0], &range, r0),
-                if channels > 1 { local(rho_in[1], &range, r1) } else { &[][..] },
-                if channels > 2 { local(rho_in[2], &range, r2) } else { &[][..] },
-                if channels > 3 { local(rho_in[3], &range, r3) } else { &[][..] },
-            ];
-            let outs = [o0, o1, o2, o3];
-            for i in 0..len {
-                let (values, pdf, wo) = if active[i] == 0 {
-                    ([0.0; MAX_CHANNELS], 0.0, Vec3::Z)
-                } else {
-                    let wi = Vec3::new(wi_x[i], wi_y[i], wi_z[i]);
-                    let mut rho = [0.0f32; MAX_CHANNELS];
-                    for c in 0..channels {
-                        rho[c] = rho_local[c][i];
-                    }
-                    let rho = &rho[..channels];
-                    if sample {
-                        match self.bsdf.sample_direction(wi, Vec2::new(v_x[i], v_y[i])) {
-                            Some((wo, pdf)) => {
-                                let scale = wo.z / pdf;
-                                (eval_channels(&self.bsdf, wi, wo, rho).map(|x| x * scale), pdf, wo)
-                            }
-                            None => ([0.0; MAX_CHANNELS], 0.0, Vec3::Z),
-                        }
-                    } else {
-                        let wo = Vec3::new(v_x[i], v_y[i], v_z[i]);
-                        (eval_channels(&self.bsdf, wi, wo, rho), self.bsdf.pdf(wi, wo), wo)
-                    }
-                };
-                for c in 0..channels {
-                    outs[c][i] = values[c];
-                }
-                pdf_out[i] = pdf;
-                if sample {
-                    wo_x[i] = wo.x;
-                    wo_y[i] = wo.y;
-                    wo_z[i] = wo.z;
-                }
-            }
+        split_outputs(output, n).into_par_iter().enumerate().for_each(|(k, out)| {
+            let range = k * CHUNK..k * CHUNK + out.pdf.len();
+            let mut scratch = ChunkScratch::default();
+            self.run_chunk(&ChunkIn::new(input, range, sample, &mut scratch), out, sample);
         });
+    }
+
+    /// The lanes of one chunk: zeros for inactive lanes, the kernels for the others.
+    fn run_chunk(&self, input: &ChunkIn, out: ChunkOut, sample: bool) {
+        let channels = input.channels;
+        let ChunkOut { values, pdf: pdf_out, wo: [wo_x, wo_y, wo_z] } = out;
+        for i in 0..pdf_out.len() {
+            let (f, pdf, wo) = if input.active[i] == 0 {
+                ([0.0; MAX_CHANNELS], 0.0, Vec3::Z)
+            } else {
+                let wi = Vec3::new(input.wi[0][i], input.wi[1][i], input.wi[2][i]);
+                let mut rho = [0.0f32; MAX_CHANNELS];
+                for c in 0..channels {
+                    rho[c] = input.rho[c][i];
+                }
+                let rho = &rho[..channels];
+                if sample {
+                    match self.bsdf.sample_direction(wi, Vec2::new(input.v[0][i], input.v[1][i])) {
+                        Some((wo, pdf)) => {
+                            let scale = wo.z / pdf;
+                            (eval_channels(&self.bsdf, wi, wo, rho).map(|x| x * scale), pdf, wo)
+                        }
+                        None => ([0.0; MAX_CHANNELS], 0.0, Vec3::Z),
+                    }
+                } else {
+                    let wo = Vec3::new(input.v[0][i], input.v[1][i], input.v[2][i]);
+                    (eval_channels(&self.bsdf, wi, wo, rho), self.bsdf.pdf(wi, wo), wo)
+                }
+            };
+            for c in 0..channels {
+                values[c][i] = f[c];
+            }
+            pdf_out[i] = pdf;
+            if sample {
+                (wo_x[i], wo_y[i], wo_z[i]) = (wo.x, wo.y, wo.z);
+            }
+        }
     }
 }
 
+
+/// Lanes per parallel work item.
+const CHUNK: usize = 8192;
+
+/// Every input has width n or 1 (a Dr.Jit literal such as a uniform reflectance, broadcast
+/// here rather than materialised n times by the caller); every used output has width n.
+fn lanes_are_consistent(input: &LanesIn, output: &LanesOut, n: usize, sample: bool) -> bool {
+    let channels = input.channels;
+    let fits = |len: usize| len == n || len == 1;
+    let rho = [input.rho_0, input.rho_1, input.rho_2, input.rho_3];
+    let values = [&output.out_0, &output.out_1, &output.out_2, &output.out_3];
+    (1..=MAX_CHANNELS).contains(&channels)
+        && [input.wi_x, input.wi_y, input.wi_z, input.v_x, input.v_y].iter().all(|s| fits(s.len()))
+        && (sample || fits(input.v_z.len()))
+        && fits(input.active.len())
+        && rho[..channels].iter().all(|s| fits(s.len()))
+        && values[..channels].iter().all(|s| s.len() == n)
+        && (!sample || [&output.wo_x, &output.wo_y, &output.wo_z].iter().all(|s| s.len() == n))
+}
+
+/// One chunk's share of the outputs (unused outputs are empty slices).
+struct ChunkOut<'a> {
+    values: [&'a mut [f32]; MAX_CHANNELS],
+    pdf: &'a mut [f32],
+    wo: [&'a mut [f32]; 3],
+}
+
+/// Splits every output into `CHUNK`-lane pieces, grouped per chunk.
+fn split_outputs<'a>(output: &'a mut LanesOut, n: usize) -> Vec<ChunkOut<'a>> {
+    let chunks = n.div_ceil(CHUNK);
+    let split = |s: &'a mut [f32]| -> std::vec::IntoIter<&'a mut [f32]> {
+        let parts: Vec<&'a mut [f32]> =
+            if s.is_empty() { (0..chunks).map(|_| Default::default()).collect() } else { s.chunks_mut(CHUNK).collect() };
+        parts.into_iter()
+    };
+    let LanesOut { out_0, out_1, out_2, out_3, pdf, wo_x, wo_y, wo_z } = output;
+    let mut values = [split(out_0), split(out_1), split(out_2), split(out_3)];
+    let mut wo = [split(wo_x), split(wo_y), split(wo_z)];
+    split(pdf)
+        .map(|pdf| ChunkOut {
+            values: values.each_mut().map(|it| it.next().unwrap_or_default()),
+            pdf,
+            wo: wo.each_mut().map(|it| it.next().unwrap_or_default()),
+        })
+        .collect()
+}
+
+/// Buffers for broadcasting width-1 inputs over a chunk.
+#[derive(Default)]
+struct ChunkScratch {
+    floats: [Vec<f32>; 6 + MAX_CHANNELS],
+    active: Vec<u8>,
+}
+
+/// One chunk's inputs as slices of equal length, so the lane loop indexes without
+/// per-access branches.
+struct ChunkIn<'a> {
+    wi: [&'a [f32]; 3],
+    /// wo (eval) or the 2-D sample (sample; third slice empty).
+    v: [&'a [f32]; 3],
+    rho: [&'a [f32]; MAX_CHANNELS],
+    channels: usize,
+    active: &'a [u8],
+}
+
+impl<'a> ChunkIn<'a> {
+    fn new(input: &LanesIn<'a>, range: std::ops::Range<usize>, sample: bool, scratch: &'a mut ChunkScratch) -> Self {
+        fn local<'s, T: Copy>(s: &'s [T], range: &std::ops::Range<usize>, buf: &'s mut Vec<T>) -> &'s [T] {
+            if s.len() == 1 {
+                buf.resize(range.len(), s[0]);
+                buf
+            } else {
+                &s[range.clone()]
+            }
+        }
+        let channels = input.channels;
+        let [b0, b1, b2, b3, b4, b5, r0, r1, r2, r3] = &mut scratch.floats;
+        let rho_in = [input.rho_0, input.rho_1, input.rho_2, input.rho_3];
+        let mut rho = [&[][..]; MAX_CHANNELS];
+        for (c, buf) in [r0, r1, r2, r3].into_iter().enumerate().take(channels) {
+            rho[c] = local(rho_in[c], &range, buf);
+        }
+        ChunkIn {
+            wi: [local(input.wi_x, &range, b0), local(input.wi_y, &range, b1), local(input.wi_z, &range, b2)],
+            v: [
+                local(input.v_x, &range, b3),
+                local(input.v_y, &range, b4),
+                if sample { &[][..] } else { local(input.v_z, &range, b5) },
+            ],
+            rho,
+            channels,
+            active: local(input.active, &range, &mut scratch.active),
+        }
+    }
+}

@@ -56,12 +56,6 @@ impl Ginneken {
         Ok(Self { m: m as f32, shadowing, table: SlopeTable::shared(m) })
     }
 
-    /// The same model over a table of chosen resolution (to measure the interpolation error).
-    pub fn with_table(m: f64, shadowing: Shadowing, table: Arc<SlopeTable>) -> Self {
-        assert_eq!(table.roughness(), m);
-        Self { m: m as f32, shadowing, table }
-    }
-
     pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
         let m = p.number("roughness", Self::DEFAULT_ROUGHNESS)?;
         let shadowing = match p.choice("shadowing", &["vginneken", "height_correlated"], "vginneken")? {
