@@ -28,15 +28,7 @@ pub struct Eon {
 /// Fujii term. `(S/μ)(1 − S³)` is rewritten as `S μ (1+S+S²)/(1+S)` (using `1−S = μ²/(1+S)`):
 /// no division by μ and no cancellation near grazing.
 #[inline]
-fn fon_g(mu: f64) -> f64 {
-    let mu = mu.clamp(0.0, 1.0);
-    let s = (1.0 - mu * mu).sqrt();
-    let t = s * mu * (1.0 + s + s * s) / (1.0 + s);
-    s * (mu.acos() - s * mu) + (2.0 / 3.0) * (t - s)
-}
-
-#[inline]
-fn fon_g_f32(mu: f32) -> f32 {
+fn fon_g(mu: f32) -> f32 {
     let mu = mu.clamp(0.0, 1.0);
     let s = (1.0 - mu * mu).sqrt();
     let t = s * mu * (1.0 + s + s * s) / (1.0 + s);
@@ -63,13 +55,9 @@ impl Eon {
     }
 
     /// Exact single-scattering (FON) albedo `E_F(μ) = A_F + (B_F/π) G(μ)` for ρ = 1.
-    pub fn fon_albedo(&self, mu: f64) -> f64 {
-        self.a_f as f64 + self.b_f as f64 / PI * fon_g(mu)
-    }
-
     #[inline]
-    fn fon_albedo_f32(&self, mu: f32) -> f32 {
-        self.a_f + self.b_f * std::f32::consts::FRAC_1_PI * fon_g_f32(mu)
+    pub fn fon_albedo(&self, mu: f32) -> f32 {
+        self.a_f + self.b_f * std::f32::consts::FRAC_1_PI * fon_g(mu)
     }
 
     /// `ρ_ms = ρ² Ē / (1 − ρ(1 − Ē))`: the reference code's form (the OpenPBR text has a
@@ -90,7 +78,7 @@ impl DiffuseBrdf for Eon {
         let s_over_t = if s > 0.0 { s / wi.z.max(wo.z).max(1e-7) } else { s };
         // ≥ 0 exactly for r ≤ 1 (s ≥ −1); the clamp removes f32 rounding at Δφ = π, grazing.
         let single = (self.a_f * (1.0 + self.r * s_over_t)).max(0.0);
-        let lobe = (1.0 - self.fon_albedo_f32(wi.z)).max(1e-7) * (1.0 - self.fon_albedo_f32(wo.z)).max(1e-7)
+        let lobe = (1.0 - self.fon_albedo(wi.z)).max(1e-7) * (1.0 - self.fon_albedo(wo.z)).max(1e-7)
             / (1.0 - self.e_avg).max(1e-7);
         reflectance.map(|rho| std::f32::consts::FRAC_1_PI * (rho * single + self.rho_ms(rho) * lobe))
     }
@@ -100,7 +88,7 @@ impl DiffuseBrdf for Eon {
         if cos_theta_i <= 0.0 {
             return Albedo { value: 0.0, method: AlbedoMethod::ClosedForm };
         }
-        let e_f = self.fon_albedo(cos_theta_i);
+        let e_f = self.fon_albedo(cos_theta_i as f32) as f64;
         let rho = reflectance as f64;
         let e_avg = self.e_avg as f64;
         let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));

@@ -72,6 +72,6 @@ def test_llvm_ad_rgb_evaluated(mi_variant, cfg):
     si = mi.SurfaceInteraction3f()
     si.wi = mi.Vector3f(wi[:, 0], wi[:, 1], wi[:, 2])
     value = bsdf.eval(mi.BSDFContext(), si, mi.Vector3f(wo[:, 0], wo[:, 1], wo[:, 2]))
-    f = divide_cos(np.array(value).reshape(3, -1).T if np.array(value).shape[0] == 3 else np.array(value), wo)
+    f = divide_cos(np.array(value).T, wo)  # Color3f of width N -> (3, N)
     for c, rho in enumerate(RGB):
         compare(f[:, c], kernel_f(kind, params, rho, wi, wo), f"{kind} channel {c}")

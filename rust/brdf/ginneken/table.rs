@@ -30,9 +30,6 @@ const BUILD_NODES: usize = 24;
 
 #[derive(Debug)]
 pub struct SlopeTable {
-    m: f64,
-    n_u: usize,
-    n_c: usize,
     /// `data[(iu_i * U_NODES + iu_o) * C_NODES + ic]`.
     data: Vec<f32>,
     /// `μΛ(μ)` at [`LAMBDA_NODES`] points of the direction axis.
@@ -42,12 +39,7 @@ pub struct SlopeTable {
 impl SlopeTable {
     /// Tabulates `I` for roughness `m` (parallel over rows; ~66k integrals).
     pub fn build(m: f64) -> Self {
-        Self::build_with(m, U_NODES, C_NODES)
-    }
-
-    /// [`Self::build`] with a chosen resolution (for measuring the interpolation error).
-    pub fn build_with(m: f64, n_u: usize, n_c: usize) -> Self {
-        assert!(n_u >= 2 && n_c >= 2);
+        let (n_u, n_c) = (U_NODES, C_NODES);
         let integrator = SlopeIntegrator::new(BUILD_NODES);
         let mu_at = |k: usize| cos_of_axis(k as f64 / (n_u - 1) as f64);
         let rows: Vec<Vec<f32>> = (0..n_u)
@@ -79,7 +71,7 @@ impl SlopeTable {
                 mu_lambda(mu, (1.0 - mu * mu).max(0.0).sqrt(), m) as f32
             })
             .collect();
-        Self { m, n_u, n_c, data, mu_lambda }
+        Self { data, mu_lambda }
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -100,14 +92,10 @@ impl SlopeTable {
         table
     }
 
-    pub fn roughness(&self) -> f64 {
-        self.m
-    }
-
     /// Trilinear interpolation at axis coordinates `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`.
     #[inline]
     pub fn lookup(&self, u_i: f32, u_o: f32, c: f32) -> f32 {
-        let (n_u, n_c) = (self.n_u, self.n_c);
+        let (n_u, n_c) = (U_NODES, C_NODES);
         let (i0, fi) = cell(u_i, n_u);
         let (o0, fo) = cell(u_o, n_u);
         let (c0, fc) = cell(0.5 * (c + 1.0), n_c);
