@@ -4,7 +4,11 @@
 //! * [`brdf`]: the kernels, one pure implementation per model, used by everything else.
 //! * [`cli`]: the `matte` command line (`brdf`, `albedo`, `tables`).
 //! * [`ffi`]: the `cxx` bridge the Mitsuba plugin (`cpp/`) calls.
+//! * [`scene`]: Mitsuba XML scenes → typed description (parser, properties, meshes).
+//! * [`render`]: the CPU path tracer that renders them.
 
 pub mod brdf;
 pub mod cli;
 pub mod ffi;
+pub mod render;
+pub mod scene;

@@ -1,0 +1,4 @@
+//! The Rust path tracer: reads the same Mitsuba XML scenes as Mitsuba 3.9.1 and produces the
+//! same expected image (`shared/docs/mitsuba-semantics.md`).
+
+pub mod bsdf;

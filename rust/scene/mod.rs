@@ -1,0 +1,7 @@
+//! Mitsuba 3 XML scenes → a typed description the renderer builds from. Parsing keeps source
+//! positions so every error names file, line and element (`shared/docs/mitsuba-semantics.md`
+//! §1–3 and §8 list the semantics matched here).
+
+pub mod error;
+
+pub use error::{SceneError, SourcePos};
