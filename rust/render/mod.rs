@@ -1,4 +1,16 @@
 //! The Rust path tracer: reads the same Mitsuba XML scenes as Mitsuba 3.9.1 and produces the
 //! same expected image (`shared/docs/mitsuba-semantics.md`).
+//!
+//! Data flow: `scene::` XML → [`load`] builds a [`scene::Scene`] (shapes, BSDFs, emitters,
+//! BVH) plus camera, film and integrator → [`renderer`] runs the integrator per pixel sample
+//! in parallel tiles and splats into the film.
 
+pub mod accel;
 pub mod bsdf;
+pub mod camera;
+pub mod emitter;
+pub mod geometry;
+pub mod integrator;
+pub mod sampler;
+pub mod scene;
+pub mod shape;

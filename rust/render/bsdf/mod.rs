@@ -1,6 +1,73 @@
 //! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `conductor`,
-//! `roughconductor`, and the matte diffuse kernels, all in the local shading frame.
+//! `roughconductor`, and the matte diffuse kernels, all in the local shading frame with
+//! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
+pub mod diffuse;
+pub mod matte;
 pub mod sample;
+pub mod texture;
 
 pub use sample::BsdfSample;
+pub use texture::Texture;
+
+use glam::{Vec2, Vec3};
+
+/// One BSDF of the scene.
+#[derive(Clone, Debug)]
+pub enum Bsdf {
+    Diffuse { reflectance: Texture },
+    Matte { model: crate::brdf::Bsdf, reflectance: Texture },
+    /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` (the same BSDF when only one is
+    /// nested) for the other side with both directions mirrored.
+    TwoSided { front: Box<Bsdf>, back: Box<Bsdf> },
+}
+
+impl Bsdf {
+    /// `(f·cos θo, pdf)` for the smooth part (delta lobes contribute nothing here).
+    #[inline]
+    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        match self {
+            Bsdf::Diffuse { reflectance } => diffuse::eval_pdf(reflectance.eval(uv), wi, wo),
+            Bsdf::Matte { model, reflectance } => matte::eval_pdf(model, reflectance.eval(uv), wi, wo),
+            Bsdf::TwoSided { front, back } => {
+                if wi.z > 0.0 {
+                    front.eval_pdf(uv, wi, wo)
+                } else {
+                    back.eval_pdf(uv, flip(wi), flip(wo))
+                }
+            }
+        }
+    }
+
+    /// Samples `wo` from one number for the lobe choice and two for the direction.
+    #[inline]
+    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match self {
+            Bsdf::Diffuse { reflectance } => diffuse::sample(reflectance.eval(uv), wi, u),
+            Bsdf::Matte { model, reflectance } => matte::sample(model, reflectance.eval(uv), wi, u),
+            Bsdf::TwoSided { front, back } => {
+                if wi.z > 0.0 {
+                    front.sample(uv, wi, u_lobe, u)
+                } else {
+                    let mut s = back.sample(uv, flip(wi), u_lobe, u)?;
+                    s.wo = flip(s.wo);
+                    Some(s)
+                }
+            }
+        }
+    }
+
+    /// Whether the BSDF has a non-Dirac component, i.e. whether light sampling is useful
+    /// (Mitsuba skips emitter sampling at purely specular surfaces).
+    pub fn has_smooth(&self) -> bool {
+        match self {
+            Bsdf::Diffuse { .. } | Bsdf::Matte { .. } => true,
+            Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
+        }
+    }
+}
+
+#[inline]
+fn flip(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, v.y, -v.z)
+}

@@ -1,0 +1,152 @@
+//! Emitters (Mitsuba `src/emitters/*.cpp`, semantics §9): `area` (one-sided w.r.t. the
+//! shading normal, attached to a shape), `point`, `spot`, `directional` and the `constant`
+//! environment. Radiance values are linear RGB.
+
+pub mod sample;
+
+pub use sample::EmitterSample;
+
+use crate::render::geometry::warp;
+use crate::render::shape::{Shape, SurfaceInteraction};
+use glam::{Affine3A, Vec2, Vec3};
+use std::f32::consts::PI;
+
+#[derive(Clone, Debug)]
+pub enum Emitter {
+    /// Emits `radiance` from the side its shape's shading normal points to.
+    Area { shape: u32, radiance: Vec3 },
+    /// Isotropic point light: `intensity / d²`.
+    Point { position: Vec3, intensity: Vec3 },
+    /// Spot light along local +z of `to_world`; falloff linear in the angle between
+    /// `beam_width` and `cutoff_angle` (radians).
+    Spot { to_world: Affine3A, to_local: Affine3A, intensity: Vec3, cutoff: f32, beam_width: f32, cos_cutoff: f32, cos_beam: f32 },
+    /// Parallel light travelling along `direction` (unit) with irradiance `irradiance`.
+    Directional { direction: Vec3, irradiance: Vec3 },
+    /// Uniform environment of radiance `radiance`, sampled uniformly over the sphere.
+    Constant { radiance: Vec3 },
+}
+
+impl Emitter {
+    /// Point, spot and directional lights: reachable only by light sampling.
+    #[inline]
+    pub fn is_delta(&self) -> bool {
+        matches!(self, Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. })
+    }
+
+    /// Light sample towards the emitter from `ref_p` (the emitter-selection pmf not
+    /// included). `None` when nothing can be emitted towards `ref_p`.
+    #[inline]
+    pub fn sample_direction(&self, ref_p: Vec3, u: Vec2, shapes: &[Shape]) -> Option<EmitterSample> {
+        match self {
+            Emitter::Area { shape, radiance } => {
+                let ds = shapes[*shape as usize].geometry.sample_direction(ref_p, u)?;
+                // One-sided: the sampled point must face the reference point.
+                if !(ds.d.dot(ds.n) < 0.0 && ds.pdf > 0.0) {
+                    return None;
+                }
+                Some(EmitterSample { d: ds.d, dist: ds.dist, pdf: ds.pdf, delta: false, weight: *radiance / ds.pdf, p: ds.p, n: ds.n })
+            }
+            Emitter::Point { position, intensity } => {
+                let d = *position - ref_p;
+                let dist2 = d.length_squared();
+                let dist = dist2.sqrt();
+                if dist == 0.0 {
+                    return None;
+                }
+                let d = d / dist;
+                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity / dist2, p: *position, n: -d })
+            }
+            Emitter::Spot { to_world, to_local, intensity, cutoff, beam_width, cos_cutoff, cos_beam } => {
+                let pos: Vec3 = to_world.translation.into();
+                let d = pos - ref_p;
+                let dist2 = d.length_squared();
+                let dist = dist2.sqrt();
+                if dist == 0.0 {
+                    return None;
+                }
+                let d = d / dist;
+                let local = to_local.transform_vector3(-d).normalize_or_zero();
+                let falloff = spot_falloff(local.z, *cutoff, *beam_width, *cos_cutoff, *cos_beam);
+                if falloff <= 0.0 {
+                    return None;
+                }
+                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity * (falloff / dist2), p: pos, n: -d })
+            }
+            Emitter::Directional { direction, irradiance } => {
+                let d = -*direction;
+                Some(EmitterSample { d, dist: f32::INFINITY, pdf: 1.0, delta: true, weight: *irradiance, p: ref_p + d, n: *direction })
+            }
+            Emitter::Constant { radiance } => {
+                let d = warp::square_to_uniform_sphere(u);
+                Some(EmitterSample {
+                    d,
+                    dist: f32::INFINITY,
+                    pdf: warp::UNIFORM_SPHERE_PDF,
+                    delta: false,
+                    weight: *radiance / warp::UNIFORM_SPHERE_PDF,
+                    p: ref_p + d,
+                    n: -d,
+                })
+            }
+        }
+    }
+
+    /// Radiance seen at a surface hit of this (area) emitter's shape.
+    #[inline]
+    pub fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
+        match self {
+            Emitter::Area { radiance, .. } if si.wi.z > 0.0 => *radiance,
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// Radiance of the environment for an escaped ray.
+    #[inline]
+    pub fn eval_environment(&self) -> Vec3 {
+        match self {
+            Emitter::Constant { radiance } => *radiance,
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// Solid-angle density of [`Self::sample_direction`] for an area-light hit `si` seen
+    /// from `ref_p`, or for the environment (`si = None`). Zero for delta emitters.
+    #[inline]
+    pub fn pdf_direction(&self, ref_p: Vec3, si: Option<&SurfaceInteraction>, shapes: &[Shape]) -> f32 {
+        match (self, si) {
+            (Emitter::Area { shape, .. }, Some(si)) => shapes[*shape as usize].geometry.pdf_direction(ref_p, si),
+            (Emitter::Constant { .. }, None) => warp::UNIFORM_SPHERE_PDF,
+            _ => 0.0,
+        }
+    }
+}
+
+/// Mitsuba's spot falloff: 1 inside the beam, linear in the angle down to 0 at the cutoff,
+/// 0 at and beyond it (strict `cos θ > cos cutoff`).
+#[inline]
+pub fn spot_falloff(cos_theta: f32, cutoff: f32, beam_width: f32, cos_cutoff: f32, cos_beam: f32) -> f32 {
+    if cos_theta <= cos_cutoff {
+        0.0
+    } else if cos_theta >= cos_beam {
+        1.0
+    } else {
+        ((cutoff - cos_theta.clamp(-1.0, 1.0).acos()) / (cutoff - beam_width)).clamp(0.0, 1.0)
+    }
+}
+
+/// Spot-light constructor helper: angles in degrees as in the XML.
+pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32) -> Emitter {
+    let cutoff = cutoff_deg.to_radians();
+    let beam_width = beam_deg.to_radians();
+    Emitter::Spot {
+        to_world,
+        to_local: to_world.inverse(),
+        intensity,
+        cutoff,
+        beam_width,
+        cos_cutoff: cutoff.cos(),
+        cos_beam: beam_width.cos(),
+    }
+}
+
+pub const FOUR_PI: f32 = 4.0 * PI;

@@ -1,0 +1,83 @@
+//! The render loop: the film's crop window is cut into tiles rendered in parallel (rayon
+//! work stealing); each pixel has its own sampler stream, so the image depends only on the
+//! seed, not on threads or tiling. Every sample goes to the tile's image block, which the
+//! film accumulates (Mitsuba `SamplingIntegrator::render`).
+
+use crate::render::camera::PerspectiveCamera;
+use crate::render::film::{Film, Image};
+use crate::render::integrator::Integrator;
+use crate::render::sampler::Sampler;
+use crate::render::scene::Scene;
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+/// Tile edge in pixels: small enough to balance 2–64 threads, large enough that the filter
+/// border (≤ 2 px for the default Gaussian) is a small overhead.
+const TILE: u32 = 16;
+
+/// What a render measured.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RenderStats {
+    pub samples: u64,
+    pub rays: u64,
+    pub seconds: f64,
+    /// Samples whose radiance was NaN or infinite and was replaced by zero.
+    pub invalid_samples: u64,
+}
+
+/// Renders `spp` samples per pixel with seed `seed` into `film` (which must be fresh).
+/// `progress` is called with (tiles done, tiles total) after each tile.
+pub fn render(
+    scene: &Scene,
+    integrator: &Integrator,
+    camera: &PerspectiveCamera,
+    film: Film,
+    spp: u32,
+    seed: u64,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> (Image, RenderStats) {
+    let start = Instant::now();
+    let tiles = film.tiles(TILE);
+    let total = tiles.len() as u64;
+    let done = AtomicU64::new(0);
+    let invalid = AtomicU64::new(0);
+    let rays = AtomicU64::new(0);
+    let width = film.width() as u64;
+    let film = Mutex::new(film);
+    tiles.par_iter().for_each(|tile| {
+        let mut block = film.lock().expect("film lock").new_block(tile);
+        let mut bad = 0u64;
+        crate::render::accel::take_ray_count();
+        for py in tile.offset[1]..tile.offset[1] + tile.size[1] {
+            for px in tile.offset[0]..tile.offset[0] + tile.size[0] {
+                let mut sampler = Sampler::for_pixel(seed, py as u64 * width + px as u64);
+                let pixel = Vec2::new(px as f32, py as f32);
+                for _ in 0..spp {
+                    let pos = pixel + sampler.next_2d();
+                    let mut l = integrator.li(scene, &mut sampler, camera.ray(pos));
+                    if !l.is_finite() {
+                        l = Vec3::ZERO;
+                        bad += 1;
+                    }
+                    block.put(pos, l);
+                }
+            }
+        }
+        rays.fetch_add(crate::render::accel::take_ray_count(), Ordering::Relaxed);
+        invalid.fetch_add(bad, Ordering::Relaxed);
+        film.lock().expect("film lock").put_block(&block);
+        progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+    });
+    let film = film.into_inner().expect("film lock");
+    let crop = film.crop();
+    let stats = RenderStats {
+        samples: crop.size[0] as u64 * crop.size[1] as u64 * spp as u64,
+        rays: rays.into_inner(),
+        seconds: start.elapsed().as_secs_f64(),
+        invalid_samples: invalid.into_inner(),
+    };
+    (film.develop(), stats)
+}

@@ -1,0 +1,104 @@
+//! The renderable scene: shapes with their BSDFs and emitters, the acceleration structure,
+//! and the queries integrators need (Mitsuba `Scene`: intersection, emitter selection with
+//! the `sampling_weight` pmf, light sampling with a visibility test, emitter densities).
+
+use crate::render::accel::Accel;
+use crate::render::bsdf::Bsdf;
+use crate::render::emitter::{Emitter, EmitterSample};
+use crate::render::geometry::{Ray, ray};
+use crate::render::shape::{Shape, SurfaceInteraction};
+use glam::{Vec2, Vec3};
+
+pub struct Scene {
+    pub shapes: Vec<Shape>,
+    pub bsdfs: Vec<Bsdf>,
+    pub emitters: Vec<Emitter>,
+    /// Selection probability of each emitter (Mitsuba: ∝ `sampling_weight`, default uniform).
+    emitter_pmf: Vec<f32>,
+    emitter_cdf: Vec<f32>,
+    /// Index of the environment emitter (`constant`), if any.
+    pub environment: Option<u32>,
+    accel: Accel,
+}
+
+impl Scene {
+    /// Builds the acceleration structure. `sampling_weights[i]` belongs to `emitters[i]`.
+    pub fn new(shapes: Vec<Shape>, bsdfs: Vec<Bsdf>, emitters: Vec<Emitter>, sampling_weights: Vec<f32>) -> Self {
+        let accel = Accel::build(&shapes);
+        let total: f32 = sampling_weights.iter().sum();
+        let emitter_pmf: Vec<f32> = sampling_weights.iter().map(|w| if total > 0.0 { w / total } else { 0.0 }).collect();
+        let mut acc = 0.0;
+        let emitter_cdf = emitter_pmf
+            .iter()
+            .map(|p| {
+                acc += p;
+                acc
+            })
+            .collect();
+        let environment = emitters.iter().position(|e| matches!(e, Emitter::Constant { .. })).map(|i| i as u32);
+        Scene { shapes, bsdfs, emitters, emitter_pmf, emitter_cdf, environment, accel }
+    }
+
+    pub fn primitive_count(&self) -> usize {
+        self.accel.primitive_count()
+    }
+
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<SurfaceInteraction> {
+        let hit = self.accel.intersect(ray, &self.shapes)?;
+        let shape = &self.shapes[hit.shape as usize];
+        Some(shape.geometry.interaction(ray, hit.t, hit.prim, hit.bary, hit.shape))
+    }
+
+    #[inline]
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        self.accel.occluded(ray, &self.shapes)
+    }
+
+    #[inline]
+    pub fn bsdf(&self, si: &SurfaceInteraction) -> &Bsdf {
+        &self.bsdfs[self.shapes[si.shape as usize].bsdf as usize]
+    }
+
+    /// The area emitter of the hit shape, if any.
+    #[inline]
+    pub fn surface_emitter(&self, si: &SurfaceInteraction) -> Option<u32> {
+        self.shapes[si.shape as usize].emitter
+    }
+
+    /// Picks an emitter with `u` ∈ [0,1) and samples it from the surface point `si`, testing
+    /// visibility. Returns the sample with `pdf` and `weight` including the selection pmf, and
+    /// `None` if the light is blocked or emits nothing towards `si`.
+    #[inline]
+    pub fn sample_emitter_direction(&self, si: &SurfaceInteraction, u: Vec2) -> Option<EmitterSample> {
+        if self.emitters.is_empty() {
+            return None;
+        }
+        let idx = self.emitter_cdf.partition_point(|&c| c <= u.x).min(self.emitters.len() - 1);
+        let pmf = self.emitter_pmf[idx];
+        if pmf <= 0.0 {
+            return None;
+        }
+        let lo = if idx == 0 { 0.0 } else { self.emitter_cdf[idx - 1] };
+        let ux = ((u.x - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        let mut es = self.emitters[idx].sample_direction(si.p, Vec2::new(ux, u.y), &self.shapes)?;
+        let shadow = if es.dist.is_finite() {
+            ray::spawn_ray_to(si.p, si.n, es.p)
+        } else {
+            ray::spawn_ray(si.p, si.n, es.d)
+        };
+        if self.occluded(&shadow) {
+            return None;
+        }
+        es.pdf *= pmf;
+        es.weight /= pmf;
+        Some(es)
+    }
+
+    /// Density (with the selection pmf) with which light sampling at `ref_p` would have
+    /// produced the hit `si` on emitter `emitter`, or the environment direction (`si = None`).
+    #[inline]
+    pub fn pdf_emitter_direction(&self, ref_p: Vec3, emitter: u32, si: Option<&SurfaceInteraction>) -> f32 {
+        self.emitter_pmf[emitter as usize] * self.emitters[emitter as usize].pdf_direction(ref_p, si, &self.shapes)
+    }
+}

@@ -1,0 +1,46 @@
+//! A ray–surface hit with everything shading needs (Mitsuba `SurfaceInteraction3f`).
+
+use crate::render::geometry::Frame;
+use glam::{Vec2, Vec3};
+
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceInteraction {
+    pub t: f32,
+    pub p: Vec3,
+    /// Geometric normal (never flipped towards the ray, as in Mitsuba).
+    pub n: Vec3,
+    /// Shading frame; `sh_frame.n` is the interpolated normal for smooth meshes.
+    pub sh_frame: Frame,
+    pub uv: Vec2,
+    /// Index of the shape in the scene.
+    pub shape: u32,
+    /// Direction towards the ray origin, in the shading frame.
+    pub wi: Vec3,
+}
+
+impl SurfaceInteraction {
+    #[inline]
+    pub fn to_world(&self, v: Vec3) -> Vec3 {
+        self.sh_frame.to_world(v)
+    }
+
+    #[inline]
+    pub fn to_local(&self, v: Vec3) -> Vec3 {
+        self.sh_frame.to_local(v)
+    }
+}
+
+/// A point sampled on a shape's surface, seen from a reference point (Mitsuba
+/// `DirectionSample3f`).
+#[derive(Clone, Copy, Debug)]
+pub struct DirectionSample {
+    pub p: Vec3,
+    /// Normal at `p` (shading normal for smooth meshes), after `flip_normals`.
+    pub n: Vec3,
+    pub uv: Vec2,
+    /// Unit direction from the reference point to `p`.
+    pub d: Vec3,
+    pub dist: f32,
+    /// Solid-angle density at the reference point (without the emitter-selection pmf).
+    pub pdf: f32,
+}

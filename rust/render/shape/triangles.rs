@@ -1,0 +1,111 @@
+//! World-space triangle meshes: `obj`, `ply`, `rectangle` and `cube` all end up here
+//! (Mitsuba `src/render/mesh.cpp`). Geometric normal = normalize((p1−p0)×(p2−p0)), i.e.
+//! counter-clockwise faces the viewer; shading normal = interpolated vertex normals when the
+//! mesh has them; `flip_normals` negates both at query time (semantics §8).
+
+use super::interaction::{DirectionSample, SurfaceInteraction};
+use crate::render::geometry::{Frame, warp};
+use crate::scene::mesh::TriangleMesh;
+use glam::{Vec2, Vec3};
+
+#[derive(Clone, Debug)]
+pub struct Triangles {
+    pub mesh: TriangleMesh,
+    pub flip_normals: bool,
+    /// Cumulative triangle areas (for area-proportional sampling), last entry = total area.
+    area_cdf: Vec<f32>,
+    area: f32,
+}
+
+impl Triangles {
+    pub fn new(mesh: TriangleMesh, flip_normals: bool) -> Self {
+        let mut area_cdf = Vec::with_capacity(mesh.triangles.len());
+        let mut acc = 0.0f64;
+        for t in &mesh.triangles {
+            let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
+            acc += 0.5 * (b - a).cross(c - a).length() as f64;
+            area_cdf.push(acc as f32);
+        }
+        Triangles { mesh, flip_normals, area: acc as f32, area_cdf }
+    }
+
+    pub fn surface_area(&self) -> f32 {
+        self.area
+    }
+
+    #[inline]
+    pub fn vertices(&self, tri: u32) -> [Vec3; 3] {
+        self.mesh.triangles[tri as usize].map(|i| self.mesh.positions[i as usize])
+    }
+
+    /// The interaction at barycentrics `(b1, b2)` of triangle `tri`.
+    #[inline]
+    pub fn interaction(&self, tri: u32, b: Vec2, t: f32, d: Vec3, shape: u32) -> SurfaceInteraction {
+        let (p, n, sh_n, uv) = self.surface_point(tri, b);
+        let sh_frame = Frame::from_normal(sh_n);
+        SurfaceInteraction { t, p, n, sh_frame, uv, shape, wi: sh_frame.to_local(-d) }
+    }
+
+    /// Position, geometric normal, shading normal and uv at barycentrics `(b1, b2)`.
+    #[inline]
+    fn surface_point(&self, tri: u32, b: Vec2) -> (Vec3, Vec3, Vec3, Vec2) {
+        let idx = self.mesh.triangles[tri as usize];
+        let [p0, p1, p2] = idx.map(|i| self.mesh.positions[i as usize]);
+        let b0 = 1.0 - b.x - b.y;
+        let p = p0 * b0 + p1 * b.x + p2 * b.y;
+        let mut n = (p1 - p0).cross(p2 - p0).normalize_or_zero();
+        let mut sh_n = if self.mesh.normals.is_empty() {
+            n
+        } else {
+            let [n0, n1, n2] = idx.map(|i| self.mesh.normals[i as usize]);
+            let s = (n0 * b0 + n1 * b.x + n2 * b.y).normalize_or_zero();
+            if s == Vec3::ZERO { n } else { s }
+        };
+        if self.flip_normals {
+            n = -n;
+            sh_n = -sh_n;
+        }
+        let uv = if self.mesh.uvs.is_empty() {
+            b
+        } else {
+            let [u0, u1, u2] = idx.map(|i| self.mesh.uvs[i as usize]);
+            u0 * b0 + u1 * b.x + u2 * b.y
+        };
+        (p, n, sh_n, uv)
+    }
+
+    /// Uniform point on the surface (triangle ∝ area, then uniform inside it); area pdf
+    /// `1/A` turned into solid angle at `ref_p` with the shading normal (semantics §8).
+    #[inline]
+    pub fn sample_direction(&self, ref_p: Vec3, u: Vec2) -> Option<DirectionSample> {
+        if self.area <= 0.0 {
+            return None;
+        }
+        let target = u.x * self.area;
+        let tri = self.area_cdf.partition_point(|&c| c <= target).min(self.area_cdf.len() - 1);
+        let lo = if tri == 0 { 0.0 } else { self.area_cdf[tri - 1] };
+        let width = self.area_cdf[tri] - lo;
+        let ux = if width > 0.0 { ((target - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
+        let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
+        let (p, _, sh_n, uv) = self.surface_point(tri as u32, b);
+        let d = p - ref_p;
+        let dist2 = d.length_squared();
+        let dist = dist2.sqrt();
+        if dist == 0.0 {
+            return None;
+        }
+        let d = d / dist;
+        let cos = d.dot(sh_n).abs();
+        let pdf = if cos > 0.0 { dist2 / (cos * self.area) } else { 0.0 };
+        Some(DirectionSample { p, n: sh_n, uv, d, dist, pdf })
+    }
+
+    /// Solid-angle density of [`Self::sample_direction`] for the hit `si` seen from `ref_p`.
+    #[inline]
+    pub fn pdf_direction(&self, ref_p: Vec3, si: &SurfaceInteraction) -> f32 {
+        let d = si.p - ref_p;
+        let dist2 = d.length_squared();
+        let cos = (d.dot(si.sh_frame.n)).abs() / dist2.sqrt();
+        if cos > 0.0 && self.area > 0.0 { dist2 / (cos * self.area) } else { 0.0 }
+    }
+}
