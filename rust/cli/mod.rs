@@ -2,6 +2,7 @@
 //! input ends with a one-line error on stderr and a non-zero exit code.
 
 mod brdf_cmd;
+pub mod render_cmd;
 mod tables;
 
 use clap::{Parser, Subcommand};
@@ -22,6 +23,8 @@ pub enum Command {
     /// Print matte's values for the reference configurations of Tables 1-2
     /// (brdf-models-research.md §6) and the van Ginneken fast-path error.
     Tables(tables::TablesArgs),
+    /// Render a Mitsuba 3 XML scene with the Rust path tracer (EXR, optional PNG).
+    Render(render_cmd::RenderArgs),
 }
 
 /// Parses the command line; usage errors become one line (clap's own multi-line report is
@@ -42,5 +45,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Brdf(a) => brdf_cmd::run_brdf(&a),
         Command::Albedo(a) => brdf_cmd::run_albedo(&a),
         Command::Tables(a) => tables::run(&a),
+        Command::Render(a) => render_cmd::run(&a),
     }
 }

@@ -1,0 +1,91 @@
+//! `<emitter>`: `area` (nested in a shape), `point`, `spot`, `directional`, `constant`
+//! (semantics §9; emissive colours follow §2: `<spectrum value=v>` is not white).
+
+use super::{Builder, err, values};
+use crate::render::emitter::{self, Emitter};
+use crate::scene::SceneError;
+use crate::scene::xml::{ColorUse, SceneObject};
+use glam::Vec3;
+
+fn weight(obj: &SceneObject) -> Result<f32, SceneError> {
+    let w = values::float(obj, "sampling_weight", 1.0)?;
+    if !(w.is_finite() && w >= 0.0) {
+        return Err(values::prop_err(obj, "sampling_weight", format!("must be ≥ 0, got {w}")));
+    }
+    Ok(w as f32)
+}
+
+fn emissive(obj: &SceneObject, name: &str) -> Result<Vec3, SceneError> {
+    if obj.child(name).is_some() {
+        return Err(err(obj, format!("a texture for \"{name}\" is not supported by matte render")));
+    }
+    let v = values::color(obj, name, ColorUse::Emissive, Vec3::ONE)?;
+    if !v.is_finite() {
+        return Err(values::prop_err(obj, name, "must be finite"));
+    }
+    Ok(v)
+}
+
+fn push(b: &mut Builder, e: Emitter, w: f32) -> u32 {
+    b.emitters.push(e);
+    b.sampling_weights.push(w);
+    (b.emitters.len() - 1) as u32
+}
+
+/// An `area` emitter nested in shape `shape`.
+pub fn build_area(b: &mut Builder, obj: &SceneObject, shape: u32) -> Result<u32, SceneError> {
+    if obj.plugin != "area" {
+        return Err(err(obj, "only an \"area\" emitter can be nested in a shape"));
+    }
+    if obj.properties.contains("to_world") {
+        return Err(values::prop_err(obj, "to_world", "is not allowed on an area emitter (it follows its shape)"));
+    }
+    let radiance = emissive(obj, "radiance")?;
+    let w = weight(obj)?;
+    obj.check_all_used()?;
+    Ok(push(b, Emitter::Area { shape, radiance }, w))
+}
+
+/// A top-level emitter.
+pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
+    let w = weight(obj)?;
+    let e = match obj.plugin.as_str() {
+        "point" => {
+            let intensity = emissive(obj, "intensity")?;
+            let position = match (obj.properties.point("position")?, obj.properties.contains("to_world")) {
+                (Some(_), true) => return Err(err(obj, "give either position or to_world, not both")),
+                (Some(p), false) => p.as_vec3(),
+                (None, _) => values::transform(obj, "to_world")?.translation.into(),
+            };
+            Emitter::Point { position, intensity }
+        }
+        "spot" => {
+            let intensity = emissive(obj, "intensity")?;
+            let cutoff = values::float(obj, "cutoff_angle", 20.0)?;
+            let beam = values::float(obj, "beam_width", cutoff * 0.75)?;
+            if !(cutoff > 0.0 && cutoff <= 180.0 && beam > 0.0 && beam <= cutoff) {
+                return Err(err(obj, format!("needs 0 < beam_width ({beam}) ≤ cutoff_angle ({cutoff}) ≤ 180")));
+            }
+            emitter::spot(values::transform(obj, "to_world")?, intensity, cutoff as f32, beam as f32)
+        }
+        "directional" => {
+            let irradiance = emissive(obj, "irradiance")?;
+            let direction = match (obj.properties.vector("direction")?, obj.properties.contains("to_world")) {
+                (Some(_), true) => return Err(err(obj, "give either direction or to_world, not both")),
+                (Some(d), false) => d.as_vec3(),
+                (None, _) => values::transform(obj, "to_world")?.transform_vector3(Vec3::Z),
+            };
+            let direction = direction.normalize_or_zero();
+            if direction == Vec3::ZERO || !direction.is_finite() {
+                return Err(err(obj, "direction must be a non-zero vector"));
+            }
+            Emitter::Directional { direction, irradiance }
+        }
+        "constant" => Emitter::Constant { radiance: emissive(obj, "radiance")? },
+        "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
+        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, directional, constant)"))),
+    };
+    obj.check_all_used()?;
+    push(b, e, w);
+    Ok(())
+}

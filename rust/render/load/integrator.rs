@@ -1,0 +1,44 @@
+//! `<integrator>`: Mitsuba's `path` (max_depth −1, rr_depth 5, hide_emitters false) and
+//! `direct` (emitter_samples = bsdf_samples = shading_samples = 1).
+
+use super::{err, values};
+use crate::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
+use crate::scene::SceneError;
+use crate::scene::xml::SceneObject;
+
+pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
+    let integrator = match obj.plugin.as_str() {
+        "path" => {
+            let max_depth = values::integer(obj, "max_depth", -1, -1, u32::MAX as i64)?;
+            let rr_depth = values::integer(obj, "rr_depth", 5, 1, u32::MAX as i64)?;
+            Integrator::Path(PathIntegrator {
+                max_depth: if max_depth < 0 { u32::MAX } else { max_depth as u32 },
+                rr_depth: rr_depth as u32,
+                hide_emitters: values::boolean(obj, "hide_emitters", false)?,
+            })
+        }
+        "direct" => {
+            let shading = obj.properties.integer("shading_samples")?;
+            let (ne, nb) = match shading {
+                Some(n) => {
+                    if obj.properties.contains("emitter_samples") || obj.properties.contains("bsdf_samples") {
+                        return Err(err(obj, "shading_samples cannot be combined with emitter_samples or bsdf_samples"));
+                    }
+                    (n, n)
+                }
+                None => (values::integer(obj, "emitter_samples", 1, 0, 1 << 20)?, values::integer(obj, "bsdf_samples", 1, 0, 1 << 20)?),
+            };
+            if ne < 0 || nb < 0 || ne + nb == 0 {
+                return Err(err(obj, "needs at least one emitter or BSDF sample"));
+            }
+            Integrator::Direct(DirectIntegrator {
+                emitter_samples: ne as u32,
+                bsdf_samples: nb as u32,
+                hide_emitters: values::boolean(obj, "hide_emitters", false)?,
+            })
+        }
+        other => return Err(err(obj, format!("unsupported integrator type \"{other}\" (matte renders: path, direct)"))),
+    };
+    obj.check_all_used()?;
+    Ok(integrator)
+}

@@ -1,0 +1,141 @@
+//! `<sensor type="perspective">` with its `hdrfilm` (and rfilter) and `independent` sampler
+//! (semantics §4–6): fov/fov_axis or focal_length (default "50mm"), near/far clip, principal
+//! point offsets, no scale in `to_world`.
+
+use super::{err, values};
+use crate::render::camera::{FovAxis, PerspectiveCamera};
+use crate::render::film::{CropWindow, Film, ReconstructionFilter};
+use crate::scene::SceneError;
+use crate::scene::xml::SceneObject;
+use glam::Vec2;
+
+pub struct Sensor {
+    pub camera: PerspectiveCamera,
+    pub film: Film,
+    pub spp: u32,
+    pub seed: u64,
+}
+
+pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
+    if obj.plugin != "perspective" {
+        return Err(err(obj, format!("unsupported sensor type \"{}\" (matte renders: perspective)", obj.plugin)));
+    }
+    let to_world = values::transform(obj, "to_world")?;
+    let (s, _, _) = to_world.to_scale_rotation_translation();
+    if (s - glam::Vec3::ONE).abs().max_element() > 1e-3 {
+        return Err(values::prop_err(obj, "to_world", format!("contains a scale {s}; scale factors are not allowed in a camera transform (as in Mitsuba)")));
+    }
+    let fov = values::float_opt(obj, "fov")?;
+    let focal = obj.properties.string("focal_length")?;
+    let (fov_deg, axis) = match (fov, focal) {
+        (Some(_), Some(_)) => return Err(err(obj, "give either fov or focal_length, not both")),
+        (Some(f), None) => {
+            if !(f > 0.0 && f < 180.0) {
+                return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
+            }
+            let axis = match values::string(obj, "fov_axis", "x")?.as_str() {
+                "x" => FovAxis::X,
+                "y" => FovAxis::Y,
+                "diagonal" => FovAxis::Diagonal,
+                "smaller" => FovAxis::Smaller,
+                "larger" => FovAxis::Larger,
+                other => return Err(values::prop_err(obj, "fov_axis", format!("must be x, y, diagonal, smaller or larger, got \"{other}\""))),
+            };
+            (f, axis)
+        }
+        (None, focal) => {
+            let text = focal.unwrap_or_else(|| "50mm".into());
+            let mm: f64 = text
+                .trim()
+                .strip_suffix("mm")
+                .unwrap_or(&text)
+                .trim()
+                .parse()
+                .ok()
+                .filter(|v: &f64| *v > 0.0)
+                .ok_or_else(|| values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
+            (PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal)
+        }
+    };
+    let near = values::positive(obj, "near_clip", 0.01)? as f32;
+    let far = values::positive(obj, "far_clip", 10000.0)? as f32;
+    if far <= near {
+        return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
+    }
+    let ppo = Vec2::new(
+        values::float(obj, "principal_point_offset_x", 0.0)? as f32,
+        values::float(obj, "principal_point_offset_y", 0.0)? as f32,
+    );
+    let mut film = None;
+    let mut sampler = (4u32, 0u64);
+    for child in obj.children.iter() {
+        child.mark_used();
+        let c = &child.object;
+        match c.tag.as_str() {
+            "film" => film = Some(build_film(c)?),
+            "sampler" => sampler = build_sampler(c)?,
+            _ => return Err(err(c, format!("a <{}> cannot be nested in a sensor", c.tag))),
+        }
+    }
+    let film = match film {
+        Some(f) => f,
+        None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| err(obj, e))?,
+    };
+    obj.check_all_used()?;
+    let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
+    Ok(Sensor { camera, film, spp: sampler.0, seed: sampler.1 })
+}
+
+fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
+    if obj.plugin != "hdrfilm" {
+        return Err(err(obj, format!("unsupported film type \"{}\" (matte renders: hdrfilm)", obj.plugin)));
+    }
+    let width = values::integer(obj, "width", 768, 1, 1 << 16)? as u32;
+    let height = values::integer(obj, "height", 576, 1, 1 << 16)? as u32;
+    let crop = if ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| obj.properties.contains(n)) {
+        let ox = values::integer(obj, "crop_offset_x", 0, 0, width as i64 - 1)? as u32;
+        let oy = values::integer(obj, "crop_offset_y", 0, 0, height as i64 - 1)? as u32;
+        let w = values::integer(obj, "crop_width", (width - ox) as i64, 1, (width - ox) as i64)? as u32;
+        let h = values::integer(obj, "crop_height", (height - oy) as i64, 1, (height - oy) as i64)? as u32;
+        Some(CropWindow { offset: [ox, oy], size: [w, h] })
+    } else {
+        None
+    };
+    // Output format properties only affect files Mitsuba writes; matte always writes RGB float.
+    let pf = values::string(obj, "pixel_format", "rgb")?;
+    if pf != "rgb" && pf != "rgba" {
+        return Err(values::prop_err(obj, "pixel_format", format!("\"{pf}\" is not supported (rgb or rgba)")));
+    }
+    let _ = values::string(obj, "component_format", "float16")?;
+    let _ = values::string(obj, "file_format", "openexr")?;
+    if values::boolean(obj, "sample_border", false)? {
+        return Err(values::prop_err(obj, "sample_border", "= true is not supported"));
+    }
+    let mut filter = ReconstructionFilter::Gaussian { stddev: 0.5 };
+    for child in obj.children.iter() {
+        child.mark_used();
+        let c = &child.object;
+        if c.tag != "rfilter" {
+            return Err(err(c, format!("a <{}> cannot be nested in a film", c.tag)));
+        }
+        filter = match c.plugin.as_str() {
+            "box" => ReconstructionFilter::Box,
+            "tent" => ReconstructionFilter::Tent { radius: values::positive(c, "radius", 1.0)? as f32 },
+            "gaussian" => ReconstructionFilter::Gaussian { stddev: values::positive(c, "stddev", 0.5)? as f32 },
+            other => return Err(err(c, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
+        };
+        c.check_all_used()?;
+    }
+    obj.check_all_used()?;
+    Film::new(width, height, crop, filter).map_err(|e| err(obj, e))
+}
+
+fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
+    if obj.plugin != "independent" {
+        return Err(err(obj, format!("unsupported sampler type \"{}\" (matte renders: independent)", obj.plugin)));
+    }
+    let spp = values::integer(obj, "sample_count", 4, 1, u32::MAX as i64)? as u32;
+    let seed = values::integer(obj, "seed", 0, 0, i64::MAX)? as u64;
+    obj.check_all_used()?;
+    Ok((spp, seed))
+}

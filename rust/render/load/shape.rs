@@ -1,0 +1,95 @@
+//! `<shape>`: `obj`, `ply`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
+//! `cylinder`, each with `to_world`, `flip_normals`, a nested or referenced `<bsdf>` and an
+//! optional nested `area` emitter (semantics §8). A shape without a BSDF gets diffuse 0.5,
+//! or black diffuse when it emits.
+
+use super::{Builder, bsdf, emitter, err, values};
+use crate::render::geometry::Frame;
+use crate::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
+use crate::scene::SceneError;
+use crate::scene::mesh::{self, MeshOptions};
+use crate::scene::xml::SceneObject;
+use glam::{Affine3A, Mat3, Mat4, Vec3};
+
+pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
+    let to_world = values::transform(obj, "to_world")?;
+    let flip_normals = values::boolean(obj, "flip_normals", false)?;
+    let geometry = match obj.plugin.as_str() {
+        "obj" | "ply" => {
+            let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+            let opts = MeshOptions {
+                to_world: Mat4::from(to_world),
+                face_normals: values::boolean(obj, "face_normals", false)?,
+                flip_normals,
+                flip_tex_coords: obj.properties.boolean("flip_tex_coords")?,
+            };
+            let path = b.resolve(&filename);
+            let loaded = if obj.plugin == "obj" { mesh::load_obj(&path, &opts) } else { mesh::load_ply(&path, &opts) };
+            let m = loaded.map_err(|e| values::prop_err(obj, "filename", format!("cannot load mesh: {e}")))?;
+            Geometry::Triangles(Triangles::new(m, flip_normals))
+        }
+        "rectangle" | "cube" => {
+            let opts = MeshOptions { to_world: Mat4::from(to_world), flip_normals, ..MeshOptions::default() };
+            let m = if obj.plugin == "rectangle" { mesh::rectangle(&opts) } else { mesh::cube(&opts) };
+            Geometry::Triangles(Triangles::new(m, flip_normals))
+        }
+        "sphere" => {
+            let center = obj.properties.point("center")?.unwrap_or_default().as_vec3();
+            let radius = values::float(obj, "radius", 1.0)? as f32;
+            if !(radius.is_finite() && radius > 0.0) {
+                return Err(values::prop_err(obj, "radius", format!("must be positive, got {radius}")));
+            }
+            let m = to_world * Affine3A::from_translation(center) * Affine3A::from_scale(Vec3::splat(radius));
+            Geometry::Sphere(Sphere::new(m, flip_normals))
+        }
+        "disk" => Geometry::Disk(Disk::new(to_world, flip_normals)),
+        "cylinder" => {
+            let p0 = obj.properties.point("p0")?.unwrap_or_default().as_vec3();
+            let p1 = obj.properties.point("p1")?.map(|p| p.as_vec3()).unwrap_or(Vec3::Z);
+            let radius = values::float(obj, "radius", 1.0)? as f32;
+            let axis = p1 - p0;
+            let length = axis.length();
+            if !(radius.is_finite() && radius > 0.0) || !(length > 0.0 && length.is_finite()) {
+                return Err(err(obj, "needs a positive radius and p0 ≠ p1"));
+            }
+            // Mitsuba: to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|).
+            let f = Frame::from_normal(axis / length);
+            let frame = Affine3A::from_mat3(Mat3::from_cols(f.s, f.t, f.n));
+            let m = to_world * Affine3A::from_translation(p0) * frame * Affine3A::from_scale(Vec3::new(radius, radius, length));
+            Geometry::Cylinder(Cylinder::new(m, flip_normals))
+        }
+        other => return Err(err(obj, format!("unsupported shape type \"{other}\" (matte renders: obj, ply, rectangle, cube, sphere, disk, cylinder)"))),
+    };
+    if geometry.surface_area().is_nan() {
+        return Err(values::prop_err(obj, "to_world", "produces invalid (NaN) geometry"));
+    }
+    let shape_index = b.shapes.len() as u32;
+    let mut bsdf_index = None;
+    let mut emitter_index = None;
+    for child in obj.children.iter() {
+        child.mark_used();
+        let c = &child.object;
+        match c.tag.as_str() {
+            "bsdf" => {
+                if bsdf_index.is_some() {
+                    return Err(err(obj, "has more than one BSDF"));
+                }
+                bsdf_index = Some(bsdf::get_or_build(b, c)?);
+            }
+            "emitter" => {
+                if emitter_index.is_some() {
+                    return Err(err(obj, "has more than one emitter"));
+                }
+                emitter_index = Some(emitter::build_area(b, c, shape_index)?);
+            }
+            other => return Err(err(c, format!("a <{other}> cannot be nested in a shape"))),
+        }
+    }
+    let bsdf_index = match bsdf_index {
+        Some(i) => i,
+        None => bsdf::default_diffuse(b, if emitter_index.is_some() { 0.0 } else { 0.5 }),
+    };
+    obj.check_all_used()?;
+    b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
+    Ok(())
+}

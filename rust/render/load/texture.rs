@@ -1,0 +1,59 @@
+//! Reflectance-like parameters: a colour property (`<rgb>`, `<float>`, `<spectrum>`) or a
+//! nested/referenced `<texture type="bitmap">` (semantics §2, §11).
+
+use super::{Builder, err, values};
+use crate::render::bsdf::Texture;
+use crate::render::texture::bitmap::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
+use crate::scene::SceneError;
+use crate::scene::xml::{ColorUse, SceneObject};
+use glam::{Affine2, Mat2, Vec2, Vec3};
+use std::sync::Arc;
+
+/// The parameter `name` of `obj` as a texture: nested texture child of that name, else a
+/// colour property, else `default`.
+pub fn get(b: &Builder, obj: &SceneObject, name: &str, usage: ColorUse, default: Vec3) -> Result<Texture, SceneError> {
+    if let Some(child) = obj.child(name) {
+        if obj.properties.contains(name) {
+            return Err(err(obj, format!("\"{name}\" is given both as a property and as a texture")));
+        }
+        if child.object.tag != "texture" {
+            return Err(err(&child.object, format!("\"{name}\" must be a texture or a colour")));
+        }
+        return build(b, &child.object);
+    }
+    Ok(Texture::Constant(values::color(obj, name, usage, default)?))
+}
+
+/// A `<texture>` object (only `bitmap` is supported).
+pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
+    if obj.plugin != "bitmap" {
+        return Err(err(obj, format!("unsupported texture type \"{}\" (matte renders: bitmap)", obj.plugin)));
+    }
+    let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+    let filter = match values::string(obj, "filter_type", "bilinear")?.as_str() {
+        "bilinear" => BitmapFilter::Bilinear,
+        "nearest" => BitmapFilter::Nearest,
+        other => return Err(values::prop_err(obj, "filter_type", format!("must be bilinear or nearest, got \"{other}\""))),
+    };
+    let wrap = match values::string(obj, "wrap_mode", "repeat")?.as_str() {
+        "repeat" => WrapMode::Repeat,
+        "mirror" => WrapMode::Mirror,
+        "clamp" => WrapMode::Clamp,
+        other => return Err(values::prop_err(obj, "wrap_mode", format!("must be repeat, mirror or clamp, got \"{other}\""))),
+    };
+    let raw = values::boolean(obj, "raw", false)?;
+    let to_uv = match obj.properties.transform("to_uv")? {
+        None => Affine2::IDENTITY,
+        Some(m) => {
+            // Upper-left 2×2 plus the translation (Mitsuba's bitmap texture).
+            let a = Mat2::from_cols(Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32), Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32));
+            Affine2::from_mat2_translation(a, Vec2::new(m.w_axis.x as f32, m.w_axis.y as f32))
+        }
+    };
+    let _ = values::string(obj, "format", "variant")?;
+    obj.check_all_used()?;
+    let path = b.resolve(&filename);
+    let tex = BitmapTexture::load(&path, &BitmapOptions { filter, wrap, raw, to_uv })
+        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {e}", path.display())))?;
+    Ok(Texture::Bitmap(Arc::new(tex)))
+}

@@ -1,0 +1,68 @@
+//! Typed property access with Mitsuba's defaults and range checks, shared by the plugin
+//! builders: every error names the property's own line.
+
+use crate::scene::SceneError;
+use crate::scene::xml::{ColorUse, SceneObject};
+use glam::{Affine3A, DMat4, Mat3, Vec3};
+
+pub fn float(obj: &SceneObject, name: &str, default: f64) -> Result<f64, SceneError> {
+    Ok(obj.properties.float(name)?.unwrap_or(default))
+}
+
+pub fn float_opt(obj: &SceneObject, name: &str) -> Result<Option<f64>, SceneError> {
+    obj.properties.float(name)
+}
+
+pub fn boolean(obj: &SceneObject, name: &str, default: bool) -> Result<bool, SceneError> {
+    Ok(obj.properties.boolean(name)?.unwrap_or(default))
+}
+
+pub fn string(obj: &SceneObject, name: &str, default: &str) -> Result<String, SceneError> {
+    Ok(obj.properties.string(name)?.unwrap_or_else(|| default.to_string()))
+}
+
+/// An integer that must lie in `[lo, hi]`.
+pub fn integer(obj: &SceneObject, name: &str, default: i64, lo: i64, hi: i64) -> Result<i64, SceneError> {
+    let v = obj.properties.integer(name)?.unwrap_or(default);
+    if v < lo || v > hi {
+        return Err(prop_err(obj, name, format!("must be in [{lo}, {hi}], got {v}")));
+    }
+    Ok(v)
+}
+
+/// A float that must be finite and strictly positive.
+pub fn positive(obj: &SceneObject, name: &str, default: f64) -> Result<f64, SceneError> {
+    let v = float(obj, name, default)?;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(prop_err(obj, name, format!("must be a positive number, got {v}")));
+    }
+    Ok(v)
+}
+
+pub fn color(obj: &SceneObject, name: &str, usage: ColorUse, default: Vec3) -> Result<Vec3, SceneError> {
+    Ok(obj.properties.color(name, usage)?.map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)).unwrap_or(default))
+}
+
+/// `to_world` (or another transform) as an f32 affine map; identity when absent. Projective
+/// rows are rejected (Mitsuba's shapes use affine transforms).
+pub fn transform(obj: &SceneObject, name: &str) -> Result<Affine3A, SceneError> {
+    match obj.properties.transform(name)? {
+        None => Ok(Affine3A::IDENTITY),
+        Some(m) => to_affine(&m).ok_or_else(|| prop_err(obj, name, "must be affine (last row 0 0 0 1) and finite")),
+    }
+}
+
+pub fn to_affine(m: &DMat4) -> Option<Affine3A> {
+    let r = m.row(3);
+    if r != glam::DVec4::new(0.0, 0.0, 0.0, 1.0) || !m.is_finite() {
+        return None;
+    }
+    let m3 = Mat3::from_cols(m.x_axis.truncate().as_vec3(), m.y_axis.truncate().as_vec3(), m.z_axis.truncate().as_vec3());
+    Some(Affine3A::from_mat3_translation(m3, m.w_axis.truncate().as_vec3()))
+}
+
+/// An error about property `name` of `obj`, at the property's line when it exists.
+pub fn prop_err(obj: &SceneObject, name: &str, what: impl Into<String>) -> SceneError {
+    let pos = obj.properties.iter().find(|p| p.name == name).map(|p| p.pos.clone()).unwrap_or_else(|| obj.pos.clone());
+    SceneError::at(&pos, format!("{} \"{}\": property \"{name}\" {}", obj.tag, obj.plugin, what.into()))
+}
