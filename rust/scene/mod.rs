@@ -4,5 +4,6 @@
 
 pub mod error;
 pub mod mesh;
+pub mod xml;
 
 pub use error::{SceneError, SourcePos};
