@@ -2,11 +2,25 @@
 //! `roughconductor`, and the matte diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
+pub mod conductor;
+pub mod conductor_ior;
+pub mod dielectric;
 pub mod diffuse;
+pub mod fresnel;
 pub mod matte;
+pub mod microfacet;
+pub mod rough_conductor;
 pub mod sample;
 pub mod texture;
+mod validate;
+pub mod vndf;
 
+pub use conductor::Conductor;
+pub use conductor_ior::conductor_material;
+pub use dielectric::Dielectric;
+pub use fresnel::fresnel_conductor;
+pub use microfacet::MicrofacetDistribution;
+pub use rough_conductor::RoughConductor;
 pub use sample::BsdfSample;
 pub use texture::Texture;
 
@@ -20,6 +34,9 @@ pub enum Bsdf {
     /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` (the same BSDF when only one is
     /// nested) for the other side with both directions mirrored.
     TwoSided { front: Box<Bsdf>, back: Box<Bsdf> },
+    Dielectric(Dielectric),
+    Conductor(Conductor),
+    RoughConductor(RoughConductor),
 }
 
 impl Bsdf {
@@ -36,6 +53,8 @@ impl Bsdf {
                     back.eval_pdf(uv, flip(wi), flip(wo))
                 }
             }
+            Bsdf::Dielectric(_) | Bsdf::Conductor(_) => (Vec3::ZERO, 0.0),
+            Bsdf::RoughConductor(r) => (r.eval(wi, wo), r.pdf(wi, wo)),
         }
     }
 
@@ -54,6 +73,9 @@ impl Bsdf {
                     Some(s)
                 }
             }
+            Bsdf::Dielectric(d) => d.sample(wi, u_lobe, u),
+            Bsdf::Conductor(c) => c.sample(wi, u_lobe, u),
+            Bsdf::RoughConductor(r) => r.sample(wi, u_lobe, u),
         }
     }
 
@@ -61,7 +83,8 @@ impl Bsdf {
     /// (Mitsuba skips emitter sampling at purely specular surfaces).
     pub fn has_smooth(&self) -> bool {
         match self {
-            Bsdf::Diffuse { .. } | Bsdf::Matte { .. } => true,
+            Bsdf::Diffuse { .. } | Bsdf::Matte { .. } | Bsdf::RoughConductor(_) => true,
+            Bsdf::Dielectric(_) | Bsdf::Conductor(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
         }
     }
