@@ -4,10 +4,7 @@
 
 use super::{Builder, err, texture, values};
 use crate::brdf::{ParamValue, Params, BSDF_TYPES};
-use crate::render::bsdf::{Bsdf, Texture};
-use crate::render::bsdf::conductor::{Conductor, conductor_material};
-use crate::render::bsdf::dielectric::Dielectric;
-use crate::render::bsdf::rough_conductor::{MicrofacetDistribution, RoughConductor};
+use crate::render::bsdf::{Bsdf, Conductor, Dielectric, MicrofacetDistribution, RoughConductor, Texture, conductor_material};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
