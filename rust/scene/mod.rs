@@ -3,5 +3,6 @@
 //! §1–3 and §8 list the semantics matched here).
 
 pub mod error;
+pub mod mesh;
 
 pub use error::{SceneError, SourcePos};
