@@ -2,3 +2,6 @@
 //! same expected image (`shared/docs/mitsuba-semantics.md`).
 
 pub mod bsdf;
+pub mod film;
+pub mod image_io;
+pub mod texture;
