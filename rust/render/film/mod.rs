@@ -1,0 +1,143 @@
+//! The film: Mitsuba's `hdrfilm` in `scalar_rgb` with `pixel_format = "rgb"`
+//! (`src/films/hdrfilm.cpp`, `src/render/film.cpp`, `src/render/imageblock.cpp`; §6, §12).
+//!
+//! Rendering goes tile by tile: [`Film::tiles`] cuts the crop window into tiles,
+//! [`Film::new_block`] gives a thread its own [`ImageBlock`] (tile + filter border), the
+//! thread calls [`ImageBlock::put`] for each sample of each pixel **in its tile**, and
+//! [`Film::put_block`] adds the block into the film. The film stores only the crop window,
+//! so splat weight that falls outside the crop is dropped, as in Mitsuba
+//! (`sample_border = false`): every pixel is the weighted average of in-crop samples only,
+//! and a constant image stays exactly constant up to its edges.
+
+mod block;
+mod filter;
+mod image;
+
+pub use block::ImageBlock;
+pub use filter::{FILTER_RESOLUTION, FilterTable, ReconstructionFilter};
+pub use image::Image;
+
+use glam::Vec3;
+
+/// The rendered sub-rectangle of the film, in full-film pixels (`crop_offset_x/y`,
+/// `crop_width/height`). The camera projection always uses the full film.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CropWindow {
+    pub offset: [u32; 2],
+    pub size: [u32; 2],
+}
+
+/// A rectangle of the crop window, in full-film pixel coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Tile {
+    pub offset: [u32; 2],
+    pub size: [u32; 2],
+}
+
+/// Accumulated (Σw·R, Σw·G, Σw·B, Σw) over the crop window.
+#[derive(Clone, Debug)]
+pub struct Film {
+    width: u32,
+    height: u32,
+    crop: CropWindow,
+    filter: ReconstructionFilter,
+    pixels: Vec<[f32; 4]>,
+}
+
+impl Film {
+    /// A `width`×`height` film rendering `crop` (default: all of it) with `filter`.
+    /// Errors: zero size, a crop window that is empty or reaches outside the film (Mitsuba:
+    /// "Invalid crop window specification"), invalid filter parameters.
+    pub fn new(width: u32, height: u32, crop: Option<CropWindow>, filter: ReconstructionFilter) -> Result<Film, String> {
+        if width == 0 || height == 0 {
+            return Err(format!("invalid film size {width}x{height}: width and height must be positive"));
+        }
+        let crop = crop.unwrap_or(CropWindow { offset: [0, 0], size: [width, height] });
+        let [ox, oy] = crop.offset.map(u64::from);
+        let [cw, ch] = crop.size.map(u64::from);
+        if cw == 0 || ch == 0 || ox + cw > width as u64 || oy + ch > height as u64 {
+            return Err(format!(
+                "invalid crop window: offset ({ox}, {oy}) + size ({cw}, {ch}) must be non-empty and lie within the film ({width}, {height})"
+            ));
+        }
+        filter.validate()?;
+        let pixels = vec![[0.0; 4]; (cw * ch) as usize];
+        Ok(Film { width, height, crop, filter, pixels })
+    }
+
+    /// Full film width (the camera's aspect uses it, not the crop).
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    pub fn crop(&self) -> CropWindow {
+        self.crop
+    }
+
+    pub fn filter(&self) -> ReconstructionFilter {
+        self.filter
+    }
+
+    /// Rectangles of at most `tile_size`² pixels (full-film coordinates) that cover the crop
+    /// window exactly once, row by row. A `tile_size` of 0 is treated as 1.
+    pub fn tiles(&self, tile_size: u32) -> Vec<Tile> {
+        let ts = tile_size.max(1);
+        let [ox, oy] = self.crop.offset;
+        let [cw, ch] = self.crop.size;
+        let mut tiles = Vec::new();
+        for y in (0..ch).step_by(ts as usize) {
+            for x in (0..cw).step_by(ts as usize) {
+                tiles.push(Tile { offset: [ox + x, oy + y], size: [ts.min(cw - x), ts.min(ch - y)] });
+            }
+        }
+        tiles
+    }
+
+    /// A zeroed block for `tile`, with room for the filter border around it.
+    pub fn new_block(&self, tile: &Tile) -> ImageBlock {
+        ImageBlock::new(*tile, &self.filter)
+    }
+
+    /// Adds a block's sums into the film; the parts outside the crop window are dropped.
+    pub fn put_block(&mut self, block: &ImageBlock) {
+        let ([bx, by], [bw, bh]) = block.extent();
+        let [ox, oy] = self.crop.offset.map(i64::from);
+        let [cw, ch] = self.crop.size.map(i64::from);
+        // Block rows/columns that land inside the crop.
+        let x0 = (ox - bx).max(0);
+        let x1 = (ox + cw - bx).min(bw as i64);
+        let y0 = (oy - by).max(0);
+        let y1 = (oy + ch - by).min(bh as i64);
+        if x0 >= x1 || y0 >= y1 {
+            return;
+        }
+        let src = block.pixels();
+        let n = (x1 - x0) as usize;
+        for y in y0..y1 {
+            let s = (y * bw as i64 + x0) as usize;
+            let d = ((by + y - oy) * cw + (bx + x0 - ox)) as usize;
+            for (a, b) in self.pixels[d..d + n].iter_mut().zip(&src[s..s + n]) {
+                *a = [a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]];
+            }
+        }
+    }
+
+    /// The crop-sized image: Σw·L / Σw per pixel, 0 where no weight arrived.
+    pub fn develop(&self) -> Image {
+        let pixels = self
+            .pixels
+            .iter()
+            .map(|p| if p[3] != 0.0 { Vec3::new(p[0], p[1], p[2]) / p[3] } else { Vec3::ZERO })
+            .collect();
+        Image { width: self.crop.size[0], height: self.crop.size[1], pixels }
+    }
+
+    /// Sets all sums back to zero.
+    pub fn clear(&mut self) {
+        self.pixels.fill([0.0; 4]);
+    }
+}
