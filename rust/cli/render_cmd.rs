@@ -26,9 +26,9 @@ pub struct RenderArgs {
     /// Scene parameter, as Mitsuba's `-D name=value` (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE")]
     pub define: Vec<String>,
-    /// Also write a tone-mapped sRGB PNG (default name: the EXR's with .png).
-    #[arg(long, num_args = 0..=1, default_missing_value = "")]
-    pub png: Option<PathBuf>,
+    /// Also write a tone-mapped sRGB PNG next to the EXR (same name, .png).
+    #[arg(long)]
+    pub png: bool,
     /// Worker threads (default: all cores).
     #[arg(long)]
     pub threads: Option<usize>,
@@ -78,7 +78,7 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
     let (image, stats) = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film, spp, seed, &progress);
     bar.finish_and_clear();
     image_io::write_exr(&output, &image).map_err(|e| format!("{}: {e}", output.display()))?;
-    let png = a.png.as_ref().map(|p| if p.as_os_str().is_empty() { output.with_extension("png") } else { p.clone() });
+    let png = a.png.then(|| output.with_extension("png"));
     if let Some(p) = &png {
         image_io::write_png(p, &image).map_err(|e| format!("{}: {e}", p.display()))?;
     }

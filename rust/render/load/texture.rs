@@ -3,7 +3,7 @@
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
-use crate::render::texture::bitmap::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
+use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject};
 use glam::{Affine2, Mat2, Vec2, Vec3};
