@@ -273,7 +273,7 @@ fn obj_without_triangles_or_file_is_an_error() {
 
 #[test]
 fn obj_ignores_other_statements_and_crlf() {
-    let m = load("# comment\r\nmtllib x.mtl\r\no thing\r\ng grp\r\ns 1\r\nusemtl red\r\n  v 0 0 0 1\r\nv 1 0 0\r\nv\t0 1 0\r\nf 1 2 3\r\n");
+    let m = load("# comment\r\nmtllib x.mtl\r\no thing\r\ng grp\r\ns 1\r\nusemtl red\r\n  v 0 0 0 1\r\nv 1 0 0 # x\r\nv\t0 1 0\r\nf 1 2 3 # a triangle\r\n");
     assert_eq!(m.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
     assert_eq!(m.triangles, vec![[0, 1, 2]]);
 }
