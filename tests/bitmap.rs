@@ -209,3 +209,54 @@ fn bad_files_are_errors_naming_the_file() {
     assert!(BitmapTexture::from_linear(1, 2, vec![Vec3::ONE; 2], &BitmapOptions::default()).is_err());
     assert!(BitmapTexture::from_linear(2, 2, vec![Vec3::ONE; 3], &BitmapOptions::default()).is_err());
 }
+
+#[test]
+fn lookups_match_mitsuba_bitmap_texture() {
+    // Mitsuba 3.9.1 writes a random 5×3 8-bit PNG and evaluates its `bitmap` texture at 200
+    // random uv in [-2, 3]² for every filter / wrap / raw combination, with a to_uv of
+    // translate(0.1, -0.2)·scale(1.5, 0.7). Skipped when the venv is absent.
+    let python = std::path::Path::new("/work/main/.venv/bin/python");
+    if !python.exists() {
+        println!("note: {} not found; skipping the check against Mitsuba's bitmap texture", python.display());
+        return;
+    }
+    let script = r#"
+import sys, json, numpy as np, mitsuba as mi
+mi.set_variant('scalar_rgb')
+rng = np.random.default_rng(3)
+mi.Bitmap(rng.integers(0, 256, size=(3, 5, 3), dtype=np.uint8)).write(sys.argv[1])
+uvs = [[float(np.float32(u)) for u in rng.uniform(-2, 3, 2)] for _ in range(200)]
+out = {'uvs': uvs}
+to_uv = mi.ScalarAffineTransform4f().translate([0.1, -0.2, 0]) @ mi.ScalarAffineTransform4f().scale([1.5, 0.7, 1])
+for filt in ['bilinear', 'nearest']:
+    for wrap in ['repeat', 'mirror', 'clamp']:
+        for raw in [False, True]:
+            t = mi.load_dict({'type': 'bitmap', 'filename': sys.argv[1], 'filter_type': filt, 'wrap_mode': wrap,
+                              'raw': raw, 'to_uv': to_uv})
+            si = mi.SurfaceInteraction3f()
+            vals = []
+            for uv in uvs:
+                si.uv = uv
+                vals.append(list(t.eval(si)))
+            out[f'{filt}-{wrap}-{raw}'] = vals
+json.dump(out, open(sys.argv[2], 'w'))
+"#;
+    let (png, json) = (temp_path("mitsuba.png"), temp_path("mitsuba.json"));
+    let out = std::process::Command::new(python).arg("-c").arg(script).arg(&png).arg(&json).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let uvs: Vec<[f32; 2]> = serde_json::from_value(j["uvs"].clone()).unwrap();
+    let to_uv = Affine2::from_translation(Vec2::new(0.1, -0.2)) * Affine2::from_scale(Vec2::new(1.5, 0.7));
+    for (fname, filter) in [("bilinear", BitmapFilter::Bilinear), ("nearest", BitmapFilter::Nearest)] {
+        for (wname, wrap) in [("repeat", WrapMode::Repeat), ("mirror", WrapMode::Mirror), ("clamp", WrapMode::Clamp)] {
+            for (rname, raw) in [("False", false), ("True", true)] {
+                let t = load(&png, BitmapOptions { filter, wrap, raw, to_uv });
+                let want: Vec<[f32; 3]> = serde_json::from_value(j[format!("{fname}-{wname}-{rname}")].clone()).unwrap();
+                for (uv, w) in uvs.iter().zip(&want) {
+                    let got = t.eval(Vec2::from(*uv));
+                    assert!((got - Vec3::from(*w)).abs().max_element() < 1e-5, "{fname} {wname} raw={raw} uv {uv:?}: {got} vs {w:?}");
+                }
+            }
+        }
+    }
+}

@@ -14,7 +14,7 @@ mod filter;
 mod image;
 
 pub use block::ImageBlock;
-pub use filter::{FILTER_RESOLUTION, FilterTable, ReconstructionFilter};
+pub use filter::{FILTER_RESOLUTION, FilterTable, GAUSSIAN_FIT, ReconstructionFilter};
 pub use image::Image;
 
 use glam::Vec3;

@@ -24,7 +24,7 @@ pub(super) struct Texels {
     pub data: Vec<Vec3>,
 }
 
-/// The exact sRGB EOTF (electro-optical transfer function): encoded [0,1] → linear. Mitsuba
+/// The exact sRGB EOTF (electro-optical transfer function): encoded value in 0..=1 → linear. Mitsuba
 /// uses a rational fit of it that agrees to ~1e-6 (128/255 → 0.215861, §11).
 #[inline]
 pub fn srgb_to_linear(c: f32) -> f32 {

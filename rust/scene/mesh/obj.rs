@@ -80,6 +80,9 @@ impl ObjReader {
         if !matches!(tag, b"v" | b"vt" | b"vn" | b"f") {
             return Ok(());
         }
+        // A trailing `# comment` is dropped (Mitsuba stops reading a face at the first
+        // non-number; other junk is an error here rather than silently ignored).
+        let rest = rest.iter().position(|&b| b == b'#').map_or(rest, |p| &rest[..p]);
         let text = std::str::from_utf8(rest).map_err(|_| "line is not valid UTF-8 text".to_string())?;
         let bad = || format!("could not parse line \"{}\"", String::from_utf8_lossy(raw).trim_end());
         match tag {

@@ -38,7 +38,7 @@ const CUBE_FACES: [(Vec3, [[f32; 3]; 4]); 6] = [
 const CORNER_UV: [Vec2; 4] = [Vec2::new(0., 1.), Vec2::new(1., 1.), Vec2::new(1., 0.), Vec2::new(0., 0.)];
 
 /// `[-1,1]³`: 24 vertices (4 per face, not shared), 12 triangles, flat outward normals,
-/// per-face uv over [0,1]².
+/// per-face uv over the unit square.
 pub fn cube(opts: &MeshOptions) -> TriangleMesh {
     let nm = opts.normal_matrix();
     let mut mesh = TriangleMesh::default();
