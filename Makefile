@@ -12,7 +12,7 @@ main: plugin
 
 test: plugin
 	cargo test --quiet
-	$(PY) -m pytest -q tests/plugin
+	$(PY) -m pytest -q tests/plugin tests/renderer
 
 # Debian's libllvm19, .venv with the pinned wheels (fast when already done).
 venv:
