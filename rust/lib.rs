@@ -6,9 +6,11 @@
 //! * [`ffi`]: the `cxx` bridge the Mitsuba plugin (`cpp/`) calls.
 //! * [`scene`]: Mitsuba XML scenes → typed description (parser, properties, meshes).
 //! * [`render`]: the CPU path tracer that renders them.
+//! * [`validate`]: per-pixel statistical comparison of the Rust renderer with Mitsuba.
 
 pub mod brdf;
 pub mod cli;
 pub mod ffi;
 pub mod render;
 pub mod scene;
+pub mod validate;

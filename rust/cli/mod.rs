@@ -4,6 +4,7 @@
 mod brdf_cmd;
 pub mod render_cmd;
 mod tables;
+pub mod validate_cmd;
 
 use clap::{Parser, Subcommand};
 
@@ -25,6 +26,8 @@ pub enum Command {
     Tables(tables::TablesArgs),
     /// Render a Mitsuba 3 XML scene with the Rust path tracer (EXR, optional PNG).
     Render(render_cmd::RenderArgs),
+    /// Render scenes with matte and Mitsuba 3.9.1 and test per pixel whether they agree.
+    Validate(validate_cmd::ValidateArgs),
 }
 
 /// Parses the command line; usage errors become one line (clap's own multi-line report is
@@ -46,5 +49,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Albedo(a) => brdf_cmd::run_albedo(&a),
         Command::Tables(a) => tables::run(&a),
         Command::Render(a) => render_cmd::run(&a),
+        Command::Validate(a) => validate_cmd::run(&a),
     }
 }

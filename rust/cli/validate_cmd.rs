@@ -1,0 +1,132 @@
+//! `matte validate`: the Rust renderer against Mitsuba 3.9.1, per pixel, with heatmaps and a
+//! report. Exit status 1 and the failing scenes on stderr when any scene disagrees.
+
+use super::render_cmd::parse_defines;
+use crate::validate::{self, Options, Reference, SceneResult};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct ValidateArgs {
+    /// Scene files (Mitsuba XML).
+    pub scenes: Vec<PathBuf>,
+    /// Every scene in mitsuba_scenes/.
+    #[arg(long)]
+    pub all: bool,
+    /// Mitsuba variant(s) to compare with (repeatable): scalar_rgb, llvm_ad_rgb.
+    #[arg(long = "variant", default_values_t = vec!["scalar_rgb".to_string()])]
+    pub variants: Vec<String>,
+    /// Compare the Rust renderer with itself (other seeds) instead of Mitsuba: a check of the
+    /// test's false-positive rate.
+    #[arg(long)]
+    pub self_check: bool,
+    /// Independent passes per renderer (the per-pixel variance comes from them).
+    #[arg(long, default_value_t = 16)]
+    pub passes: u32,
+    /// Total samples per pixel per renderer, split over the passes (default: the scene's).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Smaller budget: 8 passes, 64 spp in total.
+    #[arg(long)]
+    pub quick: bool,
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Family-wise significance level of the tests.
+    #[arg(long, default_value_t = 0.01)]
+    pub alpha: f64,
+    /// Output folder.
+    #[arg(short, long, default_value = "validate_out")]
+    pub out: PathBuf,
+    /// Scene parameter for both renderers (repeatable).
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    pub define: Vec<String>,
+    /// Scene parameter for the Rust renderer only (to test the harness's power).
+    #[arg(long, value_name = "NAME=VALUE")]
+    pub matte_define: Vec<String>,
+    /// Scene parameter for the reference renderer only.
+    #[arg(long, value_name = "NAME=VALUE")]
+    pub reference_define: Vec<String>,
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+pub fn run(a: &ValidateArgs) -> Result<(), String> {
+    let mut scenes = a.scenes.clone();
+    if a.all {
+        scenes.extend(validate::bundled_scenes(&validate::passes::repo_root().join("mitsuba_scenes"))?);
+    }
+    if scenes.is_empty() {
+        return Err("no scenes: give scene files or --all".into());
+    }
+    let both = parse_defines(&a.define)?;
+    let mut matte_defines = both.clone();
+    matte_defines.extend(parse_defines(&a.matte_define)?);
+    let mut reference_defines = both;
+    reference_defines.extend(parse_defines(&a.reference_define)?);
+    let (passes, spp) = if a.quick { (8, Some(64)) } else { (a.passes, a.spp) };
+    if passes < 2 {
+        return Err("--passes must be at least 2".into());
+    }
+    if !(a.alpha > 0.0 && a.alpha < 1.0) {
+        return Err("--alpha must be in (0, 1)".into());
+    }
+    let opts = Options { passes, spp, seed: a.seed, alpha: a.alpha, out: a.out.clone(), matte_defines, reference_defines };
+    std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    let references: Vec<Reference> =
+        if a.self_check { vec![Reference::Matte] } else { a.variants.iter().map(|v| Reference::Mitsuba(v.clone())).collect() };
+    let show = !a.quiet && std::io::stderr().is_terminal();
+    let mut results: Vec<SceneResult> = Vec::new();
+    let mut errors = Vec::new();
+    for scene in &scenes {
+        for reference in &references {
+            let bar = if show { ProgressBar::new(passes as u64) } else { ProgressBar::hidden() };
+            bar.set_style(ProgressStyle::with_template("{msg:50} [{bar:30}] {pos}/{len} passes {elapsed}").expect("template").progress_chars("=> "));
+            let name = scene.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+            let progress = |who: &str, k: u32, _n: u32| {
+                bar.set_message(format!("{name}: {who}"));
+                bar.set_position(k as u64);
+            };
+            match validate::validate_scene(scene, reference, &opts, &progress) {
+                Ok(r) => {
+                    bar.finish_and_clear();
+                    if !a.quiet {
+                        let c = &r.comparison;
+                        eprintln!(
+                            "{} {name} vs {}: {} rejected pixels ({:.4}%), mean diff {:.5} {:.5} {:.5} ± {:.5} {:.5} {:.5}",
+                            if c.passed() { "PASS" } else { "FAIL" },
+                            r.reference,
+                            c.rejected_pixels,
+                            c.rejected_fraction() * 100.0,
+                            c.global.diff.x,
+                            c.global.diff.y,
+                            c.global.diff.z,
+                            c.global.ci99.x,
+                            c.global.ci99.y,
+                            c.global.ci99.z
+                        );
+                    }
+                    results.push(r);
+                }
+                Err(e) => {
+                    bar.finish_and_clear();
+                    errors.push(format!("{}: {e}", scene.display()));
+                }
+            }
+        }
+    }
+    validate::report::write_run(&a.out, &results)?;
+    println!("{}", serde_json::to_string_pretty(&validate::report::summary_json(&results)).expect("json"));
+    let failed: Vec<String> = results.iter().filter(|r| !r.comparison.passed()).map(|r| format!("{} (vs {})", r.scene.display(), r.reference)).collect();
+    if !errors.is_empty() || !failed.is_empty() {
+        for e in &errors {
+            eprintln!("matte: validate: error: {e}");
+        }
+        if !failed.is_empty() {
+            eprintln!("matte: validate: FAILED: {}", failed.join(", "));
+        }
+        return Err(format!("{} scene(s) failed, {} could not be validated; report: {}", failed.len(), errors.len(), a.out.join("report.html").display()));
+    }
+    Ok(())
+}

@@ -1,0 +1,121 @@
+//! `matte validate`: renders scenes with the Rust renderer and with Mitsuba 3.9.1 (matte's
+//! plugins loaded) and decides per pixel, with a statistical test, whether the two expected
+//! images agree ([`stats`]); writes both images, heatmaps ([`heatmap`]), `summary.json` and
+//! `report.html` ([`report`]).
+
+pub mod heatmap;
+pub mod passes;
+pub mod report;
+pub mod stats;
+
+use crate::render::image_io;
+use passes::{PassPlan, Side};
+use std::path::{Path, PathBuf};
+
+/// Which renderer the Rust renderer is compared with.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Reference {
+    /// Mitsuba in this variant.
+    Mitsuba(String),
+    /// The Rust renderer itself with other seeds (a size check of the test).
+    Matte,
+}
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub passes: u32,
+    /// Total samples per pixel per renderer (split over the passes); `None` = scene's.
+    pub spp: Option<u32>,
+    pub seed: u64,
+    /// Family-wise level of the per-pixel test and of the global test.
+    pub alpha: f64,
+    pub out: PathBuf,
+    pub matte_defines: Vec<(String, String)>,
+    pub reference_defines: Vec<(String, String)>,
+}
+
+/// One scene × reference.
+#[derive(Clone, Debug)]
+pub struct SceneResult {
+    pub scene: PathBuf,
+    pub name: String,
+    pub reference: String,
+    pub comparison: stats::Comparison,
+    pub seconds_matte: f64,
+    pub seconds_reference: f64,
+    pub passes: u32,
+    pub spp_per_pass: u32,
+    /// Files, relative to the output folder.
+    pub files: report::Files,
+}
+
+/// The scene's `sample_count` (Rust loader), to split over passes.
+fn scene_spp(scene: &Path, defines: &[(String, String)]) -> Result<u32, String> {
+    Ok(crate::render::load::load_file(scene, defines).map_err(|e| e.to_string())?.spp)
+}
+
+pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progress: &dyn Fn(&str, u32, u32)) -> Result<SceneResult, String> {
+    let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
+    let ref_label = match reference {
+        Reference::Mitsuba(v) => v.clone(),
+        Reference::Matte => "matte".into(),
+    };
+    let rel_dir = PathBuf::from(&name).join(&ref_label);
+    let dir = opts.out.join(&rel_dir);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let total = match opts.spp {
+        Some(s) => s,
+        None => scene_spp(scene, &opts.matte_defines)?,
+    };
+    let per_pass = (total / opts.passes).max(1);
+    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: Some(per_pass), seed, defines: defines.clone() };
+    let k = opts.passes;
+    let a: Side = passes::rust_side(scene, &plan(&opts.matte_defines, opts.seed), &|i| progress("matte", i, k))?;
+    let b: Side = match reference {
+        Reference::Mitsuba(variant) => {
+            let root = passes::repo_root();
+            let python = root.join(".venv/bin/python");
+            let driver = root.join("validation/mitsuba_passes.py");
+            let work = dir.join("mitsuba_work");
+            let side = passes::mitsuba_side(&python, &driver, scene, variant, &plan(&opts.reference_defines, opts.seed + 1_000_003), &work, &|i| progress(variant, i, k))?;
+            let _ = std::fs::remove_dir_all(&work);
+            side
+        }
+        Reference::Matte => {
+            let mut s = passes::rust_side(scene, &plan(&opts.reference_defines, opts.seed + 1_000_003), &|i| progress("matte (reference)", i, k))?;
+            s.label = "matte (other seeds)".into();
+            s
+        }
+    };
+    let comparison = stats::compare(&a.moments, &b.moments, opts.alpha)?;
+    let files = report::write_scene_files(&opts.out, &rel_dir, &a, &b, &comparison)?;
+    Ok(SceneResult {
+        scene: scene.to_path_buf(),
+        name,
+        reference: ref_label,
+        comparison,
+        seconds_matte: a.seconds,
+        seconds_reference: b.seconds,
+        passes: opts.passes,
+        spp_per_pass: per_pass,
+        files,
+    })
+}
+
+/// Every `*.xml` directly in `dir`, sorted.
+pub fn bundled_scenes(dir: &Path) -> Result<Vec<PathBuf>, String> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    v.sort();
+    Ok(v)
+}
+
+/// Writes the mean images as EXR and tone-mapped PNG.
+pub(crate) fn write_mean(dir: &Path, stem: &str, side: &Side) -> Result<(), String> {
+    let img = side.moments.mean_image();
+    image_io::write_exr(&dir.join(format!("{stem}.exr")), &img)?;
+    image_io::write_png(&dir.join(format!("{stem}.png")), &img)
+}

@@ -1,0 +1,115 @@
+//! The two sides of a validation run: K independent passes of the Rust renderer (in
+//! process) and of Mitsuba 3.9.1 (through `validation/mitsuba_passes.py` in the project's
+//! `.venv`), each reduced to per-pixel moments.
+
+use super::stats::Moments;
+use crate::render::image_io;
+use crate::render::load;
+use crate::render::renderer;
+use glam::DVec3;
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+/// How one side renders.
+#[derive(Clone, Debug)]
+pub struct PassPlan {
+    pub passes: u32,
+    /// Samples per pixel per pass (`None` = the scene's sample_count).
+    pub spp: Option<u32>,
+    /// Seed of pass k is `seed + k`.
+    pub seed: u64,
+    /// `-D` parameters for this side.
+    pub defines: Vec<(String, String)>,
+}
+
+/// Moments plus what it cost.
+pub struct Side {
+    pub moments: Moments,
+    pub seconds: f64,
+    pub spp: u32,
+    pub label: String,
+}
+
+/// K passes of the Rust renderer. `progress(k)` after each pass.
+pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Result<Side, String> {
+    let mut moments: Option<Moments> = None;
+    let mut seconds = 0.0;
+    let mut spp_used = 0;
+    for k in 0..plan.passes {
+        // Loading per pass keeps the film fresh; it is cheap next to rendering.
+        let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
+        let spp = plan.spp.unwrap_or(loaded.spp);
+        spp_used = spp;
+        let t = Instant::now();
+        let (img, stats) = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film, spp, plan.seed + k as u64, &|_, _| {});
+        seconds += t.elapsed().as_secs_f64();
+        if stats.invalid_samples > 0 {
+            eprintln!("matte: warning: {} non-finite samples set to zero in pass {k}", stats.invalid_samples);
+        }
+        let m = moments.get_or_insert_with(|| Moments::new(img.width, img.height));
+        m.add(&img)?;
+        progress(k + 1);
+    }
+    Ok(Side { moments: moments.ok_or("no passes")?, seconds, spp: spp_used, label: "matte".into() })
+}
+
+/// K passes of Mitsuba in `variant`, run by the Python driver; `work` receives its files.
+pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, plan: &PassPlan, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+    let mut cmd = Command::new(python);
+    cmd.arg(driver).arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
+    cmd.arg("--passes").arg(plan.passes.to_string()).arg("--seed").arg(plan.seed.to_string());
+    if let Some(spp) = plan.spp {
+        cmd.arg("--spp").arg(spp.to_string());
+    }
+    for (k, v) in &plan.defines {
+        cmd.arg("-D").arg(format!("{k}={v}"));
+    }
+    let mut child = cmd
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {} (run `make venv` first): {e}", python.display()))?;
+    if let Some(out) = child.stdout.take() {
+        for line in BufReader::new(out).lines().map_while(Result::ok) {
+            if let Some(rest) = line.strip_prefix("pass ")
+                && let Some((k, _)) = rest.split_once('/')
+                && let Ok(k) = k.parse()
+            {
+                progress(k);
+            }
+        }
+    }
+    let output = child.wait_with_output().map_err(|e| e.to_string())?;
+    if !output.status.success() {
+        let err = String::from_utf8_lossy(&output.stderr);
+        let line = err.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("failed without a message");
+        return Err(format!("Mitsuba ({variant}): {line}"));
+    }
+    let mean = image_io::read_exr(&work.join("mean.exr"))?;
+    let var = image_io::read_exr(&work.join("var.exr"))?;
+    let info: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(work.join("passes.json")).map_err(|e| e.to_string())?).map_err(|e| e.to_string())?;
+    let pass_means = info["pass_means"]
+        .as_array()
+        .ok_or("passes.json: no pass_means")?
+        .iter()
+        .map(|v| {
+            let c = |i: usize| v[i].as_f64().unwrap_or(f64::NAN);
+            DVec3::new(c(0), c(1), c(2))
+        })
+        .collect();
+    let moments = Moments::from_mean_var(&mean, &var, plan.passes, pass_means)?;
+    Ok(Side {
+        moments,
+        seconds: info["render_seconds"].as_f64().unwrap_or(f64::NAN),
+        spp: info["spp"].as_u64().unwrap_or(0) as u32,
+        label: format!("mitsuba {variant}"),
+    })
+}
+
+/// The repository root (where `.venv` and `validation/` live): `MATTE_ROOT`, else the
+/// source tree this binary was built from.
+pub fn repo_root() -> PathBuf {
+    std::env::var_os("MATTE_ROOT").map(PathBuf::from).unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")))
+}

@@ -1,0 +1,238 @@
+//! The per-pixel decision. Each renderer renders the scene in `K` independent passes (seeds);
+//! per pixel and channel we know the mean of the pass values and their sample variance, and
+//! test equality of the two expectations with Welch's unequal-variance t-test (Welch 1947),
+//! two-sided. The family of `3·W·H` tests is held at level α with Šidák's correction
+//! (`α_pixel = 1 − (1−α)^(1/N)`), as Mitsuba's own render tests do
+//! (`brdf-models-research.md` §7d). A second, global test compares the image mean per
+//! channel using the K per-pass image means, which is immune to the filter's correlation
+//! between neighbouring pixels and has power against small uniform shifts.
+
+use crate::render::film::Image;
+use glam::{DVec3, Vec3};
+use statrs::distribution::{ContinuousCDF, StudentsT};
+
+/// Running mean and sum of squared deviations (Welford) of K pass images, per pixel.
+#[derive(Clone, Debug)]
+pub struct Moments {
+    pub width: u32,
+    pub height: u32,
+    pub passes: u32,
+    mean: Vec<DVec3>,
+    m2: Vec<DVec3>,
+    /// Per-pass image means (for the global test).
+    pub pass_means: Vec<DVec3>,
+}
+
+impl Moments {
+    pub fn new(width: u32, height: u32) -> Self {
+        let n = (width * height) as usize;
+        Moments { width, height, passes: 0, mean: vec![DVec3::ZERO; n], m2: vec![DVec3::ZERO; n], pass_means: Vec::new() }
+    }
+
+    /// Adds one pass. Panics never: a size mismatch is an error.
+    pub fn add(&mut self, img: &Image) -> Result<(), String> {
+        if img.width != self.width || img.height != self.height {
+            return Err(format!("pass image is {}x{}, expected {}x{}", img.width, img.height, self.width, self.height));
+        }
+        self.passes += 1;
+        let k = self.passes as f64;
+        let mut sum = DVec3::ZERO;
+        for (i, p) in img.pixels.iter().enumerate() {
+            let x = p.as_dvec3();
+            sum += x;
+            let d = x - self.mean[i];
+            self.mean[i] += d / k;
+            self.m2[i] += d * (x - self.mean[i]);
+        }
+        self.pass_means.push(sum / img.pixels.len().max(1) as f64);
+        Ok(())
+    }
+
+    /// Builds moments from per-pixel means and sample variances (e.g. from the Mitsuba driver).
+    pub fn from_mean_var(mean: &Image, var: &Image, passes: u32, pass_means: Vec<DVec3>) -> Result<Self, String> {
+        if mean.width != var.width || mean.height != var.height || passes < 2 {
+            return Err("mean/variance images differ in size, or fewer than 2 passes".into());
+        }
+        let m2 = var.pixels.iter().map(|v| v.as_dvec3() * (passes as f64 - 1.0)).collect();
+        Ok(Moments { width: mean.width, height: mean.height, passes, mean: mean.pixels.iter().map(|m| m.as_dvec3()).collect(), m2, pass_means })
+    }
+
+    /// Estimate of the expected image (mean over passes).
+    pub fn mean_image(&self) -> Image {
+        Image { width: self.width, height: self.height, pixels: self.mean.iter().map(|m| m.as_vec3()).collect() }
+    }
+
+    /// Variance of the per-pixel mean estimate (sample variance / K).
+    #[inline]
+    pub fn var_of_mean(&self, i: usize) -> DVec3 {
+        let k = self.passes as f64;
+        self.m2[i] / ((k - 1.0) * k)
+    }
+
+    #[inline]
+    pub fn mean(&self, i: usize) -> DVec3 {
+        self.mean[i]
+    }
+}
+
+/// Result of comparing two renderers.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    pub width: u32,
+    pub height: u32,
+    /// Welch t statistic per pixel and channel (a − b).
+    pub t: Vec<Vec3>,
+    /// Two-sided p-value per pixel and channel.
+    pub p: Vec<Vec3>,
+    /// Relative difference (a − b) / max(|b|, floor) per pixel, channel-averaged.
+    pub rel_diff: Vec<f32>,
+    /// Šidák-corrected per-test level.
+    pub alpha_pixel: f64,
+    pub alpha: f64,
+    /// Pixels with at least one channel rejected at `alpha_pixel`.
+    pub rejected_pixels: usize,
+    /// Fraction of channel tests with p < α (uncorrected): ≈ α when the renderers agree.
+    pub uncorrected_rejection_rate: f64,
+    pub global: GlobalTest,
+}
+
+/// The image-mean comparison per channel.
+#[derive(Clone, Copy, Debug)]
+pub struct GlobalTest {
+    pub mean_a: DVec3,
+    pub mean_b: DVec3,
+    /// a − b and the half-width of its 99 % confidence interval (Welch).
+    pub diff: DVec3,
+    pub ci99: DVec3,
+    pub p: DVec3,
+    /// Rejected at α/3 (Bonferroni over the channels).
+    pub rejected: bool,
+}
+
+impl Comparison {
+    pub fn passed(&self) -> bool {
+        self.rejected_pixels == 0 && !self.global.rejected
+    }
+
+    pub fn rejected_fraction(&self) -> f64 {
+        self.rejected_pixels as f64 / (self.width as f64 * self.height as f64)
+    }
+}
+
+/// Two-sided Welch test of equal means from the means and variances of the two mean
+/// estimates, with Welch–Satterthwaite degrees of freedom; returns (t, p).
+///
+/// A floor on the standard error (1e-6 relative plus 1e-12 absolute) keeps deterministic
+/// pixels (zero variance in both, e.g. a directly seen constant environment) from turning
+/// float rounding into infinite t.
+#[inline]
+pub fn welch(mean_a: f64, var_a: f64, ka: u32, mean_b: f64, var_b: f64, kb: u32) -> (f64, f64) {
+    let floor = (1e-6 * mean_a.abs().max(mean_b.abs())).powi(2) + 1e-24;
+    let se2 = var_a + var_b + floor;
+    let t = (mean_a - mean_b) / se2.sqrt();
+    let (na, nb) = ((ka as f64 - 1.0).max(1.0), (kb as f64 - 1.0).max(1.0));
+    let df = se2 * se2 / (var_a * var_a / na + var_b * var_b / nb + floor * floor).max(1e-300);
+    let df = df.clamp(1.0, 1e6);
+    let dist = StudentsT::new(0.0, 1.0, df).expect("valid t distribution");
+    let p = 2.0 * dist.sf(t.abs());
+    (t, p.clamp(0.0, 1.0))
+}
+
+/// Šidák's per-test level for a family of `n` tests at family level `alpha`.
+pub fn sidak(alpha: f64, n: usize) -> f64 {
+    1.0 - (1.0 - alpha).powf(1.0 / n.max(1) as f64)
+}
+
+/// Compares renderer `a` with renderer `b` at family level `alpha`.
+pub fn compare(a: &Moments, b: &Moments, alpha: f64) -> Result<Comparison, String> {
+    if a.width != b.width || a.height != b.height {
+        return Err(format!("image sizes differ: {}x{} vs {}x{}", a.width, a.height, b.width, b.height));
+    }
+    if a.passes < 2 || b.passes < 2 {
+        return Err("each renderer needs at least 2 passes to estimate its variance".into());
+    }
+    let n = (a.width * a.height) as usize;
+    let alpha_pixel = sidak(alpha, 3 * n);
+    let mut t = Vec::with_capacity(n);
+    let mut p = Vec::with_capacity(n);
+    let mut rel = Vec::with_capacity(n);
+    let (mut rejected, mut uncorrected) = (0usize, 0usize);
+    for i in 0..n {
+        let (ma, mb, va, vb) = (a.mean(i), b.mean(i), a.var_of_mean(i), b.var_of_mean(i));
+        let mut tv = Vec3::ZERO;
+        let mut pv = Vec3::ZERO;
+        let mut rej = false;
+        for c in 0..3 {
+            let (tc, pc) = welch(ma[c], va[c], a.passes, mb[c], vb[c], b.passes);
+            tv[c] = tc as f32;
+            pv[c] = pc as f32;
+            rej |= pc < alpha_pixel;
+            uncorrected += (pc < alpha) as usize;
+        }
+        rejected += rej as usize;
+        t.push(tv);
+        p.push(pv);
+        let floor = 1e-3;
+        rel.push((((ma - mb) / mb.abs().max(DVec3::splat(floor))).element_sum() / 3.0) as f32);
+    }
+    let global = global_test(&a.pass_means, &b.pass_means, alpha);
+    Ok(Comparison {
+        width: a.width,
+        height: a.height,
+        t,
+        p,
+        rel_diff: rel,
+        alpha_pixel,
+        alpha,
+        rejected_pixels: rejected,
+        uncorrected_rejection_rate: uncorrected as f64 / (3 * n) as f64,
+        global,
+    })
+}
+
+fn mean_var(xs: &[DVec3]) -> (DVec3, DVec3) {
+    let k = xs.len() as f64;
+    let m = xs.iter().copied().sum::<DVec3>() / k;
+    let v = xs.iter().map(|x| (*x - m) * (*x - m)).sum::<DVec3>() / (k - 1.0);
+    (m, v)
+}
+
+fn global_test(a: &[DVec3], b: &[DVec3], alpha: f64) -> GlobalTest {
+    let (ma, va) = mean_var(a);
+    let (mb, vb) = mean_var(b);
+    let (ka, kb) = (a.len() as u32, b.len() as u32);
+    let mut p = DVec3::ZERO;
+    let mut ci = DVec3::ZERO;
+    for c in 0..3 {
+        let (sa, sb) = (va[c] / ka as f64, vb[c] / kb as f64);
+        let (_, pc) = welch(ma[c], sa, ka, mb[c], sb, kb);
+        p[c] = pc;
+        let se2 = sa + sb;
+        let df = (se2 * se2 / (sa * sa / (ka as f64 - 1.0) + sb * sb / (kb as f64 - 1.0)).max(1e-300)).clamp(1.0, 1e6);
+        let q = StudentsT::new(0.0, 1.0, df).expect("t").inverse_cdf(0.995);
+        ci[c] = q * se2.sqrt();
+    }
+    GlobalTest { mean_a: ma, mean_b: mb, diff: ma - mb, ci99: ci, p, rejected: p.min_element() < alpha / 3.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn welch_matches_a_textbook_value() {
+        // Equal variances and sizes: t = Δ / sqrt(2 s²/n) with 2n − 2 degrees of freedom.
+        // Means 1.0 and 0.0, variance of each mean 0.25 → t = 1/sqrt(0.5) = 1.41421; with n = 10,
+        // df = 18; the two-sided p of t(18) at 1.41421 is 0.174363 (numerical integration of the
+        // t density, done outside this code).
+        let (t, p) = welch(1.0, 0.25, 10, 0.0, 0.25, 10);
+        assert!((t - 2f64.sqrt()).abs() < 1e-5, "t = {t}");
+        assert!((p - 0.17438).abs() < 2e-4, "p = {p}");
+    }
+
+    #[test]
+    fn sidak_level_is_exact_for_independent_tests() {
+        let a = sidak(0.01, 1000);
+        assert!(((1.0 - a).powi(1000) - 0.99).abs() < 1e-12);
+    }
+}
