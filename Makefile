@@ -8,7 +8,7 @@ PLUGIN := validation/matte_mitsuba/plugins/matte_bsdfs.so
 SOURCES := $(shell find rust cpp -type f) Cargo.toml Cargo.lock build.rs
 
 main: plugin
-	cargo run --release --quiet -- tables
+	./target/release/matte validate --all -o validate_out
 
 test: plugin
 	cargo test --quiet
