@@ -21,9 +21,8 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
         return Err(err(obj, format!("unsupported sensor type \"{}\" (matte renders: perspective)", obj.plugin)));
     }
     let to_world = values::transform(obj, "to_world")?;
-    let (s, _, _) = to_world.to_scale_rotation_translation();
-    if (s - glam::Vec3::ONE).abs().max_element() > 1e-3 {
-        return Err(values::prop_err(obj, "to_world", format!("contains a scale {s}; scale factors are not allowed in a camera transform (as in Mitsuba)")));
+    if has_scale(&to_world) {
+        return Err(values::prop_err(obj, "to_world", "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)"));
     }
     let fov = values::float_opt(obj, "fov")?;
     let focal = obj.properties.string("focal_length")?;
@@ -138,4 +137,12 @@ fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
     let seed = values::integer(obj, "seed", 0, 0, i64::MAX)? as u64;
     obj.check_all_used()?;
     Ok((spp, seed))
+}
+
+/// Mitsuba's `Transform::has_scale` (`include/mitsuba/core/transform.h`), used by the
+/// perspective sensor: the rows of the linear part must be orthonormal to 1e-3
+/// (|Σₖ mᵢₖ mⱼₖ − δᵢⱼ| ≤ 1e-3). So a shear is a scale, and a mirror is not.
+fn has_scale(m: &glam::Affine3A) -> bool {
+    let rows = [m.matrix3.row(0), m.matrix3.row(1), m.matrix3.row(2)];
+    (0..3).any(|i| (i..3).any(|j| (rows[i].dot(rows[j]) - if i == j { 1.0 } else { 0.0 }).abs() > 1e-3))
 }
