@@ -91,11 +91,13 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     }
     let width = values::integer(obj, "width", 768, 1, 1 << 16)? as u32;
     let height = values::integer(obj, "height", 576, 1, 1 << 16)? as u32;
+    // Mitsuba (src/render/film.cpp): crop_width/height default to the FULL film size, not to
+    // what is left after the offset, so an offset alone is an invalid crop window (§6).
     let crop = if ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| obj.properties.contains(n)) {
-        let ox = values::integer(obj, "crop_offset_x", 0, 0, width as i64 - 1)? as u32;
-        let oy = values::integer(obj, "crop_offset_y", 0, 0, height as i64 - 1)? as u32;
-        let w = values::integer(obj, "crop_width", (width - ox) as i64, 1, (width - ox) as i64)? as u32;
-        let h = values::integer(obj, "crop_height", (height - oy) as i64, 1, (height - oy) as i64)? as u32;
+        let ox = values::integer(obj, "crop_offset_x", 0, 0, u32::MAX as i64)? as u32;
+        let oy = values::integer(obj, "crop_offset_y", 0, 0, u32::MAX as i64)? as u32;
+        let w = values::integer(obj, "crop_width", width as i64, 1, u32::MAX as i64)? as u32;
+        let h = values::integer(obj, "crop_height", height as i64, 1, u32::MAX as i64)? as u32;
         Some(CropWindow { offset: [ox, oy], size: [w, h] })
     } else {
         None
