@@ -32,7 +32,7 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
             if !(f > 0.0 && f < 180.0) {
                 return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
             }
-            let axis = match values::string(obj, "fov_axis", "x")?.as_str() {
+            let axis = match values::string(obj, "fov_axis", "x")?.to_lowercase().as_str() {
                 "x" => FovAxis::X,
                 "y" => FovAxis::Y,
                 "diagonal" => FovAxis::Diagonal,
@@ -103,7 +103,7 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
         None
     };
     // Output format properties only affect files Mitsuba writes; matte always writes RGB float.
-    let pf = values::string(obj, "pixel_format", "rgb")?;
+    let pf = values::string(obj, "pixel_format", "rgb")?.to_lowercase();
     if pf != "rgb" && pf != "rgba" {
         return Err(values::prop_err(obj, "pixel_format", format!("\"{pf}\" is not supported (rgb or rgba)")));
     }
