@@ -66,16 +66,20 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
         values::float(obj, "principal_point_offset_y", 0.0)? as f32,
     );
     let mut film = None;
-    let mut sampler = (4u32, 0u64);
+    let mut sampler = None;
     for child in obj.children.iter() {
         child.mark_used();
         let c = &child.object;
         match c.tag.as_str() {
+            // Mitsuba: "Only one film/sampler can be specified per sensor" (src/render/sensor.cpp).
+            "film" if film.is_some() => return Err(SceneError::at(&child.pos, "only one film can be specified per sensor")),
+            "sampler" if sampler.is_some() => return Err(SceneError::at(&child.pos, "only one sampler can be specified per sensor")),
             "film" => film = Some(build_film(c)?),
-            "sampler" => sampler = build_sampler(c)?,
+            "sampler" => sampler = Some(build_sampler(c)?),
             _ => return Err(err(c, format!("a <{}> cannot be nested in a sensor", c.tag))),
         }
     }
+    let sampler = sampler.unwrap_or((4, 0));
     let film = match film {
         Some(f) => f,
         None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| err(obj, e))?,
@@ -112,23 +116,27 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     if values::boolean(obj, "sample_border", false)? {
         return Err(values::prop_err(obj, "sample_border", "= true is not supported"));
     }
-    let mut filter = ReconstructionFilter::Gaussian { stddev: 0.5 };
+    let mut filter = None;
     for child in obj.children.iter() {
         child.mark_used();
         let c = &child.object;
         if c.tag != "rfilter" {
             return Err(err(c, format!("a <{}> cannot be nested in a film", c.tag)));
         }
-        filter = match c.plugin.as_str() {
+        if filter.is_some() {
+            // Mitsuba: "A film can only have one reconstruction filter" (src/render/film.cpp).
+            return Err(SceneError::at(&child.pos, "a film can only have one reconstruction filter"));
+        }
+        filter = Some(match c.plugin.as_str() {
             "box" => ReconstructionFilter::Box,
             "tent" => ReconstructionFilter::Tent { radius: values::positive(c, "radius", 1.0)? as f32 },
             "gaussian" => ReconstructionFilter::Gaussian { stddev: values::positive(c, "stddev", 0.5)? as f32 },
             other => return Err(err(c, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
-        };
+        });
         c.check_all_used()?;
     }
     obj.check_all_used()?;
-    Film::new(width, height, crop, filter).map_err(|e| err(obj, e))
+    Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
 }
 
 fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
