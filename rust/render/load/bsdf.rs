@@ -76,22 +76,23 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             Bsdf::Conductor(Conductor::new(eta, k, constant(obj, "specular_reflectance")?).map_err(|e| err(obj, e))?)
         }
         "roughconductor" => {
-            let distribution = match values::string(obj, "distribution", "beckmann")?.as_str() {
+            // Case-insensitive, as Mitsuba's `string::to_lower` (src/bsdfs/roughconductor.cpp).
+            let distribution = match values::string(obj, "distribution", "beckmann")?.to_lowercase().as_str() {
                 "beckmann" => MicrofacetDistribution::Beckmann,
                 "ggx" => MicrofacetDistribution::Ggx,
                 other => return Err(values::prop_err(obj, "distribution", format!("must be beckmann or ggx, got \"{other}\""))),
             };
-            let (au, av) = match (obj.properties.contains("alpha_u"), obj.properties.contains("alpha_v")) {
-                (false, false) => {
-                    let a = values::float(obj, "alpha", 0.1)?;
-                    (a, a)
-                }
-                (true, true) => (values::float(obj, "alpha_u", 0.1)?, values::float(obj, "alpha_v", 0.1)?),
+            let names = match (obj.properties.contains("alpha_u"), obj.properties.contains("alpha_v")) {
+                (false, false) => ["alpha", "alpha"],
+                (true, true) => ["alpha_u", "alpha_v"],
                 _ => return Err(err(obj, "alpha_u and alpha_v must be given together")),
             };
-            for (n, a) in [("alpha", au), ("alpha_v", av)] {
-                if !(a.is_finite() && a > 0.0) {
-                    return Err(values::prop_err(obj, n, format!("roughness must be positive, got {a}")));
+            let (au, av) = (values::float(obj, names[0], 0.1)?, values::float(obj, names[1], 0.1)?);
+            // α = 0 is valid: Mitsuba (and RoughConductor::new) raise it to 1e-4. A negative
+            // roughness Mitsuba would take silently is an error here.
+            for (n, a) in [(names[0], au), (names[1], av)] {
+                if !(a.is_finite() && a >= 0.0) {
+                    return Err(values::prop_err(obj, n, format!("roughness must be finite and ≥ 0, got {a}")));
                 }
             }
             let sample_visible = values::boolean(obj, "sample_visible", true)?;
