@@ -132,11 +132,12 @@ fn constant(obj: &SceneObject, name: &str) -> Result<Vec3, SceneError> {
     values::color(obj, name, ColorUse::Bounded, Vec3::ONE)
 }
 
-/// `material` (default "none": a perfect mirror) or explicit `eta` and `k`.
+/// `material` (default "none": a perfect mirror) or explicit `eta` and `k`. As in Mitsuba
+/// (`src/bsdfs/conductor.cpp`), `material="none"` may be spelt out next to `eta`/`k`.
 fn conductor_ior(obj: &SceneObject) -> Result<(Vec3, Vec3), SceneError> {
     let has_explicit = obj.properties.contains("eta") || obj.properties.contains("k");
     if has_explicit {
-        if obj.properties.contains("material") {
+        if obj.properties.contains("material") && values::string(obj, "material", "none")? != "none" {
             return Err(err(obj, "give either material or eta/k, not both"));
         }
         let eta = values::color(obj, "eta", ColorUse::Unbounded, Vec3::ZERO)?;
