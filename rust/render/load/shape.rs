@@ -29,6 +29,9 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
             Geometry::Triangles(Triangles::new(m, flip_normals))
         }
         "rectangle" | "cube" => {
+            // Mitsuba's Mesh base class reads `face_normals` for these too, then ignores it
+            // (both are flat per face; scene::mesh::primitives).
+            let _ = values::boolean(obj, "face_normals", false)?;
             let opts = MeshOptions { to_world: Mat4::from(to_world), flip_normals, ..MeshOptions::default() };
             let m = if obj.plugin == "rectangle" { mesh::rectangle(&opts) } else { mesh::cube(&opts) };
             Geometry::Triangles(Triangles::new(m, flip_normals))
