@@ -52,7 +52,7 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
             let radius = values::float(obj, "radius", 1.0)? as f32;
             let axis = p1 - p0;
             let length = axis.length();
-            if !(radius.is_finite() && radius > 0.0) || !(length > 0.0 && length.is_finite()) {
+            if !(radius.is_finite() && radius > 0.0 && length > 0.0 && length.is_finite()) {
                 return Err(err(obj, "needs a positive radius and p0 ≠ p1"));
             }
             // Mitsuba: to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|).
