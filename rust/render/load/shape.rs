@@ -25,7 +25,7 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
             };
             let path = b.resolve(&filename);
             let loaded = if obj.plugin == "obj" { mesh::load_obj(&path, &opts) } else { mesh::load_ply(&path, &opts) };
-            let m = loaded.map_err(|e| values::prop_err(obj, "filename", format!("cannot load mesh: {e}")))?;
+            let m = loaded.map_err(|e| values::prop_err(obj, "filename", format!("cannot load mesh: {}", values::one_line(&e.to_string()))))?;
             Geometry::Triangles(Triangles::new(m, flip_normals))
         }
         "rectangle" | "cube" => {

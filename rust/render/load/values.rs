@@ -66,3 +66,9 @@ pub fn prop_err(obj: &SceneObject, name: &str, what: impl Into<String>) -> Scene
     let pos = obj.properties.iter().find(|p| p.name == name).map(|p| p.pos.clone()).unwrap_or_else(|| obj.pos.clone());
     SceneError::at(&pos, format!("{} \"{}\": property \"{name}\" {}", obj.tag, obj.plugin, what.into()))
 }
+
+/// The first non-empty line of a message from a file-format library (ply-rs-bw, for one,
+/// appends its parser state over several lines): scene errors are one line.
+pub fn one_line(msg: &str) -> &str {
+    msg.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("")
+}
