@@ -61,10 +61,7 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
     if far <= near {
         return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
     }
-    let ppo = Vec2::new(
-        values::float(obj, "principal_point_offset_x", 0.0)? as f32,
-        values::float(obj, "principal_point_offset_y", 0.0)? as f32,
-    );
+    let ppo = Vec2::new(principal_point_offset(obj, "principal_point_offset_x")?, principal_point_offset(obj, "principal_point_offset_y")?);
     let mut film = None;
     let mut sampler = None;
     for child in obj.children.iter() {
@@ -87,6 +84,17 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
     obj.check_all_used()?;
     let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
     Ok(Sensor { camera, film, spp: sampler.0, seed: sampler.1 })
+}
+
+/// A principal point offset (a fraction of the film size). Mitsuba takes any float; a NaN or
+/// one so large that the ray direction overflows f32 would give NaN camera rays, so matte
+/// requires a finite value within ±10⁶ film sizes.
+fn principal_point_offset(obj: &SceneObject, name: &str) -> Result<f32, SceneError> {
+    let v = values::float(obj, name, 0.0)?;
+    if v.is_nan() || v.abs() > 1e6 {
+        return Err(values::prop_err(obj, name, format!("must be a finite fraction of the film size within ±1e6, got {v}")));
+    }
+    Ok(v as f32)
 }
 
 fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
