@@ -137,14 +137,28 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
         }
         filter = Some(match c.plugin.as_str() {
             "box" => ReconstructionFilter::Box,
-            "tent" => ReconstructionFilter::Tent { radius: values::positive(c, "radius", 1.0)? as f32 },
-            "gaussian" => ReconstructionFilter::Gaussian { stddev: values::positive(c, "stddev", 0.5)? as f32 },
+            "tent" => ReconstructionFilter::Tent { radius: filter_size(c, "radius", 1.0, 1.0)? },
+            "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(c, "stddev", 0.5, 4.0)? },
             other => return Err(err(c, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
         });
         c.check_all_used()?;
     }
     obj.check_all_used()?;
     Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
+}
+
+/// Widest reconstruction filter matte accepts, in pixels. Mitsuba has no limit, but every
+/// image block carries a border of the filter radius on each side, so a radius like 1e30
+/// cannot be allocated (and would overflow the block size).
+const MAX_FILTER_RADIUS: f64 = 1024.0;
+
+/// A filter parameter whose support radius is `radius_per_unit` times it.
+fn filter_size(obj: &SceneObject, name: &str, default: f64, radius_per_unit: f64) -> Result<f32, SceneError> {
+    let v = values::positive(obj, name, default)?;
+    if v * radius_per_unit > MAX_FILTER_RADIUS {
+        return Err(values::prop_err(obj, name, format!("gives a filter radius of {} pixels; matte allows at most {MAX_FILTER_RADIUS}", v * radius_per_unit)));
+    }
+    Ok(v as f32)
 }
 
 fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
