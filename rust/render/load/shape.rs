@@ -66,6 +66,10 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
     if geometry.surface_area().is_nan() {
         return Err(values::prop_err(obj, "to_world", "produces invalid (NaN) geometry"));
     }
+    let extent = max_abs_coordinate(&geometry);
+    if extent.is_nan() || extent > MAX_COORDINATE {
+        return Err(err(obj, format!("reaches coordinate {extent:e}; matte accepts shapes within ±{MAX_COORDINATE:e}")));
+    }
     let shape_index = b.shapes.len() as u32;
     let mut bsdf_index = None;
     let mut emitter_index = None;
@@ -95,4 +99,18 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
     obj.check_all_used()?;
     b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
     Ok(())
+}
+
+/// Largest world coordinate matte accepts. Mitsuba has no limit, but the BVH builder
+/// squares box extents in f32 (overflowing beyond ~1e19), and f32 resolves only ~1e8 units
+/// at 1e15 anyway: such a scene cannot be rendered meaningfully.
+const MAX_COORDINATE: f32 = 1e15;
+
+/// max |coordinate| over the shape's world-space bounds (NaN if any is NaN).
+fn max_abs_coordinate(g: &Geometry) -> f32 {
+    let fold = |m: f32, p: Vec3| if p.is_nan() || m.is_nan() { f32::NAN } else { m.max(p.abs().max_element()) };
+    match g {
+        Geometry::Triangles(t) => t.mesh.positions.iter().fold(0.0, |m, &p| fold(m, p)),
+        other => other.analytic_bounds().map_or(f32::NAN, |(lo, hi)| fold(fold(0.0, lo), hi)),
+    }
 }
