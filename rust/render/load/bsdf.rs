@@ -36,6 +36,8 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let mut params = Params::new();
             for p in obj.properties.iter().filter(|p| p.name != "reflectance") {
                 let value = match &p.value {
+                    Value::Float(x) if x.abs() > MAX_MAGNITUDE => return Err(values::prop_err(obj, &p.name, too_large(*x))),
+                    Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => return Err(values::prop_err(obj, &p.name, too_large(*i as f64))),
                     Value::Float(x) => ParamValue::Number(*x),
                     Value::Integer(i) => ParamValue::Number(*i as f64),
                     Value::String(s) => ParamValue::Text(s.clone()),
@@ -94,6 +96,9 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 if !(a.is_finite() && a >= 0.0) {
                     return Err(values::prop_err(obj, n, format!("roughness must be finite and ≥ 0, got {a}")));
                 }
+                if a > MAX_MAGNITUDE {
+                    return Err(values::prop_err(obj, n, too_large(a)));
+                }
             }
             let sample_visible = values::boolean(obj, "sample_visible", true)?;
             let (eta, k) = conductor_ior(obj)?;
@@ -121,7 +126,20 @@ fn ior(obj: &SceneObject, name: &str, default: f64) -> Result<f32, SceneError> {
     if !(v.is_finite() && v >= 1.0) {
         return Err(values::prop_err(obj, name, format!("must be ≥ 1, got {v}")));
     }
+    if v > MAX_MAGNITUDE {
+        return Err(values::prop_err(obj, name, too_large(v)));
+    }
     Ok(v as f32)
+}
+
+/// Largest magnitude matte accepts for a BSDF number (IORs, η/k, roughness, the matte
+/// kernels' parameters). Mitsuba takes any float, but the f32 kernels overflow into NaN
+/// around 1e15–1e19 (e.g. η⁴ in the conductor Fresnel term), long after values stopped
+/// meaning anything physically.
+const MAX_MAGNITUDE: f64 = 1e6;
+
+fn too_large(v: f64) -> String {
+    format!("is {v}; matte accepts magnitudes up to {MAX_MAGNITUDE:e}")
 }
 
 /// `specular_*` weights: constant colours only (default 1).
@@ -142,6 +160,11 @@ fn conductor_ior(obj: &SceneObject) -> Result<(Vec3, Vec3), SceneError> {
         }
         let eta = values::color(obj, "eta", ColorUse::Unbounded, Vec3::ZERO)?;
         let k = values::color(obj, "k", ColorUse::Unbounded, Vec3::ONE)?;
+        for (name, v) in [("eta", eta), ("k", k)] {
+            if v.abs().max_element() as f64 > MAX_MAGNITUDE {
+                return Err(values::prop_err(obj, name, too_large(v.abs().max_element() as f64)));
+            }
+        }
         return Ok((eta, k));
     }
     let m = values::string(obj, "material", "none")?;
