@@ -36,6 +36,8 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let mut params = Params::new();
             for p in obj.properties.iter().filter(|p| p.name != "reflectance") {
                 let value = match &p.value {
+                    Value::Float(x) if x.abs() > MAX_MAGNITUDE => return Err(values::prop_err(obj, &p.name, too_large(*x))),
+                    Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => return Err(values::prop_err(obj, &p.name, too_large(*i as f64))),
                     Value::Float(x) => ParamValue::Number(*x),
                     Value::Integer(i) => ParamValue::Number(*i as f64),
                     Value::String(s) => ParamValue::Text(s.clone()),
@@ -76,22 +78,26 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             Bsdf::Conductor(Conductor::new(eta, k, constant(obj, "specular_reflectance")?).map_err(|e| err(obj, e))?)
         }
         "roughconductor" => {
-            let distribution = match values::string(obj, "distribution", "beckmann")?.as_str() {
+            // Case-insensitive, as Mitsuba's `string::to_lower` (src/bsdfs/roughconductor.cpp).
+            let distribution = match values::string(obj, "distribution", "beckmann")?.to_lowercase().as_str() {
                 "beckmann" => MicrofacetDistribution::Beckmann,
                 "ggx" => MicrofacetDistribution::Ggx,
                 other => return Err(values::prop_err(obj, "distribution", format!("must be beckmann or ggx, got \"{other}\""))),
             };
-            let (au, av) = match (obj.properties.contains("alpha_u"), obj.properties.contains("alpha_v")) {
-                (false, false) => {
-                    let a = values::float(obj, "alpha", 0.1)?;
-                    (a, a)
-                }
-                (true, true) => (values::float(obj, "alpha_u", 0.1)?, values::float(obj, "alpha_v", 0.1)?),
+            let names = match (obj.properties.contains("alpha_u"), obj.properties.contains("alpha_v")) {
+                (false, false) => ["alpha", "alpha"],
+                (true, true) => ["alpha_u", "alpha_v"],
                 _ => return Err(err(obj, "alpha_u and alpha_v must be given together")),
             };
-            for (n, a) in [("alpha", au), ("alpha_v", av)] {
-                if !(a.is_finite() && a > 0.0) {
-                    return Err(values::prop_err(obj, n, format!("roughness must be positive, got {a}")));
+            let (au, av) = (values::float(obj, names[0], 0.1)?, values::float(obj, names[1], 0.1)?);
+            // α = 0 is valid: Mitsuba (and RoughConductor::new) raise it to 1e-4. A negative
+            // roughness Mitsuba would take silently is an error here.
+            for (n, a) in [(names[0], au), (names[1], av)] {
+                if !(a.is_finite() && a >= 0.0) {
+                    return Err(values::prop_err(obj, n, format!("roughness must be finite and ≥ 0, got {a}")));
+                }
+                if a > MAX_MAGNITUDE {
+                    return Err(values::prop_err(obj, n, too_large(a)));
                 }
             }
             let sample_visible = values::boolean(obj, "sample_visible", true)?;
@@ -120,7 +126,20 @@ fn ior(obj: &SceneObject, name: &str, default: f64) -> Result<f32, SceneError> {
     if !(v.is_finite() && v >= 1.0) {
         return Err(values::prop_err(obj, name, format!("must be ≥ 1, got {v}")));
     }
+    if v > MAX_MAGNITUDE {
+        return Err(values::prop_err(obj, name, too_large(v)));
+    }
     Ok(v as f32)
+}
+
+/// Largest magnitude matte accepts for a BSDF number (IORs, η/k, roughness, the matte
+/// kernels' parameters). Mitsuba takes any float, but the f32 kernels overflow into NaN
+/// around 1e15–1e19 (e.g. η⁴ in the conductor Fresnel term), long after values stopped
+/// meaning anything physically.
+const MAX_MAGNITUDE: f64 = 1e6;
+
+fn too_large(v: f64) -> String {
+    format!("is {v}; matte accepts magnitudes up to {MAX_MAGNITUDE:e}")
 }
 
 /// `specular_*` weights: constant colours only (default 1).
@@ -131,15 +150,21 @@ fn constant(obj: &SceneObject, name: &str) -> Result<Vec3, SceneError> {
     values::color(obj, name, ColorUse::Bounded, Vec3::ONE)
 }
 
-/// `material` (default "none": a perfect mirror) or explicit `eta` and `k`.
+/// `material` (default "none": a perfect mirror) or explicit `eta` and `k`. As in Mitsuba
+/// (`src/bsdfs/conductor.cpp`), `material="none"` may be spelt out next to `eta`/`k`.
 fn conductor_ior(obj: &SceneObject) -> Result<(Vec3, Vec3), SceneError> {
     let has_explicit = obj.properties.contains("eta") || obj.properties.contains("k");
     if has_explicit {
-        if obj.properties.contains("material") {
+        if obj.properties.contains("material") && values::string(obj, "material", "none")? != "none" {
             return Err(err(obj, "give either material or eta/k, not both"));
         }
         let eta = values::color(obj, "eta", ColorUse::Unbounded, Vec3::ZERO)?;
         let k = values::color(obj, "k", ColorUse::Unbounded, Vec3::ONE)?;
+        for (name, v) in [("eta", eta), ("k", k)] {
+            if v.abs().max_element() as f64 > MAX_MAGNITUDE {
+                return Err(values::prop_err(obj, name, too_large(v.abs().max_element() as f64)));
+            }
+        }
         return Ok((eta, k));
     }
     let m = values::string(obj, "material", "none")?;

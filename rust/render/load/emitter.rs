@@ -81,7 +81,12 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             }
             Emitter::Directional { direction, irradiance }
         }
-        "constant" => Emitter::Constant { radiance: emissive(obj, "radiance")? },
+        "constant" => {
+            // Every Mitsuba emitter reads `to_world` (src/render/endpoint.cpp); a uniform
+            // environment is invariant under it, so it is validated and ignored.
+            values::transform(obj, "to_world")?;
+            Emitter::Constant { radiance: emissive(obj, "radiance")? }
+        }
         "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
         other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, directional, constant)"))),
     };

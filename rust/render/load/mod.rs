@@ -95,7 +95,12 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
                 sensor = Some(sensor::build(obj)?);
             }
             "shape" => shape::build(&mut b, obj)?,
-            "emitter" => emitter::build_standalone(&mut b, obj)?,
+            "emitter" => {
+                if obj.plugin == "constant" && b.emitters.iter().any(|e| matches!(e, Emitter::Constant { .. })) {
+                    return Err(SceneError::at(&obj.pos, "only one environment emitter (constant) is allowed"));
+                }
+                emitter::build_standalone(&mut b, obj)?
+            }
             "bsdf" => {
                 bsdf::get_or_build(&mut b, obj)?;
             }
@@ -108,9 +113,6 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         }
     }
     root.check_all_used()?;
-    if b.emitters.iter().filter(|e| matches!(e, Emitter::Constant { .. })).count() > 1 {
-        return Err(SceneError::at(&root.pos, "only one environment emitter (constant) is allowed"));
-    }
     let sensor = sensor.ok_or_else(|| SceneError::at(&root.pos, "the scene has no <sensor>"))?;
     let integrator = match integrator {
         Some(i) => i,

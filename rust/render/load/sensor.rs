@@ -21,9 +21,8 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
         return Err(err(obj, format!("unsupported sensor type \"{}\" (matte renders: perspective)", obj.plugin)));
     }
     let to_world = values::transform(obj, "to_world")?;
-    let (s, _, _) = to_world.to_scale_rotation_translation();
-    if (s - glam::Vec3::ONE).abs().max_element() > 1e-3 {
-        return Err(values::prop_err(obj, "to_world", format!("contains a scale {s}; scale factors are not allowed in a camera transform (as in Mitsuba)")));
+    if has_scale(&to_world) {
+        return Err(values::prop_err(obj, "to_world", "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)"));
     }
     let fov = values::float_opt(obj, "fov")?;
     let focal = obj.properties.string("focal_length")?;
@@ -33,7 +32,7 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
             if !(f > 0.0 && f < 180.0) {
                 return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
             }
-            let axis = match values::string(obj, "fov_axis", "x")?.as_str() {
+            let axis = match values::string(obj, "fov_axis", "x")?.to_lowercase().as_str() {
                 "x" => FovAxis::X,
                 "y" => FovAxis::Y,
                 "diagonal" => FovAxis::Diagonal,
@@ -62,21 +61,22 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
     if far <= near {
         return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
     }
-    let ppo = Vec2::new(
-        values::float(obj, "principal_point_offset_x", 0.0)? as f32,
-        values::float(obj, "principal_point_offset_y", 0.0)? as f32,
-    );
+    let ppo = Vec2::new(principal_point_offset(obj, "principal_point_offset_x")?, principal_point_offset(obj, "principal_point_offset_y")?);
     let mut film = None;
-    let mut sampler = (4u32, 0u64);
+    let mut sampler = None;
     for child in obj.children.iter() {
         child.mark_used();
         let c = &child.object;
         match c.tag.as_str() {
+            // Mitsuba: "Only one film/sampler can be specified per sensor" (src/render/sensor.cpp).
+            "film" if film.is_some() => return Err(SceneError::at(&child.pos, "only one film can be specified per sensor")),
+            "sampler" if sampler.is_some() => return Err(SceneError::at(&child.pos, "only one sampler can be specified per sensor")),
             "film" => film = Some(build_film(c)?),
-            "sampler" => sampler = build_sampler(c)?,
+            "sampler" => sampler = Some(build_sampler(c)?),
             _ => return Err(err(c, format!("a <{}> cannot be nested in a sensor", c.tag))),
         }
     }
+    let sampler = sampler.unwrap_or((4, 0));
     let film = match film {
         Some(f) => f,
         None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| err(obj, e))?,
@@ -86,23 +86,36 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
     Ok(Sensor { camera, film, spp: sampler.0, seed: sampler.1 })
 }
 
+/// A principal point offset (a fraction of the film size). Mitsuba takes any float; a NaN or
+/// one so large that the ray direction overflows f32 would give NaN camera rays, so matte
+/// requires a finite value within ±10⁶ film sizes.
+fn principal_point_offset(obj: &SceneObject, name: &str) -> Result<f32, SceneError> {
+    let v = values::float(obj, name, 0.0)?;
+    if v.is_nan() || v.abs() > 1e6 {
+        return Err(values::prop_err(obj, name, format!("must be a finite fraction of the film size within ±1e6, got {v}")));
+    }
+    Ok(v as f32)
+}
+
 fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     if obj.plugin != "hdrfilm" {
         return Err(err(obj, format!("unsupported film type \"{}\" (matte renders: hdrfilm)", obj.plugin)));
     }
     let width = values::integer(obj, "width", 768, 1, 1 << 16)? as u32;
     let height = values::integer(obj, "height", 576, 1, 1 << 16)? as u32;
+    // Mitsuba (src/render/film.cpp): crop_width/height default to the FULL film size, not to
+    // what is left after the offset, so an offset alone is an invalid crop window (§6).
     let crop = if ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| obj.properties.contains(n)) {
-        let ox = values::integer(obj, "crop_offset_x", 0, 0, width as i64 - 1)? as u32;
-        let oy = values::integer(obj, "crop_offset_y", 0, 0, height as i64 - 1)? as u32;
-        let w = values::integer(obj, "crop_width", (width - ox) as i64, 1, (width - ox) as i64)? as u32;
-        let h = values::integer(obj, "crop_height", (height - oy) as i64, 1, (height - oy) as i64)? as u32;
+        let ox = values::integer(obj, "crop_offset_x", 0, 0, u32::MAX as i64)? as u32;
+        let oy = values::integer(obj, "crop_offset_y", 0, 0, u32::MAX as i64)? as u32;
+        let w = values::integer(obj, "crop_width", width as i64, 1, u32::MAX as i64)? as u32;
+        let h = values::integer(obj, "crop_height", height as i64, 1, u32::MAX as i64)? as u32;
         Some(CropWindow { offset: [ox, oy], size: [w, h] })
     } else {
         None
     };
     // Output format properties only affect files Mitsuba writes; matte always writes RGB float.
-    let pf = values::string(obj, "pixel_format", "rgb")?;
+    let pf = values::string(obj, "pixel_format", "rgb")?.to_lowercase();
     if pf != "rgb" && pf != "rgba" {
         return Err(values::prop_err(obj, "pixel_format", format!("\"{pf}\" is not supported (rgb or rgba)")));
     }
@@ -111,23 +124,41 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     if values::boolean(obj, "sample_border", false)? {
         return Err(values::prop_err(obj, "sample_border", "= true is not supported"));
     }
-    let mut filter = ReconstructionFilter::Gaussian { stddev: 0.5 };
+    let mut filter = None;
     for child in obj.children.iter() {
         child.mark_used();
         let c = &child.object;
         if c.tag != "rfilter" {
             return Err(err(c, format!("a <{}> cannot be nested in a film", c.tag)));
         }
-        filter = match c.plugin.as_str() {
+        if filter.is_some() {
+            // Mitsuba: "A film can only have one reconstruction filter" (src/render/film.cpp).
+            return Err(SceneError::at(&child.pos, "a film can only have one reconstruction filter"));
+        }
+        filter = Some(match c.plugin.as_str() {
             "box" => ReconstructionFilter::Box,
-            "tent" => ReconstructionFilter::Tent { radius: values::positive(c, "radius", 1.0)? as f32 },
-            "gaussian" => ReconstructionFilter::Gaussian { stddev: values::positive(c, "stddev", 0.5)? as f32 },
+            "tent" => ReconstructionFilter::Tent { radius: filter_size(c, "radius", 1.0, 1.0)? },
+            "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(c, "stddev", 0.5, 4.0)? },
             other => return Err(err(c, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
-        };
+        });
         c.check_all_used()?;
     }
     obj.check_all_used()?;
-    Film::new(width, height, crop, filter).map_err(|e| err(obj, e))
+    Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
+}
+
+/// Widest reconstruction filter matte accepts, in pixels. Mitsuba has no limit, but every
+/// image block carries a border of the filter radius on each side, so a radius like 1e30
+/// cannot be allocated (and would overflow the block size).
+const MAX_FILTER_RADIUS: f64 = 1024.0;
+
+/// A filter parameter whose support radius is `radius_per_unit` times it.
+fn filter_size(obj: &SceneObject, name: &str, default: f64, radius_per_unit: f64) -> Result<f32, SceneError> {
+    let v = values::positive(obj, name, default)?;
+    if v * radius_per_unit > MAX_FILTER_RADIUS {
+        return Err(values::prop_err(obj, name, format!("gives a filter radius of {} pixels; matte allows at most {MAX_FILTER_RADIUS}", v * radius_per_unit)));
+    }
+    Ok(v as f32)
 }
 
 fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
@@ -138,4 +169,12 @@ fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
     let seed = values::integer(obj, "seed", 0, 0, i64::MAX)? as u64;
     obj.check_all_used()?;
     Ok((spp, seed))
+}
+
+/// Mitsuba's `Transform::has_scale` (`include/mitsuba/core/transform.h`), used by the
+/// perspective sensor: the rows of the linear part must be orthonormal to 1e-3
+/// (|Σₖ mᵢₖ mⱼₖ − δᵢⱼ| ≤ 1e-3). So a shear is a scale, and a mirror is not.
+fn has_scale(m: &glam::Affine3A) -> bool {
+    let rows = [m.matrix3.row(0), m.matrix3.row(1), m.matrix3.row(2)];
+    (0..3).any(|i| (i..3).any(|j| (rows[i].dot(rows[j]) - if i == j { 1.0 } else { 0.0 }).abs() > 1e-3))
 }

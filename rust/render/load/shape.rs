@@ -25,10 +25,13 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
             };
             let path = b.resolve(&filename);
             let loaded = if obj.plugin == "obj" { mesh::load_obj(&path, &opts) } else { mesh::load_ply(&path, &opts) };
-            let m = loaded.map_err(|e| values::prop_err(obj, "filename", format!("cannot load mesh: {e}")))?;
+            let m = loaded.map_err(|e| values::prop_err(obj, "filename", format!("cannot load mesh: {}", values::one_line(&e.to_string()))))?;
             Geometry::Triangles(Triangles::new(m, flip_normals))
         }
         "rectangle" | "cube" => {
+            // Mitsuba's Mesh base class reads `face_normals` for these too, then ignores it
+            // (both are flat per face; scene::mesh::primitives).
+            let _ = values::boolean(obj, "face_normals", false)?;
             let opts = MeshOptions { to_world: Mat4::from(to_world), flip_normals, ..MeshOptions::default() };
             let m = if obj.plugin == "rectangle" { mesh::rectangle(&opts) } else { mesh::cube(&opts) };
             Geometry::Triangles(Triangles::new(m, flip_normals))
@@ -49,7 +52,7 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
             let radius = values::float(obj, "radius", 1.0)? as f32;
             let axis = p1 - p0;
             let length = axis.length();
-            if !(radius.is_finite() && radius > 0.0) || !(length > 0.0 && length.is_finite()) {
+            if !(radius.is_finite() && radius > 0.0 && length > 0.0 && length.is_finite()) {
                 return Err(err(obj, "needs a positive radius and p0 ≠ p1"));
             }
             // Mitsuba: to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|).
@@ -62,6 +65,10 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
     };
     if geometry.surface_area().is_nan() {
         return Err(values::prop_err(obj, "to_world", "produces invalid (NaN) geometry"));
+    }
+    let extent = max_abs_coordinate(&geometry);
+    if extent.is_nan() || extent > MAX_COORDINATE {
+        return Err(err(obj, format!("reaches coordinate {extent:e}; matte accepts shapes within ±{MAX_COORDINATE:e}")));
     }
     let shape_index = b.shapes.len() as u32;
     let mut bsdf_index = None;
@@ -92,4 +99,18 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
     obj.check_all_used()?;
     b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
     Ok(())
+}
+
+/// Largest world coordinate matte accepts. Mitsuba has no limit, but the BVH builder
+/// squares box extents in f32 (overflowing beyond ~1e19), and f32 resolves only ~1e8 units
+/// at 1e15 anyway: such a scene cannot be rendered meaningfully.
+const MAX_COORDINATE: f32 = 1e15;
+
+/// max |coordinate| over the shape's world-space bounds (NaN if any is NaN).
+fn max_abs_coordinate(g: &Geometry) -> f32 {
+    let fold = |m: f32, p: Vec3| if p.is_nan() || m.is_nan() { f32::NAN } else { m.max(p.abs().max_element()) };
+    match g {
+        Geometry::Triangles(t) => t.mesh.positions.iter().fold(0.0, |m, &p| fold(m, p)),
+        other => other.analytic_bounds().map_or(f32::NAN, |(lo, hi)| fold(fold(0.0, lo), hi)),
+    }
 }

@@ -54,6 +54,6 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     obj.check_all_used()?;
     let path = b.resolve(&filename);
     let tex = BitmapTexture::load(&path, &BitmapOptions { filter, wrap, raw, to_uv })
-        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {e}", path.display())))?;
+        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {}", path.display(), values::one_line(&e))))?;
     Ok(Texture::Bitmap(Arc::new(tex)))
 }

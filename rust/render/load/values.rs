@@ -39,8 +39,21 @@ pub fn positive(obj: &SceneObject, name: &str, default: f64) -> Result<f64, Scen
     Ok(v)
 }
 
+/// A constant colour read as `usage` demands (semantics §2). NaN or ∞ is an error for every
+/// usage, and so is a negative reflectance-like value (`<float>`/`<spectrum>`; the parser
+/// already rejects an `<rgb>` outside [0, 1]). Mitsuba takes such floats silently; they
+/// would only produce NaN or negative pixels. A `<float>` reflectance above 1 stays
+/// allowed, as in Mitsuba.
 pub fn color(obj: &SceneObject, name: &str, usage: ColorUse, default: Vec3) -> Result<Vec3, SceneError> {
-    Ok(obj.properties.color(name, usage)?.map(|c| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)).unwrap_or(default))
+    let Some(c) = obj.properties.color(name, usage)? else { return Ok(default) };
+    let v = Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
+    if !v.is_finite() {
+        return Err(prop_err(obj, name, format!("must be finite, got {v}")));
+    }
+    if usage == ColorUse::Bounded && v.min_element() < 0.0 {
+        return Err(prop_err(obj, name, format!("must not be negative, got {v}")));
+    }
+    Ok(v)
 }
 
 /// `to_world` (or another transform) as an f32 affine map; identity when absent. Projective
@@ -65,4 +78,10 @@ pub fn to_affine(m: &DMat4) -> Option<Affine3A> {
 pub fn prop_err(obj: &SceneObject, name: &str, what: impl Into<String>) -> SceneError {
     let pos = obj.properties.iter().find(|p| p.name == name).map(|p| p.pos.clone()).unwrap_or_else(|| obj.pos.clone());
     SceneError::at(&pos, format!("{} \"{}\": property \"{name}\" {}", obj.tag, obj.plugin, what.into()))
+}
+
+/// The first non-empty line of a message from a file-format library (ply-rs-bw, for one,
+/// appends its parser state over several lines): scene errors are one line.
+pub fn one_line(msg: &str) -> &str {
+    msg.lines().map(str::trim).find(|l| !l.is_empty()).unwrap_or("")
 }
