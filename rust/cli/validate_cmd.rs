@@ -25,7 +25,8 @@ pub struct ValidateArgs {
     /// Independent passes per renderer (the per-pixel variance comes from them).
     #[arg(long, default_value_t = 16)]
     pub passes: u32,
-    /// Total samples per pixel per renderer, split over the passes (default: the scene's).
+    /// Total samples per pixel per renderer, split over the passes (default: 4× the scene's
+    /// sample_count, for power against small differences).
     #[arg(long)]
     pub spp: Option<u32>,
     /// Smaller budget: 8 passes, 64 spp in total.

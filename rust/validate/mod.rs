@@ -24,7 +24,8 @@ pub enum Reference {
 #[derive(Clone, Debug)]
 pub struct Options {
     pub passes: u32,
-    /// Total samples per pixel per renderer (split over the passes); `None` = scene's.
+    /// Total samples per pixel per renderer (split over the passes); `None` = 4× the scene's
+    /// `sample_count`.
     pub spp: Option<u32>,
     pub seed: u64,
     /// Family-wise level of the per-pixel test and of the global test.
@@ -65,7 +66,7 @@ pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progr
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let total = match opts.spp {
         Some(s) => s,
-        None => scene_spp(scene, &opts.matte_defines)?,
+        None => 4 * scene_spp(scene, &opts.matte_defines)?,
     };
     let per_pass = (total / opts.passes).max(1);
     let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: Some(per_pass), seed, defines: defines.clone() };
