@@ -7,10 +7,12 @@
 //! * [`scene`]: Mitsuba XML scenes → typed description (parser, properties, meshes).
 //! * [`render`]: the CPU path tracer that renders them.
 //! * [`validate`]: per-pixel statistical comparison of the Rust renderer with Mitsuba.
+//! * [`study`]: the seed paper's experiment (scenes × models, strips, measured ratios).
 
 pub mod brdf;
 pub mod cli;
 pub mod ffi;
 pub mod render;
 pub mod scene;
+pub mod study;
 pub mod validate;

@@ -1,6 +1,22 @@
 use std::process::ExitCode;
 
+#[cfg(unix)]
+unsafe extern "C" {
+    fn signal(signum: i32, handler: usize) -> usize;
+}
+
+/// Rust ignores SIGPIPE, so `println!` into a closed pipe (`matte … | head`) would panic.
+/// Restore the default action: the process ends quietly, as other command-line tools do.
+fn reset_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: setting SIGPIPE (13 on Linux) to SIG_DFL (0) before any thread starts.
+    unsafe {
+        signal(13, 0);
+    }
+}
+
 fn main() -> ExitCode {
+    reset_sigpipe();
     let result = matte::cli::parse().and_then(matte::cli::run);
     match result {
         Ok(()) => ExitCode::SUCCESS,

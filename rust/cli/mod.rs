@@ -3,6 +3,7 @@
 
 mod brdf_cmd;
 pub mod render_cmd;
+pub mod study_cmd;
 mod tables;
 pub mod validate_cmd;
 
@@ -28,6 +29,8 @@ pub enum Command {
     Render(render_cmd::RenderArgs),
     /// Render scenes with matte and Mitsuba 3.9.1 and test per pixel whether they agree.
     Validate(validate_cmd::ValidateArgs),
+    /// The seed paper's study: its scenes with every diffuse model, strips and measured ratios.
+    Study(study_cmd::StudyArgs),
 }
 
 /// Parses the command line; usage errors become one line (clap's own multi-line report is
@@ -50,5 +53,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Tables(a) => tables::run(&a),
         Command::Render(a) => render_cmd::run(&a),
         Command::Validate(a) => validate_cmd::run(&a),
+        Command::Study(a) => study_cmd::run(&a),
     }
 }

@@ -1,0 +1,158 @@
+//! `matte study`: the seed paper's experiment (Diepstraten & Borgo 2006). Every study scene
+//! is rendered with every diffuse model, under global illumination (the scene's own
+//! `max_depth`) and under direct lighting only (`max_depth` 2); the report gives per scene and
+//! model the image-mean luminance ratio to Lambert with its 99 % confidence interval in both
+//! settings (the paper's question: does the difference grow or shrink with global
+//! illumination?), where the difference concentrates (edges vs flat regions), labelled strips
+//! like the paper's figures and difference heatmaps against Lambert.
+
+pub mod font;
+pub mod metrics;
+pub mod report;
+pub mod strip;
+
+use crate::render::film::Image;
+use crate::render::image_io;
+use crate::validate::passes::{self, PassPlan, Side};
+use crate::validate::Reference;
+use std::path::{Path, PathBuf};
+
+/// A model column: plugin name and label.
+#[derive(Clone, Copy, Debug)]
+pub struct Model {
+    pub bsdf: &'static str,
+    pub label: &'static str,
+}
+
+/// The paper's four models (its column order) and EON as a fifth.
+pub const MODELS: [Model; 5] = [
+    Model { bsdf: "lambert", label: "Lambert" },
+    Model { bsdf: "wolff", label: "Wolff" },
+    Model { bsdf: "oren_nayar", label: "Oren-Nayar" },
+    Model { bsdf: "ginneken", label: "Ginneken" },
+    Model { bsdf: "eon", label: "EON" },
+];
+
+/// Global illumination (scene's max_depth) or direct lighting (max_depth 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lighting {
+    Global,
+    Direct,
+}
+
+impl Lighting {
+    pub fn name(self) -> &'static str {
+        match self {
+            Lighting::Global => "global",
+            Lighting::Direct => "direct",
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub out: PathBuf,
+    pub passes: u32,
+    /// Total samples per pixel per image, split over the passes.
+    pub spp: u32,
+    pub seed: u64,
+    /// Film width override (`-D res=…`), if any.
+    pub res: Option<u32>,
+    pub renderer: Reference,
+    /// Extra `-D` parameters.
+    pub defines: Vec<(String, String)>,
+}
+
+/// One model in one lighting setting.
+pub struct ModelResult {
+    pub model: Model,
+    pub lighting: Lighting,
+    pub mean: Image,
+    /// Luminance ratio to Lambert (same lighting) and its 99 % half-width.
+    pub ratio: (f64, f64),
+    /// Mean |relative difference| to Lambert on edge pixels and on flat pixels.
+    pub edge_flat: (f64, f64),
+    pub seconds: f64,
+    pub exr: PathBuf,
+}
+
+pub struct SceneStudy {
+    pub scene: PathBuf,
+    pub name: String,
+    pub results: Vec<ModelResult>,
+    /// Strip and heatmap strip per lighting, relative to the output folder.
+    pub strips: Vec<(Lighting, PathBuf, PathBuf)>,
+    pub difference_range: f32,
+}
+
+fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+    let plan = PassPlan { passes: opts.passes, spp: Some((opts.spp / opts.passes).max(1)), seed: opts.seed, defines };
+    match &opts.renderer {
+        Reference::Matte => passes::rust_side(scene, &plan, progress),
+        Reference::Mitsuba(variant) => {
+            let root = passes::repo_root();
+            let side = passes::mitsuba_side(&root.join(".venv/bin/python"), &root.join("validation/mitsuba_passes.py"), scene, variant, &plan, work, progress)?;
+            let _ = std::fs::remove_dir_all(work);
+            Ok(side)
+        }
+    }
+}
+
+/// Renders one scene with every model in both lighting settings and writes its pictures.
+pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -> Result<SceneStudy, String> {
+    let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
+    let dir = opts.out.join(&name);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut results = Vec::new();
+    let mut strips = Vec::new();
+    let range = 0.25f32;
+    for lighting in [Lighting::Global, Lighting::Direct] {
+        let mut sides: Vec<(Model, Side)> = Vec::new();
+        for model in MODELS {
+            let mut defines = opts.defines.clone();
+            defines.push(("bsdf".into(), model.bsdf.into()));
+            if lighting == Lighting::Direct {
+                defines.push(("max_depth".into(), "2".into()));
+            }
+            if let Some(r) = opts.res {
+                defines.push(("res".into(), r.to_string()));
+            }
+            let what = format!("{name} {} {}", lighting.name(), model.label);
+            let side = render_side(scene, opts, defines, &dir.join("work"), &|k| progress(&what, k))?;
+            sides.push((model, side));
+        }
+        let lambert = &sides[0].1;
+        let lambert_img = lambert.moments.mean_image();
+        let edges = metrics::edge_mask(&lambert_img, 0.1);
+        let mut tiles = Vec::new();
+        let mut diff_tiles = Vec::new();
+        for (model, side) in &sides {
+            let mean = side.moments.mean_image();
+            let rel = metrics::relative_difference(&mean, &lambert_img, 1e-4);
+            let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.bsdf));
+            image_io::write_exr(&opts.out.join(&exr), &mean)?;
+            tiles.push(strip::Tile::from_image(model.label, &mean));
+            diff_tiles.push(strip::Tile::from_difference(model.label, mean.width, mean.height, &rel, range));
+            results.push(ModelResult {
+                model: *model,
+                lighting,
+                ratio: metrics::luminance_ratio(&side.moments, &lambert.moments),
+                edge_flat: metrics::edge_vs_flat(&rel, &edges),
+                seconds: side.seconds,
+                mean,
+                exr,
+            });
+        }
+        let strip_path = PathBuf::from(&name).join(format!("strip_{}.png", lighting.name()));
+        let diff_path = PathBuf::from(&name).join(format!("difference_{}.png", lighting.name()));
+        strip::write_strip(&opts.out.join(&strip_path), &tiles)?;
+        strip::write_strip(&opts.out.join(&diff_path), &diff_tiles)?;
+        strips.push((lighting, strip_path, diff_path));
+    }
+    Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_range: range })
+}
+
+/// The study scenes: every `*.xml` in `mitsuba_scenes/study/`.
+pub fn study_scenes() -> Result<Vec<PathBuf>, String> {
+    crate::validate::bundled_scenes(&passes::repo_root().join("mitsuba_scenes/study"))
+}

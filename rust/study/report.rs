@@ -1,0 +1,101 @@
+//! `study.json` and `report.html`: per scene the strips and heatmaps, and per model the
+//! luminance ratio to Lambert (99 % CI) under global and direct lighting, the change between
+//! them (the paper's question), and the edge/flat concentration of the difference.
+
+use super::{Lighting, SceneStudy};
+use serde_json::json;
+use std::fmt::Write as _;
+use std::path::Path;
+
+fn find<'a>(s: &'a SceneStudy, bsdf: &str, l: Lighting) -> Option<&'a super::ModelResult> {
+    s.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == l)
+}
+
+pub fn json(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> serde_json::Value {
+    let scenes: Vec<_> = studies
+        .iter()
+        .map(|s| {
+            let models: Vec<_> = super::MODELS
+                .iter()
+                .filter_map(|m| {
+                    let g = find(s, m.bsdf, Lighting::Global)?;
+                    let d = find(s, m.bsdf, Lighting::Direct)?;
+                    Some(json!({
+                        "model": m.bsdf,
+                        "ratio_global": g.ratio.0, "ratio_global_ci99": g.ratio.1,
+                        "ratio_direct": d.ratio.0, "ratio_direct_ci99": d.ratio.1,
+                        "abs_difference_global_minus_direct": (g.ratio.0 - 1.0).abs() - (d.ratio.0 - 1.0).abs(),
+                        "edge_mean_abs_rel_diff_global": g.edge_flat.0, "flat_mean_abs_rel_diff_global": g.edge_flat.1,
+                        "edge_mean_abs_rel_diff_direct": d.edge_flat.0, "flat_mean_abs_rel_diff_direct": d.edge_flat.1,
+                        "seconds_global": g.seconds, "seconds_direct": d.seconds,
+                        "exr_global": g.exr, "exr_direct": d.exr,
+                    }))
+                })
+                .collect();
+            json!({
+                "scene": s.scene.display().to_string(),
+                "strips": s.strips.iter().map(|(l, a, b)| json!({"lighting": l.name(), "strip": a, "difference": b})).collect::<Vec<_>>(),
+                "models": models,
+            })
+        })
+        .collect();
+    json!({ "renderer": renderer, "passes": passes, "spp": spp, "scenes": scenes })
+}
+
+pub fn html(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> String {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        r#"<!doctype html><html><head><meta charset="utf-8"><title>matte study</title><style>
+body{{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}} img{{max-width:100%;border:1px solid #ddd}}
+table{{border-collapse:collapse;font-size:14px;margin:8px 0}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}}
+th:first-child,td:first-child{{text-align:left}} .scene{{border-top:1px solid #ccc;padding-top:12px;margin-top:16px}}
+</style></head><body><h1>matte study: diffuse models under global illumination</h1>
+<p>Renderer: {renderer}; {passes} passes, {spp} spp per image in total; every model uses the same seeds (paired passes).
+Ratio = image-mean luminance of the model / Lambert, ± 99 % confidence interval from the paired per-pass ratios.
+"Global" is the scene's path depth, "direct" is max_depth 2. Δ = |ratio<sub>global</sub> − 1| − |ratio<sub>direct</sub> − 1|:
+positive = the difference to Lambert grows under global illumination. Edge/flat = mean |relative luminance difference| to
+Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs on the others.</p>"#
+    );
+    for s in studies {
+        let _ = write!(h, r#"<div class="scene"><h2>{}</h2>"#, s.name);
+        for (l, strip, diff) in &s.strips {
+            let _ = write!(
+                h,
+                r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: (model − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
+                l.name(),
+                strip.display(),
+                diff.display(),
+                s.difference_range * 100.0,
+                s.difference_range * 100.0
+            );
+        }
+        h.push_str("<table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>edge / flat, global</th><th>edge / flat, direct</th></tr>");
+        for m in super::MODELS {
+            let (Some(g), Some(d)) = (find(s, m.bsdf, Lighting::Global), find(s, m.bsdf, Lighting::Direct)) else { continue };
+            let _ = write!(
+                h,
+                "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td><td>{:+.4}</td><td>{:.3} / {:.3}</td><td>{:.3} / {:.3}</td></tr>",
+                m.label,
+                g.ratio.0,
+                g.ratio.1,
+                d.ratio.0,
+                d.ratio.1,
+                (g.ratio.0 - 1.0).abs() - (d.ratio.0 - 1.0).abs(),
+                g.edge_flat.0,
+                g.edge_flat.1,
+                d.edge_flat.0,
+                d.edge_flat.1
+            );
+        }
+        h.push_str("</table></div>");
+    }
+    h.push_str("</body></html>\n");
+    h
+}
+
+pub fn write(out: &Path, studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> Result<(), String> {
+    let j = serde_json::to_string_pretty(&json(studies, renderer, passes, spp)).expect("json");
+    std::fs::write(out.join("study.json"), j).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("report.html"), html(studies, renderer, passes, spp)).map_err(|e| e.to_string())
+}
