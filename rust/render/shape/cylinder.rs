@@ -4,6 +4,7 @@
 //! radius = |to_world·x̂|, length = |to_world·ẑ| (a negative radius toggles `flip_normals`);
 //! emission sampled uniformly by area.
 
+use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::render::geometry::{Frame, Ray};
 use glam::{Affine3A, DVec3, Vec2, Vec3};
@@ -50,21 +51,9 @@ impl Cylinder {
         let o: DVec3 = self.to_object.transform_point3(ray.o).as_dvec3();
         let d: DVec3 = self.to_object.transform_vector3(ray.d).as_dvec3();
         let a = d.x * d.x + d.y * d.y;
-        if a == 0.0 {
-            return None;
-        }
         let b = 2.0 * (o.x * d.x + o.y * d.y);
         let c = o.x * o.x + o.y * o.y - 1.0;
-        let disc = b * b - 4.0 * a * c;
-        if disc < 0.0 {
-            return None;
-        }
-        let sq = disc.sqrt();
-        let q = if b < 0.0 { -0.5 * (b - sq) } else { -0.5 * (b + sq) };
-        let (mut t0, mut t1) = (q / a, c / q);
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
+        let (t0, t1) = area_sampling::solve_quadratic(a, b, c)?;
         let maxt = ray.maxt as f64;
         for t in [t0, t1] {
             let z = o.z + d.z * t;
@@ -104,23 +93,11 @@ impl Cylinder {
     pub fn sample_direction(&self, ref_p: Vec3, u: Vec2) -> Option<DirectionSample> {
         let (s, c) = (2.0 * PI * u.y).sin_cos();
         let (p, n, uv) = self.surface_point(Vec2::new(c, s), u.x);
-        let d = p - ref_p;
-        let dist2 = d.length_squared();
-        let dist = dist2.sqrt();
-        if dist == 0.0 || self.area <= 0.0 {
-            return None;
-        }
-        let d = d / dist;
-        let cos = d.dot(n).abs();
-        let pdf = if cos > 0.0 { dist2 / (cos * self.area) } else { 0.0 };
-        Some(DirectionSample { p, n, uv, d, dist, pdf })
+        area_sampling::direction_sample(ref_p, p, n, uv, self.area)
     }
 
     #[inline]
     pub fn pdf_direction(&self, ref_p: Vec3, si: &SurfaceInteraction) -> f32 {
-        let d = si.p - ref_p;
-        let dist2 = d.length_squared();
-        let cos = d.dot(si.n).abs() / dist2.sqrt();
-        if cos > 0.0 && self.area > 0.0 { dist2 / (cos * self.area) } else { 0.0 }
+        area_sampling::pdf(ref_p, si.p, si.n, self.area)
     }
 }

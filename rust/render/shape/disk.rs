@@ -2,6 +2,7 @@
 //! normal = to_world applied to +z as a normal; `flip_normals` = `to_world·S(1,1,−1)`;
 //! uv = (r, φ/2π); emission sampled uniformly by area (concentric map).
 
+use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::brdf::sampling::square_to_uniform_disk_concentric;
 use crate::render::geometry::{Frame, Ray};
@@ -78,23 +79,11 @@ impl Disk {
     pub fn sample_direction(&self, ref_p: Vec3, u: Vec2) -> Option<DirectionSample> {
         let local = square_to_uniform_disk_concentric(u);
         let p = self.to_world.transform_point3(Vec3::new(local.x, local.y, 0.0));
-        let d = p - ref_p;
-        let dist2 = d.length_squared();
-        let dist = dist2.sqrt();
-        if dist == 0.0 || self.area <= 0.0 {
-            return None;
-        }
-        let d = d / dist;
-        let cos = d.dot(self.n).abs();
-        let pdf = if cos > 0.0 { dist2 / (cos * self.area) } else { 0.0 };
-        Some(DirectionSample { p, n: self.n, uv: Self::uv(local), d, dist, pdf })
+        area_sampling::direction_sample(ref_p, p, self.n, Self::uv(local), self.area)
     }
 
     #[inline]
     pub fn pdf_direction(&self, ref_p: Vec3, si: &SurfaceInteraction) -> f32 {
-        let d = si.p - ref_p;
-        let dist2 = d.length_squared();
-        let cos = d.dot(self.n).abs() / dist2.sqrt();
-        if cos > 0.0 && self.area > 0.0 { dist2 / (cos * self.area) } else { 0.0 }
+        area_sampling::pdf(ref_p, si.p, self.n, self.area)
     }
 }

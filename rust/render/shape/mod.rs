@@ -2,6 +2,7 @@
 //! `rectangle`, `cube`) and the analytic `sphere`, `disk` and `cylinder`, each with its BSDF
 //! and optional area emitter (semantics §8).
 
+pub mod area_sampling;
 pub mod cylinder;
 pub mod disk;
 pub mod interaction;

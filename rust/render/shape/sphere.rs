@@ -50,17 +50,7 @@ impl Sphere {
         let a = d.length_squared();
         let b = 2.0 * o.dot(d);
         let c = o.length_squared() - (self.radius as f64).powi(2);
-        let disc = b * b - 4.0 * a * c;
-        if disc < 0.0 {
-            return None;
-        }
-        let sq = disc.sqrt();
-        // Numerically stable roots.
-        let q = if b < 0.0 { -0.5 * (b - sq) } else { -0.5 * (b + sq) };
-        let (mut t0, mut t1) = (q / a, c / q);
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
+        let (t0, t1) = super::area_sampling::solve_quadratic(a, b, c)?;
         let maxt = ray.maxt as f64;
         let t = if t0 > 0.0 && t0 < maxt { t0 } else if t1 > 0.0 && t1 < maxt { t1 } else { return None };
         Some(t as f32)

@@ -3,6 +3,7 @@
 //! counter-clockwise faces the viewer; shading normal = interpolated vertex normals when the
 //! mesh has them; `flip_normals` negates both at query time (semantics §8).
 
+use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::render::geometry::{Frame, warp};
 use crate::scene::mesh::TriangleMesh;
@@ -88,24 +89,12 @@ impl Triangles {
         let ux = if width > 0.0 { ((target - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
         let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
         let (p, _, sh_n, uv) = self.surface_point(tri as u32, b);
-        let d = p - ref_p;
-        let dist2 = d.length_squared();
-        let dist = dist2.sqrt();
-        if dist == 0.0 {
-            return None;
-        }
-        let d = d / dist;
-        let cos = d.dot(sh_n).abs();
-        let pdf = if cos > 0.0 { dist2 / (cos * self.area) } else { 0.0 };
-        Some(DirectionSample { p, n: sh_n, uv, d, dist, pdf })
+        area_sampling::direction_sample(ref_p, p, sh_n, uv, self.area)
     }
 
     /// Solid-angle density of [`Self::sample_direction`] for the hit `si` seen from `ref_p`.
     #[inline]
     pub fn pdf_direction(&self, ref_p: Vec3, si: &SurfaceInteraction) -> f32 {
-        let d = si.p - ref_p;
-        let dist2 = d.length_squared();
-        let cos = (d.dot(si.sh_frame.n)).abs() / dist2.sqrt();
-        if cos > 0.0 && self.area > 0.0 { dist2 / (cos * self.area) } else { 0.0 }
+        area_sampling::pdf(ref_p, si.p, si.sh_frame.n, self.area)
     }
 }
