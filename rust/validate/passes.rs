@@ -36,14 +36,13 @@ pub struct Side {
 pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Result<Side, String> {
     let mut moments: Option<Moments> = None;
     let mut seconds = 0.0;
-    let mut spp_used = 0;
+    // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
+    let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
+    let spp_used = plan.spp.unwrap_or(loaded.spp);
     for k in 0..plan.passes {
-        // Loading per pass keeps the film fresh; it is cheap next to rendering.
-        let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
-        let spp = plan.spp.unwrap_or(loaded.spp);
-        spp_used = spp;
         let t = Instant::now();
-        let (img, stats) = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film, spp, plan.seed + k as u64, &|_, _| {});
+        let (img, stats) =
+            renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film.clone(), spp_used, plan.seed + k as u64, &|_, _| {});
         seconds += t.elapsed().as_secs_f64();
         if stats.invalid_samples > 0 {
             eprintln!("matte: warning: {} non-finite samples set to zero in pass {k}", stats.invalid_samples);
