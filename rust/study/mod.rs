@@ -82,7 +82,8 @@ pub struct SceneStudy {
     pub results: Vec<ModelResult>,
     /// Strip and heatmap strip per lighting, relative to the output folder.
     pub strips: Vec<(Lighting, PathBuf, PathBuf)>,
-    pub difference_range: f32,
+    /// Colour-scale half-range (relative difference) of each lighting's heatmap strip.
+    pub difference_ranges: Vec<(Lighting, f32)>,
 }
 
 fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
@@ -105,7 +106,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let mut results = Vec::new();
     let mut strips = Vec::new();
-    let range = 0.25f32;
+    let mut ranges = Vec::new();
     for lighting in [Lighting::Global, Lighting::Direct] {
         let mut sides: Vec<(Model, Side)> = Vec::new();
         for model in MODELS {
@@ -124,20 +125,26 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         let lambert = &sides[0].1;
         let lambert_img = lambert.moments.mean_image();
         let edges = metrics::edge_mask(&lambert_img, 0.1);
+        let means: Vec<Image> = sides.iter().map(|(_, side)| side.moments.mean_image()).collect();
+        let rels: Vec<Vec<f32>> = means.iter().map(|m| metrics::relative_difference(m, &lambert_img, 1e-4)).collect();
+        // One colour scale per strip: the 95th percentile of |difference| over all models.
+        let mut all: Vec<f32> = rels.iter().skip(1).flatten().map(|x| x.abs()).filter(|x| x.is_finite()).collect();
+        all.sort_by(f32::total_cmp);
+        let p95 = all.get((all.len() as f32 * 0.95) as usize).copied().unwrap_or(0.05);
+        let range = (p95.clamp(0.05, 1.0) * 20.0).ceil() / 20.0;
+        ranges.push((lighting, range));
         let mut tiles = Vec::new();
         let mut diff_tiles = Vec::new();
-        for (model, side) in &sides {
-            let mean = side.moments.mean_image();
-            let rel = metrics::relative_difference(&mean, &lambert_img, 1e-4);
+        for (((model, side), mean), rel) in sides.iter().zip(means).zip(&rels) {
             let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.bsdf));
             image_io::write_exr(&opts.out.join(&exr), &mean)?;
             tiles.push(strip::Tile::from_image(model.label, &mean));
-            diff_tiles.push(strip::Tile::from_difference(model.label, mean.width, mean.height, &rel, range));
+            diff_tiles.push(strip::Tile::from_difference(model.label, mean.width, mean.height, rel, range));
             results.push(ModelResult {
                 model: *model,
                 lighting,
                 ratio: metrics::luminance_ratio(&side.moments, &lambert.moments),
-                edge_flat: metrics::edge_vs_flat(&rel, &edges),
+                edge_flat: metrics::edge_vs_flat(rel, &edges),
                 seconds: side.seconds,
                 mean,
                 exr,
@@ -149,7 +156,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         strip::write_strip(&opts.out.join(&diff_path), &diff_tiles)?;
         strips.push((lighting, strip_path, diff_path));
     }
-    Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_range: range })
+    Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_ranges: ranges })
 }
 
 /// The study scenes: every `*.xml` in `mitsuba_scenes/study/`.

@@ -60,14 +60,15 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
     for s in studies {
         let _ = write!(h, r#"<div class="scene"><h2>{}</h2>"#, s.name);
         for (l, strip, diff) in &s.strips {
+            let range = s.difference_ranges.iter().find(|(x, _)| x == l).map_or(f32::NAN, |r| r.1);
             let _ = write!(
                 h,
                 r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: (model − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
                 l.name(),
                 strip.display(),
                 diff.display(),
-                s.difference_range * 100.0,
-                s.difference_range * 100.0
+                range * 100.0,
+                range * 100.0
             );
         }
         h.push_str("<table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>edge / flat, global</th><th>edge / flat, direct</th></tr>");
