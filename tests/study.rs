@@ -51,3 +51,36 @@ fn study_run_writes_strips_report_and_sane_numbers() {
     assert_eq!(refs, 4, "two strips and two heatmap strips");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn region_mean_averages_the_covered_pixels() {
+    use glam::Vec3;
+    use matte::render::film::Image;
+    // 4×2 image, pixel value = x + 10·y; region [0.5, 0, 1, 0.5] covers x = 2, 3 in row 0.
+    let mut img = Image::new(4, 2);
+    for y in 0..2 {
+        for x in 0..4 {
+            img.set(x, y, Vec3::splat((x + 10 * y) as f32));
+        }
+    }
+    let m = matte::validate::passes::region_mean(&img, [0.5, 0.0, 1.0, 0.5]);
+    assert!((m.x - 2.5).abs() < 1e-12, "{m}");
+    let all = matte::validate::passes::region_mean(&img, [0.0, 0.0, 1.0, 1.0]);
+    assert!((all.x - 6.5).abs() < 1e-12, "{all}");
+}
+
+#[test]
+fn regions_file_is_read_and_validated() {
+    let dir = std::env::temp_dir().join(format!("matte_regions_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("s.xml");
+    assert!(matte::study::load_regions(&scene).unwrap().is_empty(), "no file, no regions");
+    std::fs::write(dir.join("s.regions.json"), r#"{"regions":[{"name":"a","rect":[0.1,0.2,0.3,0.4]}]}"#).unwrap();
+    let r = matte::study::load_regions(&scene).unwrap();
+    assert_eq!(r.len(), 1);
+    assert_eq!(r[0].rect, [0.1, 0.2, 0.3, 0.4]);
+    std::fs::write(dir.join("s.regions.json"), r#"{"regions":[{"name":"a","rect":[0.5,0.2,0.3,0.4]}]}"#).unwrap();
+    let e = matte::study::load_regions(&scene).unwrap_err();
+    assert!(e.contains("s.regions.json") && e.contains("rect"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -26,6 +26,8 @@ def main():
     ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("-D", dest="defines", action="append", default=[])
+    ap.add_argument("--region", action="append", default=[],
+                    help="x0,y0,x1,y1 as fractions of the image: its mean is recorded per pass")
     a = ap.parse_args()
 
     import mitsuba as mi
@@ -43,10 +45,19 @@ def main():
     spp = a.spp or scene.sensors()[0].sampler().sample_count()
     total = mean = m2 = None
     pass_means = []
+    regions = [[float(v) for v in r.split(",")] for r in a.region]
+    region_pass_means = [[] for _ in regions]
     t0 = time.perf_counter()
     for k in range(a.passes):
         img = np.array(mi.render(scene, spp=spp, seed=a.seed + k), dtype=np.float64)[..., :3]
         pass_means.append(img.mean(axis=(0, 1)).tolist())
+        h, w = img.shape[:2]
+        for acc, (x0, y0, x1, y1) in zip(region_pass_means, regions):
+            # Same pixel rounding as the Rust side (validate::passes::region_mean).
+            c0, r0 = min(int(x0 * w), w - 1), min(int(y0 * h), h - 1)
+            c1 = min(max(int(np.ceil(x1 * w)), c0 + 1), w)
+            r1 = min(max(int(np.ceil(y1 * h)), r0 + 1), h)
+            acc.append(img[r0:r1, c0:c1].mean(axis=(0, 1)).tolist())
         if mean is None:
             mean, m2 = np.zeros_like(img), np.zeros_like(img)
         d = img - mean
@@ -60,7 +71,7 @@ def main():
     mi.Bitmap(var.astype(np.float32)).write(os.path.join(a.out, "var.exr"))
     with open(os.path.join(a.out, "passes.json"), "w") as f:
         json.dump({"variant": a.variant, "passes": a.passes, "spp": spp, "seed": a.seed,
-                   "pass_means": pass_means, "load_seconds": load_seconds, "render_seconds": seconds}, f)
+                   "pass_means": pass_means, "region_pass_means": region_pass_means, "load_seconds": load_seconds, "render_seconds": seconds}, f)
 
 
 if __name__ == "__main__":

@@ -35,12 +35,12 @@ pub fn mean_ci99(xs: &[f64]) -> (f64, f64) {
 
 /// Ratio of image-mean luminance, model / Lambert, from paired passes: (mean, 99 % half-width).
 pub fn luminance_ratio(model: &Moments, lambert: &Moments) -> (f64, f64) {
-    let ratios: Vec<f64> = model
-        .pass_means
-        .iter()
-        .zip(&lambert.pass_means)
-        .map(|(m, l)| luminance_d(*m) / luminance_d(*l).max(1e-12))
-        .collect();
+    paired_luminance_ratio(&model.pass_means, &lambert.pass_means)
+}
+
+/// Mean and 99 % half-width of the per-pass luminance ratios of paired pass means.
+pub fn paired_luminance_ratio(model: &[DVec3], lambert: &[DVec3]) -> (f64, f64) {
+    let ratios: Vec<f64> = model.iter().zip(lambert).map(|(m, l)| luminance_d(*m) / luminance_d(*l).max(1e-12)).collect();
     mean_ci99(&ratios)
 }
 

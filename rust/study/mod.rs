@@ -74,6 +74,40 @@ pub struct ModelResult {
     pub edge_flat: (f64, f64),
     pub seconds: f64,
     pub exr: PathBuf,
+    /// Per named region of the scene: luminance ratio to Lambert and its 99 % half-width.
+    pub regions: Vec<(String, f64, f64)>,
+}
+
+/// A named image region of a study scene (`<scene>.regions.json` beside the XML), where a
+/// paper observation is checked.
+#[derive(Clone, Debug)]
+pub struct Region {
+    pub name: String,
+    /// [x0, y0, x1, y1] as fractions of the image.
+    pub rect: [f32; 4],
+}
+
+/// The scene's regions, if it has a `.regions.json`.
+pub fn load_regions(scene: &Path) -> Result<Vec<Region>, String> {
+    let path = scene.with_extension("regions.json");
+    let Ok(text) = std::fs::read_to_string(&path) else { return Ok(Vec::new()) };
+    let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
+    let bad = || format!("{}: each region needs \"name\" and \"rect\": [x0, y0, x1, y1] in [0, 1]", path.display());
+    v["regions"]
+        .as_array()
+        .ok_or_else(bad)?
+        .iter()
+        .map(|r| {
+            let name = r["name"].as_str().ok_or_else(bad)?.to_string();
+            let c: Vec<f32> = r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64().map(|x| x as f32)).collect();
+            match c.as_slice() {
+                [x0, y0, x1, y1] if (0.0..=1.0).contains(x0) && x0 < x1 && *x1 <= 1.0 && (0.0..=1.0).contains(y0) && y0 < y1 && *y1 <= 1.0 => {
+                    Ok(Region { name, rect: [*x0, *y0, *x1, *y1] })
+                }
+                _ => Err(bad()),
+            }
+        })
+        .collect()
 }
 
 pub struct SceneStudy {
@@ -86,8 +120,9 @@ pub struct SceneStudy {
     pub difference_ranges: Vec<(Lighting, f32)>,
 }
 
-fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
-    let plan = PassPlan { passes: opts.passes, spp: Some((opts.spp / opts.passes).max(1)), seed: opts.seed, defines };
+fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, regions: &[Region], work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+    let regions = regions.iter().map(|r| r.rect).collect();
+    let plan = PassPlan { passes: opts.passes, spp: Some((opts.spp / opts.passes).max(1)), seed: opts.seed, defines, regions };
     match &opts.renderer {
         Reference::Matte => passes::rust_side(scene, &plan, progress),
         Reference::Mitsuba(variant) => {
@@ -107,6 +142,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
     let mut results = Vec::new();
     let mut strips = Vec::new();
     let mut ranges = Vec::new();
+    let regions = load_regions(scene)?;
     for lighting in [Lighting::Global, Lighting::Direct] {
         let mut sides: Vec<(Model, Side)> = Vec::new();
         for model in MODELS {
@@ -119,7 +155,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
                 defines.push(("res".into(), r.to_string()));
             }
             let what = format!("{name} {} {}", lighting.name(), model.label);
-            let side = render_side(scene, opts, defines, &dir.join("work"), &|k| progress(&what, k))?;
+            let side = render_side(scene, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
             sides.push((model, side));
         }
         let lambert = &sides[0].1;
@@ -148,6 +184,14 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
                 seconds: side.seconds,
                 mean,
                 exr,
+                regions: regions
+                    .iter()
+                    .enumerate()
+                    .map(|(i, r)| {
+                        let (m, hw) = metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]);
+                        (r.name.clone(), m, hw)
+                    })
+                    .collect(),
             });
         }
         let strip_path = PathBuf::from(&name).join(format!("strip_{}.png", lighting.name()));

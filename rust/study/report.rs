@@ -29,6 +29,9 @@ pub fn json(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> se
                         "edge_mean_abs_rel_diff_direct": d.edge_flat.0, "flat_mean_abs_rel_diff_direct": d.edge_flat.1,
                         "seconds_global": g.seconds, "seconds_direct": d.seconds,
                         "exr_global": g.exr, "exr_direct": d.exr,
+                        "regions": g.regions.iter().zip(&d.regions).map(|((n, gm, gh), (_, dm, dh))| json!({
+                            "name": n, "ratio_global": gm, "ratio_global_ci99": gh, "ratio_direct": dm, "ratio_direct_ci99": dh,
+                        })).collect::<Vec<_>>(),
                     }))
                 })
                 .collect();
@@ -89,7 +92,21 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
                 d.edge_flat.1
             );
         }
-        h.push_str("</table></div>");
+        h.push_str("</table>");
+        let names: Vec<String> = s.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
+        for (i, name) in names.iter().enumerate() {
+            let _ = write!(h, "<h4>Region: {name}</h4><table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th></tr>");
+            for m in super::MODELS {
+                let (Some(g), Some(d)) = (find(s, m.bsdf, Lighting::Global), find(s, m.bsdf, Lighting::Direct)) else { continue };
+                let _ = write!(
+                    h,
+                    "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td></tr>",
+                    m.label, g.regions[i].1, g.regions[i].2, d.regions[i].1, d.regions[i].2
+                );
+            }
+            h.push_str("</table>");
+        }
+        h.push_str("</div>");
     }
     h.push_str("</body></html>\n");
     h

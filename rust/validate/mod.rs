@@ -69,7 +69,7 @@ pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progr
         None => 4 * scene_spp(scene, &opts.matte_defines)?,
     };
     let per_pass = (total / opts.passes).max(1);
-    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: Some(per_pass), seed, defines: defines.clone() };
+    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: Some(per_pass), seed, defines: defines.clone(), regions: Vec::new() };
     let k = opts.passes;
     let a: Side = passes::rust_side(scene, &plan(&opts.matte_defines, opts.seed), &|i| progress("matte", i, k))?;
     let b: Side = match reference {

@@ -22,6 +22,25 @@ pub struct PassPlan {
     pub seed: u64,
     /// `-D` parameters for this side.
     pub defines: Vec<(String, String)>,
+    /// Image regions `[x0, y0, x1, y1]` (fractions of width and height) whose mean is
+    /// recorded per pass.
+    pub regions: Vec<[f32; 4]>,
+}
+
+/// Mean RGB of `img` over the region `r` (fractions; at least one pixel).
+pub fn region_mean(img: &crate::render::film::Image, r: [f32; 4]) -> DVec3 {
+    let (w, h) = (img.width as f32, img.height as f32);
+    let x0 = ((r[0] * w) as u32).min(img.width - 1);
+    let y0 = ((r[1] * h) as u32).min(img.height - 1);
+    let x1 = ((r[2] * w).ceil() as u32).clamp(x0 + 1, img.width);
+    let y1 = ((r[3] * h).ceil() as u32).clamp(y0 + 1, img.height);
+    let mut sum = DVec3::ZERO;
+    for y in y0..y1 {
+        for x in x0..x1 {
+            sum += img.pixels[(y * img.width + x) as usize].as_dvec3();
+        }
+    }
+    sum / ((x1 - x0) * (y1 - y0)) as f64
 }
 
 /// Moments plus what it cost.
@@ -30,6 +49,8 @@ pub struct Side {
     pub seconds: f64,
     pub spp: u32,
     pub label: String,
+    /// Per region of the plan, the region's mean in each pass.
+    pub region_pass_means: Vec<Vec<DVec3>>,
 }
 
 /// K passes of the Rust renderer. `progress(k)` after each pass.
@@ -39,6 +60,7 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
     // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
     let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
     let spp_used = plan.spp.unwrap_or(loaded.spp);
+    let mut region_pass_means = vec![Vec::new(); plan.regions.len()];
     for k in 0..plan.passes {
         let t = Instant::now();
         let (img, stats) =
@@ -47,11 +69,14 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
         if stats.invalid_samples > 0 {
             eprintln!("matte: warning: {} non-finite samples set to zero in pass {k}", stats.invalid_samples);
         }
+        for (acc, r) in region_pass_means.iter_mut().zip(&plan.regions) {
+            acc.push(region_mean(&img, *r));
+        }
         let m = moments.get_or_insert_with(|| Moments::new(img.width, img.height));
         m.add(&img)?;
         progress(k + 1);
     }
-    Ok(Side { moments: moments.ok_or("no passes")?, seconds, spp: spp_used, label: "matte".into() })
+    Ok(Side { moments: moments.ok_or("no passes")?, seconds, spp: spp_used, label: "matte".into(), region_pass_means })
 }
 
 /// K passes of Mitsuba in `variant`, run by the Python driver; `work` receives its files.
@@ -64,6 +89,9 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
     }
     for (k, v) in &plan.defines {
         cmd.arg("-D").arg(format!("{k}={v}"));
+    }
+    for r in &plan.regions {
+        cmd.arg("--region").arg(format!("{},{},{},{}", r[0], r[1], r[2], r[3]));
     }
     let mut child = cmd
         .stdout(Stdio::piped())
@@ -99,11 +127,17 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
         })
         .collect();
     let moments = Moments::from_mean_var(&mean, &var, plan.passes, pass_means)?;
+    let triple = |v: &serde_json::Value| DVec3::new(v[0].as_f64().unwrap_or(f64::NAN), v[1].as_f64().unwrap_or(f64::NAN), v[2].as_f64().unwrap_or(f64::NAN));
+    let region_pass_means = info["region_pass_means"]
+        .as_array()
+        .map(|rs| rs.iter().map(|r| r.as_array().map(|ps| ps.iter().map(triple).collect()).unwrap_or_default()).collect())
+        .unwrap_or_default();
     Ok(Side {
         moments,
         seconds: info["render_seconds"].as_f64().unwrap_or(f64::NAN),
         spp: info["spp"].as_u64().unwrap_or(0) as u32,
         label: format!("mitsuba {variant}"),
+        region_pass_means,
     })
 }
 
