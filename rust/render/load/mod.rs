@@ -17,7 +17,7 @@ use crate::render::film::Film;
 use crate::render::integrator::Integrator;
 use crate::render::scene::Scene;
 use crate::scene::xml::{self, SceneObject};
-use crate::scene::{SceneError, SourcePos};
+use crate::scene::SceneError;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -126,9 +126,4 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
 /// Error helper: `what` at the object's position.
 pub(crate) fn err(obj: &SceneObject, what: impl Into<String>) -> SceneError {
     SceneError::at(&obj.pos, format!("{} \"{}\": {}", obj.tag, obj.plugin, what.into()))
-}
-
-#[allow(dead_code)]
-pub(crate) fn at(pos: &SourcePos, what: impl Into<String>) -> SceneError {
-    SceneError::at(pos, what)
 }
