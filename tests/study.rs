@@ -36,6 +36,8 @@ fn study_run_writes_strips_report_and_sane_numbers() {
     assert_eq!(models.len(), 5);
     assert_eq!(models[0]["model"], "lambert");
     assert_eq!(models[0]["ratio_global"].as_f64(), Some(1.0));
+    let answers = j["answers"].as_array().expect("answers");
+    assert!(answers.iter().any(|a| a.as_str().is_some_and(|t| t.contains("Wolff"))), "{answers:?}");
     for m in models {
         for k in ["ratio_global", "ratio_direct", "ratio_global_ci99", "ratio_direct_ci99"] {
             assert!(m[k].as_f64().is_some_and(f64::is_finite), "{k} of {}", m["model"]);

@@ -6,6 +6,7 @@
 //! illumination?), where the difference concentrates (edges vs flat regions), labelled strips
 //! like the paper's figures and difference heatmaps against Lambert.
 
+pub mod answers;
 pub mod font;
 pub mod metrics;
 pub mod report;

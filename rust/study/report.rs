@@ -42,7 +42,7 @@ pub fn json(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> se
             })
         })
         .collect();
-    json!({ "renderer": renderer, "passes": passes, "spp": spp, "scenes": scenes })
+    json!({ "renderer": renderer, "passes": passes, "spp": spp, "answers": super::answers::answers(studies), "scenes": scenes })
 }
 
 pub fn html(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> String {
@@ -60,6 +60,11 @@ Ratio = image-mean luminance of the model / Lambert, ± 99 % confidence interval
 positive = the difference to Lambert grows under global illumination. Edge/flat = mean |relative luminance difference| to
 Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs on the others.</p>"#
     );
+    h.push_str("<h2>Answers, computed from the measurements below</h2><ul>");
+    for a in super::answers::answers(studies) {
+        let _ = write!(h, "<li>{}</li>", a.replace('&', "&amp;").replace('<', "&lt;"));
+    }
+    h.push_str("</ul>");
     for s in studies {
         let _ = write!(h, r#"<div class="scene"><h2>{}</h2>"#, s.name);
         for (l, strip, diff) in &s.strips {
