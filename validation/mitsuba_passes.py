@@ -23,6 +23,8 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--variant", default="scalar_rgb")
     ap.add_argument("--spp", type=int, default=None, help="samples per pixel per pass (default: the scene's)")
+    ap.add_argument("--scene-multiple", type=int, default=None,
+                    help="instead of --spp: this many times the scene's sample_count in total, split over the passes")
     ap.add_argument("--passes", type=int, default=8)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("-D", dest="defines", action="append", default=[])
@@ -42,7 +44,13 @@ def main():
     t0 = time.perf_counter()
     scene = mi.load_file(a.scene, **params)
     load_seconds = time.perf_counter() - t0
-    spp = a.spp or scene.sensors()[0].sampler().sample_count()
+    scene_spp = scene.sensors()[0].sampler().sample_count()
+    if a.spp:
+        spp = a.spp
+    elif a.scene_multiple:
+        spp = max(a.scene_multiple * scene_spp // a.passes, 1)  # as validate::passes::Budget
+    else:
+        spp = scene_spp
     total = mean = m2 = None
     pass_means = []
     regions = [[float(v) for v in r.split(",")] for r in a.region]

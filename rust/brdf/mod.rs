@@ -37,17 +37,20 @@ pub enum Bsdf {
     Ginneken(Ginneken),
 }
 
+/// `dispatch!(bsdf, k => expr)`: evaluates `expr` with `k` bound to the concrete model (static
+/// dispatch; the renderer uses it too).
 macro_rules! dispatch {
     ($self:expr, $b:ident => $e:expr) => {
         match $self {
-            Bsdf::Lambert($b) => $e,
-            Bsdf::OrenNayar($b) => $e,
-            Bsdf::Eon($b) => $e,
-            Bsdf::Wolff($b) => $e,
-            Bsdf::Ginneken($b) => $e,
+            $crate::brdf::Bsdf::Lambert($b) => $e,
+            $crate::brdf::Bsdf::OrenNayar($b) => $e,
+            $crate::brdf::Bsdf::Eon($b) => $e,
+            $crate::brdf::Bsdf::Wolff($b) => $e,
+            $crate::brdf::Bsdf::Ginneken($b) => $e,
         }
     };
 }
+pub(crate) use dispatch;
 
 impl Bsdf {
     /// Builds the model `kind` (a plugin name) from its parameters. `reflectance` is not a

@@ -4,7 +4,7 @@
 
 use crate::render::geometry::Ray;
 use crate::render::shape::{Geometry, Shape};
-use glam::{Vec2, Vec3, Vec3A};
+use glam::{Vec2, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray as BvhRay, RayHit};
@@ -160,26 +160,4 @@ fn intersect_triangle(p: &Prim, ray: &BvhRay) -> Option<(f32, Vec2)> {
         }
     }
     None
-}
-
-/// World-space bounds of everything (for directional emitters), or `None` for an empty scene.
-pub fn scene_bounds(shapes: &[Shape]) -> Option<(Vec3, Vec3)> {
-    let mut lo = Vec3::splat(f32::INFINITY);
-    let mut hi = Vec3::splat(f32::NEG_INFINITY);
-    for s in shapes {
-        match &s.geometry {
-            Geometry::Triangles(m) => {
-                for &p in &m.mesh.positions {
-                    lo = lo.min(p);
-                    hi = hi.max(p);
-                }
-            }
-            g => {
-                let (a, b) = g.analytic_bounds()?;
-                lo = lo.min(a);
-                hi = hi.max(b);
-            }
-        }
-    }
-    (lo.x <= hi.x).then_some((lo, hi))
 }

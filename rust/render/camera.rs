@@ -58,12 +58,6 @@ impl PerspectiveCamera {
         }
     }
 
-    /// The x field of view Mitsuba uses when neither `fov` nor `focal_length` is given
-    /// ("50mm" on a 36×24 frame, a diagonal fov).
-    pub fn default_fov_diagonal_deg() -> f64 {
-        2.0 * ((36.0f64 * 36.0 + 24.0 * 24.0).sqrt() / 100.0).atan().to_degrees()
-    }
-
     /// The x fov in degrees for a `focal_length` in mm (on the 36×24 frame, diagonal).
     pub fn focal_length_to_diagonal_fov(mm: f64) -> f64 {
         2.0 * ((36.0f64 * 36.0 + 24.0 * 24.0).sqrt() / (2.0 * mm)).atan().to_degrees()

@@ -14,7 +14,7 @@ pub mod strip;
 
 use crate::render::film::Image;
 use crate::render::image_io;
-use crate::validate::passes::{self, PassPlan, Side};
+use crate::validate::passes::{self, Budget, PassPlan, Side};
 use crate::validate::Reference;
 use std::path::{Path, PathBuf};
 
@@ -123,15 +123,10 @@ pub struct SceneStudy {
 
 fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, regions: &[Region], work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
     let regions = regions.iter().map(|r| r.rect).collect();
-    let plan = PassPlan { passes: opts.passes, spp: Some((opts.spp / opts.passes).max(1)), seed: opts.seed, defines, regions };
+    let plan = PassPlan { passes: opts.passes, spp: Budget::PerPass((opts.spp / opts.passes).max(1)), seed: opts.seed, defines, regions };
     match &opts.renderer {
         Reference::Matte => passes::rust_side(scene, &plan, progress),
-        Reference::Mitsuba(variant) => {
-            let root = passes::repo_root();
-            let side = passes::mitsuba_side(&root.join(".venv/bin/python"), &root.join("validation/mitsuba_passes.py"), scene, variant, &plan, work, progress)?;
-            let _ = std::fs::remove_dir_all(work);
-            Ok(side)
-        }
+        Reference::Mitsuba(variant) => passes::mitsuba_side_in_venv(scene, variant, &plan, work, progress),
     }
 }
 

@@ -9,7 +9,7 @@ pub mod report;
 pub mod stats;
 
 use crate::render::image_io;
-use passes::{PassPlan, Side};
+use passes::{Budget, PassPlan, Side};
 use std::path::{Path, PathBuf};
 
 /// Which renderer the Rust renderer is compared with.
@@ -50,11 +50,6 @@ pub struct SceneResult {
     pub files: report::Files,
 }
 
-/// The scene's `sample_count` (Rust loader), to split over passes.
-fn scene_spp(scene: &Path, defines: &[(String, String)]) -> Result<u32, String> {
-    Ok(crate::render::load::load_file(scene, defines).map_err(|e| e.to_string())?.spp)
-}
-
 pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progress: &dyn Fn(&str, u32, u32)) -> Result<SceneResult, String> {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
     let ref_label = match reference {
@@ -64,24 +59,21 @@ pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progr
     let rel_dir = PathBuf::from(&name).join(&ref_label);
     let dir = opts.out.join(&rel_dir);
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    let total = match opts.spp {
-        Some(s) => s,
-        None => 4 * scene_spp(scene, &opts.matte_defines)?,
+    let budget = match opts.spp {
+        Some(total) => Budget::PerPass((total / opts.passes).max(1)),
+        None => Budget::SceneMultiple(4),
     };
-    let per_pass = (total / opts.passes).max(1);
-    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: Some(per_pass), seed, defines: defines.clone(), regions: Vec::new() };
+    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: budget, seed, defines: defines.clone(), regions: Vec::new() };
     let k = opts.passes;
     let a: Side = passes::rust_side(scene, &plan(&opts.matte_defines, opts.seed), &|i| progress("matte", i, k))?;
     let b: Side = match reference {
-        Reference::Mitsuba(variant) => {
-            let root = passes::repo_root();
-            let python = root.join(".venv/bin/python");
-            let driver = root.join("validation/mitsuba_passes.py");
-            let work = dir.join("mitsuba_work");
-            let side = passes::mitsuba_side(&python, &driver, scene, variant, &plan(&opts.reference_defines, opts.seed + 1_000_003), &work, &|i| progress(variant, i, k))?;
-            let _ = std::fs::remove_dir_all(&work);
-            side
-        }
+        Reference::Mitsuba(variant) => passes::mitsuba_side_in_venv(
+            scene,
+            variant,
+            &plan(&opts.reference_defines, opts.seed + 1_000_003),
+            &dir.join("mitsuba_work"),
+            &|i| progress(variant, i, k),
+        )?,
         Reference::Matte => {
             let mut s = passes::rust_side(scene, &plan(&opts.reference_defines, opts.seed + 1_000_003), &|i| progress("matte (reference)", i, k))?;
             s.label = "matte (other seeds)".into();
@@ -98,7 +90,7 @@ pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progr
         seconds_matte: a.seconds,
         seconds_reference: b.seconds,
         passes: opts.passes,
-        spp_per_pass: per_pass,
+        spp_per_pass: a.spp,
         files,
     })
 }

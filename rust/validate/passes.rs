@@ -12,12 +12,29 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+/// Samples per pixel of each pass.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Budget {
+    PerPass(u32),
+    /// `factor × the scene's sample_count` in total, split over the passes; each renderer
+    /// reads the sample_count from the scene it loads anyway.
+    SceneMultiple(u32),
+}
+
+impl Budget {
+    pub fn per_pass(self, scene_spp: u32, passes: u32) -> u32 {
+        match self {
+            Budget::PerPass(n) => n.max(1),
+            Budget::SceneMultiple(f) => (f * scene_spp / passes.max(1)).max(1),
+        }
+    }
+}
+
 /// How one side renders.
 #[derive(Clone, Debug)]
 pub struct PassPlan {
     pub passes: u32,
-    /// Samples per pixel per pass (`None` = the scene's sample_count).
-    pub spp: Option<u32>,
+    pub spp: Budget,
     /// Seed of pass k is `seed + k`.
     pub seed: u64,
     /// `-D` parameters for this side.
@@ -59,7 +76,7 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
     let mut seconds = 0.0;
     // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
     let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
-    let spp_used = plan.spp.unwrap_or(loaded.spp);
+    let spp_used = plan.spp.per_pass(loaded.spp, plan.passes);
     let mut region_pass_means = vec![Vec::new(); plan.regions.len()];
     for k in 0..plan.passes {
         let t = Instant::now();
@@ -84,9 +101,10 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
     let mut cmd = Command::new(python);
     cmd.arg(driver).arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
     cmd.arg("--passes").arg(plan.passes.to_string()).arg("--seed").arg(plan.seed.to_string());
-    if let Some(spp) = plan.spp {
-        cmd.arg("--spp").arg(spp.to_string());
-    }
+    match plan.spp {
+        Budget::PerPass(n) => cmd.arg("--spp").arg(n.to_string()),
+        Budget::SceneMultiple(f) => cmd.arg("--scene-multiple").arg(f.to_string()),
+    };
     for (k, v) in &plan.defines {
         cmd.arg("-D").arg(format!("{k}={v}"));
     }
@@ -139,6 +157,14 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
         label: format!("mitsuba {variant}"),
         region_pass_means,
     })
+}
+
+/// [`mitsuba_side`] with the project's `.venv` and driver; `work` is removed afterwards.
+pub fn mitsuba_side_in_venv(scene: &Path, variant: &str, plan: &PassPlan, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+    let root = repo_root();
+    let side = mitsuba_side(&root.join(".venv/bin/python"), &root.join("validation/mitsuba_passes.py"), scene, variant, plan, work, progress);
+    let _ = std::fs::remove_dir_all(work);
+    side
 }
 
 /// The repository root (where `.venv` and `validation/` live): `MATTE_ROOT`, else the

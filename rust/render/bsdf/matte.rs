@@ -4,20 +4,8 @@
 //! the kernel's given direction; every model is reciprocal.
 
 use super::BsdfSample;
-use crate::brdf::{Bsdf as Model, DiffuseBrdf};
+use crate::brdf::{Bsdf as Model, DiffuseBrdf, dispatch};
 use glam::{Vec2, Vec3};
-
-macro_rules! with_model {
-    ($m:expr, $k:ident => $e:expr) => {
-        match $m {
-            Model::Lambert($k) => $e,
-            Model::OrenNayar($k) => $e,
-            Model::Eon($k) => $e,
-            Model::Wolff($k) => $e,
-            Model::Ginneken($k) => $e,
-        }
-    };
-}
 
 /// `(f·cos θo, pdf)`.
 #[inline]
@@ -25,7 +13,7 @@ pub fn eval_pdf(model: &Model, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
     if wi.z <= 0.0 || wo.z <= 0.0 {
         return (Vec3::ZERO, 0.0);
     }
-    with_model!(model, k => {
+    dispatch!(model, k => {
         let f = k.eval::<3>(wi, wo, rho.to_array());
         (Vec3::from_array(f) * wo.z, k.pdf(wi, wo))
     })
@@ -36,7 +24,7 @@ pub fn sample(model: &Model, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample>
     if wi.z <= 0.0 {
         return None;
     }
-    with_model!(model, k => {
+    dispatch!(model, k => {
         let s = k.sample::<3>(wi, u, rho.to_array())?;
         if !(s.pdf > 0.0) {
             return None;

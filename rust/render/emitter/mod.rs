@@ -9,7 +9,6 @@ pub use sample::EmitterSample;
 use crate::render::geometry::warp;
 use crate::render::shape::{Shape, SurfaceInteraction};
 use glam::{Affine3A, Vec2, Vec3};
-use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]
 pub enum Emitter {
@@ -148,5 +147,3 @@ pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32)
         cos_beam: beam_width.cos(),
     }
 }
-
-pub const FOUR_PI: f32 = 4.0 * PI;
