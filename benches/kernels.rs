@@ -3,30 +3,12 @@
 //! and caches see renderer-like variety. Run: `cargo bench --bench kernels`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use glam::{Vec2, Vec3};
+use matte::bench::kernels::direction_pairs;
 use matte::brdf::{BSDF_TYPES, Bsdf, DiffuseBrdf, Params};
 use std::hint::black_box;
 
-fn pairs(n: usize) -> Vec<(Vec3, Vec3, Vec2)> {
-    // xorshift64*: deterministic, no dependency
-    let mut s = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = || {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let mut dir = |a: f32, b: f32| {
-        let z = a;
-        let r = (1.0 - z * z).sqrt();
-        let p = 2.0 * std::f32::consts::PI * b;
-        Vec3::new(r * p.cos(), r * p.sin(), z)
-    };
-    (0..n).map(|_| (dir(next(), next()), dir(next(), next()), Vec2::new(next(), next()))).collect()
-}
-
 fn kernels(c: &mut Criterion) {
-    let data = pairs(4096);
+    let data = direction_pairs(4096);
     let mut group = c.benchmark_group("kernel");
     group.throughput(Throughput::Elements(data.len() as u64));
     for kind in BSDF_TYPES {

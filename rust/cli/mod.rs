@@ -1,6 +1,7 @@
 //! The `matte` command line. Every subcommand prints JSON or a text table on stdout; invalid
 //! input ends with a one-line error on stderr and a non-zero exit code.
 
+pub mod bench_cmd;
 mod brdf_cmd;
 pub mod render_cmd;
 pub mod study_cmd;
@@ -31,6 +32,8 @@ pub enum Command {
     Validate(validate_cmd::ValidateArgs),
     /// The seed paper's study: its scenes with every diffuse model, strips and measured ratios.
     Study(study_cmd::StudyArgs),
+    /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the issue-7 targets.
+    Bench(bench_cmd::BenchArgs),
 }
 
 /// Parses the command line; usage errors become one line (clap's own multi-line report is
@@ -54,5 +57,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Render(a) => render_cmd::run(&a),
         Command::Validate(a) => validate_cmd::run(&a),
         Command::Study(a) => study_cmd::run(&a),
+        Command::Bench(a) => bench_cmd::run(&a),
     }
 }

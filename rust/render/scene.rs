@@ -19,12 +19,16 @@ pub struct Scene {
     /// Index of the environment emitter (`constant`), if any.
     pub environment: Option<u32>,
     accel: Accel,
+    /// Wall time of building `accel` (for `matte bench`'s build-vs-render share).
+    accel_build_seconds: f64,
 }
 
 impl Scene {
     /// Builds the acceleration structure. `sampling_weights[i]` belongs to `emitters[i]`.
     pub fn new(shapes: Vec<Shape>, bsdfs: Vec<Bsdf>, emitters: Vec<Emitter>, sampling_weights: Vec<f32>) -> Self {
+        let t0 = std::time::Instant::now();
         let accel = Accel::build(&shapes);
+        let accel_build_seconds = t0.elapsed().as_secs_f64();
         let total: f32 = sampling_weights.iter().sum();
         let emitter_pmf: Vec<f32> = sampling_weights.iter().map(|w| if total > 0.0 { w / total } else { 0.0 }).collect();
         let mut acc = 0.0;
@@ -36,11 +40,15 @@ impl Scene {
             })
             .collect();
         let environment = emitters.iter().position(|e| matches!(e, Emitter::Constant { .. })).map(|i| i as u32);
-        Scene { shapes, bsdfs, emitters, emitter_pmf, emitter_cdf, environment, accel }
+        Scene { shapes, bsdfs, emitters, emitter_pmf, emitter_cdf, environment, accel, accel_build_seconds }
     }
 
     pub fn primitive_count(&self) -> usize {
         self.accel.primitive_count()
+    }
+
+    pub fn accel_build_seconds(&self) -> f64 {
+        self.accel_build_seconds
     }
 
     #[inline]

@@ -1,0 +1,60 @@
+//! Kernel speed: ns per `eval` (RGB reflectance) of every model, over a fixed set of random
+//! direction pairs cycled so that branch prediction and caches see renderer-like variety.
+//! The same pairs feed the criterion benchmark (`benches/kernels.rs`).
+
+use crate::brdf::{BSDF_TYPES, Bsdf, DiffuseBrdf, Params};
+use glam::{Vec2, Vec3};
+use std::hint::black_box;
+use std::time::Instant;
+
+/// `n` deterministic (wi, wo, u) triples: directions uniform on the upper hemisphere, u
+/// uniform in [0,1)².
+pub fn direction_pairs(n: usize) -> Vec<(Vec3, Vec3, Vec2)> {
+    // xorshift64*: deterministic, no dependency
+    let mut s = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = || {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let dir = |a: f32, b: f32| {
+        let z = a;
+        let r = (1.0 - z * z).sqrt();
+        let p = 2.0 * std::f32::consts::PI * b;
+        Vec3::new(r * p.cos(), r * p.sin(), z)
+    };
+    (0..n).map(|_| (dir(next(), next()), dir(next(), next()), Vec2::new(next(), next()))).collect()
+}
+
+/// One model's eval speed.
+#[derive(Clone, Debug)]
+pub struct KernelTime {
+    pub model: &'static str,
+    pub ns_per_eval: f64,
+}
+
+/// Best-of-`repeats` ns per RGB eval for every model at its default parameters.
+pub fn time_kernels(repeats: u32) -> Vec<KernelTime> {
+    let data = direction_pairs(4096);
+    BSDF_TYPES
+        .iter()
+        .map(|&model| {
+            let bsdf = Bsdf::from_params(model, Params::new()).expect("default parameters are valid");
+            let pass = || {
+                let t = Instant::now();
+                let mut acc = 0.0f32;
+                for _ in 0..64 {
+                    for (wi, wo, _) in &data {
+                        acc += bsdf.eval(black_box(*wi), black_box(*wo), [0.8, 0.5, 0.2])[1];
+                    }
+                }
+                black_box(acc);
+                t.elapsed().as_secs_f64() * 1e9 / (64 * data.len()) as f64
+            };
+            pass(); // warm-up (van Ginneken's table is built on first use)
+            let ns = (0..repeats.max(1)).map(|_| pass()).fold(f64::INFINITY, f64::min);
+            KernelTime { model, ns_per_eval: ns }
+        })
+        .collect()
+}

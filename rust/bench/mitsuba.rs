@@ -1,0 +1,63 @@
+//! Mitsuba 3.9.1's side of `matte bench`, run by `validation/bench_mitsuba.py` in the
+//! project's `.venv`: render times per job and variant, and the `lambert` plugin's overhead
+//! against the built-in `diffuse`.
+
+use super::render::RenderJob;
+use crate::validate::passes::repo_root;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+#[derive(Clone, Debug, Default)]
+pub struct MitsubaTimes {
+    /// (job name, variant, best seconds).
+    pub renders: Vec<(String, String, f64)>,
+    /// (diffuse seconds, lambert plugin seconds), scalar_rgb.
+    pub plugin: Option<(f64, f64)>,
+}
+
+impl MitsubaTimes {
+    pub fn seconds(&self, job: &str, variant: &str) -> Option<f64> {
+        self.renders.iter().find(|(j, v, _)| j == job && v == variant).map(|r| r.2)
+    }
+}
+
+/// Times every job in every variant (and the plugin overhead when `plugin` is set).
+/// `work` receives the job list.
+pub fn time_mitsuba(jobs: &[RenderJob], variants: &[String], repeats: u32, plugin: Option<(u32, u32)>, work: &Path) -> Result<MitsubaTimes, String> {
+    let root = repo_root();
+    let python = root.join(".venv/bin/python");
+    if !python.exists() {
+        return Err(format!("{} not found: run `make venv` (or `make main`) first", python.display()));
+    }
+    let list: Vec<serde_json::Value> = jobs
+        .iter()
+        .map(|j| {
+            let defines: serde_json::Map<String, serde_json::Value> = j.defines.iter().map(|(k, v)| (k.clone(), v.clone().into())).collect();
+            serde_json::json!({"name": j.name, "scene": j.scene.display().to_string(), "defines": defines, "spp": j.spp})
+        })
+        .collect();
+    std::fs::create_dir_all(work).map_err(|e| format!("{}: {e}", work.display()))?;
+    let jobs_file = work.join("mitsuba_jobs.json");
+    std::fs::write(&jobs_file, serde_json::to_string_pretty(&list).expect("json")).map_err(|e| format!("{}: {e}", jobs_file.display()))?;
+    let mut cmd = Command::new(&python);
+    cmd.arg(root.join("validation/bench_mitsuba.py")).arg("--jobs").arg(&jobs_file).arg("--repeats").arg(repeats.to_string()).arg("--variants").args(variants);
+    if let Some((res, spp)) = plugin {
+        cmd.args(["--plugin-res", &res.to_string(), "--plugin-spp", &spp.to_string()]);
+    }
+    let out = cmd.stderr(Stdio::inherit()).output().map_err(|e| format!("{}: {e}", python.display()))?;
+    if !out.status.success() {
+        return Err(format!("bench_mitsuba.py failed ({})", out.status));
+    }
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).map_err(|e| format!("bench_mitsuba.py printed invalid JSON: {e}"))?;
+    let renders = v["renders"]
+        .as_array()
+        .ok_or("bench_mitsuba.py: no \"renders\"")?
+        .iter()
+        .map(|r| {
+            let s = |k: &str| r[k].as_str().map(str::to_string).ok_or(format!("bench_mitsuba.py: render without \"{k}\""));
+            Ok((s("name")?, s("variant")?, r["seconds"].as_f64().ok_or("bench_mitsuba.py: render without seconds")?))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    let plugin = v["plugin"].as_object().and_then(|p| Some((p.get("diffuse_seconds")?.as_f64()?, p.get("lambert_seconds")?.as_f64()?)));
+    Ok(MitsubaTimes { renders, plugin })
+}

@@ -1,0 +1,78 @@
+//! `matte bench`: issue 7's speed targets measured in one run on this machine: matte's
+//! renderer against Mitsuba 3.9.1 (`scalar_rgb`, `llvm_ad_rgb` with a warm kernel cache) on
+//! the same scenes at the same spp, samples/s against spp, BVH build share, kernel ns/eval
+//! against Lambert, and the `lambert` plugin's overhead against Mitsuba's `diffuse`.
+
+pub mod kernels;
+pub mod mitsuba;
+pub mod render;
+pub mod report;
+
+use crate::validate::passes::repo_root;
+use render::RenderJob;
+use std::path::PathBuf;
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    /// Small images and one repeat: checks the machinery, not the targets.
+    pub quick: bool,
+    pub repeats: u32,
+    /// Time Mitsuba too (needs the `.venv`).
+    pub mitsuba: bool,
+    pub out: PathBuf,
+}
+
+/// The scenes of the renderer targets, all diffuse surfaces as Mitsuba's built-in `diffuse`
+/// (so Mitsuba runs its own code, not a plugin): the Cornell box with unbounded paths, and
+/// the study's bunny (two point lights, `direct`) and room (glass, metal, unbounded paths).
+pub fn render_jobs(quick: bool) -> Vec<RenderJob> {
+    let root = repo_root().join("mitsuba_scenes");
+    let (res, spp) = if quick { ("32", 4) } else { ("256", 64) };
+    let job = |name: &str, file: &str, extra: &[(&str, &str)]| {
+        let mut defines = vec![("res".to_string(), res.to_string())];
+        defines.extend(extra.iter().map(|(k, v)| (k.to_string(), v.to_string())));
+        RenderJob { name: name.into(), scene: root.join(file), defines, spp }
+    };
+    vec![
+        job("cornell", "cornell_box.xml", &[("max_depth", "-1")]),
+        job("bunny", "study/bunny.xml", &[("bsdf", "diffuse")]),
+        job("room", "study/room.xml", &[("bsdf", "diffuse")]),
+    ]
+}
+
+/// Everything `matte bench` measured.
+#[derive(Clone, Debug)]
+pub struct Measurements {
+    pub jobs: Vec<(RenderJob, render::MatteTime)>,
+    pub mitsuba: Option<mitsuba::MitsubaTimes>,
+    /// Cornell box samples/s at increasing spp.
+    pub scaling: Vec<(u32, f64)>,
+    pub kernels: Vec<kernels::KernelTime>,
+}
+
+pub const MITSUBA_VARIANTS: [&str; 2] = ["scalar_rgb", "llvm_ad_rgb"];
+
+/// Runs every measurement; `progress` gets a line per step.
+pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, String> {
+    let jobs = render_jobs(opts.quick);
+    let repeats = if opts.quick { 1 } else { opts.repeats };
+    progress("kernels");
+    let kernels = kernels::time_kernels(repeats);
+    let mut timed = Vec::new();
+    for job in &jobs {
+        progress(&format!("matte {}", job.name));
+        timed.push((job.clone(), render::time_matte(job, repeats)?));
+    }
+    progress("matte spp scaling");
+    let mut scaling_job = jobs[0].clone();
+    scaling_job.defines[0].1 = if opts.quick { "16".into() } else { "128".into() };
+    let scaling = render::spp_scaling(&scaling_job, if opts.quick { &[1, 4] } else { &[16, 64, 256] })?;
+    let mitsuba = if opts.mitsuba {
+        let variants: Vec<String> = MITSUBA_VARIANTS.iter().map(|v| v.to_string()).collect();
+        let plugin = if opts.quick { (32, 4) } else { (256, 64) };
+        Some(mitsuba::time_mitsuba(&jobs, &variants, repeats, Some(plugin), &opts.out)?)
+    } else {
+        None
+    };
+    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels })
+}

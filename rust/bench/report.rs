@@ -1,0 +1,128 @@
+//! The bench's table, its targets (issue 7) with pass/fail, and the JSON record.
+
+use super::Measurements;
+use serde_json::json;
+
+/// One target: what, the measured value, the limit (measured ≤ limit passes, except where
+/// `at_least`), and whether it holds.
+#[derive(Clone, Debug)]
+pub struct Target {
+    pub what: String,
+    pub measured: f64,
+    pub limit: f64,
+    pub at_least: bool,
+}
+
+impl Target {
+    pub fn met(&self) -> bool {
+        if self.at_least { self.measured >= self.limit } else { self.measured <= self.limit }
+    }
+}
+
+/// Issue 7's targets that the measurements can check.
+pub fn targets(m: &Measurements) -> Vec<Target> {
+    let mut t = Vec::new();
+    let le = |what: String, measured: f64, limit: f64| Target { what, measured, limit, at_least: false };
+    if let Some(mi) = &m.mitsuba {
+        for (job, mt) in &m.jobs {
+            if let Some(s) = mi.seconds(&job.name, "llvm_ad_rgb") {
+                t.push(le(format!("{}: matte / llvm_ad_rgb time", job.name), mt.seconds / s, 1.0));
+            }
+            if let Some(s) = mi.seconds(&job.name, "scalar_rgb") {
+                t.push(le(format!("{}: matte / scalar_rgb time", job.name), mt.seconds / s, 0.4));
+            }
+        }
+        if let Some((diffuse, lambert)) = mi.plugin {
+            t.push(le("plugin: lambert / diffuse time − 1 (scalar_rgb)".into(), lambert / diffuse - 1.0, 0.03));
+        }
+    }
+    if let (Some(lo), Some(hi)) = (
+        m.scaling.iter().map(|s| s.1).min_by(f64::total_cmp),
+        m.scaling.iter().map(|s| s.1).max_by(f64::total_cmp),
+    ) {
+        t.push(Target { what: "Cornell samples/s: slowest / fastest over spp".into(), measured: lo / hi, limit: 0.9, at_least: true });
+    }
+    if let Some((job, mt)) = m.jobs.iter().find(|(j, _)| j.name == "bunny") {
+        t.push(le(format!("{}: BVH build / render time", job.name), mt.accel_build_seconds / mt.seconds, 0.10));
+    }
+    if let Some(lambert) = m.kernels.iter().find(|k| k.model == "lambert") {
+        for k in m.kernels.iter().filter(|k| k.model != "lambert") {
+            let limit = if k.model == "ginneken" { 4.0 } else { 2.0 };
+            t.push(le(format!("kernel {}: ns/eval / Lambert's", k.model), k.ns_per_eval / lambert.ns_per_eval, limit));
+        }
+    }
+    t
+}
+
+/// CPU model and core count, for the record.
+pub fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_string()))
+        .unwrap_or_else(|| "unknown CPU".into());
+    format!("{cpu}, {} threads", rayon::current_num_threads())
+}
+
+/// The human-readable table (also what the README shows).
+pub fn table(m: &Measurements) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(s, "machine: {}", machine());
+    let _ = writeln!(s, "\n| scene | res, spp | matte s | Mrays/s | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    for (job, mt) in &m.jobs {
+        let res = job.defines.iter().find(|d| d.0 == "res").map_or("?", |d| d.1.as_str());
+        let mi = |v: &str| m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v));
+        let cell = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("—".to_string(), f);
+        let _ = writeln!(
+            s,
+            "| {} | {res}², {} | {:.3} | {:.2} | {} | {} | {} | {} |",
+            job.name,
+            job.spp,
+            mt.seconds,
+            mt.rays as f64 / mt.seconds / 1e6,
+            cell(mi("scalar_rgb"), &|x| format!("{x:.3}")),
+            cell(mi("llvm_ad_rgb"), &|x| format!("{x:.3}")),
+            cell(mi("scalar_rgb"), &|x| format!("{:.2}×", mt.seconds / x)),
+            cell(mi("llvm_ad_rgb"), &|x| format!("{:.2}×", mt.seconds / x)),
+        );
+    }
+    let _ = writeln!(s, "\n| kernel | ns/eval (RGB) | / Lambert |");
+    let _ = writeln!(s, "|---|---|---|");
+    let lambert = m.kernels.iter().find(|k| k.model == "lambert").map_or(f64::NAN, |k| k.ns_per_eval);
+    for k in &m.kernels {
+        let _ = writeln!(s, "| {} | {:.2} | {:.2}× |", k.model, k.ns_per_eval, k.ns_per_eval / lambert);
+    }
+    let _ = writeln!(s, "\nCornell box samples/s by spp: {}", m.scaling.iter().map(|(n, r)| format!("{n} spp {:.3} M/s", r / 1e6)).collect::<Vec<_>>().join(", "));
+    if let Some((d, l)) = m.mitsuba.as_ref().and_then(|mi| mi.plugin) {
+        let _ = writeln!(s, "Mitsuba scalar_rgb Cornell box: diffuse {d:.3} s, matte lambert plugin {l:.3} s ({:+.1} %)", (l / d - 1.0) * 100.0);
+    }
+    let _ = writeln!(s, "\n| target | measured | limit | met |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    for t in targets(m) {
+        let _ = writeln!(s, "| {} | {:.3} | {} {} | {} |", t.what, t.measured, if t.at_least { "≥" } else { "≤" }, t.limit, if t.met() { "yes" } else { "**no**" });
+    }
+    s
+}
+
+pub fn json(m: &Measurements) -> serde_json::Value {
+    json!({
+        "machine": machine(),
+        "renders": m.jobs.iter().map(|(job, mt)| json!({
+            "name": job.name,
+            "scene": job.scene.display().to_string(),
+            "defines": job.defines.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>(),
+            "spp": job.spp,
+            "matte_seconds": mt.seconds,
+            "matte_rays_per_second": mt.rays as f64 / mt.seconds,
+            "matte_samples_per_second": mt.samples as f64 / mt.seconds,
+            "accel_build_seconds": mt.accel_build_seconds,
+            "threads": mt.threads,
+            "mitsuba_seconds": super::MITSUBA_VARIANTS.iter().map(|v| (v.to_string(), json!(m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v))))).collect::<serde_json::Map<_, _>>(),
+        })).collect::<Vec<_>>(),
+        "spp_scaling": m.scaling.iter().map(|(n, r)| json!({"spp": n, "samples_per_second": r})).collect::<Vec<_>>(),
+        "kernels": m.kernels.iter().map(|k| json!({"model": k.model, "ns_per_eval": k.ns_per_eval})).collect::<Vec<_>>(),
+        "plugin": m.mitsuba.as_ref().and_then(|mi| mi.plugin).map(|(d, l)| json!({"diffuse_seconds": d, "lambert_seconds": l})),
+        "targets": targets(m).iter().map(|t| json!({"what": t.what, "measured": t.measured, "limit": t.limit, "at_least": t.at_least, "met": t.met()})).collect::<Vec<_>>(),
+    })
+}

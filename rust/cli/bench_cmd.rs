@@ -1,0 +1,41 @@
+//! `matte bench`: the speed targets, matte against Mitsuba 3.9.1 in one run (table on
+//! stdout, `bench.json` in the output folder).
+
+use crate::bench::{self, Options};
+use clap::Args;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// Tiny images, one repeat: checks that everything runs, measures nothing meaningful.
+    #[arg(long)]
+    pub quick: bool,
+    /// Renders per measurement; the best time counts.
+    #[arg(long, default_value_t = 3)]
+    pub repeats: u32,
+    /// Skip Mitsuba (matte's numbers only, no ratios).
+    #[arg(long)]
+    pub no_mitsuba: bool,
+    #[arg(short, long, default_value = "bench_out")]
+    pub out: PathBuf,
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+pub fn run(a: &BenchArgs) -> Result<(), String> {
+    if a.repeats == 0 {
+        return Err("--repeats must be at least 1".into());
+    }
+    std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    let opts = Options { quick: a.quick, repeats: a.repeats, mitsuba: !a.no_mitsuba, out: a.out.clone() };
+    let m = bench::run(&opts, &|step| {
+        if !a.quiet {
+            eprintln!("bench: {step}");
+        }
+    })?;
+    let path = a.out.join("bench.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&bench::report::json(&m)).expect("json")).map_err(|e| format!("{}: {e}", path.display()))?;
+    print!("{}", bench::report::table(&m));
+    println!("\n(JSON: {})", path.display());
+    Ok(())
+}

@@ -1,0 +1,77 @@
+"""Mitsuba 3.9.1's side of `matte bench`: wall time of `mi.render` for each job and variant
+(scene loaded beforehand, best of `--repeats`, after one warm-up render so that llvm_ad_rgb
+is timed with its kernel cache warm), and optionally the render-time overhead of matte's
+`lambert` plugin against the built-in `diffuse` (bench_plugin.py's Cornell box).
+
+    .venv/bin/python validation/bench_mitsuba.py --jobs JOBS.json [--variants scalar_rgb llvm_ad_rgb]
+        [--repeats 3] [--plugin-res 256 --plugin-spp 64]
+
+JOBS.json: [{"name": ..., "scene": path, "defines": {name: value}, "spp": N}, ...].
+Prints one JSON object on stdout; progress goes to stderr.
+"""
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+import drjit as dr
+import mitsuba as mi
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import bench_plugin  # noqa: E402
+
+
+def render_seconds(scene, spp):
+    t = time.perf_counter()
+    img = mi.render(scene, spp=spp, seed=0)
+    dr.eval(img)
+    dr.sync_thread()
+    return time.perf_counter() - t
+
+
+def time_job(job, repeats):
+    scene = mi.load_file(job["scene"], **job.get("defines", {}))
+    render_seconds(scene, job["spp"])  # warm-up: JIT compilation, kernel cache
+    return min(render_seconds(scene, job["spp"]) for _ in range(repeats))
+
+
+def plugin_overhead(res, spp, repeats):
+    """Best-of times of the Cornell box with `diffuse` and with matte's `lambert`, runs
+    alternating so that drifts in machine speed hit both alike."""
+    scenes = {k: bench_plugin.scene(k, res) for k in ("diffuse", "lambert")}
+    for s in scenes.values():
+        bench_plugin.timed(s, spp)
+    best = {k: float("inf") for k in scenes}
+    for _ in range(repeats):
+        for k, s in scenes.items():
+            best[k] = min(best[k], bench_plugin.timed(s, spp))
+    return {"res": res, "spp": spp, "diffuse_seconds": best["diffuse"], "lambert_seconds": best["lambert"]}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--jobs", required=True)
+    ap.add_argument("--variants", nargs="+", default=["scalar_rgb", "llvm_ad_rgb"])
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--plugin-res", type=int, default=0, help="0: skip the plugin overhead")
+    ap.add_argument("--plugin-spp", type=int, default=64)
+    a = ap.parse_args()
+    jobs = json.loads(Path(a.jobs).read_text())
+    out = {"renders": [], "plugin": None}
+    for variant in a.variants:
+        mi.set_variant(variant)
+        import matte_mitsuba
+        matte_mitsuba.register()
+        for job in jobs:
+            print(f"mitsuba {variant} {job['name']}", file=sys.stderr, flush=True)
+            out["renders"].append({"name": job["name"], "variant": variant, "seconds": time_job(job, a.repeats)})
+    if a.plugin_res > 0:
+        mi.set_variant("scalar_rgb")
+        print("mitsuba scalar_rgb plugin overhead", file=sys.stderr, flush=True)
+        out["plugin"] = plugin_overhead(a.plugin_res, a.plugin_spp, a.repeats)
+    print(json.dumps(out))
+
+
+if __name__ == "__main__":
+    main()
