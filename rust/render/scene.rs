@@ -74,9 +74,12 @@ impl Scene {
         self.shapes[si.shape as usize].emitter
     }
 
-    /// Picks an emitter with `u` ∈ [0,1) and samples it from the surface point `si`, testing
-    /// visibility. Returns the sample with `pdf` and `weight` including the selection pmf, and
-    /// `None` if the light is blocked or emits nothing towards `si`.
+    /// Picks an emitter with `u` ∈ [0,1) and samples it from the surface point `si`. Returns
+    /// the sample with `pdf` and `weight` including the selection pmf, or `None` if the light
+    /// emits nothing towards `si`. Visibility is *not* tested: integrators call
+    /// [`Self::emitter_visible`] only when the BSDF lets the light contribute, which saves the
+    /// shadow rays towards lights behind the surface. Mitsuba traces the shadow ray first
+    /// (`Scene::sample_emitter_direction(.., test_visibility=true)`); the estimate is the same.
     #[inline]
     pub fn sample_emitter_direction(&self, si: &SurfaceInteraction, u: Vec2) -> Option<EmitterSample> {
         if self.emitters.is_empty() {
@@ -90,17 +93,21 @@ impl Scene {
         let lo = if idx == 0 { 0.0 } else { self.emitter_cdf[idx - 1] };
         let ux = ((u.x - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
         let mut es = self.emitters[idx].sample_direction(si.p, Vec2::new(ux, u.y), &self.shapes)?;
+        es.pdf *= pmf;
+        es.weight /= pmf;
+        Some(es)
+    }
+
+    /// Whether nothing blocks the segment from `si` to the emitter sample `es` (a shadow ray
+    /// spawned as Mitsuba does, towards `es.p`, or along `es.d` for lights at infinity).
+    #[inline]
+    pub fn emitter_visible(&self, si: &SurfaceInteraction, es: &EmitterSample) -> bool {
         let shadow = if es.dist.is_finite() {
             ray::spawn_ray_to(si.p, si.n, es.p)
         } else {
             ray::spawn_ray(si.p, si.n, es.d)
         };
-        if self.occluded(&shadow) {
-            return None;
-        }
-        es.pdf *= pmf;
-        es.weight /= pmf;
-        Some(es)
+        !self.occluded(&shadow)
     }
 
     /// Density (with the selection pmf) with which light sampling at `ref_p` would have

@@ -43,8 +43,10 @@ impl DirectIntegrator {
             for _ in 0..self.emitter_samples {
                 let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d()) else { continue };
                 let (f, pdf_b) = bsdf.eval_pdf(si.uv, si.wi, si.to_local(es.d));
-                let w = if es.delta { 1.0 } else { power_heuristic(es.pdf * frac_lum, pdf_b * frac_bsdf) / ne };
-                l += f * es.weight * w;
+                if f != Vec3::ZERO && scene.emitter_visible(&si, &es) {
+                    let w = if es.delta { 1.0 } else { power_heuristic(es.pdf * frac_lum, pdf_b * frac_bsdf) / ne };
+                    l += f * es.weight * w;
+                }
             }
         }
 

@@ -57,8 +57,10 @@ impl PathIntegrator {
                 && let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d())
             {
                 let (f, pdf_b) = bsdf.eval_pdf(si.uv, si.wi, si.to_local(es.d));
-                let w = if es.delta { 1.0 } else { power_heuristic(es.pdf, pdf_b) };
-                l += beta * f * es.weight * w;
+                if f != Vec3::ZERO && scene.emitter_visible(&si, &es) {
+                    let w = if es.delta { 1.0 } else { power_heuristic(es.pdf, pdf_b) };
+                    l += beta * f * es.weight * w;
+                }
             }
             let u_lobe = sampler.next_1d();
             let u = sampler.next_2d();

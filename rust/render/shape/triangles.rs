@@ -15,19 +15,27 @@ pub struct Triangles {
     pub flip_normals: bool,
     /// Cumulative triangle areas (for area-proportional sampling), last entry = total area.
     area_cdf: Vec<f32>,
+    /// Unit geometric normal per triangle, already flipped with `flip_normals`: computed once
+    /// here rather than at every hit and light sample (the cross product and normalisation sat
+    /// on the latency chain of every path vertex).
+    face_normals: Vec<Vec3>,
     area: f32,
 }
 
 impl Triangles {
     pub fn new(mesh: TriangleMesh, flip_normals: bool) -> Self {
         let mut area_cdf = Vec::with_capacity(mesh.triangles.len());
+        let mut face_normals = Vec::with_capacity(mesh.triangles.len());
         let mut acc = 0.0f64;
         for t in &mesh.triangles {
             let [a, b, c] = t.map(|i| mesh.positions[i as usize]);
-            acc += 0.5 * (b - a).cross(c - a).length() as f64;
+            let cross = (b - a).cross(c - a);
+            acc += 0.5 * cross.length() as f64;
             area_cdf.push(acc as f32);
+            let n = cross.normalize_or_zero();
+            face_normals.push(if flip_normals { -n } else { n });
         }
-        Triangles { mesh, flip_normals, area: acc as f32, area_cdf }
+        Triangles { mesh, flip_normals, area: acc as f32, area_cdf, face_normals }
     }
 
     pub fn surface_area(&self) -> f32 {
@@ -54,18 +62,20 @@ impl Triangles {
         let [p0, p1, p2] = idx.map(|i| self.mesh.positions[i as usize]);
         let b0 = 1.0 - b.x - b.y;
         let p = p0 * b0 + p1 * b.x + p2 * b.y;
-        let mut n = (p1 - p0).cross(p2 - p0).normalize_or_zero();
-        let mut sh_n = if self.mesh.normals.is_empty() {
+        let n = self.face_normals[tri as usize];
+        let sh_n = if self.mesh.normals.is_empty() {
             n
         } else {
             let [n0, n1, n2] = idx.map(|i| self.mesh.normals[i as usize]);
             let s = (n0 * b0 + n1 * b.x + n2 * b.y).normalize_or_zero();
-            if s == Vec3::ZERO { n } else { s }
+            if s == Vec3::ZERO {
+                n
+            } else if self.flip_normals {
+                -s
+            } else {
+                s
+            }
         };
-        if self.flip_normals {
-            n = -n;
-            sh_n = -sh_n;
-        }
         let uv = if self.mesh.uvs.is_empty() {
             b
         } else {

@@ -1,0 +1,47 @@
+//! `matte bench` machinery (quick mode, matte only: the timings themselves are the bench's
+//! output, not something a test can judge on a shared machine).
+
+use matte::bench::report::{Target, targets};
+use matte::bench::{Options, run};
+use std::process::Command;
+
+#[test]
+fn quick_bench_measures_every_scene_kernel_and_spp() {
+    let out = std::env::temp_dir().join("matte_bench_test");
+    let m = run(&Options { quick: true, repeats: 1, mitsuba: false, out }, &|_| {}).unwrap();
+    let names: Vec<&str> = m.jobs.iter().map(|(j, _)| j.name.as_str()).collect();
+    assert_eq!(names, ["cornell", "bunny", "room"]);
+    for (job, t) in &m.jobs {
+        assert!(t.seconds > 0.0 && t.accel_build_seconds >= 0.0, "{}", job.name);
+        let pixels = 32 * 32;
+        assert_eq!(t.samples, pixels * job.spp as u64, "{}", job.name);
+        // At least the camera ray of every sample is traced.
+        assert!(t.rays >= t.samples, "{}: {} rays for {} samples", job.name, t.rays, t.samples);
+    }
+    let models: Vec<&str> = m.kernels.iter().map(|k| k.model).collect();
+    assert_eq!(models.len(), 5);
+    assert!(m.kernels.iter().all(|k| k.ns_per_eval.is_finite() && k.ns_per_eval > 0.0));
+    assert_eq!(m.scaling.len(), 2);
+    // Without Mitsuba: no renderer ratios, but the spp, BVH and kernel targets.
+    let t = targets(&m);
+    assert!(t.iter().all(|t| !t.what.contains("scalar_rgb") && !t.what.contains("llvm")));
+    assert!(t.iter().any(|t| t.what.starts_with("bunny: BVH build")));
+    assert_eq!(t.iter().filter(|t| t.what.starts_with("kernel ")).count(), 4);
+    let json = matte::bench::report::json(&m);
+    assert_eq!(json["renders"].as_array().unwrap().len(), 3);
+}
+
+#[test]
+fn targets_compare_in_the_stated_direction() {
+    let at_most = Target { what: "x".into(), measured: 0.5, limit: 0.4, at_least: false };
+    assert!(!at_most.met());
+    let at_least = Target { what: "y".into(), measured: 0.95, limit: 0.9, at_least: true };
+    assert!(at_least.met());
+}
+
+#[test]
+fn zero_repeats_is_a_usage_error() {
+    let out = Command::new(env!("CARGO_BIN_EXE_matte")).args(["bench", "--repeats", "0", "--no-mitsuba"]).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--repeats"));
+}
