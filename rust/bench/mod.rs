@@ -66,7 +66,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
     progress("matte spp scaling");
     let mut scaling_job = jobs[0].clone();
     scaling_job.defines[0].1 = if opts.quick { "16".into() } else { "128".into() };
-    let scaling = render::spp_scaling(&scaling_job, if opts.quick { &[1, 4] } else { &[16, 64, 256] })?;
+    let scaling = render::spp_scaling(&scaling_job, if opts.quick { &[1, 4] } else { &[16, 64, 256] }, repeats)?;
     let mitsuba = if opts.mitsuba {
         let variants: Vec<String> = MITSUBA_VARIANTS.iter().map(|v| v.to_string()).collect();
         let plugin = if opts.quick { (32, 4) } else { (256, 64) };
