@@ -83,7 +83,7 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         convergence_spp: if a.no_convergence { Vec::new() } else { a.convergence_spp.clone() },
         mitsuba_variant: a.variant.clone(),
     };
-    // Progress total: main run, variants, convergence (both renderers; fewer if Mitsuba is absent).
+    // Progress total: main run, variants, convergence series.
     let mut total = (scenes.len() * study::MODELS.len() * 2) as u64 * a.passes as u64;
     let mut series_regions = Vec::new();
     for scene in &scenes {
@@ -93,7 +93,7 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         }
         if !opts.convergence_spp.is_empty() {
             for r in study::load_regions(scene).map_err(|e| format!("{}: {e}", scene.display()))?.into_iter().filter(|r| r.convergence) {
-                total += 2 * convergence::pass_count(&opts);
+                total += convergence::pass_count(&opts);
                 series_regions.push((scene.clone(), name.clone(), r));
             }
         }

@@ -9,12 +9,25 @@ fn ratio(s: &SceneStudy, bsdf: &str, l: Lighting) -> Option<(f64, f64)> {
     s.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == l).map(|r| r.ratio)
 }
 
-fn pct(r: f64) -> f64 {
-    (r - 1.0) * 100.0
+/// Decimals that show a half-width `hw` with one significant digit, at least `min`, at most
+/// `min + 3`.
+fn decimals(hw: f64, min: usize) -> usize {
+    if !(hw > 0.0) || !hw.is_finite() {
+        return min;
+    }
+    ((-hw.log10().floor()) as i64).clamp(min as i64, min as i64 + 3) as usize
 }
 
+/// `ratio ± half-width`.
 fn ci(r: (f64, f64)) -> String {
-    format!("{:.3} ± {:.3}", r.0, r.1)
+    let d = decimals(r.1, 3);
+    format!("{:.*} ± {:.*}", d, r.0, d, r.1)
+}
+
+/// A ratio's change against 1 (or a difference) in percent: `+x % ± y %`.
+fn pct_ci(delta: f64, hw: f64) -> String {
+    let d = decimals(hw * 100.0, 1);
+    format!("{:+.*} % ± {:.*} %", d, delta * 100.0, d, hw * 100.0)
 }
 
 /// Relation of a ratio to Lambert (1), decided by its 99 % interval.
@@ -62,12 +75,10 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
     for s in studies {
         if let (Some(g), Some(d)) = (ratio(s, "wolff", Lighting::Global), ratio(s, "wolff", Lighting::Direct)) {
             out.push(format!(
-                "{}: Wolff (IOR 1.4) changes the image-mean luminance by {:+.1} % ± {:.1} % under global illumination and {:+.1} % ± {:.1} % under direct lighting.",
+                "{}: Wolff (IOR 1.4) changes the image-mean luminance by {} under global illumination and {} under direct lighting.",
                 s.name,
-                pct(g.0),
-                g.1 * 100.0,
-                pct(d.0),
-                d.1 * 100.0
+                pct_ci(g.0 - 1.0, g.1),
+                pct_ci(d.0 - 1.0, d.1)
             ));
         }
         let darkest = s
@@ -75,9 +86,9 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
             .iter()
             .filter(|r| r.lighting == Lighting::Global)
             .min_by(|a, b| a.ratio.0.total_cmp(&b.ratio.0))
-            .map(|r| (r.model.label, r.ratio.0));
+            .map(|r| (r.model.label, r.ratio));
         if let Some((label, r)) = darkest {
-            out.push(format!("{}: the darkest model under global illumination is {label} ({:+.1} % against Lambert).", s.name, pct(r)));
+            out.push(format!("{}: the darkest model under global illumination is {label} ({} against Lambert).", s.name, pct_ci(r.0 - 1.0, r.1)));
         }
         for r in s.results.iter().filter(|r| r.model.bsdf == "oren_nayar" && r.lighting == Lighting::Global) {
             for (name, m, hw) in &r.regions {
@@ -88,7 +99,7 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
                 } else {
                     "not distinguishable from Lambert"
                 };
-                out.push(format!("{}, region \"{name}\": Oren–Nayar is {verdict}: ratio {m:.3} ± {hw:.3} (99 %).", s.name));
+                out.push(format!("{}, region \"{name}\": Oren–Nayar is {verdict}: ratio {} (99 %).", s.name, ci((*m, *hw))));
             }
         }
     }
@@ -129,12 +140,10 @@ pub fn variant_answers(v: &VariantStudy) -> Vec<String> {
             "global and direct lighting are not distinguishable here"
         };
         out.push(format!(
-            "{}: the Wolff normalisations span {:.1} % ± {:.1} % of Lambert's image mean under global illumination and {:.1} % ± {:.1} % under direct lighting, so {verdict}.",
+            "{}: the Wolff normalisations span {} of Lambert's image mean under global illumination and {} under direct lighting, so {verdict}.",
             v.scene_name,
-            g.0 * 100.0,
-            g.1 * 100.0,
-            d.0 * 100.0,
-            d.1 * 100.0
+            pct_ci(g.0, g.1).trim_start_matches('+'),
+            pct_ci(d.0, d.1).trim_start_matches('+')
         ));
     }
     for l in [Lighting::Global, Lighting::Direct] {
@@ -148,13 +157,12 @@ pub fn variant_answers(v: &VariantStudy) -> Vec<String> {
                 "not distinguishable from"
             };
             out.push(format!(
-                "{}, {} lighting: the full Oren–Nayar model is {verdict} the qualitative one. Its ratio to Lambert is {} against {} (difference {:+.1} % ± {:.1} %).",
+                "{}, {} lighting: the full Oren–Nayar model is {verdict} the qualitative one. Its ratio to Lambert is {} against {} (difference {}).",
                 v.scene_name,
                 l.name(),
                 ci(f),
                 ci(q),
-                d.0 * 100.0,
-                d.1 * 100.0
+                pct_ci(d.0, d.1)
             ));
         }
     }

@@ -109,9 +109,20 @@ pub fn region_pixels(width: u32, height: u32, r: [f32; 4]) -> [u32; 4] {
     [x0, y0, x1, y1]
 }
 
-/// Passes a series renders per renderer (for the progress bar).
+/// The project's venv Python, which runs the Mitsuba side.
+fn venv_python() -> PathBuf {
+    passes::repo_root().join(".venv/bin/python")
+}
+
+/// Whether the series can have a Mitsuba side (the venv exists).
+pub fn mitsuba_available() -> bool {
+    venv_python().exists()
+}
+
+/// Passes a series renders (for the progress bar).
 pub fn pass_count(opts: &Options) -> u64 {
-    (opts.convergence_spp.len() * SERIES_MODELS.len()) as u64 * opts.passes as u64
+    let renderers = 1 + mitsuba_available() as usize;
+    (opts.convergence_spp.len() * SERIES_MODELS.len() * renderers) as u64 * opts.passes as u64
 }
 
 fn slug(s: &str) -> String {
@@ -141,10 +152,10 @@ pub fn run(scene: &Path, name: &str, region: &Region, opts: &Options, progress: 
         files.push(file);
     }
     let mitsuba = format!("mitsuba {}", opts.mitsuba_variant);
-    let python = passes::repo_root().join(".venv/bin/python");
+    let python = venv_python();
     let mut notes = Vec::new();
     let mut active = vec!["matte".to_string()];
-    if python.exists() {
+    if mitsuba_available() {
         active.push(mitsuba.clone());
     } else {
         notes.push(format!("Mitsuba was not run: no venv at {} (run `make venv`). The series is matte only, so it cannot show whether the renderers agree.", python.display()));

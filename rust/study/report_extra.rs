@@ -65,12 +65,7 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
             range * 100.0
         );
     }
-    let names: Vec<String> = v.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
-    h.push_str("<table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th>");
-    for n in &names {
-        let _ = write!(h, "<th>{}, global</th><th>{}, direct</th>", esc(n), esc(n));
-    }
-    h.push_str("<th>source</th></tr>");
+    h.push_str("<table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>source</th></tr>");
     for x in VARIANTS {
         let (Some(g), Some(d)) = (v.result(x.key, Lighting::Global), v.result(x.key, Lighting::Direct)) else { continue };
         let _ = write!(
@@ -83,9 +78,6 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
             d.ratio.1,
             (g.ratio.0 - 1.0).abs() - (d.ratio.0 - 1.0).abs()
         );
-        for ((_, gm, gh), (_, dm, dh)) in g.regions.iter().zip(&d.regions) {
-            let _ = write!(h, "<td>{gm:.4} ± {gh:.4}</td><td>{dm:.4} ± {dh:.4}</td>");
-        }
         match &g.scene_file {
             Some(f) => {
                 let _ = write!(h, r#"<td class="l"><a href="{}">derived scene</a></td></tr>"#, f.display());
@@ -93,7 +85,18 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
             None => h.push_str(r#"<td class="l">main run</td></tr>"#),
         }
     }
-    h.push_str("</table></div>");
+    h.push_str("</table>");
+    let names: Vec<String> = v.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
+    for (i, name) in names.iter().enumerate() {
+        let _ = write!(h, "<h4>Region: {}</h4><table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th></tr>", esc(name));
+        for x in VARIANTS {
+            let (Some(g), Some(d)) = (v.result(x.key, Lighting::Global), v.result(x.key, Lighting::Direct)) else { continue };
+            let (Some(gr), Some(dr)) = (g.regions.get(i), d.regions.get(i)) else { continue };
+            let _ = write!(h, "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td></tr>", esc(x.label), gr.1, gr.2, dr.1, dr.2);
+        }
+        h.push_str("</table>");
+    }
+    h.push_str("</div>");
     h
 }
 
@@ -118,16 +121,16 @@ pub fn convergence_json(s: &Series) -> serde_json::Value {
 const COLOURS: [&str; 2] = ["#1f77b4", "#d95f02"];
 
 /// Region ratio against spp (log axis), one series per renderer with 99 % error bars, and
-/// Lambert's level (1) dashed.
+/// Lambert's level (1) dashed when it is within the data's range (else an arrow says where).
 fn plot(s: &Series, model: &str, title: &str) -> String {
-    let (w, h, left, right, top, bottom) = (470.0, 230.0, 58.0, 12.0, 26.0, 36.0);
+    let (w, h, left, right, top, bottom) = (470.0, 250.0, 58.0, 12.0, 40.0, 36.0);
     let pts: Vec<&convergence::Point> = s.points.iter().filter(|p| p.model == model).collect();
     if pts.is_empty() || s.levels.is_empty() {
         return String::new();
     }
-    let mut lo = pts.iter().map(|p| p.ratio.0 - p.ratio.1).fold(1.0, f64::min);
-    let mut hi = pts.iter().map(|p| p.ratio.0 + p.ratio.1).fold(1.0, f64::max);
-    let pad = ((hi - lo) * 0.08).max(0.005);
+    let mut lo = pts.iter().map(|p| p.ratio.0 - p.ratio.1).fold(f64::INFINITY, f64::min);
+    let mut hi = pts.iter().map(|p| p.ratio.0 + p.ratio.1).fold(f64::NEG_INFINITY, f64::max);
+    let pad = ((hi - lo) * 0.15).max(0.002);
     lo -= pad;
     hi += pad;
     let n = s.levels.len();
@@ -142,8 +145,13 @@ fn plot(s: &Series, model: &str, title: &str) -> String {
         let y = y_of(v);
         let _ = write!(g, r##"<line x1="{}" x2="{left}" y1="{y:.1}" y2="{y:.1}" stroke="#999"/><text x="{}" y="{:.1}" text-anchor="end">{v:.3}</text>"##, left - 4.0, left - 6.0, y + 4.0);
     }
-    let y1 = y_of(1.0);
-    let _ = write!(g, r##"<line x1="{left}" x2="{}" y1="{y1:.1}" y2="{y1:.1}" stroke="#444" stroke-dasharray="4 3"/><text x="{}" y="{:.1}" text-anchor="end" fill="#444">Lambert</text>"##, w - right, w - right - 4.0, y1 - 4.0);
+    if (lo..=hi).contains(&1.0) {
+        let y1 = y_of(1.0);
+        let _ = write!(g, r##"<line x1="{left}" x2="{}" y1="{y1:.1}" y2="{y1:.1}" stroke="#444" stroke-dasharray="4 3"/><text x="{}" y="{:.1}" text-anchor="end" fill="#444">Lambert</text>"##, w - right, w - right - 4.0, y1 - 4.0);
+    } else {
+        let (y, arrow) = if hi < 1.0 { (top + 14.0, "↑ above") } else { (h - bottom - 6.0, "↓ below") };
+        let _ = write!(g, r##"<text x="{}" y="{y:.1}" text-anchor="end" fill="#444">Lambert (1) {arrow} the plot</text>"##, w - right - 6.0);
+    }
     for (i, spp) in s.levels.iter().enumerate() {
         let _ = write!(g, r#"<text x="{:.1}" y="{}" text-anchor="middle">{spp}</text>"#, x_of(i, 0) + 5.0, h - bottom + 16.0);
     }
@@ -166,7 +174,7 @@ fn plot(s: &Series, model: &str, title: &str) -> String {
             line.push(format!("{x:.1},{ym:.1}"));
         }
         let _ = write!(g, r#"<polyline points="{}" fill="none" stroke="{c}" stroke-opacity="0.5"/>"#, line.join(" "));
-        let _ = write!(g, r#"<text x="{}" y="{}" fill="{c}">● {}</text>"#, left + 8.0 + 150.0 * r as f64, top + 14.0, esc(name));
+        let _ = write!(g, r#"<text x="{}" y="32" fill="{c}">● {}</text>"#, left + 150.0 * r as f64, esc(name));
     }
     g.push_str("</svg>");
     g

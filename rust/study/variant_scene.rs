@@ -190,13 +190,14 @@ pub fn derive_text(text: &str, source: &Path, d: &Derivation) -> Result<String, 
         {
             ed.replace_value(node, "value", b)?;
         }
-        if let Some(v) = node.attribute("filename")
-            && let Some(abs) = Editor::absolute(&base, v)
-        {
-            if tag == "include" {
-                check_include(&base.join(v), 0)?;
+        if let Some(v) = node.attribute("filename") {
+            let abs = Editor::absolute(&base, v);
+            if tag == "include" && !v.starts_with('$') {
+                check_include(Path::new(abs.as_deref().unwrap_or(v)), 0)?;
             }
-            ed.replace_value(node, "filename", &abs)?;
+            if let Some(abs) = abs {
+                ed.replace_value(node, "filename", &abs)?;
+            }
         }
         if tag == "string"
             && node.attribute("name") == Some("filename")
