@@ -86,3 +86,272 @@ fn regions_file_is_read_and_validated() {
     assert!(e.contains("s.regions.json") && e.contains("rect"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+// ---- Derived scenes (model variants) -------------------------------------------------------
+
+use matte::study::convergence::{self, Point, Series};
+use matte::study::variant_scene::{Derivation, Property, derive_text, write_derived};
+use std::path::{Path, PathBuf};
+
+fn temp_dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("matte_study_{tag}_{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+const SCENE: &str = r#"<?xml version="1.0"?>
+<!-- a comment that stays -->
+<scene version="3.0.0">
+    <default name="bsdf" value="lambert"/>
+    <include filename="parts/sub.xml"/>
+    <bsdf type="$bsdf" id="a">
+        <rgb name="reflectance" value="0.5"/>
+    </bsdf>
+    <bsdf type="diffuse" id="b"/>
+    <bsdf type="twosided" id="c">
+        <bsdf type="$bsdf"/>
+    </bsdf>
+    <bsdf type="$bsdf" id="d">
+        <string name="normalization" value="physical"/>
+    </bsdf>
+    <shape type="obj">
+        <string name="filename" value="meshes/a &amp; b.obj"/>
+        <bsdf type="$bsdf"><rgb name="reflectance" value="0.3"/></bsdf>
+    </shape>
+    <shape type="ply"><string name="filename" value="/abs/mesh.ply"/><ref id="b"/></shape>
+    <shape type="ply"><string name="filename" value="$mesh"/><ref id="b"/></shape>
+    <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/></film></sensor>
+</scene>
+"#;
+
+fn raw_variant() -> Derivation {
+    Derivation { bsdf: Some("wolff".into()), bsdf_properties: vec![Property::string("normalization", "raw")], ..Default::default() }
+}
+
+#[test]
+fn derived_scene_sets_the_property_only_in_bsdf_parameter_elements() {
+    let dir = temp_dir("derive");
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    std::fs::write(dir.join("parts/sub.xml"), "<scene version=\"3.0.0\"><shape type=\"sphere\"/></scene>").unwrap();
+    let source = dir.join("scene.xml");
+    let mut d = raw_variant();
+    d.film_properties = vec![Property::integer("crop_offset_x", 3), Property::integer("width", 16)];
+    let out = derive_text(SCENE, &source, &d).expect("derive");
+    let doc = roxmltree::Document::parse(&out).expect("the derived scene is well-formed XML");
+    let mut param_bsdfs = 0;
+    for b in doc.descendants().filter(|n| n.has_tag_name("bsdf")) {
+        let props: Vec<_> = b.children().filter(|c| c.attribute("name") == Some("normalization")).collect();
+        if b.attribute("type") == Some("$bsdf") {
+            param_bsdfs += 1;
+            assert_eq!(props.len(), 1, "exactly one normalization in bsdf {:?}", b.attribute("id"));
+            assert_eq!(props[0].tag_name().name(), "string");
+            assert_eq!(props[0].attribute("value"), Some("raw"));
+        } else {
+            assert!(props.is_empty(), "bsdf {:?} ({:?}) must stay untouched", b.attribute("id"), b.attribute("type"));
+        }
+    }
+    assert_eq!(param_bsdfs, 4);
+    let c = doc.descendants().find(|n| n.attribute("id") == Some("c")).unwrap();
+    assert_eq!(c.children().filter(|n| n.is_element()).count(), 1, "twosided keeps only its nested bsdf");
+    let a = doc.descendants().find(|n| n.attribute("id") == Some("a")).unwrap();
+    assert!(a.children().any(|n| n.attribute("name") == Some("reflectance")), "existing children are kept");
+    let default = doc.descendants().find(|n| n.has_tag_name("default")).unwrap();
+    assert_eq!(default.attribute("value"), Some("wolff"));
+    let film = doc.descendants().find(|n| n.has_tag_name("film")).unwrap();
+    let fval = |name: &str| film.children().find(|c| c.attribute("name") == Some(name)).and_then(|c| c.attribute("value"));
+    assert_eq!(fval("crop_offset_x"), Some("3"));
+    assert_eq!(fval("width"), Some("16"), "an existing film property is replaced, not duplicated");
+    assert_eq!(film.children().filter(|c| c.attribute("name") == Some("width")).count(), 1);
+    assert!(out.contains("a comment that stays"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn derived_scene_makes_relative_file_names_absolute() {
+    let dir = temp_dir("paths");
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    std::fs::write(dir.join("parts/sub.xml"), "<scene version=\"3.0.0\"/>").unwrap();
+    let source = dir.join("scene.xml");
+    let out = derive_text(SCENE, &source, &raw_variant()).expect("derive");
+    let doc = roxmltree::Document::parse(&out).unwrap();
+    let include = doc.descendants().find(|n| n.has_tag_name("include")).unwrap();
+    assert_eq!(include.attribute("filename").map(PathBuf::from), Some(dir.join("parts/sub.xml")));
+    let names: Vec<&str> = doc.descendants().filter(|n| n.attribute("name") == Some("filename")).filter_map(|n| n.attribute("value")).collect();
+    assert_eq!(names[0], dir.join("meshes/a & b.obj").to_str().unwrap(), "relative name joined to the scene's folder (entities kept)");
+    assert_eq!(names[1], "/abs/mesh.ply", "absolute names are kept");
+    assert_eq!(names[2], "$mesh", "parameters are left to their value");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn derived_scene_errors_name_the_file() {
+    let dir = temp_dir("errors");
+    let source = dir.join("broken.xml");
+    let e = derive_text("<scene><bsdf type=\"$bsdf\"></scene>", &source, &raw_variant()).unwrap_err();
+    assert!(e.contains("broken.xml") && e.contains("malformed"), "{e}");
+    let e = derive_text("<scene version=\"3.0.0\"><bsdf type=\"diffuse\"/></scene>", &source, &raw_variant()).unwrap_err();
+    assert!(e.contains("broken.xml") && e.contains("$bsdf"), "{e}");
+    let clash = "<scene version=\"3.0.0\"><bsdf type=\"$bsdf\"><float name=\"normalization\" value=\"1\"/></bsdf></scene>";
+    let e = derive_text(clash, &source, &raw_variant()).unwrap_err();
+    assert!(e.contains("broken.xml") && e.contains("line 1") && e.contains("normalization"), "{e}");
+    // An included file naming a relative asset would resolve against the derived scene's folder.
+    std::fs::write(dir.join("sub.xml"), "<scene version=\"3.0.0\">\n<shape type=\"obj\"><string name=\"filename\" value=\"m.obj\"/></shape></scene>").unwrap();
+    let inc = "<scene version=\"3.0.0\"><include filename=\"sub.xml\"/><bsdf type=\"$bsdf\"/></scene>";
+    let e = derive_text(inc, &source, &raw_variant()).unwrap_err();
+    assert!(e.contains("sub.xml") && e.contains("line 2") && e.contains("m.obj"), "{e}");
+    let e = write_derived(&dir.join("missing.xml"), &dir.join("out.xml"), &raw_variant()).unwrap_err();
+    assert!(e.contains("missing.xml"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `F_dr(η) = 2 ∫₀¹ F(μ, η) μ dμ` with the unpolarised Fresnel reflectance of research page
+/// §3a (total internal reflection: F = 1), by a 10⁶-point midpoint rule.
+fn diffuse_fresnel(eta: f64) -> f64 {
+    let fresnel = |c: f64| {
+        let g2 = eta * eta - 1.0 + c * c;
+        if g2 < 0.0 {
+            return 1.0;
+        }
+        let g = g2.sqrt();
+        let a = (g - c) / (g + c);
+        let b = (c * (g + c) - 1.0) / (c * (g - c) + 1.0);
+        0.5 * a * a * (1.0 + b * b)
+    };
+    let n = 1_000_000;
+    (0..n).map(|i| (i as f64 + 0.5) / n as f64).map(|mu| 2.0 * fresnel(mu) * mu / n as f64).sum()
+}
+
+#[test]
+fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() {
+    use matte::validate::passes::{Budget, PassPlan, rust_side};
+    // Closed form (research page §3c): K_raw / K_physical = n² (1 − ρ F_dr,int), F_dr,int = F_dr(1/n).
+    // With direct lighting only (max_depth 2) every path has one bounce, on the same geometry
+    // with the same seed, so a region seeing only white surfaces scales by exactly that factor
+    // per channel (> 1 for ρ below (1 − 1/n²) / F_dr,int ≈ 0.93: raw is brighter).
+    let n = 1.4f64;
+    let f_int = diffuse_fresnel(1.0 / n);
+    let white = [0.885809f64, 0.698859, 0.666422];
+    let dir = temp_dir("wolff");
+    let cornell = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/study/cornell.xml");
+    let back_wall = [0.35f32, 0.25, 0.65, 0.45];
+    let render = |normalization: &str| {
+        let file = dir.join(format!("{normalization}.xml"));
+        let d = Derivation { bsdf: Some("wolff".into()), bsdf_properties: vec![Property::string("normalization", normalization)], ..Default::default() };
+        write_derived(&cornell, &file, &d).expect("derive");
+        let defines = vec![("bsdf".to_string(), "wolff".to_string()), ("max_depth".into(), "2".into()), ("res".into(), "32".into())];
+        let plan = PassPlan { passes: 1, spp: Budget::PerPass(8), seed: 5, defines, regions: vec![back_wall] };
+        rust_side(&file, &plan, &|_| {}).expect("the derived scene loads (absolute mesh paths) and renders").region_pass_means[0][0]
+    };
+    let raw = render("raw");
+    let physical = render("physical");
+    for (c, (r, p)) in [(raw.x, physical.x), (raw.y, physical.y), (raw.z, physical.z)].into_iter().enumerate() {
+        let expected = n * n * (1.0 - white[c] * f_int);
+        assert!(expected > 1.0);
+        assert!(p > 0.0 && (r / p / expected - 1.0).abs() < 1e-5, "channel {c}: raw/physical = {} (expected {expected})", r / p);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+// ---- Convergence series ----------------------------------------------------------------------
+
+#[test]
+fn crop_box_holds_exactly_the_region_pixels() {
+    use glam::Vec3;
+    use matte::render::film::Image;
+    // Pixel value = its index: the mean over the crop box equals region_mean for odd sizes and
+    // fractions that fall between pixels.
+    for (w, h, r) in [(256u32, 256u32, [0.5f32, 0.9, 0.8, 0.97]), (17, 9, [0.1, 0.33, 0.71, 0.5]), (8, 8, [0.99, 0.99, 1.0, 1.0])] {
+        let mut img = Image::new(w, h);
+        for y in 0..h {
+            for x in 0..w {
+                img.set(x, y, Vec3::splat((y * w + x) as f32));
+            }
+        }
+        let [x0, y0, x1, y1] = convergence::region_pixels(w, h, r);
+        assert!(x0 < x1 && x1 <= w && y0 < y1 && y1 <= h);
+        let mut sum = 0.0;
+        for y in y0..y1 {
+            for x in x0..x1 {
+                sum += (y * w + x) as f64;
+            }
+        }
+        let crop_mean = sum / ((x1 - x0) * (y1 - y0)) as f64;
+        let region = matte::validate::passes::region_mean(&img, r).x;
+        assert!((crop_mean - region).abs() < 1e-9 * region.max(1.0), "{w}x{h} {r:?}: {crop_mean} vs {region}");
+    }
+}
+
+#[test]
+fn convergence_verdicts_follow_interval_overlap() {
+    let pt = |spp, renderer: &str, ratio| Point { spp, renderer: renderer.into(), model: "oren_nayar", ratio, seconds: 0.0 };
+    let series = |points| Series {
+        scene_name: "s".into(),
+        region: "r".into(),
+        crop: [0, 0, 1, 1],
+        film: [1, 1],
+        passes: 8,
+        levels: vec![16, 64, 256],
+        renderers: vec!["matte".into(), "mitsuba".into()],
+        points,
+        notes: Vec::new(),
+    };
+    // Intervals [0.80, 0.90], [0.84, 0.86], [0.845, 0.855]: all overlap the 256-spp one.
+    let stable = series(vec![
+        pt(16, "matte", (0.85, 0.05)),
+        pt(64, "matte", (0.85, 0.01)),
+        pt(256, "matte", (0.85, 0.005)),
+        pt(16, "mitsuba", (0.86, 0.05)),
+        pt(64, "mitsuba", (0.86, 0.02)),
+        pt(256, "mitsuba", (0.851, 0.005)),
+    ]);
+    assert_eq!(stable.stable("oren_nayar", "matte"), (3, 3));
+    assert_eq!(stable.agreement("oren_nayar"), (3, 3));
+    assert_eq!(stable.best("oren_nayar", "mitsuba").map(|p| p.spp), Some(256));
+    // Drift: 1.10 ± 0.01 at 16 spp misses 0.85 ± 0.005; renderers 0.85 vs 0.95 disagree at 256.
+    let drift = series(vec![pt(16, "matte", (1.10, 0.01)), pt(64, "matte", (0.86, 0.01)), pt(256, "matte", (0.85, 0.005)), pt(256, "mitsuba", (0.95, 0.01))]);
+    assert_eq!(drift.stable("oren_nayar", "matte"), (2, 3));
+    assert_eq!(drift.agreement("oren_nayar"), (0, 1));
+    let answers = matte::study::answers::convergence_answers(&drift, None);
+    assert!(answers.iter().any(|a| a.contains("drifts")), "{answers:?}");
+    let answers = matte::study::answers::convergence_answers(&stable, None);
+    assert!(answers.iter().any(|a| a.contains("not a bias") && a.contains("darker than Lambert")), "{answers:?}");
+}
+
+#[test]
+fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
+    let out = temp_dir("e2e_variants");
+    let no_venv = temp_dir("no_venv");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/study/cornell.xml");
+    let o = Command::new(env!("CARGO_BIN_EXE_matte"))
+        .env("MATTE_ROOT", &no_venv)
+        .args(["study", scene, "--spp", "4", "--passes", "2", "--res", "16", "--convergence-spp", "2,4", "-q", "-o"])
+        .arg(&out)
+        .output()
+        .expect("run matte");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+    let v = &j["variants"][0];
+    let rows = v["variants"].as_array().expect("variant rows");
+    assert_eq!(rows.len(), 5);
+    let main_wolff = j["scenes"][0]["models"].as_array().unwrap().iter().find(|m| m["model"] == "wolff").unwrap();
+    let physical = rows.iter().find(|r| r["key"] == "wolff_physical").unwrap();
+    assert_eq!(physical["ratio_global"], main_wolff["ratio_global"], "the default variant is the main run");
+    for r in rows {
+        assert!(r["ratio_global"].as_f64().is_some_and(f64::is_finite) && r["ratio_direct_ci99"].as_f64().is_some_and(f64::is_finite), "{r}");
+        if r["main_run"] == false {
+            assert!(out.join(r["scene_file"].as_str().unwrap()).is_file());
+        }
+    }
+    let c = &j["convergence"][0];
+    assert_eq!(c["renderers"], serde_json::json!(["matte"]));
+    assert_eq!(c["points"].as_array().unwrap().len(), 4, "2 levels × (ON, ON full), matte only");
+    assert!(c["notes"][0].as_str().is_some_and(|n| n.contains("no venv")), "{}", c["notes"]);
+    let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
+    assert!(html.contains("Mitsuba was not run"));
+    for part in html.split("src=\"").skip(1).chain(html.split("href=\"").skip(1)) {
+        let file = part.split('"').next().unwrap();
+        assert!(out.join(file).is_file(), "report names a missing file {file}");
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_dir_all(&no_venv);
+}

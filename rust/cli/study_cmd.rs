@@ -1,8 +1,9 @@
 //! `matte study`: the seed paper's scenes × models, strips, heatmaps and the measured answer
-//! to its question (report.html + study.json).
+//! to its question (report.html + study.json); then the model variants and the convergence
+//! series of the regions that ask for one.
 
 use super::render_cmd::parse_defines;
-use crate::study::{self, Options};
+use crate::study::{self, Options, Study, convergence, variants};
 use crate::validate::Reference;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -33,6 +34,20 @@ pub struct StudyArgs {
     /// Scene parameter (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE")]
     pub define: Vec<String>,
+    /// Scenes (file stems, comma-separated, or `all`) whose model variants are rendered:
+    /// Wolff normal and raw, Oren–Nayar full.
+    #[arg(long, default_value = "cornell", value_delimiter = ',')]
+    pub variant_scenes: Vec<String>,
+    /// Skip the model variants.
+    #[arg(long)]
+    pub no_variants: bool,
+    /// Total spp of each level of the convergence series (comma-separated), for the regions
+    /// marked `"convergence": true` in `<scene>.regions.json`.
+    #[arg(long, default_value = "16,64,256,1024,4096", value_delimiter = ',')]
+    pub convergence_spp: Vec<u32>,
+    /// Skip the convergence series.
+    #[arg(long)]
+    pub no_convergence: bool,
     #[arg(short, long, default_value = "study_out")]
     pub out: PathBuf,
     #[arg(short, long)]
@@ -53,25 +68,62 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         return Err("no study scenes found".into());
     }
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    let opts = Options { out: a.out.clone(), passes: a.passes, spp: a.spp, seed: a.seed, res: a.res, renderer, defines: parse_defines(&a.define)? };
-    let total = (scenes.len() * study::MODELS.len() * 2) as u64 * a.passes as u64;
+    if !a.no_convergence && a.convergence_spp.iter().any(|&s| s < a.passes) {
+        return Err(format!("every --convergence-spp level must be ≥ --passes ({})", a.passes));
+    }
+    let opts = Options {
+        out: a.out.clone(),
+        passes: a.passes,
+        spp: a.spp,
+        seed: a.seed,
+        res: a.res,
+        renderer,
+        defines: parse_defines(&a.define)?,
+        variant_scenes: if a.no_variants { Vec::new() } else { a.variant_scenes.clone() },
+        convergence_spp: if a.no_convergence { Vec::new() } else { a.convergence_spp.clone() },
+        mitsuba_variant: a.variant.clone(),
+    };
+    // Progress total: main run, variants, convergence series.
+    let mut total = (scenes.len() * study::MODELS.len() * 2) as u64 * a.passes as u64;
+    let mut series_regions = Vec::new();
+    for scene in &scenes {
+        let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        if opts.variants_for(&name) {
+            total += variants::pass_count(a.passes);
+        }
+        if !opts.convergence_spp.is_empty() {
+            for r in study::load_regions(scene).map_err(|e| format!("{}: {e}", scene.display()))?.into_iter().filter(|r| r.convergence) {
+                total += convergence::pass_count(&opts);
+                series_regions.push((scene.clone(), name.clone(), r));
+            }
+        }
+    }
     let bar = if !a.quiet && std::io::stderr().is_terminal() { ProgressBar::new(total) } else { ProgressBar::hidden() };
     bar.set_style(ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} passes {elapsed} (eta {eta})").expect("template").progress_chars("=> "));
+    let progress = |what: &str, _k: u32| {
+        bar.set_message(what.to_string());
+        bar.inc(1);
+    };
     let mut studies = Vec::new();
+    let mut variant_studies = Vec::new();
     for scene in &scenes {
-        let s = study::study_scene(scene, &opts, &|what, _k| {
-            bar.set_message(what.to_string());
-            bar.inc(1);
-        })
-        .map_err(|e| format!("{}: {e}", scene.display()))?;
+        let s = study::study_scene(scene, &opts, &progress).map_err(|e| format!("{}: {e}", scene.display()))?;
+        if opts.variants_for(&s.name) {
+            variant_studies.push(variants::run(&s, &opts, &progress).map_err(|e| format!("{}: variants: {e}", scene.display()))?);
+        }
         studies.push(s);
+    }
+    let mut series = Vec::new();
+    for (scene, name, region) in &series_regions {
+        series.push(convergence::run(scene, name, region, &opts, &progress).map_err(|e| format!("{}: convergence: {e}", scene.display()))?);
     }
     bar.finish_and_clear();
     let label = match &opts.renderer {
         Reference::Matte => "matte".to_string(),
         Reference::Mitsuba(v) => format!("mitsuba {v}"),
     };
-    study::report::write(&a.out, &studies, &label, a.passes, a.spp)?;
-    println!("{}", serde_json::to_string_pretty(&study::report::json(&studies, &label, a.passes, a.spp)).expect("json"));
+    let study = Study { renderer: label, passes: a.passes, spp: a.spp, scenes: studies, variants: variant_studies, convergence: series };
+    study::report::write(&a.out, &study)?;
+    println!("{}", serde_json::to_string_pretty(&study::report::json(&study)).expect("json"));
     Ok(())
 }

@@ -78,6 +78,15 @@ pub fn edge_mask(img: &Image, fraction: f64) -> Vec<bool> {
     g.iter().map(|&v| v > thr).collect()
 }
 
+/// Colour-scale half-range of a heatmap strip: the 95th percentile of |difference| over all
+/// its tiles, rounded up to 5 %, within [5 %, 100 %] (one scale per strip, so tiles compare).
+pub fn heatmap_range(rels: &[Vec<f32>]) -> f32 {
+    let mut all: Vec<f32> = rels.iter().flatten().map(|x| x.abs()).filter(|x| x.is_finite()).collect();
+    all.sort_by(f32::total_cmp);
+    let p95 = all.get((all.len() as f32 * 0.95) as usize).copied().unwrap_or(0.05);
+    (p95.clamp(0.05, 1.0) * 20.0).ceil() / 20.0
+}
+
 /// Mean |relative difference| on edge pixels and on the rest (NaN pixels skipped).
 pub fn edge_vs_flat(rel: &[f32], edges: &[bool]) -> (f64, f64) {
     let (mut se, mut ne, mut sf, mut nf) = (0.0, 0usize, 0.0, 0usize);

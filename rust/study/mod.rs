@@ -5,12 +5,22 @@
 //! settings (the paper's question: does the difference grow or shrink with global
 //! illumination?), where the difference concentrates (edges vs flat regions), labelled strips
 //! like the paper's figures and difference heatmaps against Lambert.
+//!
+//! Two follow-ups answer the rest of the issue: [`variants`] renders the model *variants*
+//! (Wolff's normalisation, Oren–Nayar's full model) through derived scenes
+//! ([`variant_scene`]), paired with the main run's Lambert; [`convergence`] renders a
+//! region's Oren–Nayar / Lambert ratio at increasing spp with both renderers (is the paper's
+//! "glow" real or a bias?).
 
 pub mod answers;
+pub mod convergence;
 pub mod font;
 pub mod metrics;
 pub mod report;
+pub mod report_extra;
 pub mod strip;
+pub mod variant_scene;
+pub mod variants;
 
 use crate::render::film::Image;
 use crate::render::image_io;
@@ -62,6 +72,19 @@ pub struct Options {
     pub renderer: Reference,
     /// Extra `-D` parameters.
     pub defines: Vec<(String, String)>,
+    /// Scene names (file stems) whose model variants are rendered; `all` = every scene.
+    pub variant_scenes: Vec<String>,
+    /// Total spp of each level of the convergence series (empty: no series).
+    pub convergence_spp: Vec<u32>,
+    /// Mitsuba variant of the convergence series' Mitsuba side.
+    pub mitsuba_variant: String,
+}
+
+impl Options {
+    /// Whether the model variants are rendered for the scene named `name`.
+    pub fn variants_for(&self, name: &str) -> bool {
+        self.variant_scenes.iter().any(|s| s == name || s == "all")
+    }
 }
 
 /// One model in one lighting setting.
@@ -86,6 +109,8 @@ pub struct Region {
     pub name: String,
     /// [x0, y0, x1, y1] as fractions of the image.
     pub rect: [f32; 4],
+    /// `"convergence": true`: the study renders a convergence series for this region.
+    pub convergence: bool,
 }
 
 /// The scene's regions, if it has a `.regions.json`.
@@ -103,7 +128,7 @@ pub fn load_regions(scene: &Path) -> Result<Vec<Region>, String> {
             let c: Vec<f32> = r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64().map(|x| x as f32)).collect();
             match c.as_slice() {
                 [x0, y0, x1, y1] if (0.0..=1.0).contains(x0) && x0 < x1 && *x1 <= 1.0 && (0.0..=1.0).contains(y0) && y0 < y1 && *y1 <= 1.0 => {
-                    Ok(Region { name, rect: [*x0, *y0, *x1, *y1] })
+                    Ok(Region { name, rect: [*x0, *y0, *x1, *y1], convergence: r["convergence"].as_bool().unwrap_or(false) })
                 }
                 _ => Err(bad()),
             }
@@ -119,9 +144,45 @@ pub struct SceneStudy {
     pub strips: Vec<(Lighting, PathBuf, PathBuf)>,
     /// Colour-scale half-range (relative difference) of each lighting's heatmap strip.
     pub difference_ranges: Vec<(Lighting, f32)>,
+    /// Lambert's passes per lighting: the variants are paired with them.
+    pub lambert: Vec<(Lighting, Side)>,
 }
 
-fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, regions: &[Region], work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+impl SceneStudy {
+    pub fn result(&self, bsdf: &str, lighting: Lighting) -> Option<&ModelResult> {
+        self.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == lighting)
+    }
+    pub fn lambert(&self, lighting: Lighting) -> Option<&Side> {
+        self.lambert.iter().find(|(l, _)| *l == lighting).map(|(_, s)| s)
+    }
+}
+
+/// Everything `matte study` measured, for the report and study.json.
+pub struct Study {
+    /// "matte" or "mitsuba <variant>".
+    pub renderer: String,
+    pub passes: u32,
+    pub spp: u32,
+    pub scenes: Vec<SceneStudy>,
+    pub variants: Vec<variants::VariantStudy>,
+    pub convergence: Vec<convergence::Series>,
+}
+
+/// The `-D` parameters of one image: the user's, the model, the lighting and the resolution.
+pub(crate) fn image_defines(opts: &Options, bsdf: &str, lighting: Lighting) -> Vec<(String, String)> {
+    let mut defines = opts.defines.clone();
+    defines.push(("bsdf".into(), bsdf.into()));
+    if lighting == Lighting::Direct {
+        defines.push(("max_depth".into(), "2".into()));
+    }
+    if let Some(r) = opts.res {
+        defines.push(("res".into(), r.to_string()));
+    }
+    defines
+}
+
+/// K paired passes of `scene` with the study's seeds and budget, in the study's renderer.
+pub(crate) fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, regions: &[Region], work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
     let regions = regions.iter().map(|r| r.rect).collect();
     let plan = PassPlan { passes: opts.passes, spp: Budget::PerPass((opts.spp / opts.passes).max(1)), seed: opts.seed, defines, regions };
     match &opts.renderer {
@@ -138,18 +199,12 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
     let mut results = Vec::new();
     let mut strips = Vec::new();
     let mut ranges = Vec::new();
+    let mut lamberts = Vec::new();
     let regions = load_regions(scene)?;
     for lighting in [Lighting::Global, Lighting::Direct] {
         let mut sides: Vec<(Model, Side)> = Vec::new();
         for model in MODELS {
-            let mut defines = opts.defines.clone();
-            defines.push(("bsdf".into(), model.bsdf.into()));
-            if lighting == Lighting::Direct {
-                defines.push(("max_depth".into(), "2".into()));
-            }
-            if let Some(r) = opts.res {
-                defines.push(("res".into(), r.to_string()));
-            }
+            let defines = image_defines(opts, model.bsdf, lighting);
             let what = format!("{name} {} {}", lighting.name(), model.label);
             let side = render_side(scene, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
             sides.push((model, side));
@@ -159,11 +214,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         let edges = metrics::edge_mask(&lambert_img, 0.1);
         let means: Vec<Image> = sides.iter().map(|(_, side)| side.moments.mean_image()).collect();
         let rels: Vec<Vec<f32>> = means.iter().map(|m| metrics::relative_difference(m, &lambert_img, 1e-4)).collect();
-        // One colour scale per strip: the 95th percentile of |difference| over all models.
-        let mut all: Vec<f32> = rels.iter().skip(1).flatten().map(|x| x.abs()).filter(|x| x.is_finite()).collect();
-        all.sort_by(f32::total_cmp);
-        let p95 = all.get((all.len() as f32 * 0.95) as usize).copied().unwrap_or(0.05);
-        let range = (p95.clamp(0.05, 1.0) * 20.0).ceil() / 20.0;
+        let range = metrics::heatmap_range(&rels[1..]);
         ranges.push((lighting, range));
         let mut tiles = Vec::new();
         let mut diff_tiles = Vec::new();
@@ -195,8 +246,11 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         strip::write_strip(&opts.out.join(&strip_path), &tiles)?;
         strip::write_strip(&opts.out.join(&diff_path), &diff_tiles)?;
         strips.push((lighting, strip_path, diff_path));
+        if let Some((_, side)) = sides.into_iter().next() {
+            lamberts.push((lighting, side));
+        }
     }
-    Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_ranges: ranges })
+    Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_ranges: ranges, lambert: lamberts })
 }
 
 /// The study scenes: every `*.xml` in `mitsuba_scenes/study/`.

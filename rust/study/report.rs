@@ -1,8 +1,9 @@
 //! `study.json` and `report.html`: per scene the strips and heatmaps, and per model the
 //! luminance ratio to Lambert (99 % CI) under global and direct lighting, the change between
-//! them (the paper's question), and the edge/flat concentration of the difference.
+//! them (the paper's question), and the edge/flat concentration of the difference; then the
+//! model variants and the convergence series ([`super::report_extra`]).
 
-use super::{Lighting, SceneStudy};
+use super::{Lighting, SceneStudy, Study, report_extra};
 use serde_json::json;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -11,7 +12,8 @@ fn find<'a>(s: &'a SceneStudy, bsdf: &str, l: Lighting) -> Option<&'a super::Mod
     s.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == l)
 }
 
-pub fn json(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> serde_json::Value {
+pub fn json(study: &Study) -> serde_json::Value {
+    let studies = &study.scenes;
     let scenes: Vec<_> = studies
         .iter()
         .map(|s| {
@@ -42,17 +44,25 @@ pub fn json(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> se
             })
         })
         .collect();
-    json!({ "renderer": renderer, "passes": passes, "spp": spp, "answers": super::answers::answers(studies), "scenes": scenes })
+    json!({
+        "renderer": study.renderer, "passes": study.passes, "spp": study.spp,
+        "answers": super::answers::answers(study),
+        "scenes": scenes,
+        "variants": study.variants.iter().map(report_extra::variants_json).collect::<Vec<_>>(),
+        "convergence": study.convergence.iter().map(report_extra::convergence_json).collect::<Vec<_>>(),
+    })
 }
 
-pub fn html(studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> String {
+pub fn html(study: &Study) -> String {
+    let (studies, renderer, passes, spp) = (&study.scenes, &study.renderer, study.passes, study.spp);
     let mut h = String::new();
     let _ = write!(
         h,
         r#"<!doctype html><html><head><meta charset="utf-8"><title>matte study</title><style>
 body{{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}} img{{max-width:100%;border:1px solid #ddd}}
-table{{border-collapse:collapse;font-size:14px;margin:8px 0}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}}
+table{{border-collapse:collapse;font-size:14px;margin:8px 0}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}} td{{white-space:nowrap}}
 th:first-child,td:first-child{{text-align:left}} .scene{{border-top:1px solid #ccc;padding-top:12px;margin-top:16px}}
+.note{{background:#fff4d6;border-left:4px solid #e0a800;padding:6px 10px}} td.l{{text-align:left}} .small{{font-size:13px;color:#555}}
 </style></head><body><h1>matte study: diffuse models under global illumination</h1>
 <p>Renderer: {renderer}; {passes} passes, {spp} spp per image in total; every model uses the same seeds (paired passes).
 Ratio = image-mean luminance of the model / Lambert, ± 99 % confidence interval from the paired per-pass ratios.
@@ -61,7 +71,7 @@ positive = the difference to Lambert grows under global illumination. Edge/flat 
 Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs on the others.</p>"#
     );
     h.push_str("<h2>Answers, computed from the measurements below</h2><ul>");
-    for a in super::answers::answers(studies) {
+    for a in super::answers::answers(study) {
         let _ = write!(h, "<li>{}</li>", a.replace('&', "&amp;").replace('<', "&lt;"));
     }
     h.push_str("</ul>");
@@ -113,12 +123,18 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
         }
         h.push_str("</div>");
     }
+    for v in &study.variants {
+        h.push_str(&report_extra::variants_html(v));
+    }
+    for s in &study.convergence {
+        h.push_str(&report_extra::convergence_html(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
+    }
     h.push_str("</body></html>\n");
     h
 }
 
-pub fn write(out: &Path, studies: &[SceneStudy], renderer: &str, passes: u32, spp: u32) -> Result<(), String> {
-    let j = serde_json::to_string_pretty(&json(studies, renderer, passes, spp)).expect("json");
+pub fn write(out: &Path, study: &Study) -> Result<(), String> {
+    let j = serde_json::to_string_pretty(&json(study)).expect("json");
     std::fs::write(out.join("study.json"), j).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("report.html"), html(studies, renderer, passes, spp)).map_err(|e| e.to_string())
+    std::fs::write(out.join("report.html"), html(study)).map_err(|e| e.to_string())
 }

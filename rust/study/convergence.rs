@@ -1,0 +1,217 @@
+//! Convergence series (issue 6, question 2): is the paper's Oren–Nayar "glow below the green
+//! box" real or a bias? A real property of the model gives a region ratio ON / Lambert that
+//! is stable as the sample count grows and the same in both renderers (their 99 % intervals
+//! overlap). A bias or noise artefact drifts with spp or differs between renderers.
+//!
+//! For each region flagged `"convergence": true` in `<scene>.regions.json`, Lambert, Oren–Nayar
+//! (qualitative, the default) and Oren–Nayar full are rendered under global illumination at
+//! each total spp of the series, with K paired passes per level, by matte and by Mitsuba (the
+//! project's `.venv`). Only the region is rendered: a derived scene ([`super::variant_scene`])
+//! sets the film's crop window to the region's pixels at the study's resolution. Mitsuba
+//! renders a crop as the same sub-window of the full image (semantics doc §6), so the region
+//! keeps the main run's pixels at a fraction of the cost. One difference remains: pixels on
+//! the crop's border average only samples inside the crop, which is a filter-width
+//! difference at the region's rim. Each level has its own seeds (`seed + 10000·(level + 1) + k`),
+//! so the levels are independent.
+
+use super::variant_scene::{self, Derivation, Property};
+use super::{Lighting, Options, Region, metrics};
+use crate::render::load;
+use crate::validate::passes::{self, Budget, PassPlan, Side};
+use std::path::{Path, PathBuf};
+
+/// A model of the series: plugin and an optional property in its `<bsdf>`.
+#[derive(Clone, Copy, Debug)]
+pub struct SeriesModel {
+    pub key: &'static str,
+    pub label: &'static str,
+    pub bsdf: &'static str,
+    pub property: Option<(&'static str, &'static str)>,
+}
+
+/// Lambert first (the denominator), then the models whose ratio is tracked.
+pub const SERIES_MODELS: [SeriesModel; 3] = [
+    SeriesModel { key: "lambert", label: "Lambert", bsdf: "lambert", property: None },
+    SeriesModel { key: "oren_nayar", label: "Oren–Nayar (qualitative)", bsdf: "oren_nayar", property: None },
+    SeriesModel { key: "oren_nayar_full", label: "Oren–Nayar full", bsdf: "oren_nayar", property: Some(("model", "full")) },
+];
+
+/// One model's region ratio to Lambert at one level in one renderer.
+#[derive(Clone, Debug)]
+pub struct Point {
+    /// Total spp of the level (split over the passes).
+    pub spp: u32,
+    pub renderer: String,
+    pub model: &'static str,
+    /// Region luminance ratio to Lambert (paired passes) and its 99 % half-width.
+    pub ratio: (f64, f64),
+    /// Render seconds of the model's passes.
+    pub seconds: f64,
+}
+
+pub struct Series {
+    pub scene_name: String,
+    pub region: String,
+    /// Crop window `[x, y, width, height]` in pixels of the `film` size.
+    pub crop: [u32; 4],
+    pub film: [u32; 2],
+    pub passes: u32,
+    pub levels: Vec<u32>,
+    /// Renderers that ran, in order ("matte", "mitsuba scalar_rgb").
+    pub renderers: Vec<String>,
+    pub points: Vec<Point>,
+    /// Parts that could not run (e.g. no Mitsuba venv), said in the report.
+    pub notes: Vec<String>,
+}
+
+/// Two estimates agree when their 99 % intervals overlap.
+pub fn overlap(a: (f64, f64), b: (f64, f64)) -> bool {
+    (a.0 - b.0).abs() <= a.1 + b.1
+}
+
+impl Series {
+    pub fn point(&self, model: &str, renderer: &str, spp: u32) -> Option<&Point> {
+        self.points.iter().find(|p| p.model == model && p.renderer == renderer && p.spp == spp)
+    }
+
+    /// The highest level a renderer reached for `model`.
+    pub fn best(&self, model: &str, renderer: &str) -> Option<&Point> {
+        self.points.iter().filter(|p| p.model == model && p.renderer == renderer).max_by_key(|p| p.spp)
+    }
+
+    /// Stability over spp: (levels whose interval overlaps the highest level's, levels).
+    pub fn stable(&self, model: &str, renderer: &str) -> (usize, usize) {
+        let Some(best) = self.best(model, renderer) else { return (0, 0) };
+        let pts: Vec<&Point> = self.points.iter().filter(|p| p.model == model && p.renderer == renderer).collect();
+        (pts.iter().filter(|p| overlap(p.ratio, best.ratio)).count(), pts.len())
+    }
+
+    /// Agreement between the first two renderers: (levels whose intervals overlap, levels
+    /// both rendered).
+    pub fn agreement(&self, model: &str) -> (usize, usize) {
+        let [a, b] = match self.renderers.as_slice() {
+            [a, b, ..] => [a, b],
+            _ => return (0, 0),
+        };
+        let pairs: Vec<(&Point, &Point)> = self.levels.iter().filter_map(|&s| Some((self.point(model, a, s)?, self.point(model, b, s)?))).collect();
+        (pairs.iter().filter(|(p, q)| overlap(p.ratio, q.ratio)).count(), pairs.len())
+    }
+}
+
+/// Pixel box `[x0, y0, x1, y1)` of a region: the rounding of
+/// [`crate::validate::passes::region_mean`], so the crop holds exactly the region's pixels.
+pub fn region_pixels(width: u32, height: u32, r: [f32; 4]) -> [u32; 4] {
+    let (w, h) = (width as f32, height as f32);
+    let x0 = ((r[0] * w) as u32).min(width - 1);
+    let y0 = ((r[1] * h) as u32).min(height - 1);
+    let x1 = ((r[2] * w).ceil() as u32).clamp(x0 + 1, width);
+    let y1 = ((r[3] * h).ceil() as u32).clamp(y0 + 1, height);
+    [x0, y0, x1, y1]
+}
+
+/// The project's venv Python, which runs the Mitsuba side.
+fn venv_python() -> PathBuf {
+    passes::repo_root().join(".venv/bin/python")
+}
+
+/// Whether the series can have a Mitsuba side (the venv exists).
+pub fn mitsuba_available() -> bool {
+    venv_python().exists()
+}
+
+/// Passes a series renders (for the progress bar).
+pub fn pass_count(opts: &Options) -> u64 {
+    let renderers = 1 + mitsuba_available() as usize;
+    (opts.convergence_spp.len() * SERIES_MODELS.len() * renderers) as u64 * opts.passes as u64
+}
+
+fn slug(s: &str) -> String {
+    s.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_lowercase() } else { '_' }).collect()
+}
+
+/// Renders the series for `region` of `scene` (named `name`); writes the derived crop scenes
+/// into `<out>/<name>/convergence/`. A Mitsuba side that cannot run becomes a note.
+pub fn run(scene: &Path, name: &str, region: &Region, opts: &Options, progress: &dyn Fn(&str, u32)) -> Result<Series, String> {
+    let rel_dir = PathBuf::from(name).join("convergence");
+    let dir = opts.out.join(&rel_dir);
+    // The film size with the study's parameters (the crop is in its pixels).
+    let film = load::load_file(scene, &super::image_defines(opts, "lambert", Lighting::Global)).map_err(|e| e.to_string())?.film;
+    let (w, h) = (film.width(), film.height());
+    let [x0, y0, x1, y1] = region_pixels(w, h, region.rect);
+    let crop = vec![
+        Property::integer("crop_offset_x", x0 as i64),
+        Property::integer("crop_offset_y", y0 as i64),
+        Property::integer("crop_width", (x1 - x0) as i64),
+        Property::integer("crop_height", (y1 - y0) as i64),
+    ];
+    let mut files = Vec::new();
+    for m in SERIES_MODELS {
+        let file = opts.out.join(&rel_dir).join(format!("{}_{}.xml", slug(&region.name), m.key));
+        let bsdf_properties = m.property.map(|(k, v)| vec![Property::string(k, v)]).unwrap_or_default();
+        variant_scene::write_derived(scene, &file, &Derivation { bsdf: Some(m.bsdf.into()), bsdf_properties, film_properties: crop.clone() })?;
+        files.push(file);
+    }
+    let mitsuba = format!("mitsuba {}", opts.mitsuba_variant);
+    let python = venv_python();
+    let mut notes = Vec::new();
+    let mut active = vec!["matte".to_string()];
+    if mitsuba_available() {
+        active.push(mitsuba.clone());
+    } else {
+        notes.push(format!("Mitsuba was not run: no venv at {} (run `make venv`). The series is matte only, so it cannot show whether the renderers agree.", python.display()));
+    }
+    let mut points = Vec::new();
+    let mut levels = Vec::new();
+    for (i, &nominal) in opts.convergence_spp.iter().enumerate() {
+        let per_pass = (nominal / opts.passes).max(1);
+        let spp = per_pass * opts.passes;
+        levels.push(spp);
+        let plan = PassPlan {
+            passes: opts.passes,
+            spp: Budget::PerPass(per_pass),
+            seed: opts.seed + 10_000 * (i as u64 + 1),
+            defines: Vec::new(),
+            regions: Vec::new(),
+        };
+        for renderer in active.clone() {
+            let mut sides: Vec<Side> = Vec::new();
+            for (m, file) in SERIES_MODELS.iter().zip(&files) {
+                let plan = PassPlan { defines: super::image_defines(opts, m.bsdf, Lighting::Global), ..plan.clone() };
+                let what = format!("{name} convergence {spp} spp {renderer} {}", m.label);
+                let side = if renderer == "matte" {
+                    passes::rust_side(file, &plan, &|k| progress(&what, k))
+                } else {
+                    passes::mitsuba_side_in_venv(file, &opts.mitsuba_variant, &plan, &dir.join("work"), &|k| progress(&what, k))
+                };
+                match side {
+                    Ok(s) => sides.push(s),
+                    Err(e) if renderer != "matte" => {
+                        eprintln!("matte study: warning: the convergence series' Mitsuba side failed: {e}");
+                        notes.push(format!("Mitsuba failed at {spp} spp ({}): {e}. Its later levels were skipped.", m.label));
+                        active.retain(|r| *r != renderer);
+                        break;
+                    }
+                    Err(e) => return Err(e),
+                }
+            }
+            let Some((lambert, others)) = sides.split_first() else { continue };
+            for (m, side) in SERIES_MODELS[1..].iter().zip(others) {
+                // The crop is the region: its image mean is the region mean.
+                let ratio = metrics::luminance_ratio(&side.moments, &lambert.moments);
+                points.push(Point { spp, renderer: renderer.clone(), model: m.key, ratio, seconds: side.seconds });
+            }
+        }
+    }
+    let renderers = ["matte".to_string(), mitsuba].into_iter().filter(|r| points.iter().any(|p| p.renderer == *r)).collect();
+    Ok(Series {
+        scene_name: name.to_string(),
+        region: region.name.clone(),
+        crop: [x0, y0, x1 - x0, y1 - y0],
+        film: [w, h],
+        passes: opts.passes,
+        levels,
+        renderers,
+        points,
+        notes,
+    })
+}
