@@ -73,12 +73,40 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
         ));
     }
     for s in studies {
+        // A scene whose own max_depth is 2 (the bunny, as the paper's figure 1) renders the same
+        // image in both settings.
+        let direct_only = ratio(s, "wolff", Lighting::Global) == ratio(s, "wolff", Lighting::Direct);
         if let (Some(g), Some(d)) = (ratio(s, "wolff", Lighting::Global), ratio(s, "wolff", Lighting::Direct)) {
+            out.push(if direct_only {
+                format!("{}: Wolff (IOR 1.4) changes the image-mean luminance by {} (the scene is lit directly only).", s.name, pct_ci(d.0 - 1.0, d.1))
+            } else {
+                format!(
+                    "{}: Wolff (IOR 1.4) changes the image-mean luminance by {} under global illumination and {} under direct lighting.",
+                    s.name,
+                    pct_ci(g.0 - 1.0, g.1),
+                    pct_ci(d.0 - 1.0, d.1)
+                )
+            });
+        }
+        // The paper's "Ginneken darkest": van Ginneken's rank among the models (1 = darkest).
+        let mut global: Vec<_> = s.results.iter().filter(|r| r.lighting == Lighting::Global).collect();
+        global.sort_by(|a, b| a.ratio.0.total_cmp(&b.ratio.0));
+        if let (Some(rank), Some(on)) = (global.iter().position(|r| r.model.bsdf == "ginneken"), ratio(s, "oren_nayar", Lighting::Global)) {
+            let vg = global[rank].ratio;
+            let versus = if vg.0 + vg.1 < on.0 - on.1 {
+                "darker than"
+            } else if vg.0 - vg.1 > on.0 + on.1 {
+                "brighter than"
+            } else {
+                "not distinguishable from"
+            };
             out.push(format!(
-                "{}: Wolff (IOR 1.4) changes the image-mean luminance by {} under global illumination and {} under direct lighting.",
+                "{}: van Ginneken ranks {} of {} from the darkest ({} against Lambert) and is {versus} Oren–Nayar ({}).",
                 s.name,
-                pct_ci(g.0 - 1.0, g.1),
-                pct_ci(d.0 - 1.0, d.1)
+                rank + 1,
+                global.len(),
+                ci(vg),
+                ci(on)
             ));
         }
         let darkest = s
@@ -88,7 +116,8 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
             .min_by(|a, b| a.ratio.0.total_cmp(&b.ratio.0))
             .map(|r| (r.model.label, r.ratio));
         if let Some((label, r)) = darkest {
-            out.push(format!("{}: the darkest model under global illumination is {label} ({} against Lambert).", s.name, pct_ci(r.0 - 1.0, r.1)));
+            let setting = if direct_only { "" } else { " under global illumination" };
+            out.push(format!("{}: the darkest model{setting} is {label} ({} against Lambert).", s.name, pct_ci(r.0 - 1.0, r.1)));
         }
         for r in s.results.iter().filter(|r| r.model.bsdf == "oren_nayar" && r.lighting == Lighting::Global) {
             for (name, m, hw) in &r.regions {
