@@ -15,11 +15,12 @@ pub mod shadowing;
 pub mod slope_integral;
 pub mod table;
 
-use super::frame::{azimuthal_dot, both_above, sin_theta};
+use super::approx;
+use super::frame::{azimuthal_dot, both_above};
 use super::model::DiffuseBrdf;
 use super::params::{ParamError, Params};
 use glam::Vec3;
-use shadowing::{Shadowing, azimuth_correlation, azimuth_correlation_f32, mu_lambda, visibility_denominator};
+use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction_f32};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
 use std::f32::consts::FRAC_1_PI;
 use std::sync::Arc;
@@ -94,21 +95,26 @@ impl Ginneken {
 }
 
 impl DiffuseBrdf for Ginneken {
-    #[inline]
+    #[inline(always)]
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
         if !both_above(wi, wo) {
             return [0.0; N];
         }
-        let (mu_i, mu_o) = (wi.z.clamp(MIN_COS, 1.0), wo.z.clamp(MIN_COS, 1.0));
-        let (si, so) = (sin_theta(wi), sin_theta(wo));
-        let sin_prod = si * so;
-        let cos_phi = if sin_prod > 1e-12 { (azimuthal_dot(wi, wo) / sin_prod).clamp(-1.0, 1.0) } else { 1.0 };
+        let clamp_cos = |mu: f32| approx::at_most(approx::at_least(mu, MIN_COS), 1.0);
+        let (mu_i, mu_o) = (clamp_cos(wi.z), clamp_cos(wo.z));
+        // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo; the product of the sines is one
+        // square root of the product of the squared sines. Δφ itself (for the visibility) is
+        // the angle of (s, c) with c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos
+        // after this square root and division, which would make the chain longer.
+        let s = azimuthal_dot(wi, wo);
+        let sin2_prod = (wi.x * wi.x + wi.y * wi.y) * (wo.x * wo.x + wo.y * wo.y);
+        let defined = sin2_prod > 1e-24;
+        let cos_phi = if defined { approx::at_most(approx::at_least(s / sin2_prod.sqrt(), -1.0), 1.0) } else { 1.0 };
+        let phi = if defined { approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s) } else { 0.0 };
         let (x_i, x_o) = (table::axis_of_cos(mu_i), table::axis_of_cos(mu_o));
-        let integral = self.table.lookup(x_i, x_o, cos_phi);
-        let den = visibility_denominator(self.shadowing, mu_i, mu_o, self.table.mu_lambda(x_i), self.table.mu_lambda(x_o), || {
-            azimuth_correlation_f32(cos_phi)
-        });
-        let g = FRAC_1_PI * integral / den;
+        let (num, den) = visibility_fraction_f32(self.shadowing, mu_i, mu_o, self.table.mu_lambda(x_i), self.table.mu_lambda(x_o), phi);
+        // num/den does not wait for the table lookup (usually a cache miss).
+        let g = self.table.lookup(x_i, x_o, cos_phi) * (FRAC_1_PI * num / den);
         reflectance.map(|rho| rho * g)
     }
 }
