@@ -7,14 +7,15 @@
 //! Axes (chosen so that `I` is close to linear along each of them):
 //! * `x = √(1−μ) / (√(1−μ) + √μ)` for each direction ([`axis_of_cos`]): about uniform in angle
 //!   near the normal, crowding towards grazing where forward scattering makes `I` fall off
-//!   like a power of μ; two square roots, no trig. Measured (m = 0.3, 3000 configurations):
+//!   like a power of μ; one square root, no trig. Measured (m = 0.3, 3000 configurations):
 //!   the plain `√(1−μ)` axis needed 128 nodes for the error this one reaches with 80.
 //! * `c = cos Δφ` ∈ [−1, 1]: `I` is linear in `c` wherever no facet is clamped.
+//!
 //! `I(θi, θo, Δφ) = I(θo, θi, Δφ)`, so only `x_i ≤ x_o` is integrated and the rest mirrored.
 
 use super::shadowing::mu_lambda;
-use crate::brdf::approx::{at_least, at_most};
 use super::slope_integral::SlopeIntegrator;
+use crate::brdf::approx::{at_least, at_most};
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock, Weak};
@@ -142,6 +143,19 @@ impl SlopeTable {
         let (i, f) = cell(x * (LAMBDA_NODES - 1) as f32, LAMBDA_NODES);
         let t = &self.mu_lambda;
         t[i] + f * (t[i + 1] - t[i])
+    }
+}
+
+#[cfg(test)]
+impl SlopeTable {
+    /// `I` at node `(iu_i, iu_o, ic)`, for tests that re-interpolate the table independently.
+    pub(crate) fn node(&self, iu_i: usize, iu_o: usize, ic: usize) -> f32 {
+        self.data[iu_i][iu_o][ic]
+    }
+
+    /// `μΛ` at node `k` of its axis.
+    pub(crate) fn lambda_node(&self, k: usize) -> f32 {
+        self.mu_lambda[k]
     }
 }
 
