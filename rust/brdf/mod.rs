@@ -2,6 +2,7 @@
 //! no renderer or FFI types. [`Bsdf`] is the closed set of models matte offers, constructed
 //! from the plugin names and parameters of `shared/docs/brdf-models.md`.
 
+pub mod approx;
 pub mod eon;
 pub mod fresnel;
 pub mod frame;

@@ -16,7 +16,7 @@
 //!   Lambert at normal incidence; the fair side-by-side comparison).
 //! * `raw`: `ρ / π`.
 
-use super::fresnel::{diffuse_fresnel_reflectance, fresnel_dielectric, fresnel_dielectric_f32};
+use super::fresnel::{Transmittance, diffuse_fresnel_reflectance, fresnel_dielectric};
 use super::frame::both_above;
 use super::model::{Albedo, AlbedoMethod, DiffuseBrdf};
 use super::params::{ParamError, Params};
@@ -51,8 +51,11 @@ pub struct Wolff {
     f_dr_ext: f32,
     /// `F_dr,int = F_dr(1/n)`: the same seen from inside (includes total internal reflection).
     f_dr_int: f32,
-    /// Normal-incidence Fresnel reflectance `F(0, n)`.
-    f0: f32,
+    /// The per-eval transmittance `1 − F(θ, n)`.
+    transmittance: Transmittance,
+    /// The part of K that does not depend on ρ: `1/π` (raw), `1/(π (1 − F(0)) (1 − F_dr,ext))`
+    /// (normal), `1/(π n²)` (physical), computed in f64 so each eval multiplies once.
+    k_scale: f32,
 }
 
 impl Wolff {
@@ -73,14 +76,22 @@ impl Wolff {
                 format!("must be >= ext_ior: Wolff's model is a denser body under a smooth interface (got int_ior {int_ior} < ext_ior {ext_ior})"),
             ));
         }
+        let f_dr_ext = diffuse_fresnel_reflectance(eta);
+        let f0 = fresnel_dielectric(1.0, eta);
+        let k_scale = match normalization {
+            WolffNormalization::Raw => 1.0 / PI,
+            WolffNormalization::Normal => 1.0 / (PI * (1.0 - f0) * (1.0 - f_dr_ext)),
+            WolffNormalization::Physical => 1.0 / (PI * eta * eta),
+        };
         Ok(Self {
             int_ior: int_ior as f32,
             ext_ior: ext_ior as f32,
             eta: eta as f32,
             normalization,
-            f_dr_ext: diffuse_fresnel_reflectance(eta) as f32,
+            f_dr_ext: f_dr_ext as f32,
             f_dr_int: diffuse_fresnel_reflectance(1.0 / eta) as f32,
-            f0: fresnel_dielectric(1.0, eta) as f32,
+            transmittance: Transmittance::new(eta),
+            k_scale: k_scale as f32,
         })
     }
 
@@ -109,13 +120,11 @@ impl Wolff {
     /// whose geometric series diverges at ρ = 1/F_dr,int.
     #[inline]
     fn k(&self, rho: f32) -> f32 {
-        let inv_pi = std::f32::consts::FRAC_1_PI;
         match self.normalization {
-            WolffNormalization::Raw => rho * inv_pi,
-            WolffNormalization::Normal => rho * inv_pi / ((1.0 - self.f0) * (1.0 - self.f_dr_ext)),
+            WolffNormalization::Raw | WolffNormalization::Normal => rho * self.k_scale,
             WolffNormalization::Physical => {
                 let rho = rho.clamp(0.0, 1.0);
-                rho * inv_pi / (self.eta * self.eta * (1.0 - rho * self.f_dr_int))
+                rho * self.k_scale / (1.0 - rho * self.f_dr_int)
             }
         }
     }
@@ -127,7 +136,7 @@ impl DiffuseBrdf for Wolff {
         if !both_above(wi, wo) {
             return [0.0; N];
         }
-        let t = (1.0 - fresnel_dielectric_f32(wi.z, self.eta)) * (1.0 - fresnel_dielectric_f32(wo.z, self.eta));
+        let t = self.transmittance.at(wi.z) * self.transmittance.at(wo.z);
         reflectance.map(|rho| self.k(rho) * t)
     }
 

@@ -49,10 +49,23 @@ pub fn azimuth_correlation(cos_phi: f64) -> f64 {
     4.41 * phi / (4.41 * phi + 1.0)
 }
 
+/// `(μi μo / P_ill+vis)` as a fraction `(num, den)` with `μi μo / P = den / num`: the f32
+/// per-eval form of [`visibility_denominator`], given the azimuth difference `phi` ∈ [0, π]
+/// (radians). For `vginneken`, `α = k/(k+1)` (k = 4.41 φ) is folded into the fraction so
+/// that the eval divides once: with `a = μmin μmax + μmax Λμmin`, `b = μmin Λμmax`,
+/// `den = a(k+1) + k b = a + k(a+b)`, `num = k + 1`.
 #[inline]
-pub fn azimuth_correlation_f32(cos_phi: f32) -> f32 {
-    let phi = cos_phi.clamp(-1.0, 1.0).acos();
-    4.41 * phi / (4.41 * phi + 1.0)
+pub fn visibility_fraction_f32(shadowing: Shadowing, mu_i: f32, mu_o: f32, ml_i: f32, ml_o: f32, phi: f32) -> (f32, f32) {
+    match shadowing {
+        Shadowing::HeightCorrelated => (1.0, mu_i * mu_o + mu_o * ml_i + mu_i * ml_o),
+        Shadowing::VanGinneken => {
+            let (mu_min, ml_min, mu_max, ml_max) = if mu_i <= mu_o { (mu_i, ml_i, mu_o, ml_o) } else { (mu_o, ml_o, mu_i, ml_i) };
+            let a = mu_min * mu_max + mu_max * ml_min;
+            let b = mu_min * ml_max;
+            let k = 4.41 * phi;
+            (k + 1.0, k.mul_add(a + b, a))
+        }
+    }
 }
 
 /// `μi μo / P_ill+vis`: the denominator of the van Ginneken BRDF, finite for all μ > 0.

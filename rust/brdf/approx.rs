@@ -1,0 +1,221 @@
+//! Inlinable replacements for libm functions on the kernels' per-eval path, and branch-free
+//! clamps. libm's `acosf` is an out-of-line call that cannot be inlined or vectorised; in EON
+//! (two per eval) and van Ginneken (one per eval) it was the largest single cost. Each
+//! approximation here has a stated maximum error, checked against f64 `std` in the tests.
+//! `f32::mul_add` compiles to one FMA instruction because `.cargo/config.toml` builds for
+//! x86-64-v3.
+
+use std::f32::consts::{FRAC_PI_2, PI};
+
+/// `max(x, lo)` as one `maxss`: `f32::max` also orders NaN against its other operand, which
+/// costs a compare and a blend per call. A NaN `x` gives `lo`, as `f32::max` does.
+#[inline(always)]
+pub fn at_least(x: f32, lo: f32) -> f32 {
+    if x > lo { x } else { lo }
+}
+
+/// `min(x, hi)` as one `minss`; a NaN `x` gives `hi`, as `f32::min` does.
+#[inline(always)]
+pub fn at_most(x: f32, hi: f32) -> f32 {
+    if x < hi { x } else { hi }
+}
+
+/// Abramowitz & Stegun, *Handbook of Mathematical Functions* (1964), eq. 4.4.46 (from
+/// Hastings, *Approximations for Digital Computers*, 1955): for `0 ≤ x ≤ 1`,
+/// `acos x = √(1−x) (a0 + a1 x + … + a7 x⁷) + ε`, `|ε| ≤ 2·10⁻⁸` (the printed a0 is π/2
+/// rounded to 10 digits, which makes it 2.2·10⁻⁸ at x = 0).
+const ACOS_AS: [f64; 8] = [
+    1.570_796_305_0,
+    -0.214_598_801_6,
+    0.088_978_987_4,
+    -0.050_174_304_6,
+    0.030_891_881_0,
+    -0.017_088_125_6,
+    0.006_670_090_1,
+    -0.001_262_491_1,
+];
+
+/// [`ACOS_AS`] rounded to f32 at compile time.
+const ACOS_AS_F32: [f32; 8] = {
+    let mut out = [0.0f32; 8];
+    let mut k = 0;
+    while k < 8 {
+        out[k] = ACOS_AS[k] as f32;
+        k += 1;
+    }
+    out
+};
+
+/// The A&S 4.4.46 polynomial `P(x)` (so `acos x ≈ √(1−x) P(x)` on [0, 1]), by Estrin's
+/// scheme: three dependent fused multiply-adds instead of Horner's seven, which shortens the
+/// eval's critical path (the kernels are latency-bound: few evals fit in flight at once).
+#[inline]
+fn acos_poly(x: f32) -> f32 {
+    let a = &ACOS_AS_F32;
+    let x2 = x * x;
+    let p01 = a[1].mul_add(x, a[0]);
+    let p23 = a[3].mul_add(x, a[2]);
+    let p45 = a[5].mul_add(x, a[4]);
+    let p67 = a[7].mul_add(x, a[6]);
+    let p03 = p23.mul_add(x2, p01);
+    let p47 = p67.mul_add(x2, p45);
+    p47.mul_add(x2 * x2, p03)
+}
+
+/// `acos x` for `x ∈ [0, 1]` (clamped) by A&S 4.4.46 evaluated in f32. Max absolute error
+/// 3.5·10⁻⁷ (3 f32 ulps of π/2: the 2·10⁻⁸ of the fit, a0's rounding and the roundings of
+/// Estrin's scheme, the square root and the product) and relative error 3·10⁻⁷
+/// (`acos_matches_f64_over_the_unit_interval`). Near x = 1 the `√(1−x)` factor keeps the
+/// relative error small, where `π/2 − asin` forms would cancel. (Rounding a0 to f32 puts it
+/// 7.5·10⁻⁸ below π/2, so `acos_unit(0)` is one ulp below libm's `acosf(0)`.)
+#[inline]
+pub fn acos_unit(x: f32) -> f32 {
+    let x = at_most(at_least(x, 0.0), 1.0);
+    (1.0 - x).sqrt() * acos_poly(x)
+}
+
+/// Abramowitz & Stegun (1964) eq. 4.4.49 (after Hastings 1955): for `0 ≤ x ≤ 1`,
+/// `atan x = x (1 + a2 x² + a4 x⁴ + … + a16 x¹⁶) + ε`, `|ε| ≤ 2·10⁻⁸`.
+const ATAN_AS: [f64; 9] = [
+    1.0,
+    -0.333_331_452_8,
+    0.199_935_508_5,
+    -0.142_088_994_4,
+    0.106_562_639_3,
+    -0.075_289_640_0,
+    0.042_909_613_8,
+    -0.016_165_736_7,
+    0.002_866_225_7,
+];
+
+/// [`ATAN_AS`] rounded to f32 at compile time.
+const ATAN_AS_F32: [f32; 9] = {
+    let mut out = [0.0f32; 9];
+    let mut k = 0;
+    while k < 9 {
+        out[k] = ATAN_AS[k] as f32;
+        k += 1;
+    }
+    out
+};
+
+/// `atan t` for `t ∈ [0, 1]` by A&S 4.4.49 (Estrin's scheme in `t²`). Max absolute error
+/// 1.5·10⁻⁷ (`atan_matches_f64_over_the_unit_interval`).
+#[inline]
+fn atan_unit(t: f32) -> f32 {
+    let a = &ATAN_AS_F32;
+    let z = t * t;
+    let z2 = z * z;
+    let p01 = a[1].mul_add(z, a[0]);
+    let p23 = a[3].mul_add(z, a[2]);
+    let p45 = a[5].mul_add(z, a[4]);
+    let p67 = a[7].mul_add(z, a[6]);
+    let p03 = p23.mul_add(z2, p01);
+    let p47 = p67.mul_add(z2, p45);
+    let p48 = a[8].mul_add(z2 * z2, p47);
+    t * p48.mul_add(z2 * z2, p03)
+}
+
+/// The angle in `[0, π]` between the x axis and `(x, y)`, `y ≥ 0`: `atan2(y, x)` by
+/// [`atan_unit`] of `min/max(|x|, y)` and the octant reflections. One division and no square
+/// root: an angle from a dot and a cross product without forming the cosine first, whose
+/// square root and division would precede an `acos` on the same dependency chain. Max absolute
+/// error 4·10⁻⁷ (`angle_matches_f64_atan2_in_the_upper_half_plane`); `(0, 0)` gives 0.
+#[inline]
+pub fn angle(y: f32, x: f32) -> f32 {
+    let (ax, ay) = (x.abs(), y.abs());
+    let (lo, hi) = if ay <= ax { (ay, ax) } else { (ax, ay) };
+    let hi = at_least(hi, f32::MIN_POSITIVE);
+    let r = atan_unit(lo / hi);
+    let r = if ay <= ax { r } else { FRAC_PI_2 - r };
+    if x < 0.0 { PI - r } else { r }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every f32 in [0, 1] whose bits are a multiple of `stride`, plus the end points.
+    fn unit_grid(stride: u32) -> impl Iterator<Item = f32> {
+        (0..=1.0f32.to_bits()).step_by(stride as usize).map(f32::from_bits).chain([0.0, 1.0])
+    }
+
+    #[test]
+    fn coefficients_meet_the_published_bound_in_f64() {
+        // The published bound, checked on the formula itself (f64 arithmetic): an independent
+        // check that the coefficients were transcribed correctly.
+        let mut worst = 0.0f64;
+        for k in 0..=200_000 {
+            let x = k as f64 / 200_000.0;
+            let p = ACOS_AS.iter().rev().fold(0.0f64, |acc, &c| acc * x + c);
+            worst = worst.max(((1.0 - x).sqrt() * p - x.acos()).abs());
+        }
+        assert!(worst < 2.2e-8, "max |err| = {worst:e}");
+    }
+
+    #[test]
+    fn acos_matches_f64_over_the_unit_interval() {
+        let (mut abs_err, mut rel_err) = (0.0f64, 0.0f64);
+        for x in unit_grid(97) {
+            let want = (x as f64).acos();
+            let got = acos_unit(x) as f64;
+            abs_err = abs_err.max((got - want).abs());
+            if want > 0.0 {
+                rel_err = rel_err.max((got - want).abs() / want);
+            }
+        }
+        assert!(abs_err <= 3.5e-7, "max |err| = {abs_err:e}");
+        assert!(rel_err <= 3e-7, "max relative err = {rel_err:e}");
+        assert_eq!(acos_unit(1.0), 0.0);
+    }
+
+    #[test]
+    fn atan_coefficients_meet_the_published_bound_in_f64() {
+        let mut worst = 0.0f64;
+        for k in 0..=200_000 {
+            let t = k as f64 / 200_000.0;
+            let p = ATAN_AS.iter().rev().fold(0.0f64, |acc, &c| acc * t * t + c);
+            worst = worst.max((t * p - t.atan()).abs());
+        }
+        assert!(worst <= 2e-8, "max |err| = {worst:e}");
+    }
+
+    #[test]
+    fn atan_matches_f64_over_the_unit_interval() {
+        let mut worst = 0.0f64;
+        for t in unit_grid(97) {
+            worst = worst.max((atan_unit(t) as f64 - (t as f64).atan()).abs());
+        }
+        assert!(worst <= 1.5e-7, "max |err| = {worst:e}");
+    }
+
+    #[test]
+    fn angle_matches_f64_atan2_in_the_upper_half_plane() {
+        // Directions on a fine circle plus radii from 1e-20 to 1e20 (the ratio is what counts).
+        let mut worst = 0.0f64;
+        for k in 0..=100_000 {
+            let phi = std::f64::consts::PI * k as f64 / 100_000.0;
+            for r in [1e-20f64, 1e-3, 1.0, 7.5, 1e20] {
+                let (x, y) = ((r * phi.cos()) as f32, (r * phi.sin()).max(0.0) as f32);
+                let want = (y as f64).atan2(x as f64);
+                worst = worst.max((angle(y, x) as f64 - want).abs());
+            }
+        }
+        assert!(worst <= 4e-7, "max |err| = {worst:e}");
+        assert_eq!(angle(0.0, 0.0), 0.0);
+        assert_eq!(angle(0.0, 1.0), 0.0);
+        assert!((angle(0.0, -1.0) - PI).abs() <= 2.4e-7);
+        assert!((angle(1.0, 0.0) - FRAC_PI_2).abs() <= 1.2e-7);
+    }
+
+    #[test]
+    fn clamps_agree_with_std_including_nan() {
+        for x in [f32::NAN, f32::NEG_INFINITY, -1.0, -0.0, 0.0, 1e-30, 0.5, 1.0, 2.0, f32::INFINITY] {
+            for b in [-1.0f32, 0.0, 1e-7, 1.0] {
+                // == rather than bits: the sign of a zero result may differ, which no caller sees.
+                assert!(at_least(x, b) == x.max(b), "at_least({x}, {b})");
+                assert!(at_most(x, b) == x.min(b), "at_most({x}, {b})");
+            }
+        }
+    }
+}
