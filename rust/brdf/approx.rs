@@ -35,16 +35,19 @@ const ACOS_AS: [f64; 8] = [
     -0.001_262_491_1,
 ];
 
-/// [`ACOS_AS`] rounded to f32 at compile time.
-const ACOS_AS_F32: [f32; 8] = {
-    let mut out = [0.0f32; 8];
+/// Polynomial coefficients rounded to f32 at compile time.
+const fn to_f32<const N: usize>(c: [f64; N]) -> [f32; N] {
+    let mut out = [0.0f32; N];
     let mut k = 0;
-    while k < 8 {
-        out[k] = ACOS_AS[k] as f32;
+    while k < N {
+        out[k] = c[k] as f32;
         k += 1;
     }
     out
-};
+}
+
+/// [`ACOS_AS`] rounded to f32.
+const ACOS_AS_F32: [f32; 8] = to_f32(ACOS_AS);
 
 /// The A&S 4.4.46 polynomial `P(x)` (so `acos x ≈ √(1−x) P(x)` on [0, 1]), by Estrin's
 /// scheme: three dependent fused multiply-adds instead of Horner's seven, which shortens the
@@ -88,16 +91,8 @@ const ATAN_AS: [f64; 9] = [
     0.002_866_225_7,
 ];
 
-/// [`ATAN_AS`] rounded to f32 at compile time.
-const ATAN_AS_F32: [f32; 9] = {
-    let mut out = [0.0f32; 9];
-    let mut k = 0;
-    while k < 9 {
-        out[k] = ATAN_AS[k] as f32;
-        k += 1;
-    }
-    out
-};
+/// [`ATAN_AS`] rounded to f32.
+const ATAN_AS_F32: [f32; 9] = to_f32(ATAN_AS);
 
 /// `atan t` for `t ∈ [0, 1]` by A&S 4.4.49 (Estrin's scheme in `t²`). Max absolute error
 /// 1.5·10⁻⁷ (`atan_matches_f64_over_the_unit_interval`).

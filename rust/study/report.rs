@@ -12,6 +12,15 @@ fn find<'a>(s: &'a SceneStudy, bsdf: &str, l: Lighting) -> Option<&'a super::Mod
     s.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == l)
 }
 
+/// Per named region: the ratio to Lambert and its 99 % half-width in both lightings.
+pub(super) fn regions_json(global: &[(String, f64, f64)], direct: &[(String, f64, f64)]) -> Vec<serde_json::Value> {
+    global
+        .iter()
+        .zip(direct)
+        .map(|((n, gm, gh), (_, dm, dh))| json!({"name": n, "ratio_global": gm, "ratio_global_ci99": gh, "ratio_direct": dm, "ratio_direct_ci99": dh}))
+        .collect()
+}
+
 pub fn json(study: &Study) -> serde_json::Value {
     let studies = &study.scenes;
     let scenes: Vec<_> = studies
@@ -31,9 +40,7 @@ pub fn json(study: &Study) -> serde_json::Value {
                         "edge_mean_abs_rel_diff_direct": d.edge_flat.0, "flat_mean_abs_rel_diff_direct": d.edge_flat.1,
                         "seconds_global": g.seconds, "seconds_direct": d.seconds,
                         "exr_global": g.exr, "exr_direct": d.exr,
-                        "regions": g.regions.iter().zip(&d.regions).map(|((n, gm, gh), (_, dm, dh))| json!({
-                            "name": n, "ratio_global": gm, "ratio_global_ci99": gh, "ratio_direct": dm, "ratio_direct_ci99": dh,
-                        })).collect::<Vec<_>>(),
+                        "regions": regions_json(&g.regions, &d.regions),
                     }))
                 })
                 .collect();

@@ -26,9 +26,7 @@ pub fn variants_json(v: &VariantStudy) -> serde_json::Value {
                 "ratio_direct": d.ratio.0, "ratio_direct_ci99": d.ratio.1,
                 "seconds_global": g.seconds, "seconds_direct": d.seconds,
                 "exr_global": g.exr, "exr_direct": d.exr,
-                "regions": g.regions.iter().zip(&d.regions).map(|((n, gm, gh), (_, dm, dh))| json!({
-                    "name": n, "ratio_global": gm, "ratio_global_ci99": gh, "ratio_direct": dm, "ratio_direct_ci99": dh,
-                })).collect::<Vec<_>>(),
+                "regions": super::report::regions_json(&g.regions, &d.regions),
             }))
         })
         .collect();
