@@ -12,28 +12,18 @@ Prints one JSON object on stdout; progress goes to stderr.
 import argparse
 import json
 import sys
-import time
 from pathlib import Path
 
-import drjit as dr
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import bench_plugin  # noqa: E402
 
 
-def render_seconds(scene, spp):
-    t = time.perf_counter()
-    img = mi.render(scene, spp=spp, seed=0)
-    dr.eval(img)
-    dr.sync_thread()
-    return time.perf_counter() - t
-
-
 def time_job(job, repeats):
     scene = mi.load_file(job["scene"], **job.get("defines", {}))
-    render_seconds(scene, job["spp"])  # warm-up: JIT compilation, kernel cache
-    return min(render_seconds(scene, job["spp"]) for _ in range(repeats))
+    bench_plugin.timed(scene, job["spp"])  # warm-up: JIT compilation, kernel cache
+    return min(bench_plugin.timed(scene, job["spp"]) for _ in range(repeats))
 
 
 def plugin_overhead(res, spp, repeats):

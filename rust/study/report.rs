@@ -21,6 +21,18 @@ pub(super) fn regions_json(global: &[(String, f64, f64)], direct: &[(String, f64
         .collect()
 }
 
+/// One lighting's strip and heatmap strip with the heatmap's colour scale (`what` − Lambert).
+pub(super) fn strips_html(l: Lighting, strip: &Path, diff: &Path, range: f32, what: &str) -> String {
+    format!(
+        r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: ({what} − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
+        l.name(),
+        strip.display(),
+        diff.display(),
+        range * 100.0,
+        range * 100.0
+    )
+}
+
 pub fn json(study: &Study) -> serde_json::Value {
     let studies = &study.scenes;
     let scenes: Vec<_> = studies
@@ -79,22 +91,14 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
     );
     h.push_str("<h2>Answers, computed from the measurements below</h2><ul>");
     for a in super::answers::answers(study) {
-        let _ = write!(h, "<li>{}</li>", a.replace('&', "&amp;").replace('<', "&lt;"));
+        let _ = write!(h, "<li>{}</li>", report_extra::esc(&a));
     }
     h.push_str("</ul>");
     for s in studies {
         let _ = write!(h, r#"<div class="scene"><h2>{}</h2>"#, s.name);
         for (l, strip, diff) in &s.strips {
             let range = s.difference_ranges.iter().find(|(x, _)| x == l).map_or(f32::NAN, |r| r.1);
-            let _ = write!(
-                h,
-                r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: (model − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
-                l.name(),
-                strip.display(),
-                diff.display(),
-                range * 100.0,
-                range * 100.0
-            );
+            h.push_str(&strips_html(*l, strip, diff, range, "model"));
         }
         h.push_str("<table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>edge / flat, global</th><th>edge / flat, direct</th></tr>");
         for m in super::MODELS {

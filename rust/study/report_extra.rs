@@ -8,7 +8,7 @@ use super::{Lighting, answers};
 use serde_json::json;
 use std::fmt::Write as _;
 
-fn esc(s: &str) -> String {
+pub(super) fn esc(s: &str) -> String {
     s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
@@ -53,15 +53,7 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
     }
     h.push_str("</ul>");
     for (l, strip, diff, range) in &v.strips {
-        let _ = write!(
-            h,
-            r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: (variant − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
-            l.name(),
-            strip.display(),
-            diff.display(),
-            range * 100.0,
-            range * 100.0
-        );
+        h.push_str(&super::report::strips_html(*l, strip, diff, *range, "variant"));
     }
     h.push_str("<table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>source</th></tr>");
     for x in VARIANTS {
