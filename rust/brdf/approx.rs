@@ -5,6 +5,7 @@
 //! `f32::mul_add` compiles to one FMA instruction because `.cargo/config.toml` builds for
 //! x86-64-v3.
 
+use super::real::Real;
 use std::f32::consts::{FRAC_PI_2, PI};
 
 /// `max(x, lo)` as one `maxss`: `f32::max` also orders NaN against its other operand, which
@@ -35,34 +36,20 @@ const ACOS_AS: [f64; 8] = [
     -0.001_262_491_1,
 ];
 
-/// Polynomial coefficients rounded to f32 at compile time.
-const fn to_f32<const N: usize>(c: [f64; N]) -> [f32; N] {
-    let mut out = [0.0f32; N];
-    let mut k = 0;
-    while k < N {
-        out[k] = c[k] as f32;
-        k += 1;
-    }
-    out
-}
-
-/// [`ACOS_AS`] rounded to f32.
-const ACOS_AS_F32: [f32; 8] = to_f32(ACOS_AS);
-
 /// The A&S 4.4.46 polynomial `P(x)` (so `acos x ≈ √(1−x) P(x)` on [0, 1]), by Estrin's
 /// scheme: three dependent fused multiply-adds instead of Horner's seven, which shortens the
 /// eval's critical path (the kernels are latency-bound: few evals fit in flight at once).
-#[inline]
-fn acos_poly(x: f32) -> f32 {
-    let a = &ACOS_AS_F32;
+#[inline(always)]
+fn acos_poly<T: Real>(x: T) -> T {
+    let a = ACOS_AS.map(T::c);
     let x2 = x * x;
-    let p01 = a[1].mul_add(x, a[0]);
-    let p23 = a[3].mul_add(x, a[2]);
-    let p45 = a[5].mul_add(x, a[4]);
-    let p67 = a[7].mul_add(x, a[6]);
-    let p03 = p23.mul_add(x2, p01);
-    let p47 = p67.mul_add(x2, p45);
-    p47.mul_add(x2 * x2, p03)
+    let p01 = a[1].fma(x, a[0]);
+    let p23 = a[3].fma(x, a[2]);
+    let p45 = a[5].fma(x, a[4]);
+    let p67 = a[7].fma(x, a[6]);
+    let p03 = p23.fma(x2, p01);
+    let p47 = p67.fma(x2, p45);
+    p47.fma(x2 * x2, p03)
 }
 
 /// `acos x` for `x ∈ [0, 1]` (clamped) by A&S 4.4.46 evaluated in f32. Max absolute error
@@ -71,10 +58,10 @@ fn acos_poly(x: f32) -> f32 {
 /// (`acos_matches_f64_over_the_unit_interval`). Near x = 1 the `√(1−x)` factor keeps the
 /// relative error small, where `π/2 − asin` forms would cancel. (Rounding a0 to f32 puts it
 /// 7.5·10⁻⁸ below π/2, so `acos_unit(0)` is one ulp below libm's `acosf(0)`.)
-#[inline]
-pub fn acos_unit(x: f32) -> f32 {
-    let x = at_most(at_least(x, 0.0), 1.0);
-    (1.0 - x).sqrt() * acos_poly(x)
+#[inline(always)]
+pub fn acos_unit<T: Real>(x: T) -> T {
+    let x = x.clamp_to(0.0, 1.0);
+    (T::c(1.0) - x).sqrt() * acos_poly(x)
 }
 
 /// Abramowitz & Stegun (1964) eq. 4.4.49 (after Hastings 1955): for `0 ≤ x ≤ 1`,
@@ -91,24 +78,21 @@ const ATAN_AS: [f64; 9] = [
     0.002_866_225_7,
 ];
 
-/// [`ATAN_AS`] rounded to f32.
-const ATAN_AS_F32: [f32; 9] = to_f32(ATAN_AS);
-
 /// `atan t` for `t ∈ [0, 1]` by A&S 4.4.49 (Estrin's scheme in `t²`). Max absolute error
 /// 1.5·10⁻⁷ (`atan_matches_f64_over_the_unit_interval`).
-#[inline]
-fn atan_unit(t: f32) -> f32 {
-    let a = &ATAN_AS_F32;
+#[inline(always)]
+fn atan_unit<T: Real>(t: T) -> T {
+    let a = ATAN_AS.map(T::c);
     let z = t * t;
     let z2 = z * z;
-    let p01 = a[1].mul_add(z, a[0]);
-    let p23 = a[3].mul_add(z, a[2]);
-    let p45 = a[5].mul_add(z, a[4]);
-    let p67 = a[7].mul_add(z, a[6]);
-    let p03 = p23.mul_add(z2, p01);
-    let p47 = p67.mul_add(z2, p45);
-    let p48 = a[8].mul_add(z2 * z2, p47);
-    t * p48.mul_add(z2 * z2, p03)
+    let p01 = a[1].fma(z, a[0]);
+    let p23 = a[3].fma(z, a[2]);
+    let p45 = a[5].fma(z, a[4]);
+    let p67 = a[7].fma(z, a[6]);
+    let p03 = p23.fma(z2, p01);
+    let p47 = p67.fma(z2, p45);
+    let p48 = a[8].fma(z2 * z2, p47);
+    t * p48.fma(z2 * z2, p03)
 }
 
 /// The angle in `[0, π]` between the x axis and `(x, y)`, `y ≥ 0`: `atan2(y, x)` by
@@ -116,14 +100,15 @@ fn atan_unit(t: f32) -> f32 {
 /// root: an angle from a dot and a cross product without forming the cosine first, whose
 /// square root and division would precede an `acos` on the same dependency chain. Max absolute
 /// error 4·10⁻⁷ (`angle_matches_f64_atan2_in_the_upper_half_plane`); `(0, 0)` gives 0.
-#[inline]
-pub fn angle(y: f32, x: f32) -> f32 {
+#[inline(always)]
+pub fn angle<T: Real>(y: T, x: T) -> T {
     let (ax, ay) = (x.abs(), y.abs());
-    let (lo, hi) = if ay <= ax { (ay, ax) } else { (ax, ay) };
-    let hi = at_least(hi, f32::MIN_POSITIVE);
+    let below_diagonal = ay.le(ax);
+    let lo = T::select(below_diagonal, ay, ax);
+    let hi = T::select(below_diagonal, ax, ay).max(T::c(f32::MIN_POSITIVE as f64));
     let r = atan_unit(lo / hi);
-    let r = if ay <= ax { r } else { FRAC_PI_2 - r };
-    if x < 0.0 { PI - r } else { r }
+    let r = T::select(below_diagonal, r, T::c(FRAC_PI_2 as f64) - r);
+    T::select(x.lt(T::c(0.0)), T::c(PI as f64) - r, r)
 }
 
 #[cfg(test)]

@@ -1,17 +1,21 @@
 //! The diffuse BRDF kernels: one file per model, pure functions over local-frame directions,
 //! no renderer or FFI types. [`Bsdf`] is the closed set of models matte offers, constructed
-//! from the plugin names and parameters of `shared/docs/brdf-models.md`.
+//! from the plugin names and parameters of the README's model table. Each model is written
+//! once over the scalar trait [`real::Real`] ([`kernel`]): f32 on the CPU, traced into Dr.Jit
+//! by the Mitsuba plugin (`crate::ffi::traced`).
 
 pub mod approx;
 pub mod eon;
 pub mod fresnel;
 pub mod frame;
 pub mod ginneken;
+pub mod kernel;
 pub mod lambert;
 pub mod model;
 pub mod oren_nayar;
 pub mod params;
 pub mod quadrature;
+pub mod real;
 pub mod sampling;
 pub mod wolff;
 

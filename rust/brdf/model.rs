@@ -5,6 +5,7 @@
 
 use super::quadrature::GaussLegendre;
 use super::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use super::real::V3;
 use glam::{DVec3, Vec2, Vec3};
 
 /// A sampled direction with its solid-angle density and the path weight
@@ -14,6 +15,14 @@ pub struct BsdfSample<const N: usize> {
     pub wo: Vec3,
     pub pdf: f32,
     pub weight: [f32; N],
+}
+
+impl<const N: usize> BsdfSample<N> {
+    /// From [`super::kernel::sample`]'s `(wo, weight, pdf)`; `None` when nothing was drawn.
+    #[inline(always)]
+    pub fn from_kernel((wo, weight, pdf): (V3<f32>, [f32; N], f32)) -> Option<Self> {
+        (pdf > 0.0).then(|| BsdfSample { wo: wo.into(), pdf, weight })
+    }
 }
 
 /// How an albedo value was obtained.

@@ -1,15 +1,16 @@
 //! Oren–Nayar (SIGGRAPH 1994): Lambertian V-cavities with Gaussian slope-angle distribution of
 //! standard deviation σ (radians). The seed paper's eq. 1 is the qualitative model, garbled
 //! (it has a stray division by `p_i` and keeps the radiance factor `E0 cos θi`); the BRDF forms
-//! below are research page §2a (qualitative) and §2b (full: C1–C3 plus the ρ² interreflection
-//! term), identical to Mitsuba 0.6 `roughdiffuse` with `useFastApprox` true / false.
+//! below are Oren & Nayar's qualitative model (1994, eq. 30) and their full model (C1–C3 plus the
+//! ρ² interreflection term, eqs. 27–29 and 37), identical to Mitsuba 0.6 `roughdiffuse` with `useFastApprox` true / false.
 
-use super::approx::{acos_unit, at_least};
-use super::frame::{azimuthal_dot, both_above, sin_theta};
-use super::model::DiffuseBrdf;
+use super::approx::acos_unit;
+use super::kernel::{self, Kernel, azimuthal_dot};
+use super::model::{BsdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
-use glam::Vec3;
-use std::f32::consts::{FRAC_1_PI, FRAC_2_PI};
+use super::real::{Real, V3};
+use glam::{Vec2, Vec3};
+use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
 /// Which of the 1994 forms to evaluate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,18 +30,92 @@ impl OrenNayarModel {
     }
 }
 
+/// Oren–Nayar's parameter-derived constants in any [`Real`] (f64 on the CPU, then rounded to
+/// f32; traced, so that σ's gradient flows through them), and its evaluation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrenNayarKernel<T> {
+    /// `A = C1 = 1 − 0.5 σ²/(σ²+0.33)`.
+    pub a: T,
+    /// `B = 0.45 σ²/(σ²+0.09)` (also the C2 prefactor).
+    pub b: T,
+    /// `0.125 σ²/(σ²+0.09)`: the C3 prefactor.
+    pub c3: T,
+    /// `0.17 σ²/(σ²+0.13)`: the interreflection prefactor.
+    pub l2: T,
+    pub model: OrenNayarModel,
+}
+
+impl<T: Real> OrenNayarKernel<T> {
+    pub fn new(sigma: T, model: OrenNayarModel) -> Self {
+        let s2 = sigma * sigma;
+        let ratio = |k: f64, d: f64| s2.scale(k) / (s2 + T::c(d));
+        Self { a: T::c(1.0) - ratio(0.5, 0.33), b: ratio(0.45, 0.09), c3: ratio(0.125, 0.09), l2: ratio(0.17, 0.13), model }
+    }
+
+    pub fn coefficients(&self) -> [T; 4] {
+        [self.a, self.b, self.c3, self.l2]
+    }
+
+    pub fn from_coefficients([a, b, c3, l2]: [T; 4], model: OrenNayarModel) -> Self {
+        Self { a, b, c3, l2, model }
+    }
+
+    /// Full model. α = max(θi, θo), β = min(θi, θo); cos Δφ signed, 0 when undefined.
+    #[inline(always)]
+    fn reduced_full<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        let tiny = T::c(1e-7);
+        let sin_theta = |w: V3<T>| (w.x * w.x + w.y * w.y).sqrt();
+        let (sin_i, sin_o) = (sin_theta(wi), sin_theta(wo));
+        let sin_prod = sin_i * sin_o;
+        let cos_phi = T::select(sin_prod.gt(tiny), (azimuthal_dot(wi, wo) / sin_prod.max(tiny)).clamp_to(-1.0, 1.0), T::c(0.0));
+        // α belongs to the direction with the smaller cosine.
+        let i_is_alpha = wi.z.lt(wo.z);
+        let cos_alpha = T::select(i_is_alpha, wi.z, wo.z);
+        let sin_alpha = T::select(i_is_alpha, sin_i, sin_o);
+        let cos_beta = T::select(i_is_alpha, wo.z, wi.z);
+        let sin_beta = T::select(i_is_alpha, sin_o, sin_i);
+        // A&S 4.4.46, error ≤ 1.3·10⁻⁷ rad, instead of two out-of-line libm calls.
+        let alpha = acos_unit(cos_alpha);
+        let beta = acos_unit(cos_beta);
+        let tan_beta = sin_beta / cos_beta.max(tiny);
+        // tan((α+β)/2) by the half-angle identity: no trig, finite while μi + μo > 0.
+        let tan_half_sum = (sin_alpha + sin_beta) / (cos_alpha + cos_beta).max(tiny);
+        let two_beta_pi = beta.scale(FRAC_2_PI);
+        let c2 = T::select(cos_phi.ge(T::c(0.0)), self.b * sin_alpha, self.b * (sin_alpha - two_beta_pi * two_beta_pi * two_beta_pi));
+        let four_ab = (alpha * beta).scale(4.0 * FRAC_1_PI * FRAC_1_PI);
+        let c3 = self.c3 * four_ab * four_ab;
+        let direct = self.a + cos_phi * c2 * tan_beta + (T::c(1.0) - cos_phi.abs()) * c3 * tan_half_sum;
+        let inter = self.l2 * (T::c(1.0) - cos_phi * two_beta_pi * two_beta_pi);
+        // The 1994 fit goes negative in forward-grazing configurations at large σ (σ = 1,
+        // θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1 and, for ρ < 1, the ρ² term).
+        // A BRDF cannot be negative: the total is clamped at 0, which leaves the published
+        // model untouched wherever it is valid (Table 2's albedos are unchanged).
+        rho.map(|r| (r * r.fma(inter, direct)).max(T::c(0.0)))
+    }
+}
+
+impl<T: Real> Kernel<T> for OrenNayarKernel<T> {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        match self.model {
+            OrenNayarModel::Qualitative => {
+                // Trig-free form: max(0, cos Δφ) sin α tan β = max(0, s) / max(μi, μo). The
+                // denominator is cos β; clamped as tan β is in the full model (both grazing).
+                // B / cos β is formed first, so the division overlaps the dot product instead
+                // of following it.
+                let b_over_cos_beta = self.b / wi.z.max(wo.z).max(T::c(1e-7));
+                let g = azimuthal_dot(wi, wo).max(T::c(0.0)).fma(b_over_cos_beta, self.a);
+                rho.map(|r| r * g)
+            }
+            OrenNayarModel::Full => self.reduced_full(wi, wo, rho),
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrenNayar {
     sigma: f32,
-    model: OrenNayarModel,
-    /// `A = C1 = 1 − 0.5 σ²/(σ²+0.33)`.
-    a: f32,
-    /// `B = 0.45 σ²/(σ²+0.09)` (also the C2 prefactor).
-    b: f32,
-    /// `0.125 σ²/(σ²+0.09)`: the C3 prefactor.
-    c3: f32,
-    /// `0.17 σ²/(σ²+0.13)`: the interreflection prefactor.
-    l2: f32,
+    kernel: OrenNayarKernel<f32>,
 }
 
 impl OrenNayar {
@@ -50,15 +125,8 @@ impl OrenNayar {
         if !(sigma >= 0.0) || !sigma.is_finite() {
             return Err(ParamError::new("sigma", format!("must be a finite angle >= 0 in radians (got {sigma})")));
         }
-        let s2 = sigma * sigma;
-        Ok(Self {
-            sigma: sigma as f32,
-            model,
-            a: (1.0 - 0.5 * s2 / (s2 + 0.33)) as f32,
-            b: (0.45 * s2 / (s2 + 0.09)) as f32,
-            c3: (0.125 * s2 / (s2 + 0.09)) as f32,
-            l2: (0.17 * s2 / (s2 + 0.13)) as f32,
-        })
+        let k = OrenNayarKernel::<f64>::new(sigma, model);
+        Ok(Self { sigma: sigma as f32, kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model) })
     }
 
     pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
@@ -75,36 +143,11 @@ impl OrenNayar {
     }
 
     pub fn model(&self) -> OrenNayarModel {
-        self.model
+        self.kernel.model
     }
 
-    /// Full model, §2b. α = max(θi, θo), β = min(θi, θo); cos Δφ signed, 0 when undefined.
-    #[inline]
-    fn eval_full<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        let (sin_i, sin_o) = (sin_theta(wi), sin_theta(wo));
-        let sin_prod = sin_i * sin_o;
-        let cos_phi = if sin_prod > 1e-7 { (azimuthal_dot(wi, wo) / sin_prod).clamp(-1.0, 1.0) } else { 0.0 };
-        // α belongs to the direction with the smaller cosine.
-        let (cos_alpha, sin_alpha, cos_beta, sin_beta) =
-            if wi.z < wo.z { (wi.z, sin_i, wo.z, sin_o) } else { (wo.z, sin_o, wi.z, sin_i) };
-        // Both cosines are > 0 here (`eval` returns early otherwise): A&S 4.4.46, error
-        // ≤ 1.3·10⁻⁷ rad, instead of two out-of-line libm calls.
-        let alpha = acos_unit(cos_alpha);
-        let beta = acos_unit(cos_beta);
-        let tan_beta = sin_beta / cos_beta.max(1e-7);
-        // tan((α+β)/2) by the half-angle identity: no trig, finite while μi + μo > 0.
-        let tan_half_sum = (sin_alpha + sin_beta) / (cos_alpha + cos_beta).max(1e-7);
-        let two_beta_pi = beta * FRAC_2_PI;
-        let c2 = if cos_phi >= 0.0 { self.b * sin_alpha } else { self.b * (sin_alpha - two_beta_pi.powi(3)) };
-        let four_ab = 4.0 * alpha * beta * FRAC_1_PI * FRAC_1_PI;
-        let c3 = self.c3 * four_ab * four_ab;
-        let direct = self.a + cos_phi * c2 * tan_beta + (1.0 - cos_phi.abs()) * c3 * tan_half_sum;
-        let inter = self.l2 * (1.0 - cos_phi * two_beta_pi * two_beta_pi);
-        // The 1994 fit goes negative in forward-grazing configurations at large σ (σ = 1,
-        // θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1 and, for ρ < 1, the ρ² term).
-        // A BRDF cannot be negative: the total is clamped at 0, which leaves the published
-        // model untouched wherever it is valid (Table 2's albedos are unchanged).
-        reflectance.map(|rho| (FRAC_1_PI * rho * (direct + rho * inter)).max(0.0))
+    pub fn kernel(&self) -> &OrenNayarKernel<f32> {
+        &self.kernel
     }
 }
 
@@ -113,20 +156,11 @@ impl DiffuseBrdf for OrenNayar {
     /// threshold, and a call would cost the default (qualitative) model a third of its time.
     #[inline(always)]
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        if !both_above(wi, wo) {
-            return [0.0; N];
-        }
-        match self.model {
-            OrenNayarModel::Qualitative => {
-                // Trig-free form: max(0, cos Δφ) sin α tan β = max(0, s) / max(μi, μo). The
-                // denominator is cos β; clamped as tan β is in the full model (both grazing).
-                // B / cos β is formed first, so the division overlaps the dot product instead
-                // of following it; single-instruction clamps (`approx::at_least`).
-                let b_over_cos_beta = self.b / at_least(at_least(wi.z, wo.z), 1e-7);
-                let g = at_least(azimuthal_dot(wi, wo), 0.0).mul_add(b_over_cos_beta, self.a);
-                reflectance.map(|rho| rho * FRAC_1_PI * g)
-            }
-            OrenNayarModel::Full => self.eval_full(wi, wo, reflectance),
-        }
+        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+        BsdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
     }
 }

@@ -1,6 +1,6 @@
 //! Wolff (JOSA A 11(11), 1994): diffuse reflection from a smooth dielectric. Light is Fresnel
 //! transmitted into the body at θi, scattered into an isotropic internal distribution and
-//! transmitted out towards the viewer. As a BRDF (research page §3b):
+//! transmitted out towards the viewer. As a BRDF (Wolff 1994, eq. 5 with the Fresnel terms of §2):
 //!
 //! `f = K · T(θi) · T(θo)`, `T(θ) = 1 − F(θ, n)`, n = int_ior / ext_ior,
 //!
@@ -8,7 +8,7 @@
 //! term needs no refraction (and the form is visibly reciprocal). The seed paper's radiance
 //! form carries `cos θi`, which is the renderer's, not the kernel's.
 //!
-//! `K` is Wolff's lumped constant; matte offers the three choices of §3c:
+//! `K` is Wolff's lumped constant; matte offers three choices:
 //! * `physical` (default): `ρ / (π n² (1 − ρ F_dr,int))`: isotropic internal radiance with all
 //!   internally reflected light re-scattered (Mitsuba 0.6 `plastic` diffuse lobe, nonlinear);
 //!   ρ is the internal single-bounce albedo; albedo `(1 − F(θi)) ρ(1−F_dr,int)/(1−ρF_dr,int)`.
@@ -16,12 +16,13 @@
 //!   Lambert at normal incidence; the fair side-by-side comparison).
 //! * `raw`: `ρ / π`.
 
-use super::fresnel::{Transmittance, diffuse_fresnel_reflectance, fresnel_dielectric};
-use super::frame::both_above;
-use super::model::{Albedo, AlbedoMethod, DiffuseBrdf};
+use super::fresnel::{Transmittance, diffuse_fresnel_external, diffuse_fresnel_internal, fresnel_dielectric};
+use super::kernel::{self, Kernel};
+use super::model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
-use glam::Vec3;
-use std::f64::consts::PI;
+use super::real::{Real, V3};
+use glam::{Vec2, Vec3};
+
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WolffNormalization {
@@ -40,22 +41,80 @@ impl WolffNormalization {
     }
 }
 
+/// Wolff's index-derived constants in any [`Real`] (f64 on the CPU, then rounded to f32;
+/// traced, so that the indices' gradients flow through them), and its evaluation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WolffKernel<T> {
+    /// The per-eval transmittance `1 − F(θ, n)`.
+    pub transmittance: Transmittance<T>,
+    /// The part of `π K` that does not depend on ρ: 1 (raw), `1/((1 − F(0)) (1 − F_dr,ext))`
+    /// (normal), `1/n²` (physical).
+    pub k_pi: T,
+    /// `F_dr,int = F_dr(1/n)`: the hemispherical reflectance seen from inside (physical only).
+    pub f_dr_int: T,
+    pub normalization: WolffNormalization,
+}
+
+impl<T: Real> WolffKernel<T> {
+    /// For relative index `n = int_ior / ext_ior ≥ 1`. `F_dr` is a 64-node quadrature: run
+    /// once per parameter value, never per eval.
+    pub fn new(n: T, normalization: WolffNormalization) -> Self {
+        let one = T::c(1.0);
+        let k_pi = match normalization {
+            WolffNormalization::Raw => one,
+            // 1 − F(0) = 4n/(n+1)², without cancellation.
+            WolffNormalization::Normal => {
+                let n_plus_1 = n + one;
+                n_plus_1 * n_plus_1 / (n.scale(4.0) * (one - diffuse_fresnel_external(n)))
+            }
+            WolffNormalization::Physical => one / (n * n),
+        };
+        let f_dr_int = match normalization {
+            WolffNormalization::Physical => diffuse_fresnel_internal(n),
+            _ => T::c(0.0),
+        };
+        Self { transmittance: Transmittance::new(n), k_pi, f_dr_int, normalization }
+    }
+
+    pub fn coefficients(&self) -> [T; 4] {
+        [self.transmittance.n2, self.transmittance.n2_minus_1, self.k_pi, self.f_dr_int]
+    }
+
+    pub fn from_coefficients([n2, n2_minus_1, k_pi, f_dr_int]: [T; 4], normalization: WolffNormalization) -> Self {
+        Self { transmittance: Transmittance { n2, n2_minus_1 }, k_pi, f_dr_int, normalization }
+    }
+
+    /// `π K` for one reflectance channel. ρ is clamped to [0, 1] for `physical`, whose
+    /// geometric series diverges at ρ = 1/F_dr,int.
+    #[inline(always)]
+    pub fn k_pi(&self, rho: T) -> T {
+        match self.normalization {
+            WolffNormalization::Raw | WolffNormalization::Normal => rho * self.k_pi,
+            WolffNormalization::Physical => {
+                let rho = rho.clamp_to(0.0, 1.0);
+                rho * self.k_pi / (T::c(1.0) - rho * self.f_dr_int)
+            }
+        }
+    }
+}
+
+impl<T: Real> Kernel<T> for WolffKernel<T> {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        let t = self.transmittance.at(wi.z) * self.transmittance.at(wo.z);
+        rho.map(|r| self.k_pi(r) * t)
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wolff {
     int_ior: f32,
     ext_ior: f32,
     /// Relative index `n = int_ior / ext_ior`.
     eta: f32,
-    normalization: WolffNormalization,
     /// `F_dr,ext(n)`: cosine-weighted hemispherical Fresnel reflectance seen from outside.
     f_dr_ext: f32,
-    /// `F_dr,int = F_dr(1/n)`: the same seen from inside (includes total internal reflection).
-    f_dr_int: f32,
-    /// The per-eval transmittance `1 − F(θ, n)`.
-    transmittance: Transmittance,
-    /// The part of K that does not depend on ρ: `1/π` (raw), `1/(π (1 − F(0)) (1 − F_dr,ext))`
-    /// (normal), `1/(π n²)` (physical), computed in f64 so each eval multiplies once.
-    k_scale: f32,
+    kernel: WolffKernel<f32>,
 }
 
 impl Wolff {
@@ -76,23 +135,10 @@ impl Wolff {
                 format!("must be >= ext_ior: Wolff's model is a denser body under a smooth interface (got int_ior {int_ior} < ext_ior {ext_ior})"),
             ));
         }
-        let f_dr_ext = diffuse_fresnel_reflectance(eta);
-        let f0 = fresnel_dielectric(1.0, eta);
-        let k_scale = match normalization {
-            WolffNormalization::Raw => 1.0 / PI,
-            WolffNormalization::Normal => 1.0 / (PI * (1.0 - f0) * (1.0 - f_dr_ext)),
-            WolffNormalization::Physical => 1.0 / (PI * eta * eta),
-        };
-        Ok(Self {
-            int_ior: int_ior as f32,
-            ext_ior: ext_ior as f32,
-            eta: eta as f32,
-            normalization,
-            f_dr_ext: f_dr_ext as f32,
-            f_dr_int: diffuse_fresnel_reflectance(1.0 / eta) as f32,
-            transmittance: Transmittance::new(eta),
-            k_scale: k_scale as f32,
-        })
+        let k = WolffKernel::<f64>::new(eta, normalization);
+        let [_, _, k_pi, f_dr_int] = k.coefficients();
+        let kernel = WolffKernel { transmittance: k.transmittance.rounded(), k_pi: k_pi as f32, f_dr_int: f_dr_int as f32, normalization };
+        Ok(Self { int_ior: int_ior as f32, ext_ior: ext_ior as f32, eta: eta as f32, f_dr_ext: diffuse_fresnel_external(eta) as f32, kernel })
     }
 
     pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
@@ -113,31 +159,22 @@ impl Wolff {
         self.ext_ior
     }
     pub fn normalization(&self) -> WolffNormalization {
-        self.normalization
+        self.kernel.normalization
     }
-
-    /// The constant K for one reflectance channel. ρ is clamped to [0, 1] for `physical`,
-    /// whose geometric series diverges at ρ = 1/F_dr,int.
-    #[inline]
-    fn k(&self, rho: f32) -> f32 {
-        match self.normalization {
-            WolffNormalization::Raw | WolffNormalization::Normal => rho * self.k_scale,
-            WolffNormalization::Physical => {
-                let rho = rho.clamp(0.0, 1.0);
-                rho * self.k_scale / (1.0 - rho * self.f_dr_int)
-            }
-        }
+    pub fn kernel(&self) -> &WolffKernel<f32> {
+        &self.kernel
     }
 }
 
 impl DiffuseBrdf for Wolff {
     #[inline]
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        if !both_above(wi, wo) {
-            return [0.0; N];
-        }
-        let t = self.transmittance.at(wi.z) * self.transmittance.at(wo.z);
-        reflectance.map(|rho| self.k(rho) * t)
+        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+        BsdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
     }
 
     /// `E(θi) = K T(θi) π (1 − F_dr,ext)`, since `∫ T(θo) cos θo dωo = π (1 − F_dr,ext)`.
@@ -146,7 +183,7 @@ impl DiffuseBrdf for Wolff {
             0.0
         } else {
             let t_i = 1.0 - fresnel_dielectric(cos_theta_i, self.eta as f64);
-            self.k(reflectance) as f64 * t_i * PI * (1.0 - self.f_dr_ext as f64)
+            self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64)
         };
         Albedo { value, method: AlbedoMethod::ClosedForm }
     }

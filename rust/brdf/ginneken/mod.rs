@@ -1,6 +1,6 @@
 //! van Ginneken, Stavridi & Koenderink (Appl. Opt. 37(1), 1998), diffuse part: Lambertian
 //! facets on an isotropic Gaussian surface with per-axis rms slope `m`, shadowing and masking
-//! by the seed paper's eq. 5 (research page §4):
+//! by the seed paper's eq. 5:
 //!
 //! `f = (ρ/π) · P_ill+vis(wi, wo) · I(wi, wo) / (μi μo)`
 //!
@@ -16,20 +16,76 @@ pub mod slope_integral;
 pub mod table;
 
 use super::approx;
-use super::frame::{azimuthal_dot, both_above};
-use super::model::DiffuseBrdf;
+use super::kernel::{self, Kernel, azimuthal_dot};
+use super::model::{BsdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
-use glam::Vec3;
-use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction_f32};
+use super::real::{Real, V3};
+use glam::{Vec2, Vec3};
+use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
-use std::f32::consts::FRAC_1_PI;
 use std::sync::Arc;
-use table::SlopeTable;
+use table::{SlopeTable, axis_of_cos, lookup_in, mu_lambda_in};
 
 /// Cosines are clamped to this before entering `1/(μi μo)`-type terms: f stays finite (the
 /// model's back-scattering peak grows like 1/μ at grazing) without affecting any angle a
 /// renderer can resolve.
 const MIN_COS: f32 = 1e-7;
+
+/// van Ginneken's tables and options in any [`Real`], and its evaluation (the fast path).
+/// The tables are built for one roughness m₀; the traced kernels may carry `∂/∂m` tables and
+/// `dm = m − m₀` (zero in value, the roughness parameter's gradient in derivative), so that
+/// `I(m) ≈ I(m₀) + dm ∂I/∂m` gives the exact value and the first-order roughness gradient.
+#[derive(Clone, Copy)]
+pub struct GinnekenKernel<'t, T: Real> {
+    /// `I` at the nodes ([`SlopeTable::slope_nodes`]).
+    pub slope: T::Table<'t>,
+    /// `μΛ` at the nodes ([`SlopeTable::mu_lambda_nodes`]).
+    pub mu_lambda: T::Table<'t>,
+    /// `(∂I/∂m table, ∂(μΛ)/∂m table, m − m₀)` when the roughness gradient is wanted.
+    pub roughness_derivative: Option<(T::Table<'t>, T::Table<'t>, T)>,
+    pub shadowing: Shadowing,
+}
+
+impl<'t, T: Real> GinnekenKernel<'t, T> {
+    #[inline(always)]
+    fn slope_integral(&self, x_i: T, x_o: T, cos_phi: T) -> T {
+        let v = lookup_in(self.slope, x_i, x_o, cos_phi);
+        match self.roughness_derivative {
+            Some((d_slope, _, dm)) => dm.fma(lookup_in(d_slope, x_i, x_o, cos_phi), v),
+            None => v,
+        }
+    }
+
+    #[inline(always)]
+    fn mu_lambda(&self, x: T) -> T {
+        let v = mu_lambda_in(self.mu_lambda, x);
+        match self.roughness_derivative {
+            Some((_, d_mu_lambda, dm)) => dm.fma(mu_lambda_in(d_mu_lambda, x), v),
+            None => v,
+        }
+    }
+}
+
+impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
+        // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo; the product of the sines is one
+        // square root of the product of the squared sines. Δφ itself (for the visibility) is
+        // the angle of (s, c) with c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos
+        // after this square root and division, which would make the chain longer.
+        let s = azimuthal_dot(wi, wo);
+        let sin2_prod = (wi.x * wi.x + wi.y * wi.y) * (wo.x * wo.x + wo.y * wo.y);
+        let defined = sin2_prod.gt(T::c(1e-24));
+        let cos_phi = T::select(defined, (s / sin2_prod.max(T::c(1e-24)).sqrt()).clamp_to(-1.0, 1.0), T::c(1.0));
+        let phi = T::select(defined, approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s), T::c(0.0));
+        let (x_i, x_o) = (axis_of_cos(mu_i), axis_of_cos(mu_o));
+        let (num, den) = visibility_fraction(self.shadowing, mu_i, mu_o, self.mu_lambda(x_i), self.mu_lambda(x_o), phi);
+        // num/den does not wait for the table lookup (usually a cache miss).
+        let g = self.slope_integral(x_i, x_o, cos_phi) * (num / den);
+        rho.map(|r| r * g)
+    }
+}
 
 #[derive(Clone, Debug)]
 pub struct Ginneken {
@@ -94,28 +150,28 @@ impl Ginneken {
     }
 }
 
+impl Ginneken {
+    /// The CPU kernel: this roughness's tables, no derivative.
+    #[inline(always)]
+    pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
+        GinnekenKernel { slope: self.table.slope_nodes(), mu_lambda: self.table.mu_lambda_nodes(), roughness_derivative: None, shadowing: self.shadowing }
+    }
+
+    /// The tables (shared between instances of the same roughness).
+    pub fn table(&self) -> &SlopeTable {
+        &self.table
+    }
+}
+
 impl DiffuseBrdf for Ginneken {
     #[inline(always)]
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        if !both_above(wi, wo) {
-            return [0.0; N];
-        }
-        let clamp_cos = |mu: f32| approx::at_most(approx::at_least(mu, MIN_COS), 1.0);
-        let (mu_i, mu_o) = (clamp_cos(wi.z), clamp_cos(wo.z));
-        // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo; the product of the sines is one
-        // square root of the product of the squared sines. Δφ itself (for the visibility) is
-        // the angle of (s, c) with c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos
-        // after this square root and division, which would make the chain longer.
-        let s = azimuthal_dot(wi, wo);
-        let sin2_prod = (wi.x * wi.x + wi.y * wi.y) * (wo.x * wo.x + wo.y * wo.y);
-        let defined = sin2_prod > 1e-24;
-        let cos_phi = if defined { approx::at_most(approx::at_least(s / sin2_prod.sqrt(), -1.0), 1.0) } else { 1.0 };
-        let phi = if defined { approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s) } else { 0.0 };
-        let (x_i, x_o) = (table::axis_of_cos(mu_i), table::axis_of_cos(mu_o));
-        let (num, den) = visibility_fraction_f32(self.shadowing, mu_i, mu_o, self.table.mu_lambda(x_i), self.table.mu_lambda(x_o), phi);
-        // num/den does not wait for the table lookup (usually a cache miss).
-        let g = self.table.lookup(x_i, x_o, cos_phi) * (FRAC_1_PI * num / den);
-        reflectance.map(|rho| rho * g)
+        kernel::eval(&self.kernel(), wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+        BsdfSample::from_kernel(kernel::sample(&self.kernel(), wi.into(), u.x, u.y, reflectance))
     }
 }
 

@@ -1,4 +1,4 @@
-//! Shadowing and masking of the Gaussian rough surface (research page §4c–4d).
+//! Shadowing and masking of the Gaussian rough surface (van Ginneken et al. 1998, §3; Smith 1967).
 //!
 //! Smith's `Λ(θ) = ½ [√(2/π) e^{−a²/2}/a − erfc(a/√2)]`, `a = cot θ / m`, m the per-axis rms
 //! slope. The seed paper's `Σ(r, θ)` is this Λ with r = m (its eq. 5 has the same exponent
@@ -9,6 +9,7 @@
 //! `P = 1 / (1 + Λ(θmax) + α(φ) Λ(θmin))`, `α(φ) = 4.41 φ / (4.41 φ + 1)`, φ = |Δφ| ∈ [0, π]
 //! in radians. The `height_correlated` alternative is `1 / (1 + Λi + Λo)`.
 
+use crate::brdf::real::Real;
 use std::f64::consts::PI;
 
 /// Which joint masking-shadowing function to use.
@@ -42,6 +43,20 @@ pub fn mu_lambda(mu: f64, sin: f64, m: f64) -> f64 {
     v.max(0.0)
 }
 
+/// `∂(μΛ)/∂m` (f64 reference, for the traced kernels' roughness gradient). With
+/// `a = μ/(m sin θ)` the two terms' dependence through `a` cancels, leaving
+/// `½ √(2/π) sin θ e^{−a²/2}`.
+pub fn d_mu_lambda_dm(mu: f64, sin: f64, m: f64) -> f64 {
+    if sin <= 0.0 || mu <= 0.0 {
+        return 0.0;
+    }
+    let a = mu / (m * sin);
+    if a > 12.0 {
+        return 0.0;
+    }
+    0.5 * (2.0 / PI).sqrt() * sin * (-0.5 * a * a).exp()
+}
+
 /// `α(φ) = 4.41 φ/(4.41 φ + 1)` with φ folded into [0, π] from `cos Δφ`.
 #[inline]
 pub fn azimuth_correlation(cos_phi: f64) -> f64 {
@@ -49,21 +64,23 @@ pub fn azimuth_correlation(cos_phi: f64) -> f64 {
     4.41 * phi / (4.41 * phi + 1.0)
 }
 
-/// `(μi μo / P_ill+vis)` as a fraction `(num, den)` with `μi μo / P = den / num`: the f32
-/// per-eval form of [`visibility_denominator`], given the azimuth difference `phi` ∈ [0, π]
-/// (radians). For `vginneken`, `α = k/(k+1)` (k = 4.41 φ) is folded into the fraction so
-/// that the eval divides once: with `a = μmin μmax + μmax Λμmin`, `b = μmin Λμmax`,
-/// `den = a(k+1) + k b = a + k(a+b)`, `num = k + 1`.
-#[inline]
-pub fn visibility_fraction_f32(shadowing: Shadowing, mu_i: f32, mu_o: f32, ml_i: f32, ml_o: f32, phi: f32) -> (f32, f32) {
+/// `(μi μo / P_ill+vis)` as a fraction `(num, den)` with `μi μo / P = den / num`: the
+/// per-eval form of [`visibility_denominator`] in any [`Real`], given the azimuth difference
+/// `phi` ∈ [0, π] (radians). For `vginneken`, `α = k/(k+1)` (k = 4.41 φ) is folded into the
+/// fraction so that the eval divides once: with `a = μmin μmax + μmax Λμmin`,
+/// `b = μmin Λμmax`, `den = a(k+1) + k b = a + k(a+b)`, `num = k + 1`.
+#[inline(always)]
+pub fn visibility_fraction<T: Real>(shadowing: Shadowing, mu_i: T, mu_o: T, ml_i: T, ml_o: T, phi: T) -> (T, T) {
     match shadowing {
-        Shadowing::HeightCorrelated => (1.0, mu_i * mu_o + mu_o * ml_i + mu_i * ml_o),
+        Shadowing::HeightCorrelated => (T::c(1.0), mu_i * mu_o + mu_o * ml_i + mu_i * ml_o),
         Shadowing::VanGinneken => {
-            let (mu_min, ml_min, mu_max, ml_max) = if mu_i <= mu_o { (mu_i, ml_i, mu_o, ml_o) } else { (mu_o, ml_o, mu_i, ml_i) };
+            let i_is_min = mu_i.le(mu_o);
+            let (mu_min, ml_min) = (T::select(i_is_min, mu_i, mu_o), T::select(i_is_min, ml_i, ml_o));
+            let (mu_max, ml_max) = (T::select(i_is_min, mu_o, mu_i), T::select(i_is_min, ml_o, ml_i));
             let a = mu_min * mu_max + mu_max * ml_min;
             let b = mu_min * ml_max;
-            let k = 4.41 * phi;
-            (k + 1.0, k.mul_add(a + b, a))
+            let k = phi.scale(4.41);
+            (k + T::c(1.0), k.fma(a + b, a))
         }
     }
 }

@@ -13,9 +13,9 @@
 //!
 //! `I(θi, θo, Δφ) = I(θo, θi, Δφ)`, so only `x_i ≤ x_o` is integrated and the rest mirrored.
 
-use super::shadowing::mu_lambda;
+use super::shadowing::{d_mu_lambda_dm, mu_lambda};
 use super::slope_integral::SlopeIntegrator;
-use crate::brdf::approx::{at_least, at_most};
+use crate::brdf::real::Real;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock, Weak};
@@ -37,44 +37,72 @@ type Grid = [[[f32; C_NODES]; U_NODES]; U_NODES];
 #[derive(Debug)]
 pub struct SlopeTable {
     data: Box<Grid>,
+    /// `∂I/∂m` at the same nodes (the traced kernels' roughness gradient).
+    d_data: Box<Grid>,
     /// `μΛ(μ)` at [`LAMBDA_NODES`] points of the direction axis.
     mu_lambda: Box<[f32; LAMBDA_NODES]>,
+    /// `∂(μΛ)/∂m` at the same points.
+    d_mu_lambda: Box<[f32; LAMBDA_NODES]>,
 }
 
 impl SlopeTable {
-    /// Tabulates `I` for roughness `m` (parallel over rows; ~66k integrals).
+    /// Tabulates `I` and `∂I/∂m` for roughness `m` (parallel over rows; ~66k integrals).
     pub fn build(m: f64) -> Self {
         let (n_u, n_c) = (U_NODES, C_NODES);
         let integrator = SlopeIntegrator::new(BUILD_NODES);
         let mu_at = |k: usize| cos_of_axis(k as f64 / (n_u - 1) as f64);
-        let rows: Vec<Vec<f32>> = (0..n_u)
+        let rows: Vec<Vec<(f32, f32)>> = (0..n_u)
             .into_par_iter()
             .map(|iu_i| {
-                let mut row = vec![0.0f32; n_u * n_c];
+                let mut row = vec![(0.0f32, 0.0f32); n_u * n_c];
                 for iu_o in iu_i..n_u {
                     for ic in 0..n_c {
                         let c = -1.0 + 2.0 * ic as f64 / (n_c - 1) as f64;
-                        row[iu_o * n_c + ic] = integrator.integral(m, mu_at(iu_i), mu_at(iu_o), c.clamp(-1.0, 1.0).acos()) as f32;
+                        let (v, d) = integrator.integral_and_derivative(m, mu_at(iu_i), mu_at(iu_o), c.clamp(-1.0, 1.0).acos());
+                        row[iu_o * n_c + ic] = (v as f32, d as f32);
                     }
                 }
                 row
             })
             .collect();
-        let mut data: Box<Grid> = vec![[[0.0f32; C_NODES]; U_NODES]; U_NODES].into_boxed_slice().try_into().expect("U_NODES rows");
+        let zeros = || -> Box<Grid> { vec![[[0.0f32; C_NODES]; U_NODES]; U_NODES].into_boxed_slice().try_into().expect("U_NODES rows") };
+        let (mut data, mut d_data) = (zeros(), zeros());
         for iu_i in 0..n_u {
             for iu_o in iu_i..n_u {
                 for ic in 0..n_c {
-                    let v = rows[iu_i][iu_o * n_c + ic];
-                    data[iu_i][iu_o][ic] = v;
-                    data[iu_o][iu_i][ic] = v;
+                    let (v, d) = rows[iu_i][iu_o * n_c + ic];
+                    (data[iu_i][iu_o][ic], d_data[iu_i][iu_o][ic]) = (v, d);
+                    (data[iu_o][iu_i][ic], d_data[iu_o][iu_i][ic]) = (v, d);
                 }
             }
         }
-        let mu_lambda = Box::new(std::array::from_fn(|k| {
-            let mu = cos_of_axis(k as f64 / (LAMBDA_NODES - 1) as f64);
-            mu_lambda(mu, (1.0 - mu * mu).max(0.0).sqrt(), m) as f32
-        }));
-        Self { data, mu_lambda }
+        let on_axis = |f: &dyn Fn(f64, f64) -> f64| {
+            Box::new(std::array::from_fn(|k| {
+                let mu = cos_of_axis(k as f64 / (LAMBDA_NODES - 1) as f64);
+                f(mu, (1.0 - mu * mu).max(0.0).sqrt()) as f32
+            }))
+        };
+        Self { data, d_data, mu_lambda: on_axis(&|mu, sin| mu_lambda(mu, sin, m)), d_mu_lambda: on_axis(&|mu, sin| d_mu_lambda_dm(mu, sin, m)) }
+    }
+
+    /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_in`] gathers from).
+    pub fn slope_nodes(&self) -> &[f32] {
+        self.data.as_flattened().as_flattened()
+    }
+
+    /// `∂I/∂m` at the nodes, flat as [`Self::slope_nodes`].
+    pub fn slope_derivative_nodes(&self) -> &[f32] {
+        self.d_data.as_flattened().as_flattened()
+    }
+
+    /// `μΛ` at the nodes of its axis.
+    pub fn mu_lambda_nodes(&self) -> &[f32] {
+        &self.mu_lambda[..]
+    }
+
+    /// `∂(μΛ)/∂m` at the nodes of its axis.
+    pub fn mu_lambda_derivative_nodes(&self) -> &[f32] {
+        &self.d_mu_lambda[..]
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -95,26 +123,40 @@ impl SlopeTable {
         table
     }
 
-    /// Trilinear interpolation at axis coordinates `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`.
-    #[inline(always)]
-    pub fn lookup(&self, u_i: f32, u_o: f32, c: f32) -> f32 {
-        let (i0, fi) = cell(u_i * (U_NODES - 1) as f32, U_NODES);
-        let (o0, fo) = cell(u_o * (U_NODES - 1) as f32, U_NODES);
-        let half = 0.5 * (C_NODES - 1) as f32;
-        let (c0, fc) = cell(c.mul_add(half, half), C_NODES);
-        // Trilinear interpolation as the weighted sum of the eight corners: the weights are
-        // ready before the (usually cache-missing) loads return, after which only a product
-        // and a sum remain (nested lerps would leave three dependent levels).
-        let (gi, go, gc) = (1.0 - fi, 1.0 - fo, 1.0 - fc);
-        let d = &*self.data;
-        let pair = |i: usize, o: usize, w: f32| {
-            let row = &d[i][o];
-            (w * gc).mul_add(row[c0], (w * fc) * row[c0 + 1])
-        };
-        let v0 = pair(i0, o0, gi * go) + pair(i0, o0 + 1, gi * fo);
-        let v1 = pair(i0 + 1, o0, fi * go) + pair(i0 + 1, o0 + 1, fi * fo);
-        v0 + v1
-    }
+}
+
+/// Trilinear interpolation of a flat [`SlopeTable::slope_nodes`]-shaped table at axis
+/// coordinates `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`, in any [`Real`]. Written as
+/// the weighted sum of the eight corners: the weights are ready before the (usually
+/// cache-missing) loads return, after which only a product and a sum remain (nested lerps
+/// would leave three dependent levels).
+#[inline(always)]
+pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
+    let one = T::c(1.0);
+    let (i0, fi) = cell(u_i.scale((U_NODES - 1) as f64), U_NODES);
+    let (o0, fo) = cell(u_o.scale((U_NODES - 1) as f64), U_NODES);
+    let half = T::c(0.5 * (C_NODES - 1) as f64);
+    let (c0, fc) = cell(c.fma(half, half), C_NODES);
+    let (gi, go, gc) = (one - fi, one - fo, one - fc);
+    let base = (i0.scale(U_NODES as f64) + o0).fma(T::c(C_NODES as f64), c0);
+    let pair = |offset: usize, w: T| {
+        let at = base + T::c(offset as f64);
+        (w * gc).fma(T::gather(table, at), (w * fc) * T::gather(table, at + one))
+    };
+    let row = C_NODES;
+    let plane = U_NODES * C_NODES;
+    let v0 = pair(0, gi * go) + pair(row, gi * fo);
+    let v1 = pair(plane, fi * go) + pair(plane + row, fi * fo);
+    v0 + v1
+}
+
+/// A [`SlopeTable::mu_lambda_nodes`]-shaped table at axis coordinate `x` ([`axis_of_cos`]),
+/// linearly interpolated, in any [`Real`].
+#[inline(always)]
+pub fn mu_lambda_in<T: Real>(table: T::Table<'_>, x: T) -> T {
+    let (i, f) = cell(x.scale((LAMBDA_NODES - 1) as f64), LAMBDA_NODES);
+    let (a, b) = (T::gather(table, i), T::gather(table, i + T::c(1.0)));
+    f.fma(b - a, a)
 }
 
 /// Table coordinate of a direction with cosine `mu`: `x = a/(a+b)`, `a = √(1−μ)`, `b = √μ`.
@@ -123,27 +165,17 @@ impl SlopeTable {
 /// of μ. Evaluated as `x = (1 − μ + q)/(1 + 2q)`, `q = ab = √(μ(1−μ))` (multiply `a/(a+b)`
 /// above and below by `a+b`): one square root instead of two, all terms ≥ 0 (no cancellation).
 #[inline(always)]
-pub fn axis_of_cos(mu: f32) -> f32 {
-    let mu = at_most(at_least(mu, 0.0), 1.0);
-    let one_minus = 1.0 - mu;
-    let q = (mu * one_minus).sqrt();
-    (one_minus + q) / (1.0 + 2.0 * q)
+pub fn axis_of_cos<T: Real>(mu: T) -> T {
+    let mu = mu.clamp_to(0.0, 1.0);
+    let one_minus = T::c(1.0) - mu;
+    let q = (mu * one_minus).safe_sqrt();
+    (one_minus + q) / (T::c(1.0) + q.scale(2.0))
 }
 
 /// Inverse of [`axis_of_cos`]: `μ = (1−x)² / ((1−x)² + x²)`.
 pub fn cos_of_axis(x: f64) -> f64 {
     let y = 1.0 - x;
     y * y / (y * y + x * x)
-}
-
-impl SlopeTable {
-    /// `μΛ(μ)` at axis coordinate `x` ([`axis_of_cos`]), linearly interpolated.
-    #[inline(always)]
-    pub fn mu_lambda(&self, x: f32) -> f32 {
-        let (i, f) = cell(x * (LAMBDA_NODES - 1) as f32, LAMBDA_NODES);
-        let t = &self.mu_lambda;
-        t[i] + f * (t[i + 1] - t[i])
-    }
 }
 
 #[cfg(test)]
@@ -159,16 +191,13 @@ impl SlopeTable {
     }
 }
 
-/// Lower node index and fraction for the position `s ∈ [0, n−1]` (in node units) on a grid of
-/// `n` nodes (clamped so that `index + 1` is valid; NaN maps to 0). The eval calls this five
-/// times and its result heads the table lookup's dependency chain, so: the float clamps are
-/// single instructions ([`at_least`], where `f32::clamp` compiled to branches); the fraction
-/// comes from `floor` (no float → int → float round trip on its path); the index is clamped
-/// as an integer, which lets the compiler drop the bounds checks.
+/// Lower node index (as an integer-valued float) and fraction for the position
+/// `s ∈ [0, n−1]` (in node units) on a grid of `n` nodes, clamped so that `index + 1` is valid;
+/// NaN maps to 0. The fraction comes from `floor` (no float → int → float round trip).
 #[inline(always)]
-fn cell(s: f32, n: usize) -> (usize, f32) {
-    let last = (n - 2) as f32;
-    let s = at_most(at_least(s, 0.0), last + 1.0);
-    let lower = at_most(s.floor(), last);
-    ((lower as i32).clamp(0, n as i32 - 2) as usize, s - lower)
+fn cell<T: Real>(s: T, n: usize) -> (T, T) {
+    let last = (n - 2) as f64;
+    let s = s.clamp_to(0.0, last + 1.0);
+    let lower = s.floor().min(T::c(last));
+    (lower, s - lower)
 }

@@ -1,0 +1,66 @@
+//! What every model's evaluation shares, written once over [`Real`]: the one-sided mask,
+//! Mitsuba's `eval_pdf` convention and cosine-weighted sampling. A model supplies only its
+//! reduced BRDF `π f` ([`Kernel::reduced_f`]); the sampling weight `f cos θo / pdf` is then
+//! exactly that (cosine and `1/π` cancel analytically), so `lambert`'s weight is `ρ` exactly,
+//! as Mitsuba's `diffuse` returns.
+
+use super::real::{Real, V3};
+use super::sampling::{cosine_hemisphere, cosine_pdf};
+use std::f64::consts::FRAC_1_PI;
+
+/// A model's evaluation with its parameter-derived constants in `T`.
+pub trait Kernel<T: Real> {
+    /// `π f(wi, wo)` per reflectance channel, for directions both strictly above the surface
+    /// (callers mask the others). Must be finite for every input, including the masked ones.
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N];
+}
+
+/// Both directions strictly above the surface: every matte model is one-sided.
+#[inline(always)]
+pub fn both_above<T: Real>(wi: V3<T>, wo: V3<T>) -> T::Mask {
+    wi.z.gt(T::c(0.0)) & wo.z.gt(T::c(0.0))
+}
+
+/// `f(wi, wo)` in 1/sr, without the cosine; 0 unless both directions are above.
+#[inline(always)]
+pub fn eval<T: Real, K: Kernel<T>, const N: usize>(k: &K, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+    let above = both_above(wi, wo);
+    if T::none(above) {
+        return [T::c(0.0); N];
+    }
+    let h = k.reduced_f(wi, wo, rho);
+    h.map(|x| T::select(above, x * T::c(FRAC_1_PI), T::c(0.0)))
+}
+
+/// Mitsuba's `eval_pdf`: `(f cos θo per channel, pdf of cosine sampling)`, both 0 unless both
+/// directions are above. `(ρ·(1/π))·cos θo` for Lambert: the operations of `diffuse`.
+#[inline(always)]
+pub fn eval_cos_pdf<T: Real, K: Kernel<T>, const N: usize>(k: &K, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> ([T; N], T) {
+    let above = both_above(wi, wo);
+    if T::none(above) {
+        return ([T::c(0.0); N], T::c(0.0));
+    }
+    let f = eval(k, wi, wo, rho);
+    (f.map(|x| x * wo.z), T::select(above, cosine_pdf(wo.z), T::c(0.0)))
+}
+
+/// A cosine-weighted sample: `(wo, weight = f cos θo / pdf per channel, pdf)`. Weight and pdf
+/// are 0 when nothing can be drawn (`wi` at or below the horizon, or `wo` on it).
+#[inline(always)]
+pub fn sample<T: Real, K: Kernel<T>, const N: usize>(k: &K, wi: V3<T>, u1: T, u2: T, rho: [T; N]) -> (V3<T>, [T; N], T) {
+    let zero = T::c(0.0);
+    if T::none(wi.z.gt(zero)) {
+        return (V3::new(zero, zero, zero), [zero; N], zero);
+    }
+    let wo = cosine_hemisphere(u1, u2);
+    let valid = wi.z.gt(zero) & wo.z.gt(zero);
+    let weight = k.reduced_f(wi, wo, rho).map(|x| T::select(valid, x, zero));
+    (wo, weight, T::select(valid, cosine_pdf(wo.z), zero))
+}
+
+/// `wi·wo − μi μo = sin θi sin θo cos Δφ`: the trig-free azimuthal term of the Oren–Nayar
+/// family (Oren & Nayar 1994, eq. 30 rewritten without angles).
+#[inline(always)]
+pub fn azimuthal_dot<T: Real>(wi: V3<T>, wo: V3<T>) -> T {
+    wi.x * wo.x + wi.y * wo.y
+}

@@ -1,0 +1,183 @@
+//! The scalar the kernels are written against, so that each model is written once:
+//! - `f32`: the Rust renderer, the CLI and Mitsuba's scalar variants;
+//! - `f64`: parameter-only precomputation on the CPU (coefficients, Fresnel averages), rounded
+//!   to f32 afterwards, as the kernels always did;
+//! - `Traced` (`crate::ffi::traced`): every operation becomes one Dr.Jit operation on the
+//!   Mitsuba variant's own `Float`, so the same Rust source is recorded into Dr.Jit's IR
+//!   (symbolic loops and calls, automatic differentiation, the LLVM and CUDA backends).
+//!
+//! Kernels must be branch-free over values: a traced comparison is not a `bool`, so an `if`
+//! on a value does not compile for it. Value-dependent choices are [`Real::select`]; early
+//! returns are kept for the CPU through [`Real::none`], which never changes a result.
+//! Branch-free code must also stay finite on lanes a `select` discards: automatic
+//! differentiation propagates a NaN from a discarded lane (multiplied by a zero adjoint).
+//! So square roots take `max(x, 0)` and divisors are clamped away from zero.
+
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+pub trait Real:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Div<Output = Self> + Neg<Output = Self>
+{
+    type Mask: Copy + BitAnd<Output = Self::Mask> + BitOr<Output = Self::Mask> + Not<Output = Self::Mask>;
+    /// A read-only table of f32 values indexed by [`Real::gather`] (a slice on the CPU, a
+    /// Dr.Jit buffer uploaded once when traced).
+    type Table<'t>: Copy;
+
+    /// A constant, rounded to the type's precision (needs no trace context).
+    fn c(v: f64) -> Self;
+    fn sqrt(self) -> Self;
+    fn abs(self) -> Self;
+    fn floor(self) -> Self;
+    /// `self · b + c` with one rounding.
+    fn fma(self, b: Self, c: Self) -> Self;
+    /// `min`/`max` as one instruction: a NaN operand gives the other one (the clamps rely on
+    /// this to map NaN into range), as `minss`/`maxss` and Dr.Jit's `minimum`/`maximum`.
+    fn min(self, o: Self) -> Self;
+    fn max(self, o: Self) -> Self;
+    fn lt(self, o: Self) -> Self::Mask;
+    fn le(self, o: Self) -> Self::Mask;
+    fn gt(self, o: Self) -> Self::Mask;
+    fn eq(self, o: Self) -> Self::Mask;
+    fn select(m: Self::Mask, t: Self, f: Self) -> Self;
+    /// `true` only when the mask is known to be all false: the CPU's early return. Traced
+    /// types cannot read values while recording and answer `false` (unless the mask is a
+    /// literal). Results never depend on it.
+    fn none(m: Self::Mask) -> bool;
+    /// `(sin x, cos x)`: Cephes' single-precision scheme on the CPU (what Dr.Jit evaluates,
+    /// `sampling::sincos_cephes`), Dr.Jit's own `sincos` when traced.
+    fn sincos(self) -> (Self, Self);
+    /// `table[idx]` for a non-negative integer-valued `idx` (exact below 2²⁴); out of range
+    /// gives 0 on the CPU (callers clamp, so this never happens).
+    fn gather(table: Self::Table<'_>, idx: Self) -> Self;
+    /// The mask as a literal (for masks that do not depend on any value).
+    fn mask(v: bool) -> Self::Mask;
+
+    #[inline(always)]
+    fn ge(self, o: Self) -> Self::Mask {
+        o.le(self)
+    }
+    /// `self · k` for a constant `k`.
+    #[inline(always)]
+    fn scale(self, k: f64) -> Self {
+        self * Self::c(k)
+    }
+    /// `max(0, x)` then the square root: finite on every lane.
+    #[inline(always)]
+    fn safe_sqrt(self) -> Self {
+        self.max(Self::c(0.0)).sqrt()
+    }
+    /// Clamp into `[lo, hi]` (NaN gives `lo`).
+    #[inline(always)]
+    fn clamp_to(self, lo: f64, hi: f64) -> Self {
+        self.max(Self::c(lo)).min(Self::c(hi))
+    }
+}
+
+/// The CPU implementations: `bool` masks, branchy selects (the compiler turns them into
+/// blends where that pays), one `minss`/`maxss` per clamp.
+macro_rules! cpu_real {
+    ($t:ty, $table:ty) => {
+        impl Real for $t {
+            type Mask = bool;
+            type Table<'t> = $table;
+
+            #[inline(always)]
+            fn c(v: f64) -> Self {
+                v as $t
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                <$t>::abs(self)
+            }
+            #[inline(always)]
+            fn floor(self) -> Self {
+                <$t>::floor(self)
+            }
+            #[inline(always)]
+            fn fma(self, b: Self, c: Self) -> Self {
+                self.mul_add(b, c)
+            }
+            #[inline(always)]
+            fn min(self, o: Self) -> Self {
+                if self < o { self } else { o }
+            }
+            #[inline(always)]
+            fn max(self, o: Self) -> Self {
+                if self > o { self } else { o }
+            }
+            #[inline(always)]
+            fn lt(self, o: Self) -> bool {
+                self < o
+            }
+            #[inline(always)]
+            fn le(self, o: Self) -> bool {
+                self <= o
+            }
+            #[inline(always)]
+            fn gt(self, o: Self) -> bool {
+                self > o
+            }
+            #[inline(always)]
+            fn eq(self, o: Self) -> bool {
+                self == o
+            }
+            #[inline(always)]
+            fn select(m: bool, t: Self, f: Self) -> Self {
+                if m { t } else { f }
+            }
+            #[inline(always)]
+            fn none(m: bool) -> bool {
+                !m
+            }
+            #[inline(always)]
+            fn mask(v: bool) -> bool {
+                v
+            }
+            #[inline(always)]
+            fn sincos(self) -> (Self, Self) {
+                let (s, c) = crate::brdf::sampling::sincos_cephes(self as f32);
+                (s as $t, c as $t)
+            }
+            #[inline(always)]
+            fn gather(table: &[f32], idx: Self) -> Self {
+                table.get(idx as usize).copied().unwrap_or(0.0) as $t
+            }
+        }
+    };
+}
+
+cpu_real!(f32, &'t [f32]);
+cpu_real!(f64, &'t [f32]);
+
+/// A direction (or any 3-vector) in the local frame, in any [`Real`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct V3<T> {
+    pub x: T,
+    pub y: T,
+    pub z: T,
+}
+
+impl<T: Real> V3<T> {
+    #[inline(always)]
+    pub fn new(x: T, y: T, z: T) -> Self {
+        Self { x, y, z }
+    }
+}
+
+impl From<glam::Vec3> for V3<f32> {
+    #[inline(always)]
+    fn from(v: glam::Vec3) -> Self {
+        V3 { x: v.x, y: v.y, z: v.z }
+    }
+}
+
+impl From<V3<f32>> for glam::Vec3 {
+    #[inline(always)]
+    fn from(v: V3<f32>) -> Self {
+        glam::Vec3::new(v.x, v.y, v.z)
+    }
+}
