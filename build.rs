@@ -8,4 +8,5 @@ fn main() {
     cxx_build::bridge("rust/ffi/bridge.rs").std("c++17").flag_if_supported("-fPIC").compile("matte-ffi");
     println!("cargo:rerun-if-changed=rust/ffi/bridge.rs");
     println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=cpp/arena.h");
 }

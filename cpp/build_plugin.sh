@@ -14,11 +14,13 @@ OBJ=target/plugin
 mkdir -p "$OUT" "$OBJ"
 
 cargo build --release --quiet   # libmatte.a, the cxx headers, and the matte binary
+# The generated bridge header includes "matte/cpp/arena.h" (crate-relative).
+mkdir -p target/inc && ln -sfn "$PWD" target/inc/matte
 
 CXXFLAGS=(-std=c++17 -O3 -fPIC -fvisibility=hidden -fno-strict-aliasing -march=x86-64-v3
           -DMI_ENABLE_LLVM=1 -DMI_ENABLE_CUDA=1 -DMI_ENABLE_EMBREE=1 -DMI_ENABLE_AUTODIFF=1 -DNDEBUG
           -I"$SP/mitsuba/include" -I"$SP/drjit/include" -I"$SP/nanobind/include"
-          -I"$SP/nanobind/ext/robin_map/include" -Itarget/cxxbridge)
+          -I"$SP/nanobind/ext/robin_map/include" -Itarget/cxxbridge -Itarget/inc)
 g++ "${CXXFLAGS[@]}" -c cpp/plugin.cpp -o "$OBJ/plugin.o"
 g++ -shared -o "$OUT/matte_bsdfs.so" "$OBJ/plugin.o" target/release/libmatte.a \
     -Wl,--gc-sections -Wl,--version-script=cpp/exports.map -s \

@@ -16,12 +16,16 @@
  * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
  * cosine-weighted. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
  *
- * Variants: scalar_rgb and scalar_spectral call the kernels per lane. The llvm variants
- * (llvm_ad_rgb, llvm_ad_mono, llvm_ad_spectral) run in Dr.Jit's *evaluated* mode: the
- * inputs are evaluated, their host buffers handed to a Rust batch function and the results
- * loaded back. A Rust function cannot be traced into a Dr.Jit kernel, so calling the
- * plugin inside a symbolic loop or call raises an error that says which flags to switch off.
- * Gradients do not flow through the kernels: parameters are exposed as non-differentiable.
+ * Variants: every variant of the wheel. Scalar variants call the f32 kernels per call. JIT
+ * variants (llvm_ad_*, cuda_ad_*, rgb, mono, spectral and polarized) *trace* the same Rust
+ * kernels: each operation becomes one Dr.Jit operation on the variant's `Float`, recorded
+ * through the arena (cpp/arena_impl.h, rust/ffi/traced.rs). So the plugin works in symbolic
+ * loops and calls (Dr.Jit's default mode, the `mitsuba` tool's default), on the CPU and the
+ * GPU, and autodiff sees every operation: `reflectance` and the numeric parameters (sigma,
+ * roughness, int_ior, ext_ior) are differentiable. The numeric parameters are opaque Dr.Jit
+ * values, and the kernel constants derived from them are computed once per
+ * `parameters_changed` (with their AD graph), so changing a value never recompiles a kernel.
+ * Polarized variants are depolarizing, as Mitsuba's `diffuse`.
  */
 #pragma once
 
@@ -32,7 +36,9 @@
 
 #include "rust/cxx.h"  // rust::Error (the generated header declares only what it uses)
 #include "matte/rust/ffi/bridge.rs.h"
+#include "arena_impl.h"
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -71,31 +77,40 @@ public:
             }
         }
         build_model();
+        // The numeric parameters with their effective values (defaults filled in), as the
+        // variant's Float: fixed from here on (traverse hands out references to them).
+        for (const auto &p : (*m_model)->numeric_parameters()) {
+            m_names.emplace_back(std::string(p.name));
+            m_values.push_back(Float((ScalarFloat) p.number));
+        }
+        update_traced_kernel();
         m_flags = BSDFFlags::DiffuseReflection | BSDFFlags::FrontSide;
         m_components.push_back(m_flags);
     }
 
     void traverse(TraversalCallback *cb) override {
-        cb->put("reflectance", m_reflectance, ParamFlags::NonDifferentiable);
-        for (auto &[name, value] : m_numeric)
-            cb->put(name, value, ParamFlags::NonDifferentiable);
+        cb->put("reflectance", m_reflectance, ParamFlags::Differentiable);
+        for (size_t k = 0; k < m_values.size(); ++k)
+            cb->put(m_names[k], m_values[k], ParamFlags::Differentiable);
     }
 
     void parameters_changed(const std::vector<std::string> & /*keys*/ = {}) override {
         // Numeric parameters may have been edited through mi.traverse(): rebuild the model
-        // with the new values (validated again by the kernels).
-        for (auto &[name, value] : m_numeric) {
+        // with the new values (validated again by the kernels), then the traced constants.
+        for (size_t k = 0; k < m_values.size(); ++k) {
+            double value = scalar_value(m_values[k]);
             bool found = false;
             for (auto &p : m_params)
-                if (std::string(p.name) == name) {
+                if (std::string(p.name) == m_names[k]) {
                     p.is_number = true;
-                    p.number = (double) value;
+                    p.number = value;
                     found = true;
                 }
             if (!found)
-                m_params.push_back(number_param(name, (double) value));
+                m_params.push_back(number_param(m_names[k], value));
         }
         build_model();
+        update_traced_kernel();
     }
 
     std::pair<BSDFSample3f, Spectrum> sample(const BSDFContext &ctx,
@@ -122,18 +137,22 @@ public:
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = weight.v[c];
         } else {
-            require_evaluated_mode("sample");
-            size_t n = dr::width(si.wi, sample2, value, active);
-            MaskD mask = scheduled_mask(active);
-            std::vector<FloatD> in = evaluated(si.wi, sample2, value);
-            std::vector<FloatD> out = allocated(n, Channels + 4);  // weight, pdf, wo
-            matte::ffi::LanesIn lanes_in = lanes(in, 2, mask);  // wi, u (2-D sample), reflectance
-            matte::ffi::LanesOut lanes_out = lanes(out, n);
-            (*m_model)->sample_lanes(lanes_in, lanes_out);
+            matte::ArenaT<Float> ar(&m_tables);
+            auto wi = ids(ar, si.wi);
+            auto rho = ids(ar, value);
+            auto coef = ids(ar, m_coefficients);
+            uint32_t zero = ar.lit(0.f);
+            std::array<uint32_t, 3> wo;
+            std::array<uint32_t, Channels> weight;
+            wo.fill(zero);
+            weight.fill(zero);
+            uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), slice(wi), ar.push(sample2.x()),
+                                                     ar.push(sample2.y()), slice(rho), mut_slice(wo),
+                                                     mut_slice(weight));
+            bs.wo = Vector3f(ar.get(wo[0]), ar.get(wo[1]), ar.get(wo[2]));
+            bs.pdf = ar.get(pdf);
             for (size_t c = 0; c < Channels; ++c)
-                value[c] = Float(out[c]);
-            bs.pdf = Float(out[Channels]);
-            bs.wo = Vector3f(Float(out[Channels + 1]), Float(out[Channels + 2]), Float(out[Channels + 3]));
+                value[c] = ar.get(weight[c]);
         }
         bs.eta = 1.f;
         bs.sampled_type = +BSDFFlags::DiffuseReflection;
@@ -159,6 +178,7 @@ public:
                 return 0.f;
             return (*m_model)->pdf(to_ffi(si.wi), to_ffi(wo));
         } else {
+            // Dr.Jit records only what the pdf depends on: the value's operations are dropped.
             return eval_pdf_impl(si, wo, active).second;
         }
     }
@@ -199,8 +219,6 @@ public:
 
 private:
     static constexpr size_t Channels = dr::size_v<UnpolarizedSpectrum>;
-    using FloatD = dr::detached_t<Float>;
-    using MaskD = dr::mask_t<FloatD>;
 
     static matte::ffi::Param number_param(const std::string &name, double x) {
         return matte::ffi::Param{ rust::String(name), true, x, rust::String() };
@@ -217,9 +235,44 @@ private:
         } catch (const rust::Error &e) {
             Throw("bsdf \"%s\": %s", m_kind, e.what());
         }
-        m_numeric.clear();
-        for (const auto &p : (*m_model)->numeric_parameters())
-            m_numeric.emplace_back(std::string(p.name), (ScalarFloat) p.number);
+    }
+
+    /// The value of a (width-1) parameter, detached from autodiff.
+    static double scalar_value(const Float &v) {
+        if constexpr (dr::is_jit_v<Float>)
+            return (double) dr::slice(dr::detach(v), 0);
+        else
+            return (double) v;
+    }
+
+    /// JIT variants: the tables (uploaded once per parameter value) and the kernel constants,
+    /// computed by the traced Rust code from the parameters, with their AD graph when a
+    /// parameter carries a gradient. Parameters and constants are opaque: new values never
+    /// recompile a kernel.
+    void update_traced_kernel() {
+        if constexpr (dr::is_jit_v<Float>) {
+            m_tables.clear();
+            for (size_t k = 0; k < (*m_model)->table_count(); ++k) {
+                rust::Slice<const float> t = (*m_model)->table(k);
+                m_tables.push_back(dr::load<Float>(t.data(), t.size()));
+            }
+            bool differentiable = false;
+            for (Float &v : m_values) {
+                dr::make_opaque(v);
+                differentiable |= dr::grad_enabled(v);
+            }
+            matte::ArenaT<Float> ar;
+            std::vector<uint32_t> params;
+            for (const Float &v : m_values)
+                params.push_back(ar.push(v));
+            rust::Vec<uint32_t> coef = (*m_model)->traced_coefficients(
+                ar, rust::Slice<const uint32_t>(params.data(), params.size()), differentiable);
+            m_coefficients.clear();
+            for (uint32_t id : coef)
+                m_coefficients.push_back(ar.get(id));
+            for (Float &c : m_coefficients)
+                dr::make_opaque(c);
+        }
     }
 
     static matte::ffi::Vec3f to_ffi(const Vector3f &v) {
@@ -229,95 +282,36 @@ private:
             return matte::ffi::Vec3f{ 0.f, 0.f, 0.f };
     }
 
-    void require_evaluated_mode(const char *method) const {
-        if (jit_flag(JitFlag::SymbolicScope))
-            Throw("bsdf \"%s\": %s() was called while Dr.Jit records a symbolic loop or call. "
-                  "matte's kernels are Rust code, which cannot be traced into a Dr.Jit kernel, "
-                  "so its llvm variants need evaluated mode: call "
-                  "dr.set_flag(dr.JitFlag.SymbolicLoops, False) and "
-                  "dr.set_flag(dr.JitFlag.SymbolicCalls, False) before rendering "
-                  "(matte_mitsuba.evaluated_mode() does both; with the mitsuba tool: -W -W).",
-                  m_kind, method);
-    }
-
     /// The lane's channels as the plain struct the kernels take (no FFI call to build it).
     static matte::ffi::Channels to_channels(const UnpolarizedSpectrum &value) {
         matte::ffi::Channels c{};
-        for (size_t k = 0; k < Channels; ++k)
-            c.v[k] = (float) value[k];
+        if constexpr (!dr::is_jit_v<Float>) {
+            for (size_t k = 0; k < Channels; ++k)
+                c.v[k] = (float) value[k];
+        }
         c.n = Channels;
         return c;
     }
 
-    /// Flattens JIT floats and vectors into their scalar components (detached from AD).
-    template <typename T> static void collect(const T &value, std::vector<FloatD> &out) {
-        if constexpr (dr::depth_v<T> > 1) {
-            for (size_t c = 0; c < dr::size_v<T>; ++c)
-                collect(value.entry(c), out);
+    /// Puts the components of a JIT vector (or the entries of a list) into the arena.
+    template <typename Vec> static auto ids(const matte::ArenaT<Float> &ar, const Vec &v) {
+        if constexpr (std::is_same_v<Vec, std::vector<Float>>) {
+            std::vector<uint32_t> out;
+            for (const Float &x : v)
+                out.push_back(ar.push(x));
+            return out;
         } else {
-            out.push_back(dr::detach<false>(value));
+            std::array<uint32_t, dr::size_v<Vec>> out;
+            for (size_t c = 0; c < dr::size_v<Vec>; ++c)
+                out[c] = ar.push(v[c]);
+            return out;
         }
     }
-
-    /// The float components of `values`, detached and evaluated in one Dr.Jit launch: their
-    /// buffers (width n, or width 1 for literals such as a uniform reflectance, which Rust
-    /// broadcasts) are handed to Rust as they are, without copies.
-    template <typename... Ts> static std::vector<FloatD> evaluated(const Ts &...values) {
-        std::vector<FloatD> flat;
-        (collect(values, flat), ...);
-        for (FloatD &v : flat)
-            dr::schedule(v);
-        dr::eval();
-        dr::sync_thread();
-        return flat;
+    template <typename C> static rust::Slice<const uint32_t> slice(const C &c) {
+        return rust::Slice<const uint32_t>(c.data(), c.size());
     }
-
-    /// The mask as a byte buffer of width n or 1 (scheduled; evaluated with the inputs).
-    static MaskD scheduled_mask(const Mask &active) {
-        MaskD m = dr::detach<false>(active);
-        dr::schedule(m);
-        return m;
-    }
-
-    /// `count` uninitialised buffers of width `n` for Rust to fill.
-    static std::vector<FloatD> allocated(size_t n, size_t count) {
-        std::vector<FloatD> out(count);
-        for (FloatD &v : out) {
-            v = dr::empty<FloatD>(n);
-            dr::schedule(v);
-        }
-        dr::eval();
-        return out;
-    }
-
-    static rust::Slice<const float> view(const FloatD &v) {
-        return rust::Slice<const float>(v.data(), dr::width(v));
-    }
-    static rust::Slice<float> view(FloatD &v, size_t n) { return rust::Slice<float>(v.data(), n); }
-
-    /// Inputs: `wi` (3), then `directional` components (wo: 3, or the 2-D sample), then the
-    /// reflectance channels.
-    static matte::ffi::LanesIn lanes(const std::vector<FloatD> &in, size_t directional,
-                                     const MaskD &mask) {
-        static_assert(sizeof(bool) == 1, "Dr.Jit masks are handed over as bytes");
-        auto at = [&](size_t k) { return k < in.size() ? view(in[k]) : rust::Slice<const float>(); };
-        size_t rho = 3 + directional;
-        return matte::ffi::LanesIn{ at(0), at(1), at(2), at(3), at(4),
-                                    directional == 3 ? at(5) : rust::Slice<const float>(),
-                                    Channels > 0 ? at(rho) : rust::Slice<const float>(),
-                                    Channels > 1 ? at(rho + 1) : rust::Slice<const float>(),
-                                    Channels > 2 ? at(rho + 2) : rust::Slice<const float>(),
-                                    Channels > 3 ? at(rho + 3) : rust::Slice<const float>(),
-                                    Channels,
-                                    rust::Slice<const uint8_t>((const uint8_t *) mask.data(), dr::width(mask)) };
-    }
-
-    /// Outputs: the channels, the pdf, then (when present) wo.
-    static matte::ffi::LanesOut lanes(std::vector<FloatD> &out, size_t n) {
-        auto at = [&](size_t k) { return k < out.size() ? view(out[k], n) : rust::Slice<float>(); };
-        auto channel = [&](size_t c) { return c < Channels ? at(c) : rust::Slice<float>(); };
-        return matte::ffi::LanesOut{ channel(0), channel(1), channel(2), channel(3), at(Channels),
-                                     at(Channels + 1), at(Channels + 2), at(Channels + 3) };
+    template <typename C> static rust::Slice<uint32_t> mut_slice(C &c) {
+        return rust::Slice<uint32_t>(c.data(), c.size());
     }
 
     /// f·cos θo and the pdf: the kernels for every active lane, 0 elsewhere.
@@ -325,35 +319,42 @@ private:
                                              Mask active) const {
         Float cos_theta_i = Frame3f::cos_theta(si.wi), cos_theta_o = Frame3f::cos_theta(wo);
         active &= cos_theta_i > 0.f && cos_theta_o > 0.f;
-        UnpolarizedSpectrum value = m_reflectance->eval(si, active);
-        Float pdf;
         if constexpr (!dr::is_jit_v<Float>) {
             if (!active)
                 return { 0.f, 0.f };
+        }
+        UnpolarizedSpectrum value = m_reflectance->eval(si, active);
+        Float pdf;
+        if constexpr (!dr::is_jit_v<Float>) {
             matte::ffi::Channels f{};
             pdf = (*m_model)->eval_pdf(to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = f.v[c] * cos_theta_o;
         } else {
-            require_evaluated_mode("eval");
-            size_t n = dr::width(si.wi, wo, value, active);
-            MaskD mask = scheduled_mask(active);
-            std::vector<FloatD> in = evaluated(si.wi, wo, value);
-            std::vector<FloatD> out = allocated(n, Channels + 1);  // f, pdf
-            matte::ffi::LanesIn lanes_in = lanes(in, 3, mask);  // wi, wo, reflectance
-            matte::ffi::LanesOut lanes_out = lanes(out, n);
-            (*m_model)->eval_pdf_lanes(lanes_in, lanes_out);
+            matte::ArenaT<Float> ar(&m_tables);
+            auto wi_ = ids(ar, si.wi), wo_ = ids(ar, wo);
+            auto rho = ids(ar, value);
+            auto coef = ids(ar, m_coefficients);
+            std::array<uint32_t, Channels> v;
+            v.fill(ar.lit(0.f));
+            uint32_t pdf_id = (*m_model)->traced_eval_pdf(ar, slice(coef), slice(wi_), slice(wo_),
+                                                          slice(rho), mut_slice(v));
             for (size_t c = 0; c < Channels; ++c)
-                value[c] = Float(out[c]) * cos_theta_o;
-            pdf = dr::select(active, Float(out[Channels]), 0.f);
+                value[c] = ar.get(v[c]);
+            pdf = ar.get(pdf_id);
         }
-        return { depolarizer<Spectrum>(value) & active, pdf };
+        return { depolarizer<Spectrum>(value) & active, dr::select(active, pdf, 0.f) };
     }
 
     std::string m_kind;
     ref<Texture> m_reflectance;
     std::vector<matte::ffi::Param> m_params;
-    std::vector<std::pair<std::string, ScalarFloat>> m_numeric;
+    /// The numeric parameters (names and values, in the model's order), traversable.
+    std::vector<std::string> m_names;
+    std::vector<Float> m_values;
+    /// JIT variants: the kernel's constants and tables (`update_traced_kernel`).
+    std::vector<Float> m_coefficients;
+    std::vector<Float> m_tables;
     /// Always set after construction (optional only because rust::Box has no empty state).
     std::optional<rust::Box<matte::ffi::Model>> m_model;
 

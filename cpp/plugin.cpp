@@ -1,24 +1,9 @@
 // The plugin's one exported symbol. Mitsuba dlopens `plugins/<type>.so` (links to one file,
-// see cpp/build_plugin.sh) and calls init_plugin with <type>; we register MatteBSDF for the
-// variants matte supports. Unregistered variants get Mitsuba's own "could not be found" error.
+// see cpp/build_plugin.sh) and calls init_plugin with <type>; MI_EXPORT_PLUGIN registers
+// MatteBSDF under that name in every variant the wheel was built with (scalar, llvm_ad_* and
+// cuda_ad_*: rgb, mono, spectral and the polarized ones), and the name selects the model.
 #include "matte_bsdf.h"
 
 using namespace mitsuba;
 
-#define MATTE_REGISTER(variant, F, S)                                                         \
-    fn(name, variant, MatteBSDF<F, S>::Type,                                                  \
-       [](void *, const Properties &p) -> ref<Object> { return new MatteBSDF<F, S>(p); })
-
-extern "C" MI_EXPORT void init_plugin(std::string_view name, PluginRegisterFn fn) {
-    using LLVMFloat = dr::DiffArray<JitBackend::LLVM, float>;
-    using ScalarRGB = Color<float, 3>;
-    using ScalarSpectral = Spectrum<float, 4>;
-    using LLVMRGB = Color<LLVMFloat, 3>;
-    using LLVMMono = Color<LLVMFloat, 1>;
-    using LLVMSpectral = Spectrum<LLVMFloat, 4>;
-    MATTE_REGISTER("scalar_rgb", float, ScalarRGB);
-    MATTE_REGISTER("scalar_spectral", float, ScalarSpectral);
-    MATTE_REGISTER("llvm_ad_rgb", LLVMFloat, LLVMRGB);
-    MATTE_REGISTER("llvm_ad_mono", LLVMFloat, LLVMMono);
-    MATTE_REGISTER("llvm_ad_spectral", LLVMFloat, LLVMSpectral);
-}
+MI_EXPORT_PLUGIN(MatteBSDF)

@@ -122,6 +122,11 @@ impl DiffuseBrdf for Bsdf {
         dispatch!(self, b => b.sample_direction(wi, u))
     }
 
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+        dispatch!(self, b => b.sample(wi, u, reflectance))
+    }
+
     fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
         dispatch!(self, b => b.albedo(cos_theta_i, reflectance))
     }

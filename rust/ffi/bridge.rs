@@ -18,45 +18,43 @@ pub mod ffi {
         n: usize,
     }
 
-    /// Structure-of-arrays lanes for the JIT variants: one slice per component, pointing
-    /// straight into Dr.Jit's evaluated buffers (no copies). Every slice has the same length;
-    /// reflectance channels beyond `channels` are empty.
-    struct LanesIn<'a> {
-        wi_x: &'a [f32],
-        wi_y: &'a [f32],
-        wi_z: &'a [f32],
-        /// wo for eval/pdf; (u1, u2, unused) for sample.
-        v_x: &'a [f32],
-        v_y: &'a [f32],
-        v_z: &'a [f32],
-        rho_0: &'a [f32],
-        rho_1: &'a [f32],
-        rho_2: &'a [f32],
-        rho_3: &'a [f32],
-        channels: usize,
-        /// Dr.Jit's mask (one byte per lane, 0 = inactive): inactive lanes get zeros without
-        /// evaluating the model. Most lanes are inactive after a few bounces.
-        active: &'a [u8],
-    }
-
-    /// Outputs into Dr.Jit-allocated buffers: per-channel values (f or weight), the pdf and,
-    /// for sampling, the drawn direction.
-    struct LanesOut<'a> {
-        out_0: &'a mut [f32],
-        out_1: &'a mut [f32],
-        out_2: &'a mut [f32],
-        out_3: &'a mut [f32],
-        pdf: &'a mut [f32],
-        wo_x: &'a mut [f32],
-        wo_y: &'a mut [f32],
-        wo_z: &'a mut [f32],
-    }
-
     /// A local-frame direction.
     struct Vec3f {
         x: f32,
         y: f32,
         z: f32,
+    }
+
+    unsafe extern "C++" {
+        include!("matte/cpp/arena.h");
+
+        /// The Dr.Jit value store of one trace (cpp/arena.h); see `super::traced`.
+        #[namespace = "matte"]
+        type Arena;
+
+        fn lit(self: &Arena, v: f32) -> u32;
+        fn add(self: &Arena, a: u32, b: u32) -> u32;
+        fn sub(self: &Arena, a: u32, b: u32) -> u32;
+        fn mul(self: &Arena, a: u32, b: u32) -> u32;
+        fn div(self: &Arena, a: u32, b: u32) -> u32;
+        fn minimum(self: &Arena, a: u32, b: u32) -> u32;
+        fn maximum(self: &Arena, a: u32, b: u32) -> u32;
+        fn neg(self: &Arena, a: u32) -> u32;
+        fn abs(self: &Arena, a: u32) -> u32;
+        fn sqrt(self: &Arena, a: u32) -> u32;
+        fn floor(self: &Arena, a: u32) -> u32;
+        fn fma(self: &Arena, a: u32, b: u32, c: u32) -> u32;
+        fn sincos(self: &Arena, a: u32, s: &mut u32, c: &mut u32);
+        fn lt(self: &Arena, a: u32, b: u32) -> u32;
+        fn le(self: &Arena, a: u32, b: u32) -> u32;
+        fn gt(self: &Arena, a: u32, b: u32) -> u32;
+        fn eq(self: &Arena, a: u32, b: u32) -> u32;
+        fn mask_lit(self: &Arena, v: bool) -> u32;
+        fn mask_and(self: &Arena, a: u32, b: u32) -> u32;
+        fn mask_or(self: &Arena, a: u32, b: u32) -> u32;
+        fn mask_not(self: &Arena, a: u32) -> u32;
+        fn select(self: &Arena, m: u32, t: u32, f: u32) -> u32;
+        fn gather(self: &Arena, table: u32, idx: u32) -> u32;
     }
 
     extern "Rust" {
@@ -72,10 +70,30 @@ pub mod ffi {
         fn pdf(self: &Model, wi: &Vec3f, wo: &Vec3f) -> f32;
         /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample).
         fn sample(self: &Model, wi: &Vec3f, u1: f32, u2: f32, reflectance: &Channels, wo: &mut Vec3f, weight: &mut Channels) -> f32;
-        /// f (no cosine) and pdf for every lane (JIT variants, evaluated mode).
-        fn eval_pdf_lanes(self: &Model, input: &LanesIn, output: &mut LanesOut);
-        /// Samples every lane: wo, weight f·cos/pdf and pdf (0 where nothing was drawn).
-        fn sample_lanes(self: &Model, input: &LanesIn, output: &mut LanesOut);
+
+        // ---- traced (JIT variants): arguments and results are arena indices ----
+        /// How many tables the traced kernel gathers from (van Ginneken: 4), and their
+        /// contents (uploaded once per parameter value).
+        fn table_count(self: &Model) -> usize;
+        fn table(self: &Model, k: usize) -> &[f32];
+        /// The kernel's coefficients from the traced numeric parameters (in the order of
+        /// `numeric_parameters`). `differentiable`: a parameter carries a gradient (van
+        /// Ginneken then adds its roughness-derivative tables to the kernel).
+        fn traced_coefficients(self: &Model, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32>;
+        /// f·cos θo per channel into `value`; returns the pdf.
+        fn traced_eval_pdf(self: &Model, arena: &Arena, coefficients: &[u32], wi: &[u32], wo: &[u32], rho: &[u32], value: &mut [u32]) -> u32;
+        /// Draws wo (into `wo`), the weight f·cos θo/pdf (into `weight`); returns the pdf.
+        fn traced_sample(
+            self: &Model,
+            arena: &Arena,
+            coefficients: &[u32],
+            wi: &[u32],
+            u1: u32,
+            u2: u32,
+            rho: &[u32],
+            wo: &mut [u32],
+            weight: &mut [u32],
+        ) -> u32;
     }
 }
 
