@@ -34,9 +34,7 @@ def main():
 
     import mitsuba as mi
     mi.set_variant(a.variant)
-    import matte_mitsuba
-    if a.variant.startswith("llvm"):
-        matte_mitsuba.evaluated_mode()  # matte's plugins need it; built-in plugins accept it
+    import matte_mitsuba  # noqa: F401  (registers the plugins)
     params = {}
     for d in a.defines:
         k, _, v = d.partition("=")

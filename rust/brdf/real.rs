@@ -52,6 +52,15 @@ pub trait Real:
     /// The mask as a literal (for masks that do not depend on any value).
     fn mask(v: bool) -> Self::Mask;
 
+    /// `x² + y²` as Mitsuba's `dr::squared_norm` of a 2-D point computes it where this type
+    /// runs: the wheel's scalar build contracts `x·x + y·y` to `fma(x, x, y·y)` (checked bit
+    /// for bit against `diffuse.sample`), while Dr.Jit's JIT arrays evaluate
+    /// `fmadd(y, y, x·x)` (`drjit/array_router.h`). The traced type overrides this default.
+    #[inline(always)]
+    fn squared_norm_2d(x: Self, y: Self) -> Self {
+        x.fma(x, y * y)
+    }
+
     #[inline(always)]
     fn ge(self, o: Self) -> Self::Mask {
         o.le(self)

@@ -229,6 +229,10 @@ impl<'a> Real for Traced<'a> {
             }
         }
     }
+    /// Dr.Jit's `squared_norm` order for JIT arrays: `fmadd(y, y, x·x)`.
+    fn squared_norm_2d(x: Self, y: Self) -> Self {
+        y.fma(y, x * x)
+    }
     fn gather(table: TracedTable<'a>, idx: Self) -> Self {
         Traced::Node(table.arena, table.arena.gather(table.id, idx.id(table.arena)))
     }

@@ -61,16 +61,12 @@ def random_pairs(n, seed):
 
 @pytest.fixture
 def mi_variant(request):
-    """Sets the Mitsuba variant given by the test's parameter and imports matte_mitsuba."""
+    """Sets the Mitsuba variant given by the test's parameter and imports matte_mitsuba, with
+    Dr.Jit's default (symbolic) loops and calls."""
     import mitsuba as mi
     import drjit as dr
     mi.set_variant(request.param)
     import matte_mitsuba
     matte_mitsuba.register()
-    if request.param.startswith("llvm"):
-        matte_mitsuba.evaluated_mode()
-        yield mi
-        dr.set_flag(dr.JitFlag.SymbolicLoops, True)
-        dr.set_flag(dr.JitFlag.SymbolicCalls, True)
-    else:
-        yield mi
+    assert dr.flag(dr.JitFlag.SymbolicLoops) and dr.flag(dr.JitFlag.SymbolicCalls)
+    yield mi

@@ -1,6 +1,6 @@
 """Mitsuba's own `mitsuba.chi2.ChiSquareTest` with `BSDFAdapter` for every type at incidence
-0°, 45° and 80° (llvm_ad_rgb, evaluated mode: the chi2 test is vectorised, and Mitsuba's own
-BSDF tests run it on the vectorised variants too)."""
+0°, 45° and 80° in llvm_ad_rgb with Dr.Jit's default (symbolic) mode: the chi2 test is
+vectorised, and Mitsuba's own BSDF tests run it on the vectorised variants too."""
 import numpy as np
 import pytest
 

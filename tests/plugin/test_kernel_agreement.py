@@ -1,7 +1,8 @@
 """The plugin's eval divided by cos θo equals the Rust kernel (`matte brdf --pairs`) on 10^4
 random direction pairs to 1e-5 relative, for every type and several parameter sets, in
 scalar_rgb (RGB reflectance, per channel), scalar_spectral (uniform reflectance on all
-wavelengths) and llvm_ad_rgb (evaluated mode, one vectorised call)."""
+wavelengths), and llvm_ad_rgb and llvm_ad_spectral, where the plugin is traced inside a
+symbolic loop (`dr.syntax` `while`, Dr.Jit's default mode)."""
 import numpy as np
 import pytest
 
@@ -62,16 +63,42 @@ def test_scalar_spectral(mi_variant, cfg):
         compare(f[:, c], kernel, f"{kind} wavelength {c}")
 
 
+def eval_in_symbolic_loop(mi, bsdf, si, wo):
+    """`bsdf.eval` recorded inside a symbolic `while` loop (one iteration)."""
+    import drjit as dr
+
+    @dr.syntax
+    def run(si, wo):
+        value = dr.zeros(mi.Spectrum, dr.width(wo))
+        i = dr.zeros(mi.UInt32, dr.width(wo))
+        while i < 1:
+            value = bsdf.eval(mi.BSDFContext(), si, wo)
+            i += 1
+        return value
+
+    return run(si, wo)
+
+
 @pytest.mark.parametrize("cfg", CONFIGS, ids=config_id)
-@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
-def test_llvm_ad_rgb_evaluated(mi_variant, cfg):
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb", "llvm_ad_spectral"], indirect=True)
+def test_llvm_symbolic(mi_variant, cfg):
     mi = mi_variant
+    import drjit as dr
     kind, params = cfg
-    bsdf = mi.load_dict({"type": kind, "reflectance": {"type": "rgb", "value": RGB}, **params})
+    spectral = mi.variant().endswith("spectral")
+    rho = 0.7 if spectral else {"type": "rgb", "value": RGB}
+    bsdf = mi.load_dict({"type": kind, "reflectance": rho, **params})
     wi, wo = random_pairs(N, seed=23)
-    si = mi.SurfaceInteraction3f()
+    si = dr.zeros(mi.SurfaceInteraction3f, N)
     si.wi = mi.Vector3f(wi[:, 0], wi[:, 1], wi[:, 2])
-    value = bsdf.eval(mi.BSDFContext(), si, mi.Vector3f(wo[:, 0], wo[:, 1], wo[:, 2]))
-    f = divide_cos(np.array(value).T, wo)  # Color3f of width N -> (3, N)
-    for c, rho in enumerate(RGB):
-        compare(f[:, c], kernel_f(kind, params, rho, wi, wo), f"{kind} channel {c}")
+    if spectral:
+        si.wavelengths = mi.Spectrum(400, 500, 600, 700)
+    value = eval_in_symbolic_loop(mi, bsdf, si, mi.Vector3f(wo[:, 0], wo[:, 1], wo[:, 2]))
+    f = divide_cos(np.array(value).T, wo)  # Color3f/Spectrum of width N -> (channels, N)
+    if spectral:
+        kernel = kernel_f(kind, params, 0.7, wi, wo)
+        for c in range(4):
+            compare(f[:, c], kernel, f"{kind} wavelength {c}")
+    else:
+        for c, r in enumerate(RGB):
+            compare(f[:, c], kernel_f(kind, params, r, wi, wo), f"{kind} channel {c}")

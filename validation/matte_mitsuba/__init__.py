@@ -8,12 +8,12 @@
 Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` through its process-wide
 file resolver; this package's folder holds ``plugins/{lambert,oren_nayar,eon,wolff,
 ginneken}.so`` (built by ``cpp/build_plugin.sh``), so prepending it is all that is needed.
-For the ``mitsuba`` command-line tool use ``-a`` and a scalar variant or evaluated mode:
-``mitsuba -a <this folder> -m scalar_rgb scene.xml`` or ``mitsuba -a <this folder> -W -W
-scene.xml`` (``python -m matte_mitsuba`` prints the folder).
+For the ``mitsuba`` command-line tool use ``-a``: ``mitsuba -a <this folder> scene.xml``
+(``python -m matte_mitsuba`` prints the folder).
 
-Supported variants: scalar_rgb, scalar_spectral, llvm_ad_rgb, llvm_ad_mono and
-llvm_ad_spectral. The llvm variants need Dr.Jit's evaluated mode; see ``evaluated_mode``.
+Every variant of the Mitsuba wheel is supported, scalar, llvm and cuda, in Dr.Jit's default
+(symbolic) mode: the JIT variants trace the Rust kernels into Dr.Jit, so they run in
+symbolic loops and calls, and ``reflectance`` and the numeric parameters are differentiable.
 """
 
 import os as _os
@@ -24,8 +24,6 @@ PLUGIN_ROOT = _os.path.dirname(_os.path.abspath(__file__))
 #: The ``<bsdf type=...>`` names this package provides.
 BSDF_TYPES = ("lambert", "oren_nayar", "eon", "wolff", "ginneken")
 
-#: Variants the plugins are built for.
-VARIANTS = ("scalar_rgb", "scalar_spectral", "llvm_ad_rgb", "llvm_ad_mono", "llvm_ad_spectral")
 
 
 def _check_built():
@@ -43,14 +41,6 @@ def register():
     resolver = mi.file_resolver()
     if PLUGIN_ROOT not in [str(p) for p in resolver]:
         resolver.prepend(PLUGIN_ROOT)
-
-
-def evaluated_mode():
-    """Switches Dr.Jit to evaluated loops and calls, which matte's llvm variants need
-    (a Rust kernel cannot be traced into a Dr.Jit kernel)."""
-    import drjit as dr
-    dr.set_flag(dr.JitFlag.SymbolicLoops, False)
-    dr.set_flag(dr.JitFlag.SymbolicCalls, False)
 
 
 register()
