@@ -3,6 +3,8 @@ random direction pairs to 1e-5 relative, for every type and several parameter se
 scalar_rgb (RGB reflectance, per channel), scalar_spectral (uniform reflectance on all
 wavelengths), and llvm_ad_rgb and llvm_ad_spectral, where the plugin is traced inside a
 symbolic loop (`dr.syntax` `while`, Dr.Jit's default mode)."""
+import drjit as dr
+import mitsuba as mi
 import numpy as np
 import pytest
 
@@ -63,27 +65,22 @@ def test_scalar_spectral(mi_variant, cfg):
         compare(f[:, c], kernel, f"{kind} wavelength {c}")
 
 
-def eval_in_symbolic_loop(mi, bsdf, si, wo):
-    """`bsdf.eval` recorded inside a symbolic `while` loop (one iteration)."""
-    import drjit as dr
-
-    @dr.syntax
-    def run(si, wo):
-        value = dr.zeros(mi.Spectrum, dr.width(wo))
-        i = dr.zeros(mi.UInt32, dr.width(wo))
-        while i < 1:
-            value = bsdf.eval(mi.BSDFContext(), si, wo)
-            i += 1
-        return value
-
-    return run(si, wo)
+@dr.syntax
+def eval_in_symbolic_loop(bsdf, si, wo):
+    """`bsdf.eval` recorded inside a symbolic `while` loop (one iteration). `dr.syntax`
+    re-compiles the function from its source in the module's globals: no closures."""
+    value = dr.zeros(mi.Spectrum, dr.width(wo))
+    i = dr.zeros(mi.UInt32, dr.width(wo))
+    while i < 1:
+        value = bsdf.eval(mi.BSDFContext(), si, wo)
+        i += 1
+    return value
 
 
 @pytest.mark.parametrize("cfg", CONFIGS, ids=config_id)
 @pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb", "llvm_ad_spectral"], indirect=True)
 def test_llvm_symbolic(mi_variant, cfg):
-    mi = mi_variant
-    import drjit as dr
+    assert mi_variant.variant() == mi.variant()
     kind, params = cfg
     spectral = mi.variant().endswith("spectral")
     rho = 0.7 if spectral else {"type": "rgb", "value": RGB}
@@ -93,7 +90,7 @@ def test_llvm_symbolic(mi_variant, cfg):
     si.wi = mi.Vector3f(wi[:, 0], wi[:, 1], wi[:, 2])
     if spectral:
         si.wavelengths = mi.Spectrum(400, 500, 600, 700)
-    value = eval_in_symbolic_loop(mi, bsdf, si, mi.Vector3f(wo[:, 0], wo[:, 1], wo[:, 2]))
+    value = eval_in_symbolic_loop(bsdf, si, mi.Vector3f(wo[:, 0], wo[:, 1], wo[:, 2]))
     f = divide_cos(np.array(value).T, wo)  # Color3f/Spectrum of width N -> (channels, N)
     if spectral:
         kernel = kernel_f(kind, params, 0.7, wi, wo)
