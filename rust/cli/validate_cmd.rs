@@ -15,8 +15,10 @@ pub struct ValidateArgs {
     /// Every scene in mitsuba_scenes/.
     #[arg(long)]
     pub all: bool,
-    /// Mitsuba variant(s) to compare with (repeatable): scalar_rgb, llvm_ad_rgb.
-    #[arg(long = "variant", default_values_t = vec!["scalar_rgb".to_string()])]
+    /// Mitsuba variant(s) to compare with (repeatable). Default: llvm_ad_rgb in Dr.Jit's
+    /// default symbolic mode, the fastest Mitsuba on a CPU and what users run; scalar_rgb (or
+    /// any other variant of the wheel) on request.
+    #[arg(long = "variant", default_values_t = vec!["llvm_ad_rgb".to_string()])]
     pub variants: Vec<String>,
     /// Compare the Rust renderer with itself (other seeds) instead of Mitsuba: a check of the
     /// test's false-positive rate.
