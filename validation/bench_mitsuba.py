@@ -1,7 +1,8 @@
 """Mitsuba 3.9.1's side of `matte bench`: wall time of `mi.render` for each job and variant
 (scene loaded beforehand, best of `--repeats`, after one warm-up render so that llvm_ad_rgb
-is timed with its kernel cache warm), and optionally the render-time overhead of matte's
-`lambert` plugin against the built-in `diffuse` (bench_plugin.py's Cornell box).
+is timed with its kernel cache warm), and optionally the render time of each of matte's
+plugins against the built-in `diffuse` in llvm_ad_rgb's symbolic mode, one process per type
+(bench_plugin.py's Cornell box).
 
     .venv/bin/python validation/bench_mitsuba.py --jobs JOBS.json [--variants scalar_rgb llvm_ad_rgb]
         [--repeats 3] [--plugin-res 256 --plugin-spp 64]
@@ -26,25 +27,12 @@ def time_job(job, repeats):
     return min(bench_plugin.timed(scene, job["spp"]) for _ in range(repeats))
 
 
-def plugin_overhead(res, spp, repeats):
-    """Best-of times of the Cornell box with `diffuse` and with matte's `lambert`, runs
-    alternating so that drifts in machine speed hit both alike."""
-    scenes = {k: bench_plugin.scene(k, res) for k in ("diffuse", "lambert")}
-    for s in scenes.values():
-        bench_plugin.timed(s, spp)
-    best = {k: float("inf") for k in scenes}
-    for _ in range(repeats):
-        for k, s in scenes.items():
-            best[k] = min(best[k], bench_plugin.timed(s, spp))
-    return {"res": res, "spp": spp, "diffuse_seconds": best["diffuse"], "lambert_seconds": best["lambert"]}
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--jobs", required=True)
     ap.add_argument("--variants", nargs="+", default=["scalar_rgb", "llvm_ad_rgb"])
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--plugin-res", type=int, default=0, help="0: skip the plugin overhead")
+    ap.add_argument("--plugin-res", type=int, default=0, help="0: skip the plugin times")
     ap.add_argument("--plugin-spp", type=int, default=64)
     a = ap.parse_args()
     jobs = json.loads(Path(a.jobs).read_text())
@@ -57,9 +45,9 @@ def main():
             print(f"mitsuba {variant} {job['name']}", file=sys.stderr, flush=True)
             out["renders"].append({"name": job["name"], "variant": variant, "seconds": time_job(job, a.repeats)})
     if a.plugin_res > 0:
-        mi.set_variant("scalar_rgb")
-        print("mitsuba scalar_rgb plugin overhead", file=sys.stderr, flush=True)
-        out["plugin"] = plugin_overhead(a.plugin_res, a.plugin_spp, a.repeats)
+        print("mitsuba llvm_ad_rgb plugins, one process per type", file=sys.stderr, flush=True)
+        seconds = bench_plugin.time_all("llvm_ad_rgb", a.plugin_res, a.plugin_spp, a.repeats)
+        out["plugin"] = {"variant": "llvm_ad_rgb", "res": a.plugin_res, "spp": a.plugin_spp, "seconds": seconds}
     print(json.dumps(out))
 
 

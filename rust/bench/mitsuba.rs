@@ -1,6 +1,6 @@
 //! Mitsuba 3.9.1's side of `matte bench`, run by `validation/bench_mitsuba.py` in the
-//! project's `.venv`: render times per job and variant, and the `lambert` plugin's overhead
-//! against the built-in `diffuse`.
+//! project's `.venv`: render times per job and variant, and each matte plugin's render time
+//! against the built-in `diffuse` (llvm_ad_rgb, symbolic, one process per type).
 
 use super::render::RenderJob;
 use crate::validate::passes::repo_root;
@@ -11,17 +11,26 @@ use std::process::{Command, Stdio};
 pub struct MitsubaTimes {
     /// (job name, variant, best seconds).
     pub renders: Vec<(String, String, f64)>,
-    /// (diffuse seconds, lambert plugin seconds), scalar_rgb.
-    pub plugin: Option<(f64, f64)>,
+    /// (type, best seconds) for `diffuse` and every matte type: the Cornell box in
+    /// llvm_ad_rgb's symbolic mode.
+    pub plugin: Vec<(String, f64)>,
 }
 
 impl MitsubaTimes {
     pub fn seconds(&self, job: &str, variant: &str) -> Option<f64> {
         self.renders.iter().find(|(j, v, _)| j == job && v == variant).map(|r| r.2)
     }
+
+    /// Each matte type's plugin time divided by `diffuse`'s.
+    pub fn plugin_ratios(&self) -> Vec<(String, f64)> {
+        let Some(diffuse) = self.plugin.iter().find(|(k, _)| k == "diffuse").map(|p| p.1) else {
+            return vec![];
+        };
+        self.plugin.iter().filter(|(k, _)| k != "diffuse").map(|(k, s)| (k.clone(), s / diffuse)).collect()
+    }
 }
 
-/// Times every job in every variant (and the plugin overhead when `plugin` is set).
+/// Times every job in every variant (and the plugins when `plugin` is set).
 /// `work` receives the job list.
 pub fn time_mitsuba(jobs: &[RenderJob], variants: &[String], repeats: u32, plugin: Option<(u32, u32)>, work: &Path) -> Result<MitsubaTimes, String> {
     let root = repo_root();
@@ -58,6 +67,9 @@ pub fn time_mitsuba(jobs: &[RenderJob], variants: &[String], repeats: u32, plugi
             Ok((s("name")?, s("variant")?, r["seconds"].as_f64().ok_or("bench_mitsuba.py: render without seconds")?))
         })
         .collect::<Result<Vec<_>, String>>()?;
-    let plugin = v["plugin"].as_object().and_then(|p| Some((p.get("diffuse_seconds")?.as_f64()?, p.get("lambert_seconds")?.as_f64()?)));
+    let plugin = v["plugin"]["seconds"]
+        .as_object()
+        .map(|m| m.iter().filter_map(|(k, s)| Some((k.clone(), s.as_f64()?))).collect())
+        .unwrap_or_default();
     Ok(MitsubaTimes { renders, plugin })
 }
