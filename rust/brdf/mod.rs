@@ -5,6 +5,7 @@
 //! by the Mitsuba plugin (`crate::ffi::traced`).
 
 pub mod approx;
+pub mod dual;
 pub mod eon;
 pub mod fresnel;
 pub mod frame;

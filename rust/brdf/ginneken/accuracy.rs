@@ -2,9 +2,12 @@
 //! directions up to a maximum polar angle, at quasi-random configurations (R3 sequence:
 //! deterministic, evenly spread, no RNG dependency).
 
-use super::Ginneken;
+use super::{Ginneken, GinnekenKernel};
+use crate::brdf::dual::Dual;
 use crate::brdf::frame::spherical_direction_f64;
+use crate::brdf::kernel::Kernel;
 use crate::brdf::model::DiffuseBrdf;
+use crate::brdf::real::{Real, V3};
 
 #[derive(Clone, Copy, Debug)]
 pub struct FastPathError {
@@ -39,4 +42,57 @@ pub fn fast_path_error(model: &Ginneken, max_theta_deg: f64, samples: usize) -> 
         }
     }
     FastPathError { max_relative: max_rel, mean_relative: sum_rel / samples as f64, worst, samples }
+}
+
+/// How well the traced kernels' roughness gradient (the `∂/∂m` tables, first order around the
+/// tables' m₀) matches the true derivative.
+#[derive(Clone, Copy, Debug)]
+pub struct RoughnessGradientError {
+    /// Largest error of the elasticity `∂ ln f / ∂ ln m` (the derivative's error relative to
+    /// `f/m`, so it is finite where the derivative crosses zero).
+    pub max_log_error: f64,
+    /// Mean of the same.
+    pub mean_log_error: f64,
+    /// (θi, θo, Δφ) in degrees where the maximum occurs.
+    pub worst: (f64, f64, f64),
+    pub samples: usize,
+}
+
+/// The kernel's `∂f/∂m` from the derivative tables, evaluated with dual numbers over the
+/// tables ([`Dual`]: the same code the plugin traces, `m − m₀` as the variable), against
+/// central differences (`m (1 ± 10⁻³)`) of [`Ginneken::eval_reference`], at `samples`
+/// quasi-random configurations with θi, θo ≤ `max_theta_deg`.
+pub fn roughness_gradient_error(model: &Ginneken, max_theta_deg: f64, samples: usize) -> RoughnessGradientError {
+    let m = model.roughness() as f64;
+    let h = 1e-3 * m;
+    let plus = Ginneken::new(m + h, model.shadowing()).expect("valid roughness");
+    let minus = Ginneken::new(m - h, model.shadowing()).expect("valid roughness");
+    let t = model.table();
+    let kernel = GinnekenKernel::<Dual> {
+        slope: t.slope_nodes(),
+        mu_lambda: t.mu_lambda_nodes(),
+        roughness_derivative: Some((t.slope_derivative_nodes(), t.mu_lambda_derivative_nodes(), Dual::variable(0.0))),
+        shadowing: model.shadowing(),
+    };
+    let g = 1.220_744_084_605_759_5_f64;
+    let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];
+    let (mut max_err, mut sum_err, mut worst) = (0.0f64, 0.0f64, (0.0, 0.0, 0.0));
+    for k in 0..samples {
+        let x: Vec<f64> = alpha.iter().map(|a| (0.5 + a * (k as f64 + 1.0)).fract()).collect();
+        let (ti, to, ph) = (x[0] * max_theta_deg, x[1] * max_theta_deg, x[2] * 180.0);
+        let wi = spherical_direction_f64(ti.to_radians(), 0.0);
+        let wo = spherical_direction_f64(to.to_radians(), ph.to_radians());
+        let dual = |w: glam::DVec3| V3::new(Dual::c(w.x), Dual::c(w.y), Dual::c(w.z));
+        let reduced = kernel.reduced_f(dual(wi), dual(wo), [Dual::c(1.0)])[0];
+        let d_table = reduced.d * std::f64::consts::FRAC_1_PI;
+        let f = model.eval_reference(wi, wo, 1.0);
+        let d_ref = (plus.eval_reference(wi, wo, 1.0) - minus.eval_reference(wi, wo, 1.0)) / (2.0 * h);
+        let err = (d_table - d_ref).abs() * m / f;
+        sum_err += err;
+        if err > max_err {
+            max_err = err;
+            worst = (ti, to, ph);
+        }
+    }
+    RoughnessGradientError { max_log_error: max_err, mean_log_error: sum_err / samples as f64, worst, samples }
 }
