@@ -25,7 +25,7 @@ g++ "${CXXFLAGS[@]}" -c cpp/plugin.cpp -o "$OBJ/plugin.o"
 g++ -shared -o "$OUT/matte_bsdfs.so" "$OBJ/plugin.o" target/release/libmatte.a \
     -Wl,--gc-sections -Wl,--version-script=cpp/exports.map -s \
     -L"$SP/mitsuba" -L"$SP/drjit" -lmitsuba -ldrjit-core -ldrjit-extra -lnanothread -lpthread -ldl -lm
-for t in lambert oren_nayar eon wolff ginneken; do
+for t in lambert oren_nayar eon wolff ginneken roughdiffuse; do
     ln -sf matte_bsdfs.so "$OUT/$t.so"
 done
 echo "build_plugin: $OUT/matte_bsdfs.so ($(du -k "$OUT/matte_bsdfs.so" | cut -f1) KB), exports: $(nm -D --defined-only "$OUT/matte_bsdfs.so" | awk '{print $3}' | tr '\n' ' ')"

@@ -17,6 +17,7 @@ pub mod oren_nayar;
 pub mod params;
 pub mod quadrature;
 pub mod real;
+pub mod rough_diffuse;
 pub mod sampling;
 pub mod wolff;
 
@@ -26,12 +27,13 @@ pub use lambert::Lambert;
 pub use model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
 pub use oren_nayar::{OrenNayar, OrenNayarModel};
 pub use params::{ParamError, ParamValue, Params};
+pub use rough_diffuse::RoughDiffuse;
 pub use wolff::{Wolff, WolffNormalization};
 
 use glam::{Vec2, Vec3};
 
-/// The plugin names, in the order of the table in `brdf-models.md`.
-pub const BSDF_TYPES: &[&str] = &["lambert", "oren_nayar", "eon", "wolff", "ginneken"];
+/// The plugin names, in the order of the README's model table.
+pub const BSDF_TYPES: &[&str] = &["lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse"];
 
 /// One of matte's diffuse models with its (validated) parameters.
 #[derive(Clone, Debug, PartialEq)]
@@ -41,6 +43,7 @@ pub enum Bsdf {
     Eon(Eon),
     Wolff(Wolff),
     Ginneken(Ginneken),
+    RoughDiffuse(RoughDiffuse),
 }
 
 /// `dispatch!(bsdf, k => expr)`: evaluates `expr` with `k` bound to the concrete model (static
@@ -53,6 +56,7 @@ macro_rules! dispatch {
             $crate::brdf::Bsdf::Eon($b) => $e,
             $crate::brdf::Bsdf::Wolff($b) => $e,
             $crate::brdf::Bsdf::Ginneken($b) => $e,
+            $crate::brdf::Bsdf::RoughDiffuse($b) => $e,
         }
     };
 }
@@ -69,6 +73,7 @@ impl Bsdf {
             "eon" => (Bsdf::Eon(Eon::from_params(&mut params)?), &["roughness"]),
             "wolff" => (Bsdf::Wolff(Wolff::from_params(&mut params)?), &["int_ior", "ext_ior", "normalization"]),
             "ginneken" => (Bsdf::Ginneken(Ginneken::from_params(&mut params)?), &["roughness", "shadowing"]),
+            "roughdiffuse" => (Bsdf::RoughDiffuse(RoughDiffuse::from_params(&mut params)?), &["alpha", "use_fast_approx"]),
             other => {
                 return Err(ParamError::new("type", format!("unknown bsdf type \"{other}\" (known: {})", BSDF_TYPES.join(", "))));
             }
@@ -85,6 +90,7 @@ impl Bsdf {
             Bsdf::Eon(_) => "eon",
             Bsdf::Wolff(_) => "wolff",
             Bsdf::Ginneken(_) => "ginneken",
+            Bsdf::RoughDiffuse(_) => "roughdiffuse",
         }
     }
 
@@ -103,6 +109,7 @@ impl Bsdf {
             Bsdf::Ginneken(b) => {
                 vec![("roughness", Number(b.roughness() as f64)), ("shadowing", Text(b.shadowing().as_str().into()))]
             }
+            Bsdf::RoughDiffuse(b) => vec![("alpha", Number(b.alpha() as f64)), ("use_fast_approx", Text(b.use_fast_approx().to_string()))],
         }
     }
 }

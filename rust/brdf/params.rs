@@ -111,6 +111,12 @@ impl Params {
             .ok_or_else(|| ParamError::new(name, format!("must be one of {} (got \"{given}\")", choices.join(", "))))
     }
 
+    /// A boolean (`<boolean>` in XML reaches the kernels as the text "true" / "false"),
+    /// `default` if absent.
+    pub fn flag(&mut self, name: &str, default: bool) -> Result<bool, ParamError> {
+        Ok(self.choice(name, &["true", "false"], if default { "true" } else { "false" })? == "true")
+    }
+
     /// An index of refraction: a number or one of Mitsuba's named materials.
     pub fn ior(&mut self, name: &str, default: f64) -> Result<f64, ParamError> {
         match self.take(name)? {

@@ -17,7 +17,7 @@ use crate::brdf::kernel::{self, Kernel};
 use crate::brdf::oren_nayar::OrenNayarKernel;
 use crate::brdf::real::V3;
 use crate::brdf::wolff::WolffKernel;
-use crate::brdf::{Bsdf, Lambert};
+use crate::brdf::{Bsdf, Lambert, RoughDiffuse};
 
 /// One model's kernel with traced constants.
 enum TracedKernel<'a> {
@@ -96,6 +96,9 @@ impl Model {
             Bsdf::Lambert(_) => vec![],
             Bsdf::OrenNayar(b) => p(0).map_or(vec![], |sigma| ids(arena, OrenNayarKernel::new(sigma, b.model()).coefficients())),
             Bsdf::Eon(_) => p(0).map_or(vec![], |r| ids(arena, EonKernel::new(r).coefficients())),
+            Bsdf::RoughDiffuse(b) => p(0).map_or(vec![], |alpha| {
+                ids(arena, OrenNayarKernel::new(RoughDiffuse::sigma_of_alpha(alpha), b.oren_nayar().model()).coefficients())
+            }),
             Bsdf::Wolff(b) => match (p(0), p(1)) {
                 (Some(int_ior), Some(ext_ior)) => ids(arena, WolffKernel::new(int_ior / ext_ior, b.normalization()).coefficients()),
                 _ => vec![],
@@ -115,6 +118,9 @@ impl Model {
             Bsdf::Lambert(k) => TracedKernel::Lambert(*k),
             Bsdf::OrenNayar(b) => TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.model())),
             Bsdf::Eon(_) => TracedKernel::Eon(EonKernel::from_coefficients(nodes(arena, coefficients)?)),
+            Bsdf::RoughDiffuse(b) => {
+                TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.oren_nayar().model()))
+            }
             Bsdf::Wolff(b) => TracedKernel::Wolff(WolffKernel::from_coefficients(nodes(arena, coefficients)?, b.normalization())),
             Bsdf::Ginneken(b) => {
                 let table = |id| TracedTable { arena, id };

@@ -27,6 +27,8 @@ CONFIGS = [
     ("wolff", {"int_ior": 1.8, "normalization": "raw"}),
     ("ginneken", {}),
     ("ginneken", {"roughness": 0.7, "shadowing": "height_correlated"}),
+    ("roughdiffuse", {}),
+    ("roughdiffuse", {"alpha": 0.6, "use_fast_approx": "true"}),
 ]
 
 

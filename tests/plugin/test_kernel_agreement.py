@@ -99,3 +99,25 @@ def test_llvm_symbolic(mi_variant, cfg):
     else:
         for c, r in enumerate(RGB):
             compare(f[:, c], kernel_f(kind, params, r, wi, wo), f"{kind} channel {c}")
+
+
+@pytest.mark.parametrize("fast", [False, True])
+@pytest.mark.parametrize("mi_variant", ["scalar_rgb", "llvm_ad_rgb"], indirect=True)
+def test_roughdiffuse_is_oren_nayar_with_sigma_alpha_over_sqrt2(mi_variant, fast):
+    """Mitsuba 0.6's conversion: `roughdiffuse` with alpha = a evaluates as `oren_nayar` with
+    sigma = a/√2, full model (qualitative with use_fast_approx)."""
+    assert mi_variant.variant() == mi.variant()
+    a = 0.45
+    rd = mi.load_dict({"type": "roughdiffuse", "alpha": a, "use_fast_approx": fast, "reflectance": 0.7})
+    on = mi.load_dict({"type": "oren_nayar", "sigma": a / np.sqrt(2), "model": "qualitative" if fast else "full", "reflectance": 0.7})
+    wi, wo = random_pairs(2000 if mi.variant().startswith("scalar") else N, seed=31)
+    if mi.variant().startswith("scalar"):
+        x = plugin_eval_scalar(mi, rd, wi, wo, 3)
+        y = plugin_eval_scalar(mi, on, wi, wo, 3)
+    else:
+        si = dr.zeros(mi.SurfaceInteraction3f, len(wi))
+        si.wi = mi.Vector3f(wi[:, 0], wi[:, 1], wi[:, 2])
+        w = mi.Vector3f(wo[:, 0], wo[:, 1], wo[:, 2])
+        x, y = np.array(eval_in_symbolic_loop(rd, si, w)), np.array(eval_in_symbolic_loop(on, si, w))
+    assert np.abs(x).max() > 0.1
+    np.testing.assert_allclose(x, y, rtol=2e-6, atol=1e-9)

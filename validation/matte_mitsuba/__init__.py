@@ -22,7 +22,7 @@ import os as _os
 PLUGIN_ROOT = _os.path.dirname(_os.path.abspath(__file__))
 
 #: The ``<bsdf type=...>`` names this package provides.
-BSDF_TYPES = ("lambert", "oren_nayar", "eon", "wolff", "ginneken")
+BSDF_TYPES = ("lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse")
 
 
 

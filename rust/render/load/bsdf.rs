@@ -1,5 +1,5 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `conductor`, `roughconductor`
-//! and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken` (parameters validated by
+//! and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`, `roughdiffuse` (parameters validated by
 //! the kernels' own parser, the same one the Mitsuba plugin uses).
 
 use super::{Builder, err, texture, values};
@@ -41,6 +41,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                     Value::Float(x) => ParamValue::Number(*x),
                     Value::Integer(i) => ParamValue::Number(*i as f64),
                     Value::String(s) => ParamValue::Text(s.clone()),
+                    Value::Boolean(v) => ParamValue::Text(v.to_string()),
                     other => return Err(values::prop_err(obj, &p.name, format!("must be a number or a string, not {}", other.type_name()))),
                 };
                 p.used.set(true);
