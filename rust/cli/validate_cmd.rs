@@ -53,6 +53,9 @@ pub struct ValidateArgs {
     pub reference_define: Vec<String>,
     #[arg(short, long)]
     pub quiet: bool,
+    /// Also print the JSON summary on stdout (it is always written to summary.json).
+    #[arg(long)]
+    pub json: bool,
 }
 
 pub fn run(a: &ValidateArgs) -> Result<(), String> {
@@ -120,7 +123,9 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
         }
     }
     validate::report::write_run(&a.out, &results)?;
-    println!("{}", serde_json::to_string_pretty(&validate::report::summary_json(&results)).expect("json"));
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&validate::report::summary_json(&results)).expect("json"));
+    }
     let failed: Vec<String> = results.iter().filter(|r| !r.comparison.passed()).map(|r| format!("{} (vs {})", r.scene.display(), r.reference)).collect();
     if !errors.is_empty() || !failed.is_empty() {
         for e in &errors {
@@ -130,6 +135,9 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
             eprintln!("matte: validate: FAILED: {}", failed.join(", "));
         }
         return Err(format!("{} scene(s) failed, {} could not be validated; report: {}", failed.len(), errors.len(), a.out.join("report.html").display()));
+    }
+    if !a.json {
+        println!("all {} comparison(s) passed; report: {}", results.len(), a.out.join("report.html").display());
     }
     Ok(())
 }

@@ -81,3 +81,18 @@ def test_outputs_are_valid_png_exr_and_html(tmp_path):
     assert len(refs) >= 8
     for ref in refs:
         assert (out / ref).is_file(), f"report.html references a missing file: {ref}"
+
+
+def test_quiet_output_one_line_per_scene_and_json_on_request(tmp_path):
+    """`make main` reads like a summary: a line per scene (stderr), the report's path (stdout);
+    the JSON summary is in summary.json, and on stdout only with --json."""
+    out = tmp_path / "out"
+    cmd = [MATTE, "validate", SPHERE, "-o", str(out), "-D", "res=16", "--quick"]
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.strip().splitlines() == [f"all 1 comparison(s) passed; report: {out / 'report.html'}"]
+    assert [line for line in proc.stderr.splitlines() if line.strip()] == [proc.stderr.strip()]
+    assert proc.stderr.startswith("PASS sphere_lambert.xml")
+    assert json.loads((out / "summary.json").read_text())["passed"]
+    proc = subprocess.run(cmd + ["--json"], capture_output=True, text=True)
+    assert json.loads(proc.stdout)["passed"]
