@@ -6,8 +6,10 @@
 .PHONY: main test bench venv plugin
 
 PY     := .venv/bin/python
-PLUGIN := validation/matte_mitsuba/plugins/matte_bsdfs.so
-SOURCES := $(shell find rust cpp -type f) Cargo.toml Cargo.lock build.rs
+# The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv.
+WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
+SOURCES := $(shell find rust cpp validation/matte_mitsuba -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
+	-not -name '_build.py' -not -path '*__pycache__*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py
 
 main: plugin
 	./target/release/matte validate --all -o validate_out
@@ -23,7 +25,11 @@ test: plugin
 venv:
 	@validation/setup_venv.sh
 
-plugin: venv $(PLUGIN)
+plugin: venv $(WHEEL)
 
-$(PLUGIN): $(SOURCES) validation/requirements.txt
-	@cpp/build_plugin.sh
+# `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.sh); here
+# against the venv's own Mitsuba (no build isolation), then installed into the venv.
+$(WHEEL): $(SOURCES) validation/requirements.txt
+	@rm -f dist/matte_mitsuba-*.whl
+	$(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
+	$(PY) -m pip install --force-reinstall --no-deps -q --disable-pip-version-check $(WHEEL)

@@ -4,6 +4,7 @@
 #      time; LLVM 15, which Debian 12 also ships, makes Dr.Jit 1.5.0 abort);
 #   2. <repo>/.venv with validation/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
+# matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
 # Prints one line saying what it did. Safe to run from anywhere, any number of times.
 set -euo pipefail
 
@@ -58,11 +59,11 @@ if [ "$want" != "$have" ]; then
     did+=("installed $REQ")
 fi
 
-# --- 4. make `import matte_mitsuba` work in the venv ------------------------------
+# --- 4. no path into the checkout: matte_mitsuba comes from the wheel (`make plugin`) ---
 PTH="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/matte.pth"
-if [ "$(cat "$PTH" 2>/dev/null)" != "$PWD/validation" ]; then
-    echo "$PWD/validation" >"$PTH"
-    did+=("added validation/ to the venv's path (matte_mitsuba)")
+if [ -e "$PTH" ]; then
+    rm -f "$PTH"
+    did+=("removed the old matte.pth (matte_mitsuba is installed from the wheel now)")
 fi
 
 if [ ${#did[@]} -eq 0 ]; then

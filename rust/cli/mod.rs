@@ -34,6 +34,8 @@ pub enum Command {
     Study(study_cmd::StudyArgs),
     /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the issue-7 targets.
     Bench(bench_cmd::BenchArgs),
+    /// The BSDF plugin names matte provides, one per line (the plugin build reads them).
+    Types,
 }
 
 /// Parses the command line; usage errors become one line (clap's own multi-line report is
@@ -58,5 +60,9 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Validate(a) => validate_cmd::run(&a),
         Command::Study(a) => study_cmd::run(&a),
         Command::Bench(a) => bench_cmd::run(&a),
+        Command::Types => {
+            crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
+            Ok(())
+        }
     }
 }

@@ -1,19 +1,22 @@
-"""Makes Mitsuba 3 find matte's BSDF plugins.
+"""matte's diffuse BSDFs for Mitsuba 3: importing this package registers them.
 
     import mitsuba as mi
-    mi.set_variant('scalar_rgb')
-    import matte_mitsuba            # registers the plugin folder with Mitsuba's file resolver
+    import matte_mitsuba            # before or after mi.set_variant
+    mi.set_variant('llvm_ad_rgb')
     mi.load_file('scene.xml')       # <bsdf type="wolff"/> etc. now load
 
-Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` through its process-wide
-file resolver; this package's folder holds ``plugins/{lambert,oren_nayar,eon,wolff,
-ginneken}.so`` (built by ``cpp/build_plugin.sh``), so prepending it is all that is needed.
-For the ``mitsuba`` command-line tool use ``-a``: ``mitsuba -a <this folder> scene.xml``
-(``python -m matte_mitsuba`` prints the folder).
+Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` through its process-wide file
+resolver (the same for every variant); this package's folder holds one small ``NAME.so`` per
+type and the library they share (``libmatte_bsdfs.so``), so prepending the folder is all that
+is needed. For the ``mitsuba`` command-line tool use ``-a``: ``mitsuba -a "$(python -m
+matte_mitsuba)" scene.xml``.
 
 Every variant of the Mitsuba wheel is supported, scalar, llvm and cuda, in Dr.Jit's default
-(symbolic) mode: the JIT variants trace the Rust kernels into Dr.Jit, so they run in
-symbolic loops and calls, and ``reflectance`` and the numeric parameters are differentiable.
+(symbolic) mode: the JIT variants trace the Rust kernels into Dr.Jit, so they run in symbolic
+loops and calls, and ``reflectance`` and the numeric parameters are differentiable.
+
+The plugins are compiled against one Mitsuba version (its C++ ABI); another version is refused
+at import with an error naming both.
 """
 
 import os as _os
@@ -21,23 +24,33 @@ import os as _os
 #: Folder to add to Mitsuba's search path (it contains ``plugins/``).
 PLUGIN_ROOT = _os.path.dirname(_os.path.abspath(__file__))
 
-#: The ``<bsdf type=...>`` names this package provides.
-BSDF_TYPES = ("lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse")
+_PLUGINS = _os.path.join(PLUGIN_ROOT, "plugins")
+_LIBRARY = "libmatte_bsdfs.so"
 
 
+def _built_plugins():
+    if not _os.path.exists(_os.path.join(_PLUGINS, _LIBRARY)):
+        raise ImportError("matte_mitsuba: the plugins are not built in %s; run 'make plugin' in the matte "
+                          "repository, or install the matte-mitsuba wheel" % _PLUGINS)
+    return tuple(sorted(f[:-3] for f in _os.listdir(_PLUGINS) if f.endswith(".so") and f != _LIBRARY))
 
-def _check_built():
-    missing = [t for t in BSDF_TYPES if not _os.path.exists(_os.path.join(PLUGIN_ROOT, "plugins", t + ".so"))]
-    if missing:
-        raise ImportError(
-            "matte_mitsuba: plugins %s are not built in %s; run 'make plugin' (or 'make test') "
-            "in the matte repository" % (", ".join(missing), _os.path.join(PLUGIN_ROOT, "plugins")))
+
+#: The ``<bsdf type=...>`` names this package provides (the plugin files the build wrote).
+BSDF_TYPES = _built_plugins()
+
+
+def _check_mitsuba_version(mi):
+    from ._build import MITSUBA_VERSION
+    if mi.__version__ != MITSUBA_VERSION:
+        raise ImportError("matte_mitsuba: its plugins were compiled against Mitsuba %s, but Mitsuba %s is "
+                          "installed; install mitsuba==%s (or rebuild matte against %s)"
+                          % (MITSUBA_VERSION, mi.__version__, MITSUBA_VERSION, mi.__version__))
 
 
 def register():
     """Adds the plugin folder to Mitsuba's file resolver (idempotent). Called on import."""
     import mitsuba as mi
-    _check_built()
+    _check_mitsuba_version(mi)
     resolver = mi.file_resolver()
     if PLUGIN_ROOT not in [str(p) for p in resolver]:
         resolver.prepend(PLUGIN_ROOT)

@@ -1,0 +1,37 @@
+"""The wheel's build step (pyproject.toml has the metadata): build the plugins and the `matte`
+binary with cpp/build_plugin.sh against the Mitsuba of the building Python, put the binary into
+the package, and tag the wheel for this platform (it holds native code, but no Python
+extension: any Python 3 that runs Mitsuba can load it)."""
+import os
+import shutil
+import subprocess
+import sys
+
+from setuptools import setup
+from setuptools.command.bdist_wheel import bdist_wheel
+from setuptools.command.build_py import build_py
+
+ROOT = os.path.dirname(os.path.abspath(__file__))
+
+
+class BuildPlugins(build_py):
+    def run(self):
+        subprocess.check_call([os.path.join(ROOT, "cpp", "build_plugin.sh")], env={**os.environ, "MATTE_PYTHON": sys.executable})
+        binary = os.path.join(ROOT, "validation", "matte_mitsuba", "bin", "matte")
+        os.makedirs(os.path.dirname(binary), exist_ok=True)
+        shutil.copy2(os.path.join(ROOT, "target", "release", "matte"), binary)
+        subprocess.check_call(["strip", binary])
+        super().run()
+
+
+class PlatformWheel(bdist_wheel):
+    def finalize_options(self):
+        super().finalize_options()
+        self.root_is_pure = False
+
+    def get_tag(self):
+        _, _, platform = super().get_tag()
+        return "py3", "none", platform
+
+
+setup(cmdclass={"build_py": BuildPlugins, "bdist_wheel": PlatformWheel})
