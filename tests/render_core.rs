@@ -185,7 +185,7 @@ fn plane_under_point_light_matches_closed_form() {
         let p = Vec3::new(x, if x == 0.0 { 0.0 } else { 0.5 }, 0.0);
         let d2 = (Vec3::new(0.0, 0.0, h) - p).length_squared();
         let expected = rho / PI * i * (h / d2.sqrt()) / d2;
-        assert!(x != 0.0 || (expected - 0.3979).abs() < 1e-3, "renderer-semantics §9 value");
+        assert!(x != 0.0 || (expected - 0.3979).abs() < 1e-3, "docs/renderer-semantics.md §9 value");
         let ray = Ray::new(p + Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY);
         for (integrator, factor) in [(path(2), 1.0), (path(u32::MAX), 1.0), (direct(1, 1), 1.0), (direct(4, 1), 4.0)] {
             let (mean, _) = estimate(&scene, &integrator, ray, 64, 5);

@@ -129,7 +129,7 @@ fn camera(props: &str, width: u32, height: u32) -> LoadedScene {
 }
 
 /// tan(x_fov/2) seen through the ray at the middle of the left film edge of a camera with
-/// identity `to_world` (renderer-semantics §4: that ray is normalize((t, 0, 1))).
+/// identity `to_world` (docs/renderer-semantics.md §4: that ray is normalize((t, 0, 1))).
 fn tan_half_x_fov(s: &LoadedScene) -> f32 {
     let h = s.film.height() as f32;
     let d = s.camera.ray(Vec2::new(0.0, h / 2.0)).d;
