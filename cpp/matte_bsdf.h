@@ -1,10 +1,10 @@
 /*
  * matte's Mitsuba 3 BSDF: one class for every matte model, whose math is the Rust kernels
  * (rust/brdf/) called through the cxx bridge (rust/ffi/). Mitsuba loads the plugin under the
- * name of the `<bsdf type="...">` (lambert, oren_nayar, eon, wolff, ginneken); that name
- * selects the model.
+ * name of the `<bsdf type="...">` (lambert, oren_nayar, eon, wolff, ginneken,
+ * roughdiffuse); that name selects the model.
  *
- * Parameters (brdf-models.md; all optional):
+ * Parameters (docs/models.md, README "Models and parameters"; all optional):
  *
  *   reflectance  spectrum or texture    albedo parameter ρ (default 0.5), evaluated per channel
  *   oren_nayar:  sigma (float, radians, 0.3), model ("qualitative" | "full")
@@ -12,6 +12,7 @@
  *   wolff:       int_ior, ext_ior (float or a Mitsuba IOR name, 1.4 / 1.0),
  *                normalization ("physical" | "normal" | "raw")
  *   ginneken:    roughness (float > 0, rms slope, 0.3), shadowing ("vginneken" | "height_correlated")
+ *   roughdiffuse: alpha (float, RMS slope, 0.2; σ = alpha/√2), use_fast_approx (boolean, false)
  *
  * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
  * cosine-weighted. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.

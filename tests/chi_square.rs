@@ -1,4 +1,4 @@
-//! Sampling routines against their pdfs with Mitsuba's chi-square test (research page §7a):
+//! Sampling routines against their pdfs with Mitsuba's chi-square test (`docs/validation.md#kernel-checks`):
 //! every model configuration at incidence 0°, 45° and 80°, Šidák-corrected over all cases.
 
 mod common;

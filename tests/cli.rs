@@ -34,7 +34,7 @@ fn parameters_and_grid() {
     assert_eq!(v["params"]["model"], "full");
     assert_eq!(v["f"].as_array().unwrap().len(), 4);
     assert_eq!(v["f"][0][0].as_array().unwrap().len(), 4);
-    // θi = θo = 0: fullON s=0.5 at ρ = 0.8 is 0.22255 (research page Table 1).
+    // θi = θo = 0: fullON s=0.5 at ρ = 0.8 is 0.22255 (`docs/models.md` Table 1).
     assert!((v["f"][0][0][0].as_f64().unwrap() - 0.22255).abs() < 2e-5);
 }
 

@@ -170,7 +170,7 @@ fn wolff_matches_snell_fresnel_in_f64() {
 #[test]
 fn reference_helpers_are_sane() {
     // The oracles above must themselves be right: Fresnel at normal incidence and the known
-    // hemispherical average for n = 1.5 (research page §3a), and G at the end points.
+    // hemispherical average for n = 1.5 (`docs/models.md#fresnel`), and G at the end points.
     assert!((fresnel_snell(1.0, 1.5) - 0.04).abs() < 1e-12);
     assert!((fresnel_average(1.5) - 0.09178).abs() < 1e-5);
     assert!((fon_g(1.0) - 0.0).abs() < 1e-12);

@@ -1,6 +1,6 @@
 //! Mesh loading (`rust/scene/mesh`): OBJ, PLY (ascii, binary LE/BE), rectangle, cube.
 //! Oracles: hand-written files with hand-derived expectations, closed forms (symmetry,
-//! inverse-transpose normals), the §8 verified smooth-normal value, and the vertex buffers /
+//! inverse-transpose normals), the verified smooth-normal value of `docs/renderer-semantics.md` §8, and the vertex buffers /
 //! ray-query results of Mitsuba 3.9.1 `scalar_rgb` (`mi.traverse`, `scene.ray_intersect`).
 
 use glam::{Mat4, Quat, Vec2, Vec3};

@@ -1,5 +1,5 @@
 //! The kernels against the independent float64 reference values of
-//! `shared/docs/brdf-models-research.md` §6 (Table 1: f at ρ = 0.8; Table 2: white-furnace
+//! `docs/models.md#reference-values` (Table 1: f at ρ = 0.8; Table 2: white-furnace
 //! albedo). Closed forms: 1e-4 relative (plus half a unit of the last printed digit). van
 //! Ginneken: the reference integral to 2e-4 (the table's own convergence is ~1e-4), the fast
 //! path to 0.5 % (its measured error bound away from grazing, see the ginneken tests).
@@ -23,7 +23,7 @@ const COLUMNS: [(f32, f32, f32); 10] = [
     (60.0, 20.0, 180.0),
 ];
 
-/// Table 1 rows matte implements (FON and the shrimp WON form are not matte plugins).
+/// Table 1 rows matte implements (FON is not a matte plugin).
 fn table1() -> Vec<(&'static str, Bsdf, [f64; 10])> {
     vec![
         ("Lambert", model("lambert", &[]), [0.25465; 10]),
@@ -112,7 +112,7 @@ fn table2_white_furnace_albedo() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// QON's closed-form albedo at normal incidence is A(σ) (research page Table 3).
+/// QON's closed-form albedo at normal incidence is A(σ) (`docs/models.md` Table 3).
 #[test]
 fn qon_normal_incidence_albedo_is_a() {
     for (sigma, a) in [(0.1, 0.9853), (0.5, 0.7845), (1.0, 0.6241), (std::f64::consts::FRAC_PI_2, 0.5590)] {

@@ -84,7 +84,7 @@ fn analytic_shapes_hit_where_geometry_says() {
     );
     let si = scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z, f32::INFINITY)).unwrap();
     assert!((si.t - 4.0).abs() < 1e-5 && (si.n - Vec3::Z).length() < 1e-6);
-    // From inside, the normal still points outward (semantics §8).
+    // From inside, the normal still points outward (`docs/renderer-semantics.md` §8).
     let si = scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, -1.0), Vec3::X, f32::INFINITY)).unwrap();
     assert!((si.t - 2.0).abs() < 1e-5 && (si.n - Vec3::X).length() < 1e-5 && si.wi.z < 0.0);
     let si = scene.intersect(&Ray::new(Vec3::new(10.5, 0.0, 2.0), Vec3::NEG_Z, f32::INFINITY)).unwrap();
@@ -169,7 +169,8 @@ fn white_furnace_returns_the_environment_radiance() {
 
 /// A Lambertian plane (ρ = 0.5) under a point light of intensity I at height h: every
 /// point gets L = ρ/π · I cos θ / d², with `path` (any depth ≥ 2) and `direct` alike. The
-/// `direct` quirk (delta-light samples not divided by Ne, semantics §7) multiplies it by Ne.
+/// `direct` quirk (delta-light samples not divided by Ne, `docs/renderer-semantics.md` §7)
+/// multiplies it by Ne.
 #[test]
 fn plane_under_point_light_matches_closed_form() {
     let (i, h, rho) = (10.0f32, 2.0f32, 0.5f32);
@@ -184,7 +185,7 @@ fn plane_under_point_light_matches_closed_form() {
         let p = Vec3::new(x, if x == 0.0 { 0.0 } else { 0.5 }, 0.0);
         let d2 = (Vec3::new(0.0, 0.0, h) - p).length_squared();
         let expected = rho / PI * i * (h / d2.sqrt()) / d2;
-        assert!(x != 0.0 || (expected - 0.3979).abs() < 1e-3, "semantics §9 value");
+        assert!(x != 0.0 || (expected - 0.3979).abs() < 1e-3, "docs/renderer-semantics.md §9 value");
         let ray = Ray::new(p + Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY);
         for (integrator, factor) in [(path(2), 1.0), (path(u32::MAX), 1.0), (direct(1, 1), 1.0), (direct(4, 1), 4.0)] {
             let (mean, _) = estimate(&scene, &integrator, ray, 64, 5);
@@ -194,7 +195,8 @@ fn plane_under_point_light_matches_closed_form() {
 }
 
 /// `max_depth` counts segments: a closed emissive cube (inward normals, ρ = 0.5, Le = 1)
-/// gives 1, 1.5, 1.75 for depths 1, 2, 3 and 2 unbounded (semantics §7, verified in Mitsuba).
+/// gives 1, 1.5, 1.75 for depths 1, 2, 3 and 2 unbounded (`docs/renderer-semantics.md` §7,
+/// verified in Mitsuba).
 #[test]
 fn max_depth_counts_segments_in_a_closed_emissive_box() {
     let mut pos = Vec::new();

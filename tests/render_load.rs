@@ -1,7 +1,7 @@
 //! The scene loader `matte::render::load` (XML object tree → renderable `LoadedScene`) and the
-//! `matte render` CLI. Expected values come from `shared/docs/mitsuba-semantics.md` (the
-//! section is named at each use; [verified] numbers there were measured with Mitsuba 3.9.1
-//! `scalar_rgb`), from `brdf-models.md` for matte's own plugins, or from closed forms
+//! `matte render` CLI. Expected values come from `docs/renderer-semantics.md` (the
+//! section is named at each use as §N; [verified] numbers there were measured with Mitsuba 3.9.1
+//! `scalar_rgb`), from `docs/models.md` for matte's own plugins, or from closed forms
 //! (ray–sphere/cylinder/plane hits, normal-incidence Fresnel, the pinhole projection).
 //! Every error test checks that the message names `file:line` and says what is wrong.
 //! Where matte is deliberately stricter than Mitsuba (limits that keep NaN and panics out of
@@ -129,7 +129,7 @@ fn camera(props: &str, width: u32, height: u32) -> LoadedScene {
 }
 
 /// tan(x_fov/2) seen through the ray at the middle of the left film edge of a camera with
-/// identity `to_world` (semantics §4: that ray is normalize((t, 0, 1))).
+/// identity `to_world` (docs/renderer-semantics.md §4: that ray is normalize((t, 0, 1))).
 fn tan_half_x_fov(s: &LoadedScene) -> f32 {
     let h = s.film.height() as f32;
     let d = s.camera.ray(Vec2::new(0.0, h / 2.0)).d;
@@ -777,7 +777,7 @@ fn emitter_errors() {
 }
 
 // ------------------------------------------------------------------------------------------
-// BSDFs and textures (§2, §10, §11, brdf-models.md)
+// BSDFs and textures (§2, §10, §11; docs/models.md)
 
 #[test]
 fn diffuse_reflectance_colours() {
@@ -800,7 +800,7 @@ fn diffuse_reflectance_colours() {
 
 #[test]
 fn matte_models_with_documented_defaults() {
-    // brdf-models.md: reflectance 0.5; oren_nayar σ 0.3 qualitative; eon r 0.3; wolff int 1.4,
+    // docs/models.md: reflectance 0.5; oren_nayar σ 0.3 qualitative; eon r 0.3; wolff int 1.4,
     // ext 1.0, physical; ginneken m 0.3, vginneken.
     use ParamValue::{Number, Text};
     let num = |x: f64| Number(x as f32 as f64);

@@ -1,5 +1,5 @@
-//! The Mitsuba XML parser layer (`matte::scene::xml`) against the semantics doc §1–3
-//! (`shared/docs/mitsuba-semantics.md`) and, where the doc is silent, against values printed by
+//! The Mitsuba XML parser layer (`matte::scene::xml`) against `docs/renderer-semantics.md`
+//! §1–3 ("doc §N" below) and, where the doc is silent, against values printed by
 //! Mitsuba 3.9.1 `scalar_rgb` itself (its `mi.parser.parse_string` and `mi.traverse` outputs,
 //! quoted where used). Every error test checks that the message names the file and the line.
 

@@ -1,6 +1,6 @@
 //! Mitsuba's smooth `dielectric`, smooth `conductor` and `roughconductor` as the renderer
 //! uses them (`render::bsdf`). Oracles: closed-form Fresnel in f64 (real and complex
-//! arithmetic written here), the semantics doc's verified numbers (§10), numerical
+//! arithmetic written here), the verified numbers of `docs/renderer-semantics.md` §10, numerical
 //! quadrature, Mitsuba's chi-square test, and eval/pdf values of the real Mitsuba 3.9.1.
 
 mod common;

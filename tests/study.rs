@@ -204,8 +204,8 @@ fn derived_scene_errors_name_the_file() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `F_dr(η) = 2 ∫₀¹ F(μ, η) μ dμ` with the unpolarised Fresnel reflectance of research page
-/// §3a (total internal reflection: F = 1), by a 10⁶-point midpoint rule.
+/// `F_dr(η) = 2 ∫₀¹ F(μ, η) μ dμ` with the unpolarised Fresnel reflectance of
+/// `docs/models.md#fresnel` (total internal reflection: F = 1), by a 10⁶-point midpoint rule.
 fn diffuse_fresnel(eta: f64) -> f64 {
     let fresnel = |c: f64| {
         let g2 = eta * eta - 1.0 + c * c;
@@ -224,7 +224,7 @@ fn diffuse_fresnel(eta: f64) -> f64 {
 #[test]
 fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() {
     use matte::validate::passes::{Budget, PassPlan, rust_side};
-    // Closed form (research page §3c): K_raw / K_physical = n² (1 − ρ F_dr,int), F_dr,int = F_dr(1/n).
+    // Closed form (`docs/models.md#wolff-normalisations`): K_raw / K_physical = n² (1 − ρ F_dr,int), F_dr,int = F_dr(1/n).
     // With direct lighting only (max_depth 2) every path has one bounce, on the same geometry
     // with the same seed, so a region seeing only white surfaces scales by exactly that factor
     // per channel (> 1 for ρ below (1 − 1/n²) / F_dr,int ≈ 0.93: raw is brighter).

@@ -102,7 +102,7 @@ fn diffuse_surfaces_use_the_bsdf_parameter() {
     assert!(room.contains("<bsdf type=\"dielectric\">\n            <float name=\"int_ior\" value=\"1.5\"/>"));
 }
 
-/// Semantics doc §7: `direct` (one light and one BSDF sample) has the same expectation as
+/// `docs/renderer-semantics.md` §7: `direct` (one light and one BSDF sample) has the same expectation as
 /// `path` with max_depth 2. Renders the bunny both ways, for two models (Lambert and the
 /// view-dependent Wolff), and compares the image means.
 #[test]

@@ -1,4 +1,4 @@
-//! `matte bench`: issue 7's speed targets measured in one run on this machine: matte's
+//! `matte bench`: the speed targets (README "Speed") measured in one run on this machine: matte's
 //! renderer against Mitsuba 3.9.1 (`scalar_rgb`, `llvm_ad_rgb` with a warm kernel cache) on
 //! the same scenes at the same spp, samples/s against spp, BVH build share, kernel ns/eval
 //! against Lambert, and each traced plugin's render time against Mitsuba's `diffuse` (llvm_ad_rgb).

@@ -1,4 +1,4 @@
-//! The bench's table, its targets (issue 7) with pass/fail, and the JSON record.
+//! The bench's table, its targets (README "Speed") with pass/fail, and the JSON record.
 
 use super::Measurements;
 use serde_json::json;
@@ -19,7 +19,7 @@ impl Target {
     }
 }
 
-/// Issue 7's targets that the measurements can check.
+/// The speed targets (README "Speed") that the measurements can check.
 pub fn targets(m: &Measurements) -> Vec<Target> {
     let mut t = Vec::new();
     let le = |what: String, measured: f64, limit: f64| Target { what, measured, limit, at_least: false };
@@ -54,8 +54,8 @@ pub fn targets(m: &Measurements) -> Vec<Target> {
     t
 }
 
-/// The traced plugins' render-time limits against `diffuse` (issue 12): the extra operations
-/// each model records into the path tracer's kernel.
+/// The traced plugins' render-time limits against `diffuse` (README "Speed", plugins): the
+/// extra operations each model records into the path tracer's kernel.
 fn plugin_limit(kind: &str) -> f64 {
     match kind {
         "lambert" => 1.02,

@@ -1,5 +1,6 @@
-//! Directions from angles (the CLI's and the tests' inputs). Convention (README, "Models"): z is the macroscopic normal,
-//! `wi` points towards the light, `wo` towards the viewer, both unit vectors.
+//! Directions from angles (the CLI's and the tests' inputs). Convention
+//! (`docs/conventions.md#local-frame`): z is the macroscopic normal, `wi` points towards the
+//! light, `wo` towards the viewer, both unit vectors.
 
 use glam::Vec3;
 

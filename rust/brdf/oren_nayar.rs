@@ -89,7 +89,7 @@ impl<T: Real> OrenNayarKernel<T> {
         // The 1994 fit goes negative in forward-grazing configurations at large σ (σ = 1,
         // θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1 and, for ρ < 1, the ρ² term).
         // A BRDF cannot be negative: the total is clamped at 0, which leaves the published
-        // model untouched wherever it is valid (Table 2's albedos are unchanged).
+        // model untouched wherever it is valid (the albedos of `docs/models.md` Table 2 are unchanged; `docs/models.md#clamps`).
         rho.map(|r| (r * r.fma(inter, direct)).max(T::c(0.0)))
     }
 }

@@ -24,7 +24,7 @@ pub enum Command {
     /// Directional albedo (white furnace, reflectance 1 unless given) as JSON.
     Albedo(brdf_cmd::AlbedoArgs),
     /// Print matte's values for the reference configurations of Tables 1-2
-    /// (brdf-models-research.md §6) and the van Ginneken fast-path error.
+    /// (docs/models.md#reference-values) and the van Ginneken fast-path error.
     Tables(tables::TablesArgs),
     /// Render a Mitsuba 3 XML scene with the Rust path tracer (EXR, optional PNG).
     Render(render_cmd::RenderArgs),
@@ -32,7 +32,7 @@ pub enum Command {
     Validate(validate_cmd::ValidateArgs),
     /// The seed paper's study: its scenes with every diffuse model, strips and measured ratios.
     Study(study_cmd::StudyArgs),
-    /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the issue-7 targets.
+    /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (README "Speed").
     Bench(bench_cmd::BenchArgs),
     /// The BSDF plugin names matte provides, one per line (the plugin build reads them).
     Types,

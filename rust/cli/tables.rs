@@ -1,5 +1,5 @@
 //! `matte tables`: matte's values for the reference configurations of
-//! `brdf-models-research.md` §6 (Table 1: f at ρ = 0.8; Table 2: white-furnace albedo), so a
+//! `docs/models.md#reference-values` (Table 1: f at ρ = 0.8; Table 2: white-furnace albedo), so a
 //! reader can hold them against the published numbers, plus the van Ginneken fast path's
 //! measured error against the reference integral.
 
@@ -14,7 +14,7 @@ pub struct TablesArgs {
     pub error_samples: usize,
 }
 
-/// (label, type, parameters) of the rows, in the research page's notation.
+/// (label, type, parameters) of the rows, in the notation of `docs/models.md` Tables 1–2.
 const ROWS: &[(&str, &str, &[(&str, &str)])] = &[
     ("Lambert", "lambert", &[]),
     ("QON s=0.25", "oren_nayar", &[("sigma", "0.25")]),

@@ -1,4 +1,4 @@
-//! Convergence series (issue 6, question 2): is the paper's Oren–Nayar "glow below the green
+//! Convergence series (README "The study", convergence series): is the paper's Oren–Nayar "glow below the green
 //! box" real or a bias? A real property of the model gives a region ratio ON / Lambert that
 //! is stable as the sample count grows and the same in both renderers (their 99 % intervals
 //! overlap). A bias or noise artefact drifts with spp or differs between renderers.
@@ -8,7 +8,7 @@
 //! each total spp of the series, with K paired passes per level, by matte and by Mitsuba (the
 //! project's `.venv`). Only the region is rendered: a derived scene ([`super::variant_scene`])
 //! sets the film's crop window to the region's pixels at the study's resolution. Mitsuba
-//! renders a crop as the same sub-window of the full image (semantics doc §6), so the region
+//! renders a crop as the same sub-window of the full image (`docs/renderer-semantics.md` §6, crop), so the region
 //! keeps the main run's pixels at a fraction of the cost. One difference remains: pixels on
 //! the crop's border average only samples inside the crop, which is a filter-width
 //! difference at the region's rim. Each level has its own seeds (`seed + 10000·(level + 1) + k`),

@@ -44,7 +44,7 @@ pub fn variants_html(v: &VariantStudy) -> String {
         h,
         r#"<div class="scene"><h2>{}: model variants</h2><p>Wolff's constant K and the Oren–Nayar model, each set as a property in a derived copy of the scene
 (<code>{}/variants/*.xml</code>). The defaults are the main run's images. The other variants use the main run's seeds and budget, so their ratio to Lambert is paired with the same Lambert passes.
-n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispherical average (research page §3c, §2a–b).</p><ul>"#,
+n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispherical average (docs/models.md: Wolff normalisations, Oren-Nayar qualitative and full).</p><ul>"#,
         esc(&v.scene_name),
         esc(&v.scene_name)
     );

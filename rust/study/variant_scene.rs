@@ -18,7 +18,7 @@
 //!   parameter they name.
 //!
 //! An asset named with a relative path inside an *included* file resolves against the main
-//! scene's folder (semantics doc §1, pitfall), which is now the output folder; such scenes
+//! scene's folder (`docs/renderer-semantics.md` §1, include pitfall), which is now the output folder; such scenes
 //! are refused with an error naming the included file instead of silently losing the asset.
 
 use std::ops::Range;

@@ -1,12 +1,12 @@
-//! Model variants (issue 6, question 1): how the results change with Wolff's normalisation
+//! Model variants (README "The study", model variants): how the results change with Wolff's normalisation
 //! and with the Oren–Nayar model. Each variant is one property in the `$bsdf` element, set
 //! through a derived scene ([`super::variant_scene`]) that both renderers load like any
 //! scene. The variants that are the plugins' defaults are the main run itself; the others
 //! are rendered with the main run's seeds and budget, so their ratio to Lambert is paired
 //! with the Lambert passes already rendered.
 //!
-//! What the variants mean: `shared/docs/brdf-models-research.md` §2a/2b (Oren–Nayar) and
-//! §3c (Wolff's constant K); matte's choices in `shared/docs/brdf-models.md`.
+//! What the variants mean: `docs/models.md#oren-nayar-qualitative`, `#oren-nayar-full` and
+//! `#wolff-normalisations` (Wolff's constant K), with matte's choices.
 
 use super::variant_scene::{self, Derivation, Property};
 use super::{Lighting, Options, SceneStudy, metrics, strip};

@@ -3,7 +3,7 @@
 //! test equality of the two expectations with Welch's unequal-variance t-test (Welch 1947),
 //! two-sided. The family of `3·W·H` tests is held at level α with Šidák's correction
 //! (`α_pixel = 1 − (1−α)^(1/N)`), as Mitsuba's own render tests do
-//! (`brdf-models-research.md` §7d). A second, global test compares the image mean per
+//! (`docs/validation.md#multiple-testing`). A second, global test compares the image mean per
 //! channel using the K per-pass image means, which is immune to the filter's correlation
 //! between neighbouring pixels and has power against small uniform shifts.
 

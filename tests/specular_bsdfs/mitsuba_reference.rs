@@ -10,7 +10,7 @@
 //! bsdf.eval(mi.BSDFContext(), si, wo), bsdf.pdf(mi.BSDFContext(), si, wo)
 //! ```
 //!
-//! with AU_ETA/AU_K the §10 Au values. wi/wo are f32 unit vectors (random, lobe-centred wo,
+//! with AU_ETA/AU_K the Au values of `docs/renderer-semantics.md` §10. wi/wo are f32 unit vectors (random, lobe-centred wo,
 //! plus normal incidence and one wo below the surface). `eval` is the same for both
 //! `sample_visible` settings (checked in the script); `pdf` is given for both.
 

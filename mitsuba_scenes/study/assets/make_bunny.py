@@ -13,7 +13,7 @@ What the script does to the mesh:
 * Checks it is a closed two-manifold with consistent winding (every directed edge once, and
   its reverse once) and that its signed volume is positive, i.e. counter-clockwise faces
   seen from outside, which is Mitsuba's front side (geometric normal cross(p1-p0, p2-p0),
-  semantics doc section 8). Were the volume negative, the faces would be reversed.
+  docs/renderer-semantics.md section 8). Were the volume negative, the faces would be reversed.
 * The package's +y is up already (the bunny sits on y = 0). It is scaled to height 1, its
   base put on y = 0 and its footprint centred on x = z = 0.
 * Writes a binary (little-endian) PLY with float32 positions and faces only: Mitsuba (and

@@ -2,7 +2,7 @@
 `python3 mitsuba_scenes/study/assets/make_meshes.py`.
 
 Every mesh is a closed OBJ, centred at the origin, with counter-clockwise faces seen from
-outside (Mitsuba's geometric normal is cross(p1 - p0, p2 - p0), semantics doc section 8)
+outside (Mitsuba's geometric normal is cross(p1 - p0, p2 - p0), docs/renderer-semantics.md section 8)
 and analytic smooth vertex normals (`vn`), so the rounded parts shade smoothly and the flat
 parts stay exactly flat.
 

@@ -13,7 +13,8 @@
 //! magnitude t. That one is split where a factor starts to clamp (`t = cot θ`, a
 //! `(t − t₀)^{3/2}` kink) and each piece is integrated by Gauss–Legendre after the substitution
 //! `t = t₀ + (t₁ − t₀) w²`, which removes the kink. [`midpoint_slope_integral`] is the naive
-//! 2-D midpoint rule the research page used, kept as an independent check.
+//! 2-D midpoint rule on [−7m, 7m]² (how the reference tables of `docs/models.md` were
+//! computed), kept as an independent check.
 
 use crate::brdf::quadrature::GaussLegendre;
 use std::f64::consts::{PI, TAU};
