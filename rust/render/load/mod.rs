@@ -52,6 +52,8 @@ pub fn load_str(text: &str, path: &Path, overrides: &[(String, String)]) -> Resu
 /// scene file's folder (Mitsuba resolves them there even inside `<include>`d files).
 pub(crate) struct Builder {
     pub base_dir: PathBuf,
+    /// `<path>` folders, searched first (Mitsuba's file resolver).
+    pub search_paths: Vec<PathBuf>,
     pub bsdfs: Vec<crate::render::bsdf::Bsdf>,
     pub bsdf_index: HashMap<*const SceneObject, u32>,
     pub shapes: Vec<crate::render::shape::Shape>,
@@ -60,16 +62,22 @@ pub(crate) struct Builder {
 }
 
 impl Builder {
-    /// An asset path: absolute, or relative to the scene file's folder.
+    /// An asset path: absolute, or the first existing one relative to a `<path>` folder,
+    /// else relative to the scene file's folder (Mitsuba `FileResolver::resolve`, with the
+    /// scene's folder prepended before parsing and `<path>` folders in front of it).
     pub fn resolve(&self, file: &str) -> PathBuf {
         let p = Path::new(file);
-        if p.is_absolute() { p.to_path_buf() } else { self.base_dir.join(p) }
+        if p.is_absolute() {
+            return p.to_path_buf();
+        }
+        self.search_paths.iter().map(|d| d.join(p)).find(|c| c.exists()).unwrap_or_else(|| self.base_dir.join(p))
     }
 }
 
 fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError> {
     let mut b = Builder {
         base_dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+        search_paths: root.search_paths.clone(),
         bsdfs: Vec::new(),
         bsdf_index: HashMap::new(),
         shapes: Vec::new(),
