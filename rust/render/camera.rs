@@ -5,6 +5,24 @@
 use crate::render::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
 
+/// The sensor: `perspective` or `orthographic`.
+#[derive(Clone, Debug)]
+pub enum Camera {
+    Perspective(PerspectiveCamera),
+    Orthographic(super::orthographic::OrthographicCamera),
+}
+
+impl Camera {
+    /// The primary ray through full-film pixel position `film_pos` (pixels, origin top-left).
+    #[inline]
+    pub fn ray(&self, film_pos: Vec2) -> Ray {
+        match self {
+            Camera::Perspective(c) => c.ray(film_pos),
+            Camera::Orthographic(c) => c.ray(film_pos),
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct PerspectiveCamera {
     to_world: Affine3A,

@@ -1,7 +1,7 @@
 //! A BSDF parameter that is either a constant RGB or a `bitmap` texture looked up at the
 //! hit's uv (Mitsuba `get_texture`).
 
-use crate::render::texture::BitmapTexture;
+use crate::render::texture::{BitmapTexture, Checkerboard};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -9,6 +9,7 @@ use std::sync::Arc;
 pub enum Texture {
     Constant(Vec3),
     Bitmap(Arc<BitmapTexture>),
+    Checkerboard(Arc<Checkerboard>),
 }
 
 impl Texture {
@@ -17,6 +18,7 @@ impl Texture {
         match self {
             Texture::Constant(c) => *c,
             Texture::Bitmap(b) => b.eval(uv),
+            Texture::Checkerboard(c) => c.eval(uv),
         }
     }
 }

@@ -11,7 +11,7 @@ mod shape;
 mod texture;
 mod values;
 
-use crate::render::camera::PerspectiveCamera;
+use crate::render::camera::Camera;
 use crate::render::emitter::Emitter;
 use crate::render::film::Film;
 use crate::render::integrator::Integrator;
@@ -25,7 +25,7 @@ use std::rc::Rc;
 /// Everything `matte render` needs.
 pub struct LoadedScene {
     pub scene: Scene,
-    pub camera: PerspectiveCamera,
+    pub camera: Camera,
     /// A fresh film (size, crop, filter) to render into.
     pub film: Film,
     pub integrator: Integrator,

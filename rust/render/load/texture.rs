@@ -1,9 +1,9 @@
 //! Reflectance-like parameters: a colour property (`<rgb>`, `<float>`, `<spectrum>`) or a
-//! nested/referenced `<texture type="bitmap">` (semantics §2, §11).
+//! nested/referenced `<texture type="bitmap">` (semantics §2, §11) or `checkerboard`.
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
-use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
+use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, Checkerboard, WrapMode};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject};
 use glam::{Affine2, Mat2, Vec2, Vec3};
@@ -24,11 +24,34 @@ pub fn get(b: &Builder, obj: &SceneObject, name: &str, usage: ColorUse, default:
     Ok(Texture::Constant(values::color(obj, name, usage, default)?))
 }
 
-/// A `<texture>` object (only `bitmap` is supported).
+/// A `<texture>` object: `bitmap` or `checkerboard`.
 pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
-    if obj.plugin != "bitmap" {
-        return Err(err(obj, format!("unsupported texture type \"{}\" (matte renders: bitmap)", obj.plugin)));
+    match obj.plugin.as_str() {
+        "bitmap" => build_bitmap(b, obj),
+        "checkerboard" => {
+            let color0 = get(b, obj, "color0", ColorUse::Bounded, Vec3::splat(0.4))?;
+            let color1 = get(b, obj, "color1", ColorUse::Bounded, Vec3::splat(0.2))?;
+            let to_uv = to_uv(obj)?;
+            obj.check_all_used()?;
+            Ok(Texture::Checkerboard(Arc::new(Checkerboard { color0, color1, to_uv })))
+        }
+        other => Err(err(obj, format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard)"))),
     }
+}
+
+/// `to_uv` as a 2-D affine map: the upper-left 2×2 block and the translation column of the
+/// 4×4 transform (Mitsuba's `Properties::get<AffineTransform3f>`).
+fn to_uv(obj: &SceneObject) -> Result<Affine2, SceneError> {
+    Ok(match obj.properties.transform("to_uv")? {
+        None => Affine2::IDENTITY,
+        Some(m) => {
+            let a = Mat2::from_cols(Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32), Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32));
+            Affine2::from_mat2_translation(a, Vec2::new(m.w_axis.x as f32, m.w_axis.y as f32))
+        }
+    })
+}
+
+fn build_bitmap(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
     let filter = match values::string(obj, "filter_type", "bilinear")?.as_str() {
         "bilinear" => BitmapFilter::Bilinear,
@@ -42,14 +65,7 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
         other => return Err(values::prop_err(obj, "wrap_mode", format!("must be repeat, mirror or clamp, got \"{other}\""))),
     };
     let raw = values::boolean(obj, "raw", false)?;
-    let to_uv = match obj.properties.transform("to_uv")? {
-        None => Affine2::IDENTITY,
-        Some(m) => {
-            // Upper-left 2×2 plus the translation (Mitsuba's bitmap texture).
-            let a = Mat2::from_cols(Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32), Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32));
-            Affine2::from_mat2_translation(a, Vec2::new(m.w_axis.x as f32, m.w_axis.y as f32))
-        }
-    };
+    let to_uv = to_uv(obj)?;
     let _ = values::string(obj, "format", "variant")?;
     obj.check_all_used()?;
     let path = b.resolve(&filename);

@@ -1,8 +1,10 @@
-//! Textures (`src/textures/*.cpp`). Only `bitmap` so far (§11); uniform colours stay plain
-//! values in the scene description.
+//! Textures (`src/textures/*.cpp`): `bitmap` (§11) and `checkerboard`; uniform colours stay
+//! plain values in the scene description.
 
 mod bitmap;
 mod bitmap_load;
+mod checkerboard;
 
 pub use bitmap::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 pub use bitmap_load::srgb_to_linear;
+pub use checkerboard::Checkerboard;
