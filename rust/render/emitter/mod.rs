@@ -6,6 +6,7 @@ pub mod sample;
 
 pub use sample::EmitterSample;
 
+use crate::render::bsdf::Texture;
 use crate::render::geometry::warp;
 use crate::render::shape::{Shape, SurfaceInteraction};
 use glam::{Affine3A, Vec2, Vec3};
@@ -17,8 +18,20 @@ pub enum Emitter {
     /// Isotropic point light: `intensity / d²`.
     Point { position: Vec3, intensity: Vec3 },
     /// Spot light along local +z of `to_world`; falloff linear in the angle between
-    /// `beam_width` and `cutoff_angle` (radians).
-    Spot { to_world: Affine3A, to_local: Affine3A, intensity: Vec3, cutoff: f32, beam_width: f32, cos_cutoff: f32, cos_beam: f32 },
+    /// `beam_width` and `cutoff_angle` (radians). An optional `texture` multiplies the
+    /// intensity, looked up at uv = 1/2 + 1/2·(x, y)/(z·tan cutoff) of the local direction
+    /// (`src/emitters/spot.cpp`, `direction_to_uv`).
+    Spot {
+        to_world: Affine3A,
+        to_local: Affine3A,
+        intensity: Vec3,
+        cutoff: f32,
+        beam_width: f32,
+        cos_cutoff: f32,
+        cos_beam: f32,
+        texture: Option<Texture>,
+        uv_factor: f32,
+    },
     /// Parallel light travelling along `direction` (unit) with irradiance `irradiance`.
     Directional { direction: Vec3, irradiance: Vec3 },
     /// Uniform environment of radiance `radiance`, sampled uniformly over the sphere.
@@ -55,7 +68,7 @@ impl Emitter {
                 let d = d / dist;
                 Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity / dist2, p: *position, n: -d })
             }
-            Emitter::Spot { to_world, to_local, intensity, cutoff, beam_width, cos_cutoff, cos_beam } => {
+            Emitter::Spot { to_world, to_local, intensity, cutoff, beam_width, cos_cutoff, cos_beam, texture, uv_factor } => {
                 let pos: Vec3 = to_world.translation.into();
                 let d = pos - ref_p;
                 let dist2 = d.length_squared();
@@ -64,12 +77,18 @@ impl Emitter {
                     return None;
                 }
                 let d = d / dist;
-                let local = to_local.transform_vector3(-d).normalize_or_zero();
+                let local_raw = to_local.transform_vector3(-d);
+                let local = local_raw.normalize_or_zero();
                 let falloff = spot_falloff(local.z, *cutoff, *beam_width, *cos_cutoff, *cos_beam);
                 if falloff <= 0.0 {
                     return None;
                 }
-                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity * (falloff / dist2), p: pos, n: -d })
+                let mut radiance = *intensity;
+                if let Some(tex) = texture {
+                    let uv = Vec2::new(local_raw.x, local_raw.y) / (local_raw.z * *uv_factor) * 0.5 + 0.5;
+                    radiance *= tex.eval(uv);
+                }
+                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: radiance * (falloff / dist2), p: pos, n: -d })
             }
             Emitter::Directional { direction, irradiance } => {
                 let d = -*direction;
@@ -134,7 +153,7 @@ pub fn spot_falloff(cos_theta: f32, cutoff: f32, beam_width: f32, cos_cutoff: f3
 }
 
 /// Spot-light constructor helper: angles in degrees as in the XML.
-pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32) -> Emitter {
+pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32, texture: Option<Texture>) -> Emitter {
     let cutoff = cutoff_deg.to_radians();
     let beam_width = beam_deg.to_radians();
     Emitter::Spot {
@@ -145,5 +164,7 @@ pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32)
         beam_width,
         cos_cutoff: cutoff.cos(),
         cos_beam: beam_width.cos(),
+        texture,
+        uv_factor: cutoff.tan(),
     }
 }

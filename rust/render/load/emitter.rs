@@ -66,7 +66,16 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             if !(cutoff > 0.0 && cutoff <= 180.0 && beam > 0.0 && beam <= cutoff) {
                 return Err(err(obj, format!("needs 0 < beam_width ({beam}) ≤ cutoff_angle ({cutoff}) ≤ 180")));
             }
-            emitter::spot(values::transform(obj, "to_world")?, intensity, cutoff as f32, beam as f32)
+            // `texture` (`get_texture`, default 1) must vary spatially when given.
+            let texture = match obj.child("texture") {
+                None => None,
+                Some(c) if c.object.tag == "texture" => Some(super::texture::build(b, &c.object)?),
+                Some(c) => return Err(err(&c.object, "\"texture\" must be a texture (e.g. bitmap)")),
+            };
+            if obj.properties.contains("texture") {
+                return Err(values::prop_err(obj, "texture", "must be spatially varying (e.g. bitmap type), as in Mitsuba"));
+            }
+            emitter::spot(values::transform(obj, "to_world")?, intensity, cutoff as f32, beam as f32, texture)
         }
         "directional" => {
             let irradiance = emissive(obj, "irradiance")?;
