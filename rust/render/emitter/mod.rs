@@ -2,8 +2,10 @@
 //! shading normal, attached to a shape), `point`, `spot`, `directional` and the `constant`
 //! environment. Radiance values are linear RGB.
 
+pub mod envmap;
 pub mod sample;
 
+pub use envmap::EnvMap;
 pub use sample::EmitterSample;
 
 use crate::render::bsdf::Texture;
@@ -36,6 +38,8 @@ pub enum Emitter {
     Directional { direction: Vec3, irradiance: Vec3 },
     /// Uniform environment of radiance `radiance`, sampled uniformly over the sphere.
     Constant { radiance: Vec3 },
+    /// Image-based environment (`envmap`), importance sampled.
+    EnvMap(std::sync::Arc<EnvMap>),
 }
 
 impl Emitter {
@@ -94,6 +98,10 @@ impl Emitter {
                 let d = -*direction;
                 Some(EmitterSample { d, dist: f32::INFINITY, pdf: 1.0, delta: true, weight: *irradiance, p: ref_p + d, n: *direction })
             }
+            Emitter::EnvMap(e) => {
+                let (d, radiance, pdf) = e.sample(u)?;
+                Some(EmitterSample { d, dist: f32::INFINITY, pdf, delta: false, weight: radiance / pdf, p: ref_p + d, n: -d })
+            }
             Emitter::Constant { radiance } => {
                 let d = warp::square_to_uniform_sphere(u);
                 Some(EmitterSample {
@@ -109,6 +117,12 @@ impl Emitter {
         }
     }
 
+    /// Whether this is the scene's environment (`constant` or `envmap`).
+    #[inline]
+    pub fn is_environment(&self) -> bool {
+        matches!(self, Emitter::Constant { .. } | Emitter::EnvMap(_))
+    }
+
     /// Radiance seen at a surface hit of this (area) emitter's shape.
     #[inline]
     pub fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
@@ -118,12 +132,23 @@ impl Emitter {
         }
     }
 
-    /// Radiance of the environment for an escaped ray.
+    /// Radiance of the environment for a ray escaping along `d`.
     #[inline]
-    pub fn eval_environment(&self) -> Vec3 {
+    pub fn eval_environment(&self, d: Vec3) -> Vec3 {
         match self {
             Emitter::Constant { radiance } => *radiance,
+            Emitter::EnvMap(e) => e.eval(d),
             _ => Vec3::ZERO,
+        }
+    }
+
+    /// Solid-angle density with which light sampling picks the environment direction `d`.
+    #[inline]
+    pub fn pdf_environment(&self, d: Vec3) -> f32 {
+        match self {
+            Emitter::Constant { .. } => warp::UNIFORM_SPHERE_PDF,
+            Emitter::EnvMap(e) => e.pdf(d),
+            _ => 0.0,
         }
     }
 

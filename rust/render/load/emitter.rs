@@ -1,8 +1,11 @@
 //! `<emitter>`: `area` (nested in a shape), `point`, `spot`, `directional`, `constant`
-//! (semantics §9; emissive colours follow §2: `<spectrum value=v>` is not white).
+//! (semantics §9; emissive colours follow §2: `<spectrum value=v>` is not white), and
+//! `envmap` (`src/emitters/envmap.cpp`: filename, scale, to_world, mis_compensation).
 
 use super::{Builder, err, values};
-use crate::render::emitter::{self, Emitter};
+use crate::render::emitter::{self, Emitter, EnvMap};
+use crate::render::texture::{BitmapOptions, BitmapTexture};
+use std::sync::Arc;
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject};
 use glam::Vec3;
@@ -96,10 +99,34 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             values::transform(obj, "to_world")?;
             Emitter::Constant { radiance: emissive(obj, "radiance")? }
         }
+        "envmap" => envmap(b, obj)?,
         "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
-        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, directional, constant)"))),
+        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, directional, constant, envmap)"))),
     };
     obj.check_all_used()?;
     push(b, e, w);
     Ok(())
+}
+
+/// `envmap`: the image file (found through the scene's search folders), `scale` (default 1),
+/// `to_world`, `mis_compensation` (default false). Mitsuba's `bitmap` property (an in-memory
+/// image) has no XML form.
+fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
+    let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+    let scale = values::float(obj, "scale", 1.0)?;
+    if !scale.is_finite() {
+        return Err(values::prop_err(obj, "scale", "must be finite"));
+    }
+    let to_world = values::transform(obj, "to_world")?;
+    if to_world.matrix3.determinant() == 0.0 {
+        return Err(values::prop_err(obj, "to_world", "must be invertible"));
+    }
+    let mis_compensation = values::boolean(obj, "mis_compensation", false)?;
+    let path = b.resolve(&filename);
+    let tex = BitmapTexture::load(&path, &BitmapOptions::default())
+        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {}", path.display(), values::one_line(&e))))?;
+    let [w, h] = tex.resolution();
+    let map = EnvMap::new(w as usize, h as usize, tex.texels().to_vec(), scale as f32, to_world, mis_compensation)
+        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {e}", path.display())))?;
+    Ok(Emitter::EnvMap(Arc::new(map)))
 }

@@ -104,8 +104,8 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             }
             "shape" => shape::build(&mut b, obj)?,
             "emitter" => {
-                if obj.plugin == "constant" && b.emitters.iter().any(|e| matches!(e, Emitter::Constant { .. })) {
-                    return Err(SceneError::at(&obj.pos, "only one environment emitter (constant) is allowed"));
+                if (obj.plugin == "constant" || obj.plugin == "envmap") && b.emitters.iter().any(Emitter::is_environment) {
+                    return Err(SceneError::at(&obj.pos, "only one environment emitter (constant, envmap) is allowed"));
                 }
                 emitter::build_standalone(&mut b, obj)?
             }
