@@ -1,6 +1,6 @@
 //! Emitters (Mitsuba `src/emitters/*.cpp`, semantics §9): `area` (one-sided w.r.t. the
-//! shading normal, attached to a shape), `point`, `spot`, `directional` and the `constant`
-//! environment. Radiance values are linear RGB.
+//! shading normal, attached to a shape), `point`, `spot`, `projector`, `directional`, and the
+//! `constant` and `envmap` environments. Radiance values are linear RGB.
 
 pub mod envmap;
 pub mod sample;
@@ -12,6 +12,7 @@ use crate::render::bsdf::Texture;
 use crate::render::geometry::warp;
 use crate::render::shape::{Shape, SurfaceInteraction};
 use glam::{Affine3A, Vec2, Vec3};
+use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]
 pub enum Emitter {
@@ -38,6 +39,11 @@ pub enum Emitter {
     Directional { direction: Vec3, irradiance: Vec3 },
     /// Uniform environment of radiance `radiance`, sampled uniformly over the sphere.
     Constant { radiance: Vec3 },
+    /// `projector` (`src/emitters/projector.cpp`): a pinhole at `to_world`'s origin casting
+    /// the `irradiance` texture along local +z; x half-angle tangent `tan_half` over an image
+    /// of aspect `aspect` (the texture's; 1 for a constant). Irradiance at local depth 1 on a
+    /// plane facing it is π·scale·texture.
+    Projector { to_world: Affine3A, to_local: Affine3A, irradiance: Texture, tan_half: f32, aspect: f32, scale: f32 },
     /// Image-based environment (`envmap`), importance sampled.
     EnvMap(std::sync::Arc<EnvMap>),
 }
@@ -46,7 +52,7 @@ impl Emitter {
     /// Point, spot and directional lights: reachable only by light sampling.
     #[inline]
     pub fn is_delta(&self) -> bool {
-        matches!(self, Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. })
+        matches!(self, Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. } | Emitter::Projector { .. })
     }
 
     /// Light sample towards the emitter from `ref_p` (the emitter-selection pmf not
@@ -97,6 +103,31 @@ impl Emitter {
             Emitter::Directional { direction, irradiance } => {
                 let d = -*direction;
                 Some(EmitterSample { d, dist: f32::INFINITY, pdf: 1.0, delta: true, weight: *irradiance, p: ref_p + d, n: *direction })
+            }
+            Emitter::Projector { to_world, to_local, irradiance, tan_half, aspect, scale } => {
+                let local = to_local.transform_point3(ref_p);
+                if !(local.z > 0.0) {
+                    return None;
+                }
+                // Inverse of the perspective camera's ray: image x grows towards local −x.
+                let uv = Vec2::new(
+                    0.5 * (1.0 - local.x / (local.z * tan_half)),
+                    0.5 * (1.0 - local.y * aspect / (local.z * tan_half)),
+                );
+                if !(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()) {
+                    return None;
+                }
+                let pos: Vec3 = to_world.translation.into();
+                let n = to_world.transform_vector3(Vec3::Z);
+                let d = pos - ref_p;
+                let dist = d.length();
+                let d = d / dist;
+                let cos = -n.dot(d);
+                let weight = irradiance.eval(uv) * (PI * scale / (local.z * local.z * cos));
+                if !(cos > 0.0 && weight.is_finite()) {
+                    return None;
+                }
+                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight, p: pos, n })
             }
             Emitter::EnvMap(e) => {
                 let (d, radiance, pdf) = e.sample(u)?;

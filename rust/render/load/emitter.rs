@@ -3,6 +3,8 @@
 //! `envmap` (`src/emitters/envmap.cpp`: filename, scale, to_world, mis_compensation).
 
 use super::{Builder, err, values};
+use crate::render::bsdf::Texture;
+use crate::render::camera::{FovAxis, PerspectiveCamera, x_half_tan};
 use crate::render::emitter::{self, Emitter, EnvMap};
 use crate::render::texture::{BitmapOptions, BitmapTexture};
 use std::sync::Arc;
@@ -100,8 +102,9 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             Emitter::Constant { radiance: emissive(obj, "radiance")? }
         }
         "envmap" => envmap(b, obj)?,
+        "projector" => projector(b, obj)?,
         "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
-        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, directional, constant, envmap)"))),
+        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, projector, directional, constant, envmap)"))),
     };
     obj.check_all_used()?;
     push(b, e, w);
@@ -129,4 +132,60 @@ fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
     let map = EnvMap::new(w as usize, h as usize, tex.texels().to_vec(), scale as f32, to_world, mis_compensation)
         .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {e}", path.display())))?;
     Ok(Emitter::EnvMap(Arc::new(map)))
+}
+
+/// `projector` (`src/emitters/projector.cpp`): `irradiance` (an emissive colour or texture,
+/// default 1), `scale` (default 1), `to_world`, and the field of view as for `perspective`
+/// (`fov` + `fov_axis`, or `focal_length`, default 50mm) over the texture's aspect ratio.
+fn projector(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
+    let (irradiance, aspect) = match obj.child("irradiance") {
+        Some(c) if c.object.tag == "texture" => {
+            let t = super::texture::build(b, &c.object)?;
+            let aspect = match &t {
+                Texture::Bitmap(bm) => {
+                    let [w, h] = bm.resolution();
+                    w as f64 / h as f64
+                }
+                _ => 1.0,
+            };
+            (t, aspect)
+        }
+        Some(c) => return Err(err(&c.object, "\"irradiance\" must be a colour or a texture")),
+        None => (Texture::Constant(emissive(obj, "irradiance")?), 1.0),
+    };
+    let scale = values::float(obj, "scale", 1.0)?;
+    if !scale.is_finite() {
+        return Err(values::prop_err(obj, "scale", "must be finite"));
+    }
+    let to_world = values::transform(obj, "to_world")?;
+    if to_world.matrix3.determinant() == 0.0 {
+        return Err(values::prop_err(obj, "to_world", "must be invertible"));
+    }
+    let fov = values::float_opt(obj, "fov")?;
+    let focal = obj.properties.string("focal_length")?;
+    let (fov_deg, axis) = match (fov, focal) {
+        (Some(_), Some(_)) => return Err(err(obj, "give either fov or focal_length, not both")),
+        (Some(f), None) => {
+            if !(f > 0.0 && f < 180.0) {
+                return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
+            }
+            let axis = match values::string(obj, "fov_axis", "x")?.to_lowercase().as_str() {
+                "x" => FovAxis::X,
+                "y" => FovAxis::Y,
+                "diagonal" => FovAxis::Diagonal,
+                "smaller" => FovAxis::Smaller,
+                "larger" => FovAxis::Larger,
+                other => return Err(values::prop_err(obj, "fov_axis", format!("must be x, y, diagonal, smaller or larger, got \"{other}\""))),
+            };
+            (f, axis)
+        }
+        (None, focal) => {
+            let text = focal.unwrap_or_else(|| "50mm".into());
+            let mm: f64 = text.trim().strip_suffix("mm").unwrap_or(&text).trim().parse().ok().filter(|v: &f64| *v > 0.0)
+                .ok_or_else(|| values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
+            (PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal)
+        }
+    };
+    let tan_half = x_half_tan(fov_deg, axis, aspect) as f32;
+    Ok(Emitter::Projector { to_world, to_local: to_world.inverse(), irradiance, tan_half, aspect: aspect as f32, scale: scale as f32 })
 }
