@@ -5,6 +5,7 @@
 
 mod bsdf;
 mod emitter;
+mod instance;
 mod integrator;
 mod sensor;
 mod shape;
