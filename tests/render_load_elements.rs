@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 
 use glam::{Vec2, Vec3};
 use matte::render::bsdf::Bsdf;
+use matte::render::emitter::Emitter;
 use matte::render::geometry::Ray;
 use matte::render::integrator::Integrator;
 use matte::render::load::{LoadedScene, load_file, load_str};
@@ -142,4 +143,159 @@ fn checkerboard_texture() {
     assert!((reflectance_at(&d, 0.25, -0.75) - Vec3::splat(0.2)).length() < 1e-6);
     let bad = xml("<texture type=\"checkerboard\" name=\"reflectance\"><float name=\"colour0\" value=\"0.5\"/></texture>");
     assert_err_at(load(&bad), Path::new(FILE), 4, "colour0");
+}
+
+/// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
+fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
+    let mut img = matte::render::film::Image::new(w, h);
+    for j in 0..h {
+        for i in 0..w {
+            img.set(i, j, f(i, j));
+        }
+    }
+    matte::render::image_io::write_exr(path, &img).unwrap();
+}
+
+fn first_emitter(s: &LoadedScene) -> &Emitter {
+    &s.scene.emitters[0]
+}
+
+/// `src/emitters/spot.cpp`: the texture multiplies the intensity at uv = ½ + ½·(x, y)/(z·tan
+/// cutoff) of the local direction; the falloff is unchanged.
+#[test]
+fn spot_texture_is_looked_up_along_the_local_direction() {
+    let dir = temp_dir("spot");
+    // 2×2 texels: (0,0) red, (1,0) green, (0,1) blue, (1,1) white; nearest lookup.
+    let colours = [Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE];
+    write_exr(&dir.join("t.exr"), 2, 2, |i, j| colours[(j * 2 + i) as usize]);
+    let file = dir.join("s.xml");
+    std::fs::write(
+        &file,
+        scene(&format!(
+            "{SENSOR}\n<emitter type=\"spot\"><rgb name=\"intensity\" value=\"2\"/><float name=\"cutoff_angle\" value=\"40\"/><float name=\"beam_width\" value=\"39\"/>\
+             <texture name=\"texture\" type=\"bitmap\"><string name=\"filename\" value=\"t.exr\"/><string name=\"filter_type\" value=\"nearest\"/></texture></emitter>"
+        )),
+    )
+    .unwrap();
+    let s = load_file(&file, &[]).unwrap();
+    let e = first_emitter(&s);
+    let t = 40f32.to_radians().tan();
+    // A point at depth 2 and lateral offset (a, b)·2: local direction ∝ (a, b, 1); uv = ½ + ½(a, b)/t.
+    for (a, b, texel) in [(-0.3f32, -0.3f32, 0usize), (0.3, -0.3, 1), (-0.3, 0.3, 2), (0.3, 0.3, 3)] {
+        let p = Vec3::new(2.0 * a, 2.0 * b, 2.0);
+        let es = e.sample_direction(p, Vec2::ZERO, &s.scene.shapes).expect("inside the cone");
+        let uv = Vec2::new(0.5 + 0.5 * a / t, 0.5 + 0.5 * b / t);
+        assert!(uv.min_element() > 0.0 && uv.max_element() < 1.0);
+        let expect = colours[texel] * 2.0 / p.length_squared();
+        assert!((es.weight - expect).length() < 1e-5 * expect.length().max(1.0), "({a}, {b}): {} vs {expect}", es.weight);
+    }
+    // A constant `texture` is refused, as in Mitsuba ("must be spatially varying").
+    std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"spot\">\n<rgb name=\"texture\" value=\"0.5\"/></emitter>"))).unwrap();
+    assert_err_at(load_file(&file, &[]), &file, 4, "spatially varying");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `src/emitters/projector.cpp`: a point at local (x, y, z) receives, along the direction to
+/// the projector, π·scale·texture(uv) / (z²·cos θ), with uv the perspective projection (image
+/// x towards local −x, y towards −y) at the texture's aspect ratio; nothing outside the image
+/// or behind the projector.
+#[test]
+fn projector_casts_its_texture() {
+    let dir = temp_dir("projector");
+    let colours = [Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE];
+    // 4×2 image: aspect 2; left half columns 0-1, right half 2-3; rows top/bottom.
+    write_exr(&dir.join("t.exr"), 4, 2, |i, j| colours[(j * 2 + i / 2) as usize]);
+    let file = dir.join("s.xml");
+    std::fs::write(
+        &file,
+        scene(&format!(
+            "{SENSOR}\n<emitter type=\"projector\"><float name=\"fov\" value=\"90\"/><float name=\"scale\" value=\"3\"/>\
+             <texture name=\"irradiance\" type=\"bitmap\"><string name=\"filename\" value=\"t.exr\"/><string name=\"filter_type\" value=\"nearest\"/></texture></emitter>"
+        )),
+    )
+    .unwrap();
+    let s = load_file(&file, &[]).unwrap();
+    let e = first_emitter(&s);
+    // fov 90 along x: tan = 1; x ∈ [−z, z], y ∈ [−z/2, z/2]. Image column < 2 ↔ local x > 0.
+    for (x, y, texel) in [(0.5f32, 0.25f32, 0usize), (-0.5, 0.25, 1), (0.5, -0.25, 2), (-0.5, -0.25, 3)] {
+        let p = Vec3::new(x, y, 1.0);
+        let es = e.sample_direction(p, Vec2::ZERO, &s.scene.shapes).expect("lit");
+        let cos = 1.0 / p.length();
+        let expect = colours[texel] * (std::f32::consts::PI * 3.0 / cos);
+        assert!((es.weight - expect).length() < 1e-4 * expect.length(), "({x}, {y}): {} vs {expect}", es.weight);
+        assert!(es.delta);
+    }
+    for p in [Vec3::new(1.5, 0.0, 1.0), Vec3::new(0.0, 0.7, 1.0), Vec3::new(0.0, 0.0, -1.0)] {
+        assert!(e.sample_direction(p, Vec2::ZERO, &s.scene.shapes).is_none(), "{p} should be dark");
+    }
+    // A constant irradiance: aspect 1, π·scale/(z² cos θ).
+    let c = load(&scene(&format!("{SENSOR}\n<emitter type=\"projector\"><float name=\"fov\" value=\"90\"/><rgb name=\"irradiance\" value=\"0.5\"/></emitter>"))).unwrap();
+    let es = first_emitter(&c).sample_direction(Vec3::new(0.0, 0.9, 2.0), Vec2::ZERO, &c.scene.shapes).expect("lit");
+    let cos = 2.0 / Vec3::new(0.0, 0.9, 2.0).length();
+    assert!((es.weight - Vec3::splat(0.5 * std::f32::consts::PI / (4.0 * cos))).length() < 1e-5);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `envmap` through the loader: `scale` and `to_world` apply, the file is found through
+/// `<path>`, and it is the scene's environment.
+#[test]
+fn envmap_loads_as_the_environment() {
+    let dir = temp_dir("envmap");
+    std::fs::create_dir_all(dir.join("tex")).unwrap();
+    write_exr(&dir.join("tex/sky.exr"), 8, 5, |i, j| Vec3::new(0.1 * (i + 1) as f32, 0.2 * (j + 1) as f32, 0.5));
+    let file = dir.join("s.xml");
+    std::fs::write(
+        &file,
+        scene(&format!(
+            "<path value=\"tex\"/>\n{SENSOR}\n<emitter type=\"envmap\"><string name=\"filename\" value=\"sky.exr\"/><float name=\"scale\" value=\"2\"/>\
+             <transform name=\"to_world\"><rotate x=\"1\" angle=\"90\"/></transform></emitter>"
+        )),
+    )
+    .unwrap();
+    let s = load_file(&file, &[]).unwrap();
+    let env = s.scene.environment.expect("an environment");
+    // Row 2 (v = ½, the horizon), column 3 at u = 3.5/8: local d = (sin φ, 0, −cos φ);
+    // rotating +90° about x maps local (x, y, z) to (x, −z, y).
+    let phi = 2.0 * std::f32::consts::PI * 3.5 / 8.0;
+    let local = Vec3::new(phi.sin(), 0.0, -phi.cos());
+    let world = Vec3::new(local.x, -local.z, local.y);
+    let got = s.scene.emitters[env as usize].eval_environment(world);
+    assert!((got - 2.0 * Vec3::new(0.4, 0.6, 0.5)).length() < 1e-4, "{got}");
+    std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"constant\"/>\n<emitter type=\"envmap\"><string name=\"filename\" value=\"tex/sky.exr\"/></emitter>"))).unwrap();
+    assert_err_at(load_file(&file, &[]), &file, 4, "only one environment emitter");
+    std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"envmap\"><string name=\"filename\" value=\"nope.exr\"/></emitter>"))).unwrap();
+    assert_err_at(load_file(&file, &[]), &file, 3, "nope.exr");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `shapegroup` / `instance` (`src/shapes/instance.cpp`): the group alone is not rendered;
+/// each instance places every shape of it with instance·shape transforms.
+#[test]
+fn instances_place_their_group() {
+    let group = r#"<shape type="shapegroup" id="g">
+<shape type="sphere"><float name="radius" value="0.5"/></shape>
+<shape type="rectangle"><transform name="to_world"><translate z="-1"/></transform></shape>
+</shape>"#;
+    let s = load(&scene(&format!(
+        "{SENSOR}\n{group}\n<shape type=\"instance\"><ref id=\"g\"/></shape>\n<shape type=\"instance\"><ref id=\"g\"/><transform name=\"to_world\"><scale value=\"2\"/><translate x=\"10\"/></transform></shape>"
+    )))
+    .unwrap();
+    assert_eq!(s.scene.shapes.len(), 4);
+    let down = |x: f32| s.scene.intersect(&Ray::new(Vec3::new(x, 0.0, 5.0), Vec3::NEG_Z, f32::INFINITY)).map(|si| si.t);
+    // Identity instance: sphere top at z = 0.5; scaled instance at x = 10: sphere radius 1.
+    assert!((down(0.0).unwrap() - 4.5).abs() < 1e-4);
+    assert!((down(10.0).unwrap() - 4.0).abs() < 1e-4);
+    // Beside the spheres: the rectangles at z = −1 and z = −2 (scaled translate).
+    assert!((down(0.75).unwrap() - 6.0).abs() < 1e-4);
+    assert!((down(11.5).unwrap() - 7.0).abs() < 1e-4);
+    assert!(down(5.0).is_none());
+    // A group alone renders nothing.
+    let alone = load(&scene(&format!("{SENSOR}\n{group}"))).unwrap();
+    assert!(alone.scene.shapes.is_empty());
+    // Errors: emitters in groups, nested groups, instances without a group.
+    let bad_emitter = scene(&format!("{SENSOR}\n<shape type=\"shapegroup\" id=\"g\"><shape type=\"sphere\">\n<emitter type=\"area\"/></shape></shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>"));
+    assert_err_at(load(&bad_emitter), Path::new(FILE), 4, "shapegroup");
+    let nested = scene(&format!("{SENSOR}\n<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"shapegroup\"/></shape>"));
+    assert_err_at(load(&nested), Path::new(FILE), 4, "nested instancing");
+    assert_err_at(load(&scene(&format!("{SENSOR}\n<shape type=\"instance\"/>"))), Path::new(FILE), 3, "needs a shapegroup");
 }
