@@ -143,6 +143,8 @@ fn checkerboard_texture() {
     assert!((reflectance_at(&d, 0.25, -0.75) - Vec3::splat(0.2)).length() < 1e-6);
     let bad = xml("<texture type=\"checkerboard\" name=\"reflectance\"><float name=\"colour0\" value=\"0.5\"/></texture>");
     assert_err_at(load(&bad), Path::new(FILE), 4, "colour0");
+    let textured = xml("<texture type=\"checkerboard\" name=\"reflectance\"><texture type=\"checkerboard\" name=\"color0\"/></texture>");
+    assert_err_at(load(&textured), Path::new(FILE), 4, "\"color0\" must be a colour");
 }
 
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.

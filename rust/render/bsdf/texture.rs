@@ -1,7 +1,7 @@
 //! A BSDF parameter that is either a constant RGB or a `bitmap` texture looked up at the
 //! hit's uv (Mitsuba `get_texture`).
 
-use crate::render::texture::{BitmapTexture, Checkerboard};
+use crate::render::texture::BitmapTexture;
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -9,7 +9,6 @@ use std::sync::Arc;
 pub enum Texture {
     Constant(Vec3),
     Bitmap(Arc<BitmapTexture>),
-    Checkerboard(Arc<Checkerboard>),
 }
 
 impl Texture {
@@ -18,7 +17,6 @@ impl Texture {
         match self {
             Texture::Constant(c) => *c,
             Texture::Bitmap(b) => b.eval(uv),
-            Texture::Checkerboard(c) => c.eval(uv),
         }
     }
 }
