@@ -139,6 +139,7 @@ def main():
     ap.add_argument("--out", default=None, help="folder for the rendered EXRs (default: a temp dir)")
     ap.add_argument("--timeout", type=float, default=900.0)
     ap.add_argument("--json", default=None, help="write the rows as JSON here")
+    ap.add_argument("--markdown", default=None, help="write the table as Markdown here")
     args = ap.parse_args()
 
     import mitsuba as mi
@@ -169,6 +170,25 @@ def main():
     if args.json:
         with open(args.json, "w", encoding="utf-8") as f:
             json.dump(rows, f, indent=1)
+    if args.markdown:
+        with open(args.markdown, "w", encoding="utf-8") as f:
+            f.write(markdown(rows))
+
+
+def markdown(rows):
+    """The table as Markdown: scene, rendered or refused (with the reason), accepted %, pass,
+    mean ratio."""
+    out = ["| scene | rendered | accepted % | pass | mean ratio (Y) |", "|---|---|---|---|---|"]
+    for r in rows:
+        status = r["status"] if r["status"] != "refused" else "refused: " + r.get("error", "").replace("|", "\\|").replace("matte: error: ", "")
+        acc = f"{r['accepted']:.2f}" if "accepted" in r else "–"
+        ok = ("yes" if r["passed"] else "**no**") if "passed" in r else "–"
+        ratio = f"{r['mean_ratio']:.4f}" if "mean_ratio" in r else "–"
+        out.append(f"| {r['scene']} | {status} | {acc} | {ok} | {ratio} |")
+    rendered = [r for r in rows if r["status"] == "rendered"]
+    out.append("")
+    out.append(f"{len(rows)} scenes: {len(rendered)} rendered, {sum(1 for r in rendered if r.get('passed'))} passed.")
+    return "\n".join(out) + "\n"
 
 
 if __name__ == "__main__":
