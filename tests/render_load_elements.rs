@@ -324,3 +324,22 @@ fn bundled_element_scenes_render() {
     let es = light.sample_direction(open.p, Vec2::ZERO, &s.scene.shapes).unwrap();
     assert!(s.scene.emitter_visible(&open, &es), "open ground is shadowed");
 }
+
+/// `src/spectra/rawconstant.cpp`: `value` as a float (every channel) or a vector, unconverted.
+#[test]
+fn rawconstant_texture() {
+    let xml = |tex: &str| scene(&format!("{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n{tex}\n</bsdf></shape>"));
+    let refl = |s: &LoadedScene| {
+        let si = s.scene.intersect(&Ray::new(Vec3::new(0.1, 0.2, 1.0), Vec3::NEG_Z, f32::INFINITY)).unwrap();
+        match s.scene.bsdf(&si) {
+            Bsdf::Diffuse { reflectance } => reflectance.eval(si.uv),
+            other => panic!("{other:?}"),
+        }
+    };
+    let v = load(&xml(r#"<texture type="rawconstant" name="reflectance"><vector name="value" value="0.5, 0.25, 1"/></texture>"#)).unwrap();
+    assert_eq!(refl(&v), Vec3::new(0.5, 0.25, 1.0));
+    let f = load(&xml(r#"<texture type="rawconstant" name="reflectance"><float name="value" value="0.3"/></texture>"#)).unwrap();
+    assert_eq!(refl(&f), Vec3::splat(0.3));
+    assert_err_at(load(&xml(r#"<texture type="rawconstant" name="reflectance"/>"#)), Path::new(FILE), 4, "missing required parameter \"value\"");
+    assert_err_at(load(&xml(r#"<texture type="rawconstant" name="reflectance"><rgb name="value" value="0.5"/></texture>"#)), Path::new(FILE), 4, "expected float or vector");
+}

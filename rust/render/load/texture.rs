@@ -5,7 +5,7 @@ use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
 use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject};
+use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::{Affine2, Mat2, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -29,7 +29,8 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     match obj.plugin.as_str() {
         "bitmap" => build_bitmap(b, obj),
         "checkerboard" => checkerboard(b, obj),
-        other => Err(err(obj, format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard)"))),
+        "rawconstant" => rawconstant(obj),
+        other => Err(err(obj, format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant)"))),
     }
 }
 
@@ -50,6 +51,24 @@ fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     obj.check_all_used()?;
     let tex = BitmapTexture::from_linear(2, 2, vec![c0, c1, c1, c0], &opts).map_err(|e| err(obj, e))?;
     Ok(Texture::Bitmap(Arc::new(tex)))
+}
+
+/// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three
+/// channels) or a `<vector>`, used as is (no colour conversion, no range check).
+fn rawconstant(obj: &SceneObject) -> Result<Texture, SceneError> {
+    let value = match obj.properties.iter().find(|p| p.name == "value").map(|p| &p.value) {
+        None => return Err(err(obj, "missing required parameter \"value\" (a float or a 3-D vector)")),
+        Some(Value::Vector(_) | Value::Point(_)) => obj.properties.vector("value")?.unwrap_or_default().as_vec3(),
+        Some(Value::Float(_) | Value::Integer(_)) => Vec3::splat(obj.properties.float("value")?.unwrap_or_default() as f32),
+        Some(other) => {
+            return Err(values::prop_err(obj, "value", format!("has the wrong type (expected float or vector, found {})", other.type_name())));
+        }
+    };
+    if !value.is_finite() {
+        return Err(values::prop_err(obj, "value", "must be finite"));
+    }
+    obj.check_all_used()?;
+    Ok(Texture::Constant(value))
 }
 
 /// `to_uv` as a 2-D affine map: the upper-left 2×2 block and the translation column of the
