@@ -744,7 +744,8 @@ fn sampling_weights_set_the_selection_pmf() {
 
 #[test]
 fn emitter_errors() {
-    assert_body_err("<emitter type=\"envmap\"/>", 1, "unsupported emitter type \"envmap\"");
+    assert_body_err("<emitter type=\"sunsky\"/>", 1, "unsupported emitter type \"sunsky\"");
+    assert_body_err("<emitter type=\"envmap\"/>", 1, "missing property \"filename\"");
     assert_body_err("<emitter type=\"area\"/>", 1, "must be nested in a shape");
     assert_body_err(
         "<shape type=\"sphere\">\n<emitter type=\"area\">\n<transform name=\"to_world\"><translate x=\"1\"/></transform>\n</emitter>\n</shape>",
