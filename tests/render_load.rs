@@ -358,7 +358,7 @@ fn sampler_defaults_and_values() {
 #[test]
 fn sensor_film_sampler_errors() {
     let sensor = |inner: &str| scene(&format!("<sensor type=\"perspective\">\n{inner}\n</sensor>"));
-    assert_err(load(&scene("<sensor type=\"orthographic\"/>")), 2, "unsupported sensor type \"orthographic\"");
+    assert_err(load(&scene("<sensor type=\"thinlens\"/>")), 2, "unsupported sensor type \"thinlens\"");
     assert_err(load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"focal_length\" value=\"35mm\"/>")), 2, "either fov or focal_length");
     assert_err(load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"fov_axis\" value=\"z\"/>")), 4, "fov_axis");
     assert_err(load(&sensor("<string name=\"fov_axis\" value=\"y\"/>")), 3, "unreferenced property \"fov_axis\"");
@@ -744,7 +744,8 @@ fn sampling_weights_set_the_selection_pmf() {
 
 #[test]
 fn emitter_errors() {
-    assert_body_err("<emitter type=\"envmap\"/>", 1, "unsupported emitter type \"envmap\"");
+    assert_body_err("<emitter type=\"sunsky\"/>", 1, "unsupported emitter type \"sunsky\"");
+    assert_body_err("<emitter type=\"envmap\"/>", 1, "missing property \"filename\"");
     assert_body_err("<emitter type=\"area\"/>", 1, "must be nested in a shape");
     assert_body_err(
         "<shape type=\"sphere\">\n<emitter type=\"area\">\n<transform name=\"to_world\"><translate x=\"1\"/></transform>\n</emitter>\n</shape>",
@@ -1053,8 +1054,8 @@ fn texture_errors() {
     check("<string name=\"filename\" value=\"ok.png\"/>\n<string name=\"wrap_mode\" value=\"zero\"/>", 4, "wrap_mode");
     check("<string name=\"filename\" value=\"ok.png\"/>\n<float name=\"gamma\" value=\"2.2\"/>", 4, "unreferenced property \"gamma\"");
     // Unknown texture type, both nested and at the top level.
-    assert_body_err("<bsdf type=\"diffuse\">\n<texture type=\"checkerboard\" name=\"reflectance\"/>\n</bsdf>", 2, "unsupported texture type \"checkerboard\"");
-    assert_body_err("<texture type=\"checkerboard\"/>", 1, "unsupported texture type");
+    assert_body_err("<bsdf type=\"diffuse\">\n<texture type=\"mesh_attribute\" name=\"reflectance\"/>\n</bsdf>", 2, "unsupported texture type \"mesh_attribute\"");
+    assert_body_err("<texture type=\"volume\"/>", 1, "unsupported texture type");
     // Given twice: as a property and as a texture (the parser rejects the duplicate name).
     let both = tex("<string name=\"filename\" value=\"ok.png\"/>").replace(
         "<bsdf type=\"diffuse\">\n",

@@ -5,6 +5,8 @@ committed. Run from anywhere: `python3 mitsuba_scenes/assets/make_assets.py`.
 * icosahedron.obj: regular icosahedron, polygon faces given as triangles, with `vt` texture
   coordinates (spherical) and no normals, so Mitsuba recomputes smooth normals.
 * prism.ply: ASCII PLY triangular prism with per-vertex (radial) normals.
+* sky.png: 32x16 latitude-longitude sky for `envmap` (Mitsuba's layout: row 0 is straight
+  up, +y), a blue gradient with a warm sun patch, 8-bit sRGB.
 """
 import math
 import struct
@@ -55,7 +57,15 @@ def prism(path):
     path.write_text("\n".join(out) + "\n")
 
 
+def sky(x, y):
+    # Row 0 = zenith (v = 0), row 15 = nadir; the sun sits at u ~ 0.3, 35 degrees up.
+    t = y / 15
+    base = (int(90 + 120 * t), int(140 + 80 * t), int(230 - 60 * t)) if y < 8 else (70, 60, 50)
+    return (255, 240, 200) if (x in (9, 10) and y in (4, 5)) else base
+
+
 if __name__ == "__main__":
     png(HERE / "checker.png", 8, 8, lambda x, y: (230, 200, 60) if (x + y) % 2 else (40, 90, 200))
     icosahedron(HERE / "icosahedron.obj")
     prism(HERE / "prism.ply")
+    png(HERE / "sky.png", 32, 16, sky)

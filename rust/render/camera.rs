@@ -5,6 +5,24 @@
 use crate::render::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
 
+/// The sensor: `perspective` or `orthographic`.
+#[derive(Clone, Debug)]
+pub enum Camera {
+    Perspective(PerspectiveCamera),
+    Orthographic(super::orthographic::OrthographicCamera),
+}
+
+impl Camera {
+    /// The primary ray through full-film pixel position `film_pos` (pixels, origin top-left).
+    #[inline]
+    pub fn ray(&self, film_pos: Vec2) -> Ray {
+        match self {
+            Camera::Perspective(c) => c.ray(film_pos),
+            Camera::Orthographic(c) => c.ray(film_pos),
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct PerspectiveCamera {
     to_world: Affine3A,
@@ -27,6 +45,19 @@ pub enum FovAxis {
     Larger,
 }
 
+/// tan(x_fov / 2) for `fov_deg` along `axis` on an image of aspect width/height (Mitsuba
+/// `parse_fov`, `src/render/sensor.cpp`).
+pub fn x_half_tan(fov_deg: f64, axis: FovAxis, aspect: f64) -> f64 {
+    let half = (fov_deg.to_radians() * 0.5).tan();
+    match axis {
+        FovAxis::X => half,
+        FovAxis::Y => half * aspect,
+        FovAxis::Diagonal => half / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
+        FovAxis::Smaller => if aspect > 1.0 { half * aspect } else { half },
+        FovAxis::Larger => if aspect > 1.0 { half } else { half * aspect },
+    }
+}
+
 impl PerspectiveCamera {
     /// `fov_deg` along `axis`; `film` is the full film size in pixels.
     pub fn new(
@@ -39,14 +70,7 @@ impl PerspectiveCamera {
         far_clip: f32,
     ) -> Self {
         let aspect = film.0 as f64 / film.1 as f64;
-        let half = (fov_deg.to_radians() * 0.5).tan();
-        let x_half = match axis {
-            FovAxis::X => half,
-            FovAxis::Y => half * aspect,
-            FovAxis::Diagonal => half / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
-            FovAxis::Smaller => if aspect > 1.0 { half * aspect } else { half },
-            FovAxis::Larger => if aspect > 1.0 { half } else { half * aspect },
-        };
+        let x_half = x_half_tan(fov_deg, axis, aspect);
         PerspectiveCamera {
             to_world,
             tan_half: x_half as f32,

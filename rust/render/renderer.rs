@@ -3,7 +3,7 @@
 //! seed, not on threads or tiling. Every sample goes to the tile's image block, which the
 //! film accumulates (Mitsuba `SamplingIntegrator::render`).
 
-use crate::render::camera::PerspectiveCamera;
+use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
 use crate::render::integrator::Integrator;
 use crate::render::sampler::Sampler;
@@ -33,7 +33,7 @@ pub struct RenderStats {
 pub fn render(
     scene: &Scene,
     integrator: &Integrator,
-    camera: &PerspectiveCamera,
+    camera: &Camera,
     film: Film,
     spp: u32,
     seed: u64,

@@ -39,7 +39,7 @@ impl Scene {
                 acc
             })
             .collect();
-        let environment = emitters.iter().position(|e| matches!(e, Emitter::Constant { .. })).map(|i| i as u32);
+        let environment = emitters.iter().position(Emitter::is_environment).map(|i| i as u32);
         Scene { shapes, bsdfs, emitters, emitter_pmf, emitter_cdf, environment, accel, accel_build_seconds }
     }
 
@@ -108,6 +108,13 @@ impl Scene {
             ray::spawn_ray(si.p, si.n, es.d)
         };
         !self.occluded(&shadow)
+    }
+
+    /// Density (with the selection pmf) with which light sampling would have picked the
+    /// environment emitter `env` in direction `d`.
+    #[inline]
+    pub fn pdf_environment(&self, env: u32, d: Vec3) -> f32 {
+        self.emitter_pmf[env as usize] * self.emitters[env as usize].pdf_environment(d)
     }
 
     /// Density (with the selection pmf) with which light sampling at `ref_p` would have

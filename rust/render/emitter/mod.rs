@@ -1,14 +1,18 @@
 //! Emitters (Mitsuba `src/emitters/*.cpp`, semantics §9): `area` (one-sided w.r.t. the
-//! shading normal, attached to a shape), `point`, `spot`, `directional` and the `constant`
-//! environment. Radiance values are linear RGB.
+//! shading normal, attached to a shape), `point`, `spot`, `projector`, `directional`, and the
+//! `constant` and `envmap` environments. Radiance values are linear RGB.
 
+pub mod envmap;
 pub mod sample;
 
+pub use envmap::EnvMap;
 pub use sample::EmitterSample;
 
+use crate::render::bsdf::Texture;
 use crate::render::geometry::warp;
 use crate::render::shape::{Shape, SurfaceInteraction};
 use glam::{Affine3A, Vec2, Vec3};
+use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]
 pub enum Emitter {
@@ -17,19 +21,38 @@ pub enum Emitter {
     /// Isotropic point light: `intensity / d²`.
     Point { position: Vec3, intensity: Vec3 },
     /// Spot light along local +z of `to_world`; falloff linear in the angle between
-    /// `beam_width` and `cutoff_angle` (radians).
-    Spot { to_world: Affine3A, to_local: Affine3A, intensity: Vec3, cutoff: f32, beam_width: f32, cos_cutoff: f32, cos_beam: f32 },
+    /// `beam_width` and `cutoff_angle` (radians). An optional `texture` multiplies the
+    /// intensity, looked up at uv = 1/2 + 1/2·(x, y)/(z·tan cutoff) of the local direction
+    /// (`src/emitters/spot.cpp`, `direction_to_uv`).
+    Spot {
+        to_world: Affine3A,
+        to_local: Affine3A,
+        intensity: Vec3,
+        cutoff: f32,
+        beam_width: f32,
+        cos_cutoff: f32,
+        cos_beam: f32,
+        texture: Option<Texture>,
+        uv_factor: f32,
+    },
     /// Parallel light travelling along `direction` (unit) with irradiance `irradiance`.
     Directional { direction: Vec3, irradiance: Vec3 },
     /// Uniform environment of radiance `radiance`, sampled uniformly over the sphere.
     Constant { radiance: Vec3 },
+    /// `projector` (`src/emitters/projector.cpp`): a pinhole at `to_world`'s origin casting
+    /// the `irradiance` texture along local +z; x half-angle tangent `tan_half` over an image
+    /// of aspect `aspect` (the texture's; 1 for a constant). Irradiance at local depth 1 on a
+    /// plane facing it is π·scale·texture.
+    Projector { to_world: Affine3A, to_local: Affine3A, irradiance: Texture, tan_half: f32, aspect: f32, scale: f32 },
+    /// Image-based environment (`envmap`), importance sampled.
+    EnvMap(std::sync::Arc<EnvMap>),
 }
 
 impl Emitter {
     /// Point, spot and directional lights: reachable only by light sampling.
     #[inline]
     pub fn is_delta(&self) -> bool {
-        matches!(self, Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. })
+        matches!(self, Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. } | Emitter::Projector { .. })
     }
 
     /// Light sample towards the emitter from `ref_p` (the emitter-selection pmf not
@@ -55,7 +78,7 @@ impl Emitter {
                 let d = d / dist;
                 Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity / dist2, p: *position, n: -d })
             }
-            Emitter::Spot { to_world, to_local, intensity, cutoff, beam_width, cos_cutoff, cos_beam } => {
+            Emitter::Spot { to_world, to_local, intensity, cutoff, beam_width, cos_cutoff, cos_beam, texture, uv_factor } => {
                 let pos: Vec3 = to_world.translation.into();
                 let d = pos - ref_p;
                 let dist2 = d.length_squared();
@@ -64,16 +87,51 @@ impl Emitter {
                     return None;
                 }
                 let d = d / dist;
-                let local = to_local.transform_vector3(-d).normalize_or_zero();
+                let local_raw = to_local.transform_vector3(-d);
+                let local = local_raw.normalize_or_zero();
                 let falloff = spot_falloff(local.z, *cutoff, *beam_width, *cos_cutoff, *cos_beam);
                 if falloff <= 0.0 {
                     return None;
                 }
-                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity * (falloff / dist2), p: pos, n: -d })
+                let mut radiance = *intensity;
+                if let Some(tex) = texture {
+                    let uv = Vec2::new(local_raw.x, local_raw.y) / (local_raw.z * *uv_factor) * 0.5 + 0.5;
+                    radiance *= tex.eval(uv);
+                }
+                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: radiance * (falloff / dist2), p: pos, n: -d })
             }
             Emitter::Directional { direction, irradiance } => {
                 let d = -*direction;
                 Some(EmitterSample { d, dist: f32::INFINITY, pdf: 1.0, delta: true, weight: *irradiance, p: ref_p + d, n: *direction })
+            }
+            Emitter::Projector { to_world, to_local, irradiance, tan_half, aspect, scale } => {
+                let local = to_local.transform_point3(ref_p);
+                if !(local.z > 0.0) {
+                    return None;
+                }
+                // Inverse of the perspective camera's ray: image x grows towards local −x.
+                let uv = Vec2::new(
+                    0.5 * (1.0 - local.x / (local.z * tan_half)),
+                    0.5 * (1.0 - local.y * aspect / (local.z * tan_half)),
+                );
+                if !(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()) {
+                    return None;
+                }
+                let pos: Vec3 = to_world.translation.into();
+                let n = to_world.transform_vector3(Vec3::Z);
+                let d = pos - ref_p;
+                let dist = d.length();
+                let d = d / dist;
+                let cos = -n.dot(d);
+                let weight = irradiance.eval(uv) * (PI * scale / (local.z * local.z * cos));
+                if !(cos > 0.0 && weight.is_finite()) {
+                    return None;
+                }
+                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight, p: pos, n })
+            }
+            Emitter::EnvMap(e) => {
+                let (d, radiance, pdf) = e.sample(u)?;
+                Some(EmitterSample { d, dist: f32::INFINITY, pdf, delta: false, weight: radiance / pdf, p: ref_p + d, n: -d })
             }
             Emitter::Constant { radiance } => {
                 let d = warp::square_to_uniform_sphere(u);
@@ -90,6 +148,12 @@ impl Emitter {
         }
     }
 
+    /// Whether this is the scene's environment (`constant` or `envmap`).
+    #[inline]
+    pub fn is_environment(&self) -> bool {
+        matches!(self, Emitter::Constant { .. } | Emitter::EnvMap(_))
+    }
+
     /// Radiance seen at a surface hit of this (area) emitter's shape.
     #[inline]
     pub fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
@@ -99,12 +163,23 @@ impl Emitter {
         }
     }
 
-    /// Radiance of the environment for an escaped ray.
+    /// Radiance of the environment for a ray escaping along `d`.
     #[inline]
-    pub fn eval_environment(&self) -> Vec3 {
+    pub fn eval_environment(&self, d: Vec3) -> Vec3 {
         match self {
             Emitter::Constant { radiance } => *radiance,
+            Emitter::EnvMap(e) => e.eval(d),
             _ => Vec3::ZERO,
+        }
+    }
+
+    /// Solid-angle density with which light sampling picks the environment direction `d`.
+    #[inline]
+    pub fn pdf_environment(&self, d: Vec3) -> f32 {
+        match self {
+            Emitter::Constant { .. } => warp::UNIFORM_SPHERE_PDF,
+            Emitter::EnvMap(e) => e.pdf(d),
+            _ => 0.0,
         }
     }
 
@@ -134,7 +209,7 @@ pub fn spot_falloff(cos_theta: f32, cutoff: f32, beam_width: f32, cos_cutoff: f3
 }
 
 /// Spot-light constructor helper: angles in degrees as in the XML.
-pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32) -> Emitter {
+pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32, texture: Option<Texture>) -> Emitter {
     let cutoff = cutoff_deg.to_radians();
     let beam_width = beam_deg.to_radians();
     Emitter::Spot {
@@ -145,5 +220,7 @@ pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32)
         beam_width,
         cos_cutoff: cutoff.cos(),
         cos_beam: beam_width.cos(),
+        texture,
+        uv_factor: cutoff.tan(),
     }
 }

@@ -19,6 +19,17 @@ impl Frame {
         Frame { s, t, n }
     }
 
+    /// Mitsuba's shading frame (`SurfaceInteraction::initialize_sh_frame`,
+    /// `include/mitsuba/render/interaction.h`): `s` is `dp_du` made orthogonal to `n` and
+    /// normalised, `t = n × s`; where `dp_du` is zero (or parallel to `n`), `s` comes from
+    /// [`coordinate_system`]. Anisotropic BSDFs and tangent-space normal maps depend on it.
+    #[inline]
+    pub fn from_normal_dpdu(n: Vec3, dp_du: Vec3) -> Self {
+        let s = (dp_du - n * n.dot(dp_du)).normalize_or_zero();
+        let s = if s == Vec3::ZERO { coordinate_system(n).0 } else { s };
+        Frame { s, t: n.cross(s), n }
+    }
+
     #[inline]
     pub fn to_local(&self, v: Vec3) -> Vec3 {
         Vec3::new(v.dot(self.s), v.dot(self.t), v.dot(self.n))

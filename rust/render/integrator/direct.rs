@@ -24,7 +24,7 @@ impl DirectIntegrator {
     pub fn li(&self, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
         let Some(si) = super::first_hit(scene, camera_ray, self.hide_emitters) else {
             return match scene.environment {
-                Some(env) if !self.hide_emitters => scene.emitters[env as usize].eval_environment(),
+                Some(env) if !self.hide_emitters => scene.emitters[env as usize].eval_environment(camera_ray.d),
                 _ => Vec3::ZERO,
             };
         };
@@ -60,8 +60,8 @@ impl DirectIntegrator {
                     (le, if bs.delta { 0.0 } else { scene.pdf_emitter_direction(si.p, em, Some(&hit)) })
                 }),
                 None => scene.environment.map(|env| {
-                    let le = scene.emitters[env as usize].eval_environment();
-                    (le, if bs.delta { 0.0 } else { scene.pdf_emitter_direction(si.p, env, None) })
+                    let le = scene.emitters[env as usize].eval_environment(wo);
+                    (le, if bs.delta { 0.0 } else { scene.pdf_environment(env, wo) })
                 }),
             };
             if let Some((le, pdf_e)) = le_pdf {

@@ -30,6 +30,7 @@ impl PathIntegrator {
         let mut prev_p = camera_ray.o;
         let mut prev_pdf = 1.0f32;
         let mut prev_delta = true;
+        let mut ray_d = camera_ray.d;
         let mut hit = super::first_hit(scene, camera_ray, self.hide_emitters);
         loop {
             let Some(si) = hit else {
@@ -37,8 +38,8 @@ impl PathIntegrator {
                 if let Some(env) = scene.environment
                     && !(depth == 0 && self.hide_emitters)
                 {
-                    let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, scene.pdf_emitter_direction(prev_p, env, None)) };
-                    l += beta * scene.emitters[env as usize].eval_environment() * w;
+                    let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, scene.pdf_environment(env, ray_d)) };
+                    l += beta * scene.emitters[env as usize].eval_environment(ray_d) * w;
                 }
                 break;
             };
@@ -82,6 +83,7 @@ impl PathIntegrator {
                 break;
             }
             let wo = si.to_world(bs.wo);
+            ray_d = wo;
             hit = scene.intersect(&ray::spawn_ray(si.p, si.n, wo));
         }
         l

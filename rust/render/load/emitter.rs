@@ -1,8 +1,13 @@
 //! `<emitter>`: `area` (nested in a shape), `point`, `spot`, `directional`, `constant`
-//! (semantics §9; emissive colours follow §2: `<spectrum value=v>` is not white).
+//! (semantics §9; emissive colours follow §2: `<spectrum value=v>` is not white), and
+//! `envmap` (`src/emitters/envmap.cpp`: filename, scale, to_world, mis_compensation).
 
 use super::{Builder, err, values};
-use crate::render::emitter::{self, Emitter};
+use crate::render::bsdf::Texture;
+use crate::render::camera::{FovAxis, PerspectiveCamera, x_half_tan};
+use crate::render::emitter::{self, Emitter, EnvMap};
+use crate::render::texture::{BitmapOptions, BitmapTexture};
+use std::sync::Arc;
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject};
 use glam::Vec3;
@@ -66,7 +71,16 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             if !(cutoff > 0.0 && cutoff <= 180.0 && beam > 0.0 && beam <= cutoff) {
                 return Err(err(obj, format!("needs 0 < beam_width ({beam}) ≤ cutoff_angle ({cutoff}) ≤ 180")));
             }
-            emitter::spot(values::transform(obj, "to_world")?, intensity, cutoff as f32, beam as f32)
+            // `texture` (`get_texture`, default 1) must vary spatially when given.
+            let texture = match obj.child("texture") {
+                None => None,
+                Some(c) if c.object.tag == "texture" => Some(super::texture::build(b, &c.object)?),
+                Some(c) => return Err(err(&c.object, "\"texture\" must be a texture (e.g. bitmap)")),
+            };
+            if obj.properties.contains("texture") {
+                return Err(values::prop_err(obj, "texture", "must be spatially varying (e.g. bitmap type), as in Mitsuba"));
+            }
+            emitter::spot(values::transform(obj, "to_world")?, intensity, cutoff as f32, beam as f32, texture)
         }
         "directional" => {
             let irradiance = emissive(obj, "irradiance")?;
@@ -87,10 +101,91 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             values::transform(obj, "to_world")?;
             Emitter::Constant { radiance: emissive(obj, "radiance")? }
         }
+        "envmap" => envmap(b, obj)?,
+        "projector" => projector(b, obj)?,
         "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
-        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, directional, constant)"))),
+        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, projector, directional, constant, envmap)"))),
     };
     obj.check_all_used()?;
     push(b, e, w);
     Ok(())
+}
+
+/// `envmap`: the image file (found through the scene's search folders), `scale` (default 1),
+/// `to_world`, `mis_compensation` (default false). Mitsuba's `bitmap` property (an in-memory
+/// image) has no XML form.
+fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
+    let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+    let scale = values::float(obj, "scale", 1.0)?;
+    if !scale.is_finite() {
+        return Err(values::prop_err(obj, "scale", "must be finite"));
+    }
+    let to_world = values::transform(obj, "to_world")?;
+    if to_world.matrix3.determinant() == 0.0 {
+        return Err(values::prop_err(obj, "to_world", "must be invertible"));
+    }
+    let mis_compensation = values::boolean(obj, "mis_compensation", false)?;
+    let path = b.resolve(&filename);
+    let tex = BitmapTexture::load(&path, &BitmapOptions::default())
+        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {}", path.display(), values::one_line(&e))))?;
+    let [w, h] = tex.resolution();
+    let map = EnvMap::new(w as usize, h as usize, tex.texels().to_vec(), scale as f32, to_world, mis_compensation)
+        .map_err(|e| values::prop_err(obj, "filename", format!("\"{}\": {e}", path.display())))?;
+    Ok(Emitter::EnvMap(Arc::new(map)))
+}
+
+/// `projector` (`src/emitters/projector.cpp`): `irradiance` (an emissive colour or texture,
+/// default 1), `scale` (default 1), `to_world`, and the field of view as for `perspective`
+/// (`fov` + `fov_axis`, or `focal_length`, default 50mm) over the texture's aspect ratio.
+fn projector(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
+    let (irradiance, aspect) = match obj.child("irradiance") {
+        Some(c) if c.object.tag == "texture" => {
+            let t = super::texture::build(b, &c.object)?;
+            let aspect = match &t {
+                Texture::Bitmap(bm) => {
+                    let [w, h] = bm.resolution();
+                    w as f64 / h as f64
+                }
+                _ => 1.0,
+            };
+            (t, aspect)
+        }
+        Some(c) => return Err(err(&c.object, "\"irradiance\" must be a colour or a texture")),
+        None => (Texture::Constant(emissive(obj, "irradiance")?), 1.0),
+    };
+    let scale = values::float(obj, "scale", 1.0)?;
+    if !scale.is_finite() {
+        return Err(values::prop_err(obj, "scale", "must be finite"));
+    }
+    let to_world = values::transform(obj, "to_world")?;
+    if to_world.matrix3.determinant() == 0.0 {
+        return Err(values::prop_err(obj, "to_world", "must be invertible"));
+    }
+    let fov = values::float_opt(obj, "fov")?;
+    let focal = obj.properties.string("focal_length")?;
+    let (fov_deg, axis) = match (fov, focal) {
+        (Some(_), Some(_)) => return Err(err(obj, "give either fov or focal_length, not both")),
+        (Some(f), None) => {
+            if !(f > 0.0 && f < 180.0) {
+                return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
+            }
+            let axis = match values::string(obj, "fov_axis", "x")?.to_lowercase().as_str() {
+                "x" => FovAxis::X,
+                "y" => FovAxis::Y,
+                "diagonal" => FovAxis::Diagonal,
+                "smaller" => FovAxis::Smaller,
+                "larger" => FovAxis::Larger,
+                other => return Err(values::prop_err(obj, "fov_axis", format!("must be x, y, diagonal, smaller or larger, got \"{other}\""))),
+            };
+            (f, axis)
+        }
+        (None, focal) => {
+            let text = focal.unwrap_or_else(|| "50mm".into());
+            let mm: f64 = text.trim().strip_suffix("mm").unwrap_or(&text).trim().parse().ok().filter(|v: &f64| *v > 0.0)
+                .ok_or_else(|| values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
+            (PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal)
+        }
+    };
+    let tan_half = x_half_tan(fov_deg, axis, aspect) as f32;
+    Ok(Emitter::Projector { to_world, to_local: to_world.inverse(), irradiance, tan_half, aspect: aspect as f32, scale: scale as f32 })
 }

@@ -1,5 +1,8 @@
 //! `<integrator>`: Mitsuba's `path` (max_depth −1, rr_depth 5, hide_emitters false) and
-//! `direct` (emitter_samples = bsdf_samples = shading_samples = 1).
+//! `direct` (emitter_samples = bsdf_samples = shading_samples = 1), and `moment`
+//! (`src/integrators/moment.cpp`): its image is the first nested integrator's, sample by
+//! sample; the second-moment AOVs it adds are not produced. Every nested integrator is still
+//! built, so an invalid one is reported.
 
 use super::{err, values};
 use crate::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
@@ -37,7 +40,17 @@ pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
                 hide_emitters: values::boolean(obj, "hide_emitters", false)?,
             })
         }
-        other => return Err(err(obj, format!("unsupported integrator type \"{other}\" (matte renders: path, direct)"))),
+        "moment" => {
+            let mut first = None;
+            for child in obj.children_with_tag("integrator") {
+                let nested = build(&child.object)?;
+                first.get_or_insert(nested);
+            }
+            first.ok_or_else(|| err(obj, "needs at least one nested <integrator>"))?
+        }
+        other => {
+            return Err(err(obj, format!("unsupported integrator type \"{other}\" (matte renders: path, direct, moment)")));
+        }
     };
     obj.check_all_used()?;
     Ok(integrator)

@@ -5,13 +5,14 @@
 
 mod bsdf;
 mod emitter;
+mod instance;
 mod integrator;
 mod sensor;
 mod shape;
 mod texture;
 mod values;
 
-use crate::render::camera::PerspectiveCamera;
+use crate::render::camera::Camera;
 use crate::render::emitter::Emitter;
 use crate::render::film::Film;
 use crate::render::integrator::Integrator;
@@ -25,7 +26,7 @@ use std::rc::Rc;
 /// Everything `matte render` needs.
 pub struct LoadedScene {
     pub scene: Scene,
-    pub camera: PerspectiveCamera,
+    pub camera: Camera,
     /// A fresh film (size, crop, filter) to render into.
     pub film: Film,
     pub integrator: Integrator,
@@ -52,6 +53,8 @@ pub fn load_str(text: &str, path: &Path, overrides: &[(String, String)]) -> Resu
 /// scene file's folder (Mitsuba resolves them there even inside `<include>`d files).
 pub(crate) struct Builder {
     pub base_dir: PathBuf,
+    /// `<path>` folders, searched first (Mitsuba's file resolver).
+    pub search_paths: Vec<PathBuf>,
     pub bsdfs: Vec<crate::render::bsdf::Bsdf>,
     pub bsdf_index: HashMap<*const SceneObject, u32>,
     pub shapes: Vec<crate::render::shape::Shape>,
@@ -60,16 +63,22 @@ pub(crate) struct Builder {
 }
 
 impl Builder {
-    /// An asset path: absolute, or relative to the scene file's folder.
+    /// An asset path: absolute, or the first existing one relative to a `<path>` folder,
+    /// else relative to the scene file's folder (Mitsuba `FileResolver::resolve`, with the
+    /// scene's folder prepended before parsing and `<path>` folders in front of it).
     pub fn resolve(&self, file: &str) -> PathBuf {
         let p = Path::new(file);
-        if p.is_absolute() { p.to_path_buf() } else { self.base_dir.join(p) }
+        if p.is_absolute() {
+            return p.to_path_buf();
+        }
+        self.search_paths.iter().map(|d| d.join(p)).find(|c| c.exists()).unwrap_or_else(|| self.base_dir.join(p))
     }
 }
 
 fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError> {
     let mut b = Builder {
         base_dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+        search_paths: root.search_paths.clone(),
         bsdfs: Vec::new(),
         bsdf_index: HashMap::new(),
         shapes: Vec::new(),
@@ -96,8 +105,8 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             }
             "shape" => shape::build(&mut b, obj)?,
             "emitter" => {
-                if obj.plugin == "constant" && b.emitters.iter().any(|e| matches!(e, Emitter::Constant { .. })) {
-                    return Err(SceneError::at(&obj.pos, "only one environment emitter (constant) is allowed"));
+                if (obj.plugin == "constant" || obj.plugin == "envmap") && b.emitters.iter().any(Emitter::is_environment) {
+                    return Err(SceneError::at(&obj.pos, "only one environment emitter (constant, envmap) is allowed"));
                 }
                 emitter::build_standalone(&mut b, obj)?
             }

@@ -1,25 +1,53 @@
 //! `<sensor type="perspective">` with its `hdrfilm` (and rfilter) and `independent` sampler
 //! (semantics §4–6): fov/fov_axis or focal_length (default "50mm"), near/far clip, principal
-//! point offsets, no scale in `to_world`.
+//! point offsets, no scale in `to_world`. `<sensor type="orthographic">`
+//! (`src/sensors/orthographic.cpp`): near_clip, far_clip and `to_world`, which may scale.
 
 use super::{err, values};
-use crate::render::camera::{FovAxis, PerspectiveCamera};
+use crate::render::camera::{Camera, FovAxis, PerspectiveCamera};
+use crate::render::orthographic::OrthographicCamera;
 use crate::render::film::{CropWindow, Film, ReconstructionFilter};
 use crate::scene::SceneError;
 use crate::scene::xml::SceneObject;
 use glam::Vec2;
 
 pub struct Sensor {
-    pub camera: PerspectiveCamera,
+    pub camera: Camera,
     pub film: Film,
     pub spp: u32,
     pub seed: u64,
 }
 
 pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
-    if obj.plugin != "perspective" {
-        return Err(err(obj, format!("unsupported sensor type \"{}\" (matte renders: perspective)", obj.plugin)));
+    match obj.plugin.as_str() {
+        "perspective" => build_perspective(obj),
+        "orthographic" => build_orthographic(obj),
+        other => Err(err(obj, format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic)"))),
     }
+}
+
+fn clip_range(obj: &SceneObject) -> Result<(f32, f32), SceneError> {
+    let near = values::positive(obj, "near_clip", 0.01)? as f32;
+    let far = values::positive(obj, "far_clip", 10000.0)? as f32;
+    if far <= near {
+        return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
+    }
+    Ok((near, far))
+}
+
+fn build_orthographic(obj: &SceneObject) -> Result<Sensor, SceneError> {
+    let to_world = values::transform(obj, "to_world")?;
+    if to_world.matrix3.determinant() == 0.0 || !to_world.is_finite() {
+        return Err(values::prop_err(obj, "to_world", "must be an invertible transform"));
+    }
+    let (near, far) = clip_range(obj)?;
+    let (film, spp, seed) = film_and_sampler(obj)?;
+    obj.check_all_used()?;
+    let camera = Camera::Orthographic(OrthographicCamera::new(to_world, (film.width(), film.height()), near, far));
+    Ok(Sensor { camera, film, spp, seed })
+}
+
+fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
     let to_world = values::transform(obj, "to_world")?;
     if has_scale(&to_world) {
         return Err(values::prop_err(obj, "to_world", "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)"));
@@ -56,12 +84,17 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
             (PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal)
         }
     };
-    let near = values::positive(obj, "near_clip", 0.01)? as f32;
-    let far = values::positive(obj, "far_clip", 10000.0)? as f32;
-    if far <= near {
-        return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
-    }
+    let (near, far) = clip_range(obj)?;
     let ppo = Vec2::new(principal_point_offset(obj, "principal_point_offset_x")?, principal_point_offset(obj, "principal_point_offset_y")?);
+    let (film, spp, seed) = film_and_sampler(obj)?;
+    obj.check_all_used()?;
+    let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
+    Ok(Sensor { camera: Camera::Perspective(camera), film, spp, seed })
+}
+
+/// The sensor's nested film (default: 768×576, gaussian) and sampler (default: 4 spp,
+/// seed 0).
+fn film_and_sampler(obj: &SceneObject) -> Result<(Film, u32, u64), SceneError> {
     let mut film = None;
     let mut sampler = None;
     for child in obj.children.iter() {
@@ -81,9 +114,7 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
         Some(f) => f,
         None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| err(obj, e))?,
     };
-    obj.check_all_used()?;
-    let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
-    Ok(Sensor { camera, film, spp: sampler.0, seed: sampler.1 })
+    Ok((film, sampler.0, sampler.1))
 }
 
 /// A principal point offset (a fraction of the film size). Mitsuba takes any float; a NaN or

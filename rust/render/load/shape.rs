@@ -1,7 +1,7 @@
 //! `<shape>`: `obj`, `ply`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
 //! `cylinder`, each with `to_world`, `flip_normals`, a nested or referenced `<bsdf>` and an
 //! optional nested `area` emitter (semantics §8). A shape without a BSDF gets diffuse 0.5,
-//! or black diffuse when it emits.
+//! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
 
 use super::{Builder, bsdf, emitter, err, values};
 use crate::render::geometry::Frame;
@@ -12,7 +12,17 @@ use crate::scene::xml::SceneObject;
 use glam::{Affine3A, Mat3, Mat4, Vec3};
 
 pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
-    let to_world = values::transform(obj, "to_world")?;
+    match obj.plugin.as_str() {
+        "shapegroup" => super::instance::check_group(obj),
+        "instance" => super::instance::build(b, obj),
+        _ => build_placed(b, obj, Affine3A::IDENTITY, false),
+    }
+}
+
+/// One shape, placed by `outer · to_world` (`outer` is an instance's transform). In a
+/// shape group (`in_group`) an area emitter is refused.
+pub(super) fn build_placed(b: &mut Builder, obj: &SceneObject, outer: Affine3A, in_group: bool) -> Result<(), SceneError> {
+    let to_world = outer * values::transform(obj, "to_world")?;
     let flip_normals = values::boolean(obj, "flip_normals", false)?;
     let geometry = match obj.plugin.as_str() {
         "obj" | "ply" => {
@@ -61,7 +71,8 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
             let m = to_world * Affine3A::from_translation(p0) * frame * Affine3A::from_scale(Vec3::new(radius, radius, length));
             Geometry::Cylinder(Cylinder::new(m, flip_normals))
         }
-        other => return Err(err(obj, format!("unsupported shape type \"{other}\" (matte renders: obj, ply, rectangle, cube, sphere, disk, cylinder)"))),
+        "shapegroup" | "instance" => return Err(err(obj, "nested instancing is not permitted (a shapegroup cannot contain a shapegroup or an instance)")),
+        other => return Err(err(obj, format!("unsupported shape type \"{other}\" (matte renders: obj, ply, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)"))),
     };
     if geometry.surface_area().is_nan() {
         return Err(values::prop_err(obj, "to_world", "produces invalid (NaN) geometry"));
@@ -82,6 +93,9 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
                     return Err(err(obj, "has more than one BSDF"));
                 }
                 bsdf_index = Some(bsdf::get_or_build(b, c)?);
+            }
+            "emitter" if in_group => {
+                return Err(err(c, "an emitter cannot be attached to a shape inside a shapegroup (instanced emitters are not supported)"));
             }
             "emitter" => {
                 if emitter_index.is_some() {

@@ -1,11 +1,11 @@
 //! Reflectance-like parameters: a colour property (`<rgb>`, `<float>`, `<spectrum>`) or a
-//! nested/referenced `<texture type="bitmap">` (semantics §2, §11).
+//! nested/referenced `<texture type="bitmap">` (semantics §2, §11) or `checkerboard`.
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
 use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject};
+use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::{Affine2, Mat2, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -24,11 +24,66 @@ pub fn get(b: &Builder, obj: &SceneObject, name: &str, usage: ColorUse, default:
     Ok(Texture::Constant(values::color(obj, name, usage, default)?))
 }
 
-/// A `<texture>` object (only `bitmap` is supported).
+/// A `<texture>` object: `bitmap` or `checkerboard`.
 pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
-    if obj.plugin != "bitmap" {
-        return Err(err(obj, format!("unsupported texture type \"{}\" (matte renders: bitmap)", obj.plugin)));
+    match obj.plugin.as_str() {
+        "bitmap" => build_bitmap(b, obj),
+        "checkerboard" => checkerboard(b, obj),
+        "rawconstant" => rawconstant(obj),
+        other => Err(err(obj, format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant)"))),
     }
+}
+
+/// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): with uv' = to_uv·uv, `color0`
+/// where the fractional parts of u' and v' are both above or both at most ½, else `color1`
+/// (defaults 0.4 and 0.2). That is a 2×2 texture [color0 color1; color1 color0] with
+/// nearest lookup and repeat wrapping (uv' = (0.5, ·) exactly, a set of measure zero, falls
+/// on the other side), so it is built as one. Textured colours are not supported.
+fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
+    let colour = |name: &str, default: f32| -> Result<Vec3, SceneError> {
+        match get(b, obj, name, ColorUse::Bounded, Vec3::splat(default))? {
+            Texture::Constant(c) => Ok(c),
+            _ => Err(err(obj, format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)"))),
+        }
+    };
+    let (c0, c1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
+    let opts = BitmapOptions { filter: BitmapFilter::Nearest, wrap: WrapMode::Repeat, raw: true, to_uv: to_uv(obj)? };
+    obj.check_all_used()?;
+    let tex = BitmapTexture::from_linear(2, 2, vec![c0, c1, c1, c0], &opts).map_err(|e| err(obj, e))?;
+    Ok(Texture::Bitmap(Arc::new(tex)))
+}
+
+/// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three
+/// channels) or a `<vector>`, used as is (no colour conversion, no range check).
+fn rawconstant(obj: &SceneObject) -> Result<Texture, SceneError> {
+    let value = match obj.properties.iter().find(|p| p.name == "value").map(|p| &p.value) {
+        None => return Err(err(obj, "missing required parameter \"value\" (a float or a 3-D vector)")),
+        Some(Value::Vector(_) | Value::Point(_)) => obj.properties.vector("value")?.unwrap_or_default().as_vec3(),
+        Some(Value::Float(_) | Value::Integer(_)) => Vec3::splat(obj.properties.float("value")?.unwrap_or_default() as f32),
+        Some(other) => {
+            return Err(values::prop_err(obj, "value", format!("has the wrong type (expected float or vector, found {})", other.type_name())));
+        }
+    };
+    if !value.is_finite() {
+        return Err(values::prop_err(obj, "value", "must be finite"));
+    }
+    obj.check_all_used()?;
+    Ok(Texture::Constant(value))
+}
+
+/// `to_uv` as a 2-D affine map: the upper-left 2×2 block and the translation column of the
+/// 4×4 transform (Mitsuba's `Properties::get<AffineTransform3f>`).
+fn to_uv(obj: &SceneObject) -> Result<Affine2, SceneError> {
+    Ok(match obj.properties.transform("to_uv")? {
+        None => Affine2::IDENTITY,
+        Some(m) => {
+            let a = Mat2::from_cols(Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32), Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32));
+            Affine2::from_mat2_translation(a, Vec2::new(m.w_axis.x as f32, m.w_axis.y as f32))
+        }
+    })
+}
+
+fn build_bitmap(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
     let filter = match values::string(obj, "filter_type", "bilinear")?.as_str() {
         "bilinear" => BitmapFilter::Bilinear,
@@ -42,14 +97,7 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
         other => return Err(values::prop_err(obj, "wrap_mode", format!("must be repeat, mirror or clamp, got \"{other}\""))),
     };
     let raw = values::boolean(obj, "raw", false)?;
-    let to_uv = match obj.properties.transform("to_uv")? {
-        None => Affine2::IDENTITY,
-        Some(m) => {
-            // Upper-left 2×2 plus the translation (Mitsuba's bitmap texture).
-            let a = Mat2::from_cols(Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32), Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32));
-            Affine2::from_mat2_translation(a, Vec2::new(m.w_axis.x as f32, m.w_axis.y as f32))
-        }
-    };
+    let to_uv = to_uv(obj)?;
     let _ = values::string(obj, "format", "variant")?;
     obj.check_all_used()?;
     let path = b.resolve(&filename);

@@ -69,7 +69,9 @@ impl Cylinder {
         let l = self.to_object.transform_point3(ray.at(t));
         let phi_dir = Vec2::new(l.x, l.y).normalize_or(Vec2::X);
         let (p, n, uv) = self.surface_point(phi_dir, l.z);
-        let sh_frame = Frame::from_normal(n);
+        // Mitsuba: dp_du = to_world·2π(−y, x, 0) of the local point.
+        let dp_du = self.to_world.transform_vector3(Vec3::new(-l.y, l.x, 0.0));
+        let sh_frame = Frame::from_normal_dpdu(n, dp_du);
         SurfaceInteraction { t, p, n, sh_frame, uv, shape, wi: sh_frame.to_local(-ray.d) }
     }
 

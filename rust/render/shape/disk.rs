@@ -62,7 +62,10 @@ impl Disk {
         let l = self.to_object.transform_point3(ray.at(t));
         let local = Vec2::new(l.x, l.y);
         let p = self.to_world.transform_point3(Vec3::new(local.x, local.y, 0.0));
-        let sh_frame = Frame::from_normal(self.n);
+        // Mitsuba: dp_du = to_world·(cos φ, sin φ, 0), zero at the centre.
+        let radial = local.normalize_or_zero();
+        let dp_du = self.to_world.transform_vector3(Vec3::new(radial.x, radial.y, 0.0));
+        let sh_frame = Frame::from_normal_dpdu(self.n, dp_du);
         SurfaceInteraction { t, p, n: self.n, sh_frame, uv: Self::uv(local), shape, wi: sh_frame.to_local(-ray.d) }
     }
 

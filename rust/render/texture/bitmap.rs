@@ -119,6 +119,11 @@ impl BitmapTexture {
         self.mean.dot(Vec3::new(0.212_671, 0.715_160, 0.072_169))
     }
 
+    /// The linear texels, row-major, top row first.
+    pub fn texels(&self) -> &[Vec3] {
+        &self.texels
+    }
+
     /// Texel grid size after Mitsuba's padding of sub-2×2 images.
     pub fn resolution(&self) -> [u32; 2] {
         [self.width, self.height]

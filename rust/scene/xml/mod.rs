@@ -41,7 +41,8 @@
 //!   silently replace an earlier one of the same name).
 //! * A property or `<ref>` directly inside an included `<scene>` is an error (Mitsuba drops it).
 //! * A transform containing NaN or ∞ is an error (Mitsuba only checks `lookat`).
-//! * `<spectrum filename=...>` and `<path>` are not supported (error).
+//! * `<spectrum filename=...>` is not supported (error). `<path value>` folders end up in
+//!   the root's `search_paths`.
 //! * The root element must be `<scene>`; it takes only `version`.
 //!
 //! # For the builder

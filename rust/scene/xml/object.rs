@@ -42,6 +42,9 @@ pub struct SceneObject {
     pub properties: Properties,
     /// Nested objects and resolved `<ref>`s, in document order.
     pub children: Vec<Child>,
+    /// Root only: folders added by `<path value="..."/>`, searched (in this order) before
+    /// the scene file's folder for relative asset file names, as Mitsuba's file resolver.
+    pub search_paths: Vec<std::path::PathBuf>,
 }
 
 impl SceneObject {

@@ -219,9 +219,35 @@ impl Parser {
             "translate" | "rotate" | "scale" | "matrix" | "lookat" => {
                 Err(a.err(format!("transform operation <{tag}> can only appear inside a <transform>")))
             }
-            "path" => Err(a.err("<path> (extra search folders) is not supported")),
+            "path" => self.search_path(ctx, &a, parent),
             _ => Err(a.err(format!("unknown element <{tag}>"))),
         }
+    }
+
+    /// `<path value="..."/>` (Mitsuba `src/core/parser.cpp`, `TagType::Resource`): only
+    /// directly under the root; a relative folder is tried against the folder of the XML
+    /// file it appears in, then against the folders added so far; it must exist. Added in
+    /// front of the search list, as Mitsuba's `FileResolver::prepend`.
+    fn search_path(&mut self, ctx: &FileCtx, a: &Attrs, parent: usize) -> Result<(), SceneError> {
+        a.check(&["!value"])?;
+        if parent != 0 {
+            return Err(a.err("<path> can only be a child of the root <scene>"));
+        }
+        let value = a.required("value")?;
+        let mut folder = PathBuf::from(value);
+        if !folder.is_absolute() {
+            folder = ctx.path.parent().unwrap_or(Path::new("")).join(value);
+            if !folder.exists()
+                && let Some(found) = self.scene.search_paths.iter().map(|d| d.join(value)).find(|p| p.exists())
+            {
+                folder = found;
+            }
+        }
+        if !folder.is_dir() {
+            return Err(a.err(format!("<path>: folder \"{}\" not found", folder.display())));
+        }
+        self.scene.search_paths.insert(0, folder);
+        Ok(())
     }
 
     fn property(&mut self, parent: usize, a: &Attrs, value: Value) -> Result<(), SceneError> {

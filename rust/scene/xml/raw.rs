@@ -37,6 +37,8 @@ pub(crate) struct RawNode {
 pub(crate) struct RawScene {
     pub nodes: Vec<RawNode>,
     pub ids: HashMap<String, (usize, SourcePos)>,
+    /// Folders added by `<path>`, most recent first.
+    pub search_paths: Vec<std::path::PathBuf>,
 }
 
 impl RawScene {

@@ -88,6 +88,7 @@ fn post_order(scene: &RawScene, edges: &[Vec<usize>]) -> Result<Vec<usize>, Scen
 /// The root object of the resolved, shared tree.
 pub(crate) fn build_tree(scene: RawScene) -> Result<Rc<SceneObject>, SceneError> {
     let edges = resolve_refs(&scene)?;
+    let search_paths = scene.search_paths.clone();
     let order = post_order(&scene, &edges)?;
     let mut raw: Vec<Option<RawNode>> = scene.nodes.into_iter().map(Some).collect();
     let mut built: Vec<Option<Rc<SceneObject>>> = vec![None; raw.len()];
@@ -112,6 +113,7 @@ pub(crate) fn build_tree(scene: RawScene) -> Result<Rc<SceneObject>, SceneError>
             pos: n.pos,
             properties: n.properties,
             children,
+            search_paths: if i == 0 { search_paths.clone() } else { Vec::new() },
         }));
     }
     Ok(built[0].take().expect("the root is last in post-order"))
