@@ -35,8 +35,9 @@ public:
     virtual uint32_t mask_or(uint32_t a, uint32_t b) const = 0;
     virtual uint32_t mask_not(uint32_t a) const = 0;
     virtual uint32_t select(uint32_t m, uint32_t t, uint32_t f) const = 0;
-    /// `table[idx]` from the buffer the plugin registered as table number `table`.
-    virtual uint32_t gather(uint32_t table, uint32_t idx) const = 0;
+    /// `table[idx + offset]` from the buffer the plugin registered as table number `table`
+    /// (`idx` an integer-valued float, `offset` a constant).
+    virtual uint32_t gather(uint32_t table, uint32_t idx, uint32_t offset) const = 0;
 };
 
 } // namespace matte

@@ -59,10 +59,10 @@ public:
     uint32_t select(uint32_t mi, uint32_t t, uint32_t e) const override {
         return push(drjit::select(m(mi), f(t), f(e)));
     }
-    uint32_t gather(uint32_t table, uint32_t idx) const override {
+    uint32_t gather(uint32_t table, uint32_t idx, uint32_t offset) const override {
         if (!m_tables || table >= m_tables->size())
             return push(Float(0.f));
-        return push(drjit::gather<Float>((*m_tables)[table], UInt32(f(idx))));
+        return push(drjit::gather<Float>((*m_tables)[table], UInt32(f(idx)) + offset));
     }
 
 private:

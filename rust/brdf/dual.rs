@@ -101,7 +101,7 @@ impl Real for Dual {
         let (s, c) = self.v.sin_cos();
         (Dual { v: s, d: c * self.d }, Dual { v: c, d: -s * self.d })
     }
-    fn gather(table: &[f32], idx: Self) -> Self {
-        <Dual as Real>::c(table.get(idx.v as usize).copied().unwrap_or(0.0) as f64)
+    fn gather(table: &[f32], idx: Self, offset: u32) -> Self {
+        <Dual as Real>::c(table.get(idx.v as usize + offset as usize).copied().unwrap_or(0.0) as f64)
     }
 }

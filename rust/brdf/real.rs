@@ -46,9 +46,10 @@ pub trait Real:
     /// `(sin x, cos x)`: Cephes' single-precision scheme on the CPU (what Dr.Jit evaluates,
     /// `sampling::sincos_cephes`), Dr.Jit's own `sincos` when traced.
     fn sincos(self) -> (Self, Self);
-    /// `table[idx]` for a non-negative integer-valued `idx` (exact below 2²⁴); out of range
-    /// gives 0 on the CPU (callers clamp, so this never happens).
-    fn gather(table: Self::Table<'_>, idx: Self) -> Self;
+    /// `table[idx + offset]` for a non-negative integer-valued `idx` (exact below 2²⁴); out of
+    /// range gives 0 on the CPU (callers clamp, so this never happens). The constant `offset`
+    /// is separate so that the CPU converts `idx` to an integer once for all of a cell's corners.
+    fn gather(table: Self::Table<'_>, idx: Self, offset: u32) -> Self;
     /// The mask as a literal (for masks that do not depend on any value).
     fn mask(v: bool) -> Self::Mask;
 
@@ -152,8 +153,8 @@ macro_rules! cpu_real {
                 (s as $t, c as $t)
             }
             #[inline(always)]
-            fn gather(table: &[f32], idx: Self) -> Self {
-                table.get(idx as usize).copied().unwrap_or(0.0) as $t
+            fn gather(table: &[f32], idx: Self, offset: u32) -> Self {
+                table.get(idx as usize + offset as usize).copied().unwrap_or(0.0) as $t
             }
         }
     };

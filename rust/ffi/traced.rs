@@ -233,7 +233,7 @@ impl<'a> Real for Traced<'a> {
     fn squared_norm_2d(x: Self, y: Self) -> Self {
         y.fma(y, x * x)
     }
-    fn gather(table: TracedTable<'a>, idx: Self) -> Self {
-        Traced::Node(table.arena, table.arena.gather(table.id, idx.id(table.arena)))
+    fn gather(table: TracedTable<'a>, idx: Self, offset: u32) -> Self {
+        Traced::Node(table.arena, table.arena.gather(table.id, idx.id(table.arena), offset))
     }
 }

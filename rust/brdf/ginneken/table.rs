@@ -140,8 +140,8 @@ pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
     let (gi, go, gc) = (one - fi, one - fo, one - fc);
     let base = (i0.scale(U_NODES as f64) + o0).fma(T::c(C_NODES as f64), c0);
     let pair = |offset: usize, w: T| {
-        let at = base + T::c(offset as f64);
-        (w * gc).fma(T::gather(table, at), (w * fc) * T::gather(table, at + one))
+        let offset = offset as u32;
+        (w * gc).fma(T::gather(table, base, offset), (w * fc) * T::gather(table, base, offset + 1))
     };
     let row = C_NODES;
     let plane = U_NODES * C_NODES;
@@ -155,7 +155,7 @@ pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
 #[inline(always)]
 pub fn mu_lambda_in<T: Real>(table: T::Table<'_>, x: T) -> T {
     let (i, f) = cell(x.scale((LAMBDA_NODES - 1) as f64), LAMBDA_NODES);
-    let (a, b) = (T::gather(table, i), T::gather(table, i + T::c(1.0)));
+    let (a, b) = (T::gather(table, i, 0), T::gather(table, i, 1));
     f.fma(b - a, a)
 }
 
