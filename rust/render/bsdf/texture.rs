@@ -19,4 +19,14 @@ impl Texture {
             Texture::Bitmap(b) => b.eval(uv),
         }
     }
+
+    /// Mitsuba's `Texture::mean()` in RGB mode: the mean of the three channels for a constant
+    /// (`srgb`/`uniform` spectra), the texels' mean luminance for a bitmap. Plastics use it
+    /// for their lobe-selection weight.
+    pub fn mean(&self) -> f32 {
+        match self {
+            Texture::Constant(c) => (c.x + c.y + c.z) / 3.0,
+            Texture::Bitmap(b) => b.mean_luminance(),
+        }
+    }
 }

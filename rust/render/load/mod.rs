@@ -4,6 +4,7 @@
 //! does the same: `unused_properties = Error`).
 
 mod bsdf;
+mod bsdf_params;
 mod emitter;
 mod integrator;
 mod sensor;
