@@ -63,6 +63,20 @@ CONFIGS = [
      '<float name="alpha" value="0.2"/></bsdf></bsdf>', "upper", False),
     ("normalmap_roughconductor", '<bsdf type="normalmap"><rgb name="normalmap" value="0.3, 0.7, 0.8"/>'
      '<bsdf type="roughconductor"><string name="material" value="Cu"/><float name="alpha" value="0.3"/></bsdf></bsdf>', "upper", False),
+    # principled: defaults, every lobe, glass, anisotropic metal, sampling rates / zero flags.
+    ("principled_default", '<bsdf type="principled"/>', "sphere", False),
+    ("principled_full", '<bsdf type="principled"><rgb name="base_color" value="0.8, 0.4, 0.2"/><float name="roughness" value="0.4"/>'
+     '<float name="metallic" value="0.3"/><float name="spec_tint" value="0.5"/><float name="sheen" value="0.6"/>'
+     '<float name="sheen_tint" value="0.4"/><float name="clearcoat" value="0.7"/><float name="clearcoat_gloss" value="0.5"/>'
+     '<float name="flatness" value="0.3"/><float name="anisotropic" value="0.5"/><float name="specular" value="0.6"/></bsdf>', "sphere", False),
+    ("principled_glass", '<bsdf type="principled"><rgb name="base_color" value="0.9, 0.95, 0.7"/><float name="spec_trans" value="0.8"/>'
+     '<float name="roughness" value="0.3"/><float name="eta" value="1.45"/></bsdf>', "sphere", False),
+    ("principled_metal_aniso", '<bsdf type="principled"><rgb name="base_color" value="0.9, 0.6, 0.3"/><float name="metallic" value="1"/>'
+     '<float name="anisotropic" value="0.8"/><float name="roughness" value="0.35"/></bsdf>', "sphere", False),
+    ("principled_rates", '<bsdf type="principled"><float name="spec_trans" value="0.5"/><float name="clearcoat" value="0.5"/>'
+     '<float name="metallic" value="0"/><float name="main_specular_sampling_rate" value="2"/>'
+     '<float name="clearcoat_sampling_rate" value="0.5"/><float name="diffuse_reflectance_sampling_rate" value="3"/>'
+     '<float name="roughness" value="0.6"/><float name="specular" value="0.3"/></bsdf>', "sphere", False),
 ]
 
 rng = np.random.default_rng(20261201)

@@ -1,5 +1,5 @@
 //! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`,
-//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, and the matte
+//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, and the matte
 //! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
@@ -14,6 +14,8 @@ pub mod microfacet;
 pub mod microfacet_albedo;
 pub mod normal_map;
 pub mod plastic;
+pub mod principled;
+pub mod principled_helpers;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
@@ -30,6 +32,7 @@ pub use fresnel::fresnel_conductor;
 pub use microfacet::MicrofacetDistribution;
 pub use normal_map::NormalMap;
 pub use plastic::Plastic;
+pub use principled::Principled;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
@@ -56,6 +59,7 @@ pub enum Bsdf {
     RoughPlastic(Box<RoughPlastic>),
     /// Mitsuba's `normalmap` wrapper around a nested BSDF.
     NormalMap(NormalMap),
+    Principled(Box<Principled>),
 }
 
 impl Bsdf {
@@ -78,6 +82,7 @@ impl Bsdf {
             Bsdf::Plastic(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::RoughPlastic(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::NormalMap(n) => n.eval_pdf(uv, wi, wo),
+            Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
         }
     }
 
@@ -104,6 +109,7 @@ impl Bsdf {
             Bsdf::Plastic(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::RoughPlastic(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::NormalMap(n) => n.sample(uv, wi, u_lobe, u),
+            Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
         }
     }
 
@@ -116,7 +122,8 @@ impl Bsdf {
             | Bsdf::RoughConductor(_)
             | Bsdf::RoughDielectric(_)
             | Bsdf::Plastic(_)
-            | Bsdf::RoughPlastic(_) => true,
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::Principled(_) => true,
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),

@@ -20,6 +20,17 @@ impl Texture {
         }
     }
 
+    /// Mitsuba's `Texture::eval_1` in RGB mode (a scalar parameter such as a roughness): the
+    /// channel mean of a constant (`srgb`'s `eval_1` returns its `mean()`; a `<float>` is the
+    /// same value in all channels), the luminance of a bitmap's RGB.
+    #[inline]
+    pub fn eval_1(&self, uv: Vec2) -> f32 {
+        match self {
+            Texture::Constant(c) => (c.x + c.y + c.z) / 3.0,
+            Texture::Bitmap(b) => b.eval(uv).dot(Vec3::new(0.212_671, 0.715_160, 0.072_169)),
+        }
+    }
+
     /// Mitsuba's `Texture::mean()` in RGB mode: the mean of the three channels for a constant
     /// (`srgb`/`uniform` spectra), the texels' mean luminance for a bitmap. Plastics use it
     /// for their lobe-selection weight.
