@@ -1,5 +1,5 @@
-//! `plastic`, `roughplastic`, `roughdielectric`, `thindielectric`, `normalmap`, `principled`
-//! and named conductor materials against the real Mitsuba 3.9.1: each configuration is one XML `<bsdf>` loaded by matte's scene loader and
+//! `plastic`, `roughplastic`, `roughdielectric`, `thindielectric`, `normalmap`, `principled`,
+//! `principledthin` and named conductor materials against the real Mitsuba 3.9.1: each configuration is one XML `<bsdf>` loaded by matte's scene loader and
 //! by Mitsuba (`mitsuba_bsdfs/generate_reference.py` wrote the expected eval/pdf/sample
 //! values once; see `mitsuba_bsdfs/reference.rs`). Plus the sampling checks that need no
 //! oracle: sample weight = eval/pdf, Mitsuba's χ² test of the sampled directions against the
@@ -94,7 +94,7 @@ fn sphere(rng: &mut Pcg32) -> Vec3 {
 /// (A principled BSDF without `spec_trans` samples nothing from below, while Mitsuba's pdf
 /// there is that of a reflection lobe whose value is 0: such directions are left out.)
 fn two_sided(c: &reference::Config) -> bool {
-    c.name.contains("dielectric") || (c.name.starts_with("principled") && c.xml.contains("spec_trans"))
+    c.name.contains("dielectric") || c.name.starts_with("principledthin") || (c.name.starts_with("principled") && c.xml.contains("spec_trans"))
 }
 
 #[test]
@@ -187,7 +187,7 @@ fn samples_follow_pdf_chi_square() {
         n.starts_with("thin")
             || n.starts_with("conductor_")
             || n.starts_with("roughconductor_")
-            || ["plastic_default", "plastic_nonlinear", "principled_default", "principled_metal_aniso"].contains(&n)
+            || ["plastic_default", "plastic_nonlinear", "principled_default", "principled_metal_aniso", "principledthin_default"].contains(&n)
             || (n.starts_with("normalmap") && n != "normalmap_roughconductor")
     };
     let configs: Vec<_> = CONFIGS.iter().filter(|c| !skip(c.name)).collect();

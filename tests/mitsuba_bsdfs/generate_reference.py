@@ -77,6 +77,16 @@ CONFIGS = [
      '<float name="metallic" value="0"/><float name="main_specular_sampling_rate" value="2"/>'
      '<float name="clearcoat_sampling_rate" value="0.5"/><float name="diffuse_reflectance_sampling_rate" value="3"/>'
      '<float name="roughness" value="0.6"/><float name="specular" value="0.3"/></bsdf>', "sphere", False),
+    # principledthin: defaults, every lobe, sampling rates.
+    ("principledthin_default", '<bsdf type="principledthin"/>', "sphere", False),
+    ("principledthin_full", '<bsdf type="principledthin"><rgb name="base_color" value="0.3, 0.6, 0.9"/><float name="roughness" value="0.35"/>'
+     '<float name="spec_trans" value="0.6"/><float name="diff_trans" value="0.8"/><float name="eta" value="1.33"/>'
+     '<float name="spec_tint" value="0.4"/><float name="sheen" value="0.5"/><float name="sheen_tint" value="0.3"/>'
+     '<float name="flatness" value="0.4"/><float name="anisotropic" value="0.6"/></bsdf>', "sphere", False),
+    ("principledthin_rates", '<bsdf type="principledthin"><float name="spec_trans" value="0.4"/><float name="diff_trans" value="1.2"/>'
+     '<float name="specular_reflectance_sampling_rate" value="2"/><float name="specular_transmittance_sampling_rate" value="0.5"/>'
+     '<float name="diffuse_transmittance_sampling_rate" value="3"/><float name="diffuse_reflectance_sampling_rate" value="0.7"/>'
+     '<float name="roughness" value="0.7"/></bsdf>', "sphere", False),
 ]
 
 rng = np.random.default_rng(20261201)

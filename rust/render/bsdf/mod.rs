@@ -1,5 +1,5 @@
 //! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`,
-//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, and the matte
+//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, `principledthin`, and the matte
 //! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
@@ -16,6 +16,7 @@ pub mod normal_map;
 pub mod plastic;
 pub mod principled;
 pub mod principled_helpers;
+pub mod principled_thin;
 pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
@@ -33,6 +34,7 @@ pub use microfacet::MicrofacetDistribution;
 pub use normal_map::NormalMap;
 pub use plastic::Plastic;
 pub use principled::Principled;
+pub use principled_thin::PrincipledThin;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
@@ -60,6 +62,7 @@ pub enum Bsdf {
     /// Mitsuba's `normalmap` wrapper around a nested BSDF.
     NormalMap(NormalMap),
     Principled(Box<Principled>),
+    PrincipledThin(Box<PrincipledThin>),
 }
 
 impl Bsdf {
@@ -83,6 +86,7 @@ impl Bsdf {
             Bsdf::RoughPlastic(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::NormalMap(n) => n.eval_pdf(uv, wi, wo),
             Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
+            Bsdf::PrincipledThin(p) => p.eval_pdf(uv, wi, wo),
         }
     }
 
@@ -110,6 +114,7 @@ impl Bsdf {
             Bsdf::RoughPlastic(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::NormalMap(n) => n.sample(uv, wi, u_lobe, u),
             Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
+            Bsdf::PrincipledThin(p) => p.sample(uv, wi, u_lobe, u),
         }
     }
 
@@ -123,7 +128,8 @@ impl Bsdf {
             | Bsdf::RoughDielectric(_)
             | Bsdf::Plastic(_)
             | Bsdf::RoughPlastic(_)
-            | Bsdf::Principled(_) => true,
+            | Bsdf::Principled(_)
+            | Bsdf::PrincipledThin(_) => true,
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),

@@ -1,13 +1,13 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
-//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled` and matte's `lambert`, `oren_nayar`,
+//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, `principledthin` and matte's `lambert`, `oren_nayar`,
 //! `eon`, `wolff`, `ginneken` (parameters validated by the kernels' own parser, the same one the
 //! Mitsuba plugin uses).
 
-use super::{Builder, err, texture, values};
+use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{ParamValue, Params, BSDF_TYPES};
 use super::bsdf_params::{MAX_MAGNITUDE, constant, ior, microfacet, optional_constant, relative_ior, too_large};
 use crate::render::bsdf::{
-    Bsdf, Conductor, Dielectric, NormalMap, Plastic, Principled, RoughConductor, RoughDielectric, RoughPlastic, Texture, ThinDielectric, conductor_material,
+    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughPlastic, Texture, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
@@ -63,14 +63,17 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 [f, bk] => (build(b, f)?, build(b, bk)?),
                 _ => return Err(err(obj, format!("needs one or two nested BSDFs, found {}", nested.len()))),
             };
+            // Mitsuba's `allow_transmission` (default false) lifts the check below.
+            let allow_transmission = values::boolean(obj, "allow_transmission", false)?;
             for side in [&front, &back] {
                 let transmissive = match side {
-                    Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) => true,
+                    // principledthin always declares a diffuse transmission component.
+                    Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::PrincipledThin(_) => true,
                     Bsdf::Principled(p) => p.spec_trans.is_some(),
                     _ => false,
                 };
-                if transmissive {
-                    return Err(err(obj, "a twosided BSDF cannot wrap a transmissive BSDF (as in Mitsuba)"));
+                if transmissive && !allow_transmission {
+                    return Err(err(obj, "a twosided BSDF cannot wrap a transmissive BSDF unless allow_transmission is true (as in Mitsuba)"));
                 }
             }
             Bsdf::TwoSided { front: Box::new(front), back: Box::new(back) }
@@ -118,7 +121,8 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let use_shadowing_function = values::boolean(obj, "use_shadowing_function", true)?;
             Bsdf::NormalMap(NormalMap { normals, nested: Box::new(build(b, inner)?), flip_invalid_normals, use_shadowing_function })
         }
-        "principled" => Bsdf::Principled(Box::new(principled(b, obj)?)),
+        "principled" => Bsdf::Principled(Box::new(bsdf_principled::principled(b, obj)?)),
+        "principledthin" => Bsdf::PrincipledThin(Box::new(bsdf_principled::principled_thin(b, obj)?)),
         "plastic" => {
             let eta = ior(obj, "int_ior", 1.49)? / ior(obj, "ext_ior", 1.000277)?;
             let diffuse = texture::get(b, obj, "diffuse_reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
@@ -141,7 +145,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 obj,
                 format!(
                     "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
-                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, {})", BSDF_TYPES.join(", ")),
+                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, principledthin, {})", BSDF_TYPES.join(", ")),
             ));
         }
     };
@@ -170,67 +174,3 @@ fn conductor_ior(obj: &SceneObject) -> Result<(Vec3, Vec3), SceneError> {
     conductor_material(&m).map_err(|e| values::prop_err(obj, "material", e))
 }
 
-/// Mitsuba's `principled` (`src/bsdfs/principled.cpp`): every parameter may be a texture; an
-/// optional lobe exists when its parameter is given and is not the float 0 (`get_flag`).
-fn principled(b: &Builder, obj: &SceneObject) -> Result<Principled, SceneError> {
-    let tex = |name: &str, default: f32| texture::get(b, obj, name, ColorUse::Bounded, Vec3::splat(default));
-    let flagged = |name: &str| -> Result<Option<Texture>, SceneError> {
-        let given_as_zero = matches!(obj.properties.get(name).map(|p| &p.value), Some(Value::Float(x)) if *x == 0.0);
-        let given = obj.properties.contains(name) || obj.children.iter().any(|c| c.name.as_deref() == Some(name));
-        let t = tex(name, 0.0)?;
-        Ok(if given && !given_as_zero { Some(t) } else { None })
-    };
-    let base_color = tex("base_color", 0.5)?;
-    let roughness = tex("roughness", 0.5)?;
-    let anisotropic = flagged("anisotropic")?;
-    let spec_trans = flagged("spec_trans")?;
-    let sheen = flagged("sheen")?;
-    let sheen_tint = flagged("sheen_tint")?;
-    let flatness = flagged("flatness")?;
-    let spec_tint = flagged("spec_tint")?;
-    let metallic = flagged("metallic")?;
-    let clearcoat = flagged("clearcoat")?;
-    let clearcoat_gloss = tex("clearcoat_gloss", 0.0)?;
-    let rate = |name: &str| -> Result<f32, SceneError> {
-        let v = values::float(obj, name, 1.0)?;
-        if !(v.is_finite() && v >= 0.0 && v <= MAX_MAGNITUDE) {
-            return Err(values::prop_err(obj, name, format!("must be a finite sampling rate ≥ 0, got {v}")));
-        }
-        Ok(v as f32)
-    };
-    let (spec_srate, clearcoat_srate, diff_refl_srate) =
-        (rate("main_specular_sampling_rate")?, rate("clearcoat_sampling_rate")?, rate("diffuse_reflectance_sampling_rate")?);
-    if obj.properties.contains("eta") && obj.properties.contains("specular") {
-        return Err(err(obj, "give either eta or specular, not both (as in Mitsuba)"));
-    }
-    let eta = values::float_opt(obj, "eta")?;
-    if let Some(e) = eta
-        && !(e.is_finite() && e > 0.0 && e <= MAX_MAGNITUDE)
-    {
-        return Err(values::prop_err(obj, "eta", format!("must be a positive finite index, got {e}")));
-    }
-    let specular = values::float_opt(obj, "specular")?;
-    if let Some(s) = specular
-        && !(s.is_finite() && (0.0..12.5).contains(&s))
-    {
-        return Err(values::prop_err(obj, "specular", format!("must be in [0, 12.5) (η = 2/(1 − √(0.08·specular)) − 1), got {s}")));
-    }
-    let eta = Principled::eta_from(eta.map(|e| e as f32), specular.map(|s| s as f32), spec_trans.is_some());
-    Ok(Principled {
-        base_color,
-        roughness,
-        anisotropic,
-        spec_trans,
-        sheen,
-        sheen_tint,
-        flatness,
-        spec_tint,
-        metallic,
-        clearcoat,
-        clearcoat_gloss,
-        spec_srate,
-        clearcoat_srate,
-        diff_refl_srate,
-        eta,
-    })
-}

@@ -5,6 +5,7 @@
 
 mod bsdf;
 mod bsdf_params;
+mod bsdf_principled;
 mod emitter;
 mod integrator;
 mod sensor;
