@@ -289,3 +289,58 @@ fn bad_parameters_are_errors_at_file_and_line() {
         assert!(e.contains(needle), "expected {needle:?} in: {e}");
     }
 }
+
+/// Odd parameter values for the new plugins: either a one-line error at `file:line`, or a
+/// scene that renders without panics and without NaN/Inf samples.
+#[test]
+fn odd_values_never_panic_and_render_finite() {
+    const TEMPLATES: &[&str] = &[
+        r#"<bsdf type="plastic"><float name="int_ior" value="{v}"/></bsdf>"#,
+        r#"<bsdf type="plastic"><float name="diffuse_reflectance" value="{v}"/><boolean name="nonlinear" value="true"/></bsdf>"#,
+        r#"<bsdf type="roughplastic"><float name="alpha" value="{v}"/></bsdf>"#,
+        r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="ext_ior" value="{v}"/></bsdf>"#,
+        r#"<bsdf type="roughdielectric"><float name="alpha" value="{v}"/></bsdf>"#,
+        r#"<bsdf type="roughdielectric"><string name="distribution" value="ggx"/><float name="int_ior" value="{v}"/><boolean name="sample_visible" value="false"/></bsdf>"#,
+        r#"<bsdf type="thindielectric"><float name="int_ior" value="{v}"/></bsdf>"#,
+        r#"<bsdf type="normalmap"><rgb name="normalmap" value="{v}, 0.5, 0.5"/><bsdf type="roughplastic"/></bsdf>"#,
+        r#"<bsdf type="principled"><float name="roughness" value="{v}"/><float name="spec_trans" value="0.5"/></bsdf>"#,
+        r#"<bsdf type="principled"><float name="eta" value="{v}"/><float name="clearcoat" value="1"/></bsdf>"#,
+        r#"<bsdf type="principled"><float name="specular" value="{v}"/><float name="metallic" value="0.5"/><float name="anisotropic" value="1"/></bsdf>"#,
+        r#"<bsdf type="principled"><float name="main_specular_sampling_rate" value="{v}"/><float name="sheen" value="1"/></bsdf>"#,
+        r#"<bsdf type="principledthin"><float name="eta" value="{v}"/><float name="spec_trans" value="1"/><float name="diff_trans" value="2"/></bsdf>"#,
+        r#"<bsdf type="principledthin"><float name="roughness" value="{v}"/><float name="spec_trans" value="0.5"/></bsdf>"#,
+    ];
+    const VALUES: &[&str] = &["0", "-1", "1", "2", "1e-30", "1e30", "nan", "inf", "1e9"];
+    let camera = r#"<sensor type="perspective"><float name="fov" value="60"/><transform name="to_world"><lookat origin="0,0,5" target="0,0,0"/></transform><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="2"/></film></sensor>"#;
+    let (mut accepted, mut failures) = (0, Vec::new());
+    for t in TEMPLATES {
+        for v in VALUES {
+            let bsdf = t.replace("{v}", v);
+            let xml = format!(
+                "<scene version=\"3.0.0\">\n{camera}<shape type=\"sphere\">{bsdf}</shape><shape type=\"sphere\"><transform name=\"to_world\"><translate z=\"-3\"/></transform></shape><emitter type=\"constant\"/><emitter type=\"point\"><point name=\"position\" value=\"0 3 3\"/></emitter>\n</scene>"
+            );
+            let loaded = std::panic::catch_unwind(|| load_str(&xml, Path::new("/virtual/odd.xml"), &[])).unwrap_or_else(|_| panic!("panicked on {bsdf}"));
+            let s = match loaded {
+                Err(e) => {
+                    let text = e.to_string();
+                    assert!(text.starts_with("/virtual/odd.xml:") && !text.contains('\n'), "{bsdf}: {text}");
+                    continue;
+                }
+                Ok(s) => s,
+            };
+            accepted += 1;
+            let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                matte::render::renderer::render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 16, 0, &|_, _| {})
+            }));
+            match rendered {
+                Err(_) => failures.push(format!("{bsdf}: the renderer panicked")),
+                Ok((img, stats)) if stats.invalid_samples > 0 || !img.pixels.iter().all(|p| p.is_finite()) => {
+                    failures.push(format!("{bsdf}: {} NaN/Inf samples", stats.invalid_samples))
+                }
+                Ok(_) => {}
+            }
+        }
+    }
+    assert!(failures.is_empty(), "accepted, but rendered NaN/Inf:\n{}", failures.join("\n"));
+    assert!(accepted > TEMPLATES.len() * 3, "{accepted}");
+}

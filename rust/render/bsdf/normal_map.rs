@@ -57,6 +57,11 @@ impl NormalMap {
     #[inline]
     pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(uv, wi);
+        // A texel that maps to a zero or purely tangential (1, 0, 0) normal has no frame
+        // (Mitsuba would produce NaN): no contribution.
+        if !frame_is_finite(&frame) {
+            return (Vec3::ZERO, 0.0);
+        }
         let (pwi, pwo) = (frame.to_local(wi), frame.to_local(wo));
         // `> 0` is false for NaN (a degenerate normal map texel).
         if !(wo.z * pwo.z > 0.0) {
@@ -72,6 +77,9 @@ impl NormalMap {
     #[inline]
     pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let frame = self.frame(uv, wi);
+        if !frame_is_finite(&frame) {
+            return None;
+        }
         let mut s = self.nested.sample(uv, frame.to_local(wi), u_lobe, u)?;
         let wo = frame.to_world(s.wo);
         if !(s.wo.z * wo.z > 0.0) || s.weight == Vec3::ZERO {
@@ -83,4 +91,9 @@ impl NormalMap {
         }
         Some(s)
     }
+}
+
+#[inline]
+fn frame_is_finite(f: &Frame) -> bool {
+    f.s.is_finite() && f.t.is_finite() && f.n.is_finite()
 }

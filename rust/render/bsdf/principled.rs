@@ -192,7 +192,9 @@ impl Principled {
                 value += tint * (sheen * (1.0 - p.metallic) * fd * cos_o.abs());
             }
         }
-        value
+        // Extreme parameters (e.g. roughness 1e30 → α = ∞) give NaN in Mitsuba; no
+        // contribution here instead.
+        if value.is_finite() { value } else { Vec3::ZERO }
     }
 
     /// Mitsuba's `principled_fresnel`.

@@ -145,7 +145,9 @@ impl PrincipledThin {
         if self.diff_trans.is_some() && refract && spec_trans < 1.0 && diff_trans > 0.0 {
             value += base * ((1.0 - spec_trans) * diff_trans * FRAC_1_PI * cos_o.abs());
         }
-        value
+        // Extreme parameters (e.g. roughness 1e30 → α = ∞) give NaN in Mitsuba; no
+        // contribution here instead.
+        if value.is_finite() { value } else { Vec3::ZERO }
     }
 
     /// Mitsuba's `pdf`.

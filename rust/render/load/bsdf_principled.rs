@@ -10,8 +10,16 @@ use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
+/// A parameter texture; constants beyond [`MAX_MAGNITUDE`] are rejected (Mitsuba takes them,
+/// and renders NaN).
 fn tex(b: &Builder, obj: &SceneObject, name: &str, default: f32) -> Result<Texture, SceneError> {
-    texture::get(b, obj, name, ColorUse::Bounded, Vec3::splat(default))
+    let t = texture::get(b, obj, name, ColorUse::Bounded, Vec3::splat(default))?;
+    if let Texture::Constant(c) = &t
+        && c.max_element() as f64 > MAX_MAGNITUDE
+    {
+        return Err(values::prop_err(obj, name, super::bsdf_params::too_large(c.max_element() as f64)));
+    }
+    Ok(t)
 }
 
 /// The texture of an optional lobe, `None` when absent or given as the float 0.
