@@ -3,6 +3,7 @@
 //! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
+pub mod bump_map;
 pub mod conductor;
 pub mod conductor_ior;
 mod conductor_ior_data;

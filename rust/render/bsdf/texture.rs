@@ -31,6 +31,16 @@ impl Texture {
         }
     }
 
+    /// Mitsuba's `Texture::eval_1_grad`: zero for a constant, the bilinear luminance gradient
+    /// for a bitmap.
+    #[inline]
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        match self {
+            Texture::Constant(_) => Vec2::ZERO,
+            Texture::Bitmap(b) => b.eval_1_grad(uv),
+        }
+    }
+
     /// Mitsuba's `Texture::mean()` in RGB mode: the mean of the three channels for a constant
     /// (`srgb`/`uniform` spectra), the texels' mean luminance for a bitmap. Plastics use it
     /// for their lobe-selection weight.
