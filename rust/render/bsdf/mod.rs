@@ -23,6 +23,7 @@ pub mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sample;
 pub mod texture;
+pub mod textured_roughness;
 pub mod thin_dielectric;
 mod validate;
 pub mod vndf;
@@ -39,6 +40,7 @@ pub use principled_thin::PrincipledThin;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
+pub use textured_roughness::{RoughLobe, TexturedRoughness};
 pub use thin_dielectric::ThinDielectric;
 pub use sample::BsdfSample;
 pub use texture::Texture;
@@ -64,6 +66,8 @@ pub enum Bsdf {
     NormalMap(NormalMap),
     Principled(Box<Principled>),
     PrincipledThin(Box<PrincipledThin>),
+    /// `roughconductor`/`roughdielectric` whose roughness is a texture.
+    TexturedRoughness(Box<TexturedRoughness>),
 }
 
 impl Bsdf {
@@ -88,6 +92,7 @@ impl Bsdf {
             Bsdf::NormalMap(n) => n.eval_pdf(uv, wi, wo),
             Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::PrincipledThin(p) => p.eval_pdf(uv, wi, wo),
+            Bsdf::TexturedRoughness(t) => t.eval_pdf(uv, wi, wo),
         }
     }
 
@@ -116,6 +121,7 @@ impl Bsdf {
             Bsdf::NormalMap(n) => n.sample(uv, wi, u_lobe, u),
             Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::PrincipledThin(p) => p.sample(uv, wi, u_lobe, u),
+            Bsdf::TexturedRoughness(t) => t.sample(uv, wi, u_lobe, u),
         }
     }
 
@@ -130,7 +136,8 @@ impl Bsdf {
             | Bsdf::Plastic(_)
             | Bsdf::RoughPlastic(_)
             | Bsdf::Principled(_)
-            | Bsdf::PrincipledThin(_) => true,
+            | Bsdf::PrincipledThin(_)
+            | Bsdf::TexturedRoughness(_) => true,
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),

@@ -7,7 +7,7 @@ use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{ParamValue, Params, BSDF_TYPES};
 use super::bsdf_params::{MAX_MAGNITUDE, constant, ior, microfacet, optional_constant, relative_ior, too_large};
 use crate::render::bsdf::{
-    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughPlastic, Texture, ThinDielectric, conductor_material,
+    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic, Texture, TexturedRoughness, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
@@ -70,6 +70,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                     // principledthin always declares a diffuse transmission component.
                     Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::PrincipledThin(_) => true,
                     Bsdf::Principled(p) => p.spec_trans.is_some(),
+                    Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
                     _ => false,
                 };
                 if transmissive && !allow_transmission {
@@ -90,10 +91,14 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             Bsdf::Conductor(Conductor::new(eta, k, constant(obj, "specular_reflectance")?).map_err(|e| err(obj, e))?)
         }
         "roughconductor" => {
-            let mf = microfacet(obj, true)?;
+            let mf = microfacet(Some(b), obj, true)?;
             let (eta, k) = conductor_ior(obj)?;
             let r = constant(obj, "specular_reflectance")?;
-            Bsdf::RoughConductor(RoughConductor::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, k, r).map_err(|e| err(obj, e))?)
+            let lobe = RoughConductor::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, k, r).map_err(|e| err(obj, e))?;
+            match mf.alpha_tex {
+                None => Bsdf::RoughConductor(lobe),
+                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness { alpha_u, alpha_v, lobe: RoughLobe::Conductor(lobe) })),
+            }
         }
         "thindielectric" => {
             let eta = ior(obj, "int_ior", 1.5046)? / ior(obj, "ext_ior", 1.000277)?;
@@ -102,11 +107,15 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t).map_err(|e| err(obj, e))?)
         }
         "roughdielectric" => {
-            let mf = microfacet(obj, true)?;
+            let mf = microfacet(Some(b), obj, true)?;
             let eta = relative_ior(obj, 1.5046)?;
             let r = constant(obj, "specular_reflectance")?;
             let t = constant(obj, "specular_transmittance")?;
-            Bsdf::RoughDielectric(RoughDielectric::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, r, t).map_err(|e| err(obj, e))?)
+            let lobe = RoughDielectric::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, r, t).map_err(|e| err(obj, e))?;
+            match mf.alpha_tex {
+                None => Bsdf::RoughDielectric(lobe),
+                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness { alpha_u, alpha_v, lobe: RoughLobe::Dielectric(lobe) })),
+            }
         }
         "normalmap" => {
             let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
@@ -131,7 +140,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             Bsdf::Plastic(Box::new(Plastic::new(eta, diffuse, specular, nonlinear).map_err(|e| err(obj, e))?))
         }
         "roughplastic" => {
-            let mf = microfacet(obj, false)?;
+            let mf = microfacet(None, obj, false)?;
             let eta = relative_ior(obj, 1.49)?;
             let diffuse = texture::get(b, obj, "diffuse_reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
             let specular = optional_constant(obj, "specular_reflectance")?;

@@ -2,8 +2,8 @@
 //! Mitsuba's names), constant `specular_*` weights, and the microfacet parameters Mitsuba's
 //! `MicrofacetDistribution(const Properties &)` reads (`include/mitsuba/render/microfacet.h`).
 
-use super::{err, values};
-use crate::render::bsdf::MicrofacetDistribution;
+use super::{Builder, err, texture, values};
+use crate::render::bsdf::{MicrofacetDistribution, Texture};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
@@ -66,31 +66,46 @@ pub struct MicrofacetParams {
     pub alpha_u: f32,
     pub alpha_v: f32,
     pub sample_visible: bool,
+    /// Roughness textures (α_u, α_v) when a texture is nested for `alpha`/`alpha_u`/`alpha_v`.
+    pub alpha_tex: Option<(Texture, Texture)>,
 }
 
 /// `distribution` (beckmann | ggx, case-insensitive; default beckmann), `alpha` (default
 /// 0.1) or both `alpha_u`/`alpha_v`, `sample_visible` (default true). With
 /// `anisotropic = false` (roughplastic) α_u ≠ α_v is an error, as in Mitsuba. α = 0 is valid
 /// (raised to 1e-4 later); a negative roughness, which Mitsuba would take silently, is an
-/// error here. Roughness textures are not supported.
-pub fn microfacet(obj: &SceneObject, anisotropic: bool) -> Result<MicrofacetParams, SceneError> {
+/// error here. Roughness textures (nested `<texture name="alpha…">`) are read when `textures`
+/// is given (roughconductor, roughdielectric: Mitsuba's `get_unbounded_texture`), else an error
+/// (roughplastic reads plain floats).
+pub fn microfacet(textures: Option<&Builder>, obj: &SceneObject, anisotropic: bool) -> Result<MicrofacetParams, SceneError> {
     let kind = match values::string(obj, "distribution", "beckmann")?.to_lowercase().as_str() {
         "beckmann" => MicrofacetDistribution::Beckmann,
         "ggx" => MicrofacetDistribution::Ggx,
         other => return Err(values::prop_err(obj, "distribution", format!("must be beckmann or ggx, got \"{other}\""))),
     };
-    for name in ["alpha", "alpha_u", "alpha_v"] {
-        if obj.child(name).is_some() {
-            return Err(err(obj, format!("a texture for \"{name}\" is not supported by matte render (give a number)")));
+    let nested = |n: &str| obj.children.iter().any(|c| c.name.as_deref() == Some(n));
+    if textures.is_none() {
+        for name in ["alpha", "alpha_u", "alpha_v"] {
+            if nested(name) {
+                return Err(err(obj, format!("a texture for \"{name}\" is not supported by {} (give a number, as Mitsuba)", obj.plugin)));
+            }
         }
     }
-    let has = |n: &str| obj.properties.contains(n);
+    let has = |n: &str| obj.properties.contains(n) || nested(n);
     let names = match (has("alpha"), has("alpha_u"), has("alpha_v")) {
         (_, false, false) => ["alpha", "alpha"],
         // With all three, `alpha` stays unread and is reported at its own line.
         (_, true, true) => ["alpha_u", "alpha_v"],
         _ => return Err(err(obj, "alpha_u and alpha_v must be given together")),
     };
+    let sample_visible = values::boolean(obj, "sample_visible", true)?;
+    if let Some(b) = textures
+        && (nested(names[0]) || nested(names[1]))
+    {
+        let tu = texture::get(b, obj, names[0], ColorUse::Unbounded, Vec3::splat(0.1))?;
+        let tv = texture::get(b, obj, names[1], ColorUse::Unbounded, Vec3::splat(0.1))?;
+        return Ok(MicrofacetParams { kind, alpha_u: 0.1, alpha_v: 0.1, sample_visible, alpha_tex: Some((tu, tv)) });
+    }
     let (au, av) = (values::float(obj, names[0], 0.1)?, values::float(obj, names[1], 0.1)?);
     for (n, a) in [(names[0], au), (names[1], av)] {
         if !(a.is_finite() && a >= 0.0) {
@@ -103,6 +118,5 @@ pub fn microfacet(obj: &SceneObject, anisotropic: bool) -> Result<MicrofacetPara
     if !anisotropic && au != av {
         return Err(values::prop_err(obj, "alpha_u", format!("{} does not support anisotropic roughness (as in Mitsuba)", obj.plugin)));
     }
-    let sample_visible = values::boolean(obj, "sample_visible", true)?;
-    Ok(MicrofacetParams { kind, alpha_u: au as f32, alpha_v: av as f32, sample_visible })
+    Ok(MicrofacetParams { kind, alpha_u: au as f32, alpha_v: av as f32, sample_visible, alpha_tex: None })
 }
