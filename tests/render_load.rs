@@ -975,7 +975,7 @@ fn bitmap_reflectance_nested_and_referenced() {
 
 #[test]
 fn bsdf_errors() {
-    assert_body_err("<bsdf type=\"plastic\"/>", 1, "unsupported bsdf type \"plastic\"");
+    assert_body_err("<bsdf type=\"bumpmap\"/>", 1, "unsupported bsdf type \"bumpmap\"");
     assert_body_err("<bsdf type=\"diffuse\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>", 2, "unreferenced property \"roughness\"");
     assert_body_err("<bsdf type=\"diffuse\">\n<string name=\"reflectance\" value=\"red\"/>\n</bsdf>", 2, "wrong type");
     assert_body_err("<bsdf type=\"oren_nayar\">\n<rgb name=\"sigma\" value=\"0.1 0.2 0.3\"/>\n</bsdf>", 2, "sigma");

@@ -1,26 +1,47 @@
-//! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `conductor`,
-//! `roughconductor`, and the matte diffuse kernels, all in the local shading frame with
+//! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`,
+//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, `principledthin`, and the matte
+//! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
+pub mod bump_map;
 pub mod conductor;
 pub mod conductor_ior;
+mod conductor_ior_data;
 pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
 pub mod matte;
 pub mod microfacet;
+pub mod microfacet_albedo;
+pub mod normal_map;
+pub mod plastic;
+pub mod principled;
+pub mod principled_helpers;
+pub mod principled_thin;
 pub mod rough_conductor;
+pub mod rough_dielectric;
+pub mod rough_plastic;
 pub mod sample;
 pub mod texture;
+pub mod textured_roughness;
+pub mod thin_dielectric;
 mod validate;
 pub mod vndf;
 
 pub use conductor::Conductor;
-pub use conductor_ior::conductor_material;
+pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
 pub use fresnel::fresnel_conductor;
 pub use microfacet::MicrofacetDistribution;
+pub use normal_map::NormalMap;
+pub use plastic::Plastic;
+pub use principled::Principled;
+pub use principled_thin::PrincipledThin;
 pub use rough_conductor::RoughConductor;
+pub use rough_dielectric::RoughDielectric;
+pub use rough_plastic::RoughPlastic;
+pub use textured_roughness::{RoughLobe, TexturedRoughness};
+pub use thin_dielectric::ThinDielectric;
 pub use sample::BsdfSample;
 pub use texture::Texture;
 
@@ -37,6 +58,16 @@ pub enum Bsdf {
     Dielectric(Dielectric),
     Conductor(Conductor),
     RoughConductor(RoughConductor),
+    ThinDielectric(ThinDielectric),
+    RoughDielectric(RoughDielectric),
+    Plastic(Box<Plastic>),
+    RoughPlastic(Box<RoughPlastic>),
+    /// Mitsuba's `normalmap` wrapper around a nested BSDF.
+    NormalMap(NormalMap),
+    Principled(Box<Principled>),
+    PrincipledThin(Box<PrincipledThin>),
+    /// `roughconductor`/`roughdielectric` whose roughness is a texture.
+    TexturedRoughness(Box<TexturedRoughness>),
 }
 
 impl Bsdf {
@@ -53,8 +84,15 @@ impl Bsdf {
                     back.eval_pdf(uv, flip(wi), flip(wo))
                 }
             }
-            Bsdf::Dielectric(_) | Bsdf::Conductor(_) => (Vec3::ZERO, 0.0),
+            Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => (Vec3::ZERO, 0.0),
             Bsdf::RoughConductor(r) => (r.eval(wi, wo), r.pdf(wi, wo)),
+            Bsdf::RoughDielectric(r) => r.eval_pdf(wi, wo),
+            Bsdf::Plastic(p) => p.eval_pdf(uv, wi, wo),
+            Bsdf::RoughPlastic(p) => p.eval_pdf(uv, wi, wo),
+            Bsdf::NormalMap(n) => n.eval_pdf(uv, wi, wo),
+            Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
+            Bsdf::PrincipledThin(p) => p.eval_pdf(uv, wi, wo),
+            Bsdf::TexturedRoughness(t) => t.eval_pdf(uv, wi, wo),
         }
     }
 
@@ -76,6 +114,14 @@ impl Bsdf {
             Bsdf::Dielectric(d) => d.sample(wi, u_lobe, u),
             Bsdf::Conductor(c) => c.sample(wi, u_lobe, u),
             Bsdf::RoughConductor(r) => r.sample(wi, u_lobe, u),
+            Bsdf::ThinDielectric(t) => t.sample(wi, u_lobe, u),
+            Bsdf::RoughDielectric(r) => r.sample(wi, u_lobe, u),
+            Bsdf::Plastic(p) => p.sample(uv, wi, u_lobe, u),
+            Bsdf::RoughPlastic(p) => p.sample(uv, wi, u_lobe, u),
+            Bsdf::NormalMap(n) => n.sample(uv, wi, u_lobe, u),
+            Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
+            Bsdf::PrincipledThin(p) => p.sample(uv, wi, u_lobe, u),
+            Bsdf::TexturedRoughness(t) => t.sample(uv, wi, u_lobe, u),
         }
     }
 
@@ -83,9 +129,18 @@ impl Bsdf {
     /// (Mitsuba skips emitter sampling at purely specular surfaces).
     pub fn has_smooth(&self) -> bool {
         match self {
-            Bsdf::Diffuse { .. } | Bsdf::Matte { .. } | Bsdf::RoughConductor(_) => true,
-            Bsdf::Dielectric(_) | Bsdf::Conductor(_) => false,
+            Bsdf::Diffuse { .. }
+            | Bsdf::Matte { .. }
+            | Bsdf::RoughConductor(_)
+            | Bsdf::RoughDielectric(_)
+            | Bsdf::Plastic(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::Principled(_)
+            | Bsdf::PrincipledThin(_)
+            | Bsdf::TexturedRoughness(_) => true,
+            Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
+            Bsdf::NormalMap(n) => n.nested.has_smooth(),
         }
     }
 }

@@ -54,6 +54,13 @@ impl RoughConductor {
         })
     }
 
+    /// The same lobe with roughness (α_u, α_v) from a texture: raised to 1e-4 as Mitsuba's
+    /// `MicrofacetDistribution` does (NaN becomes 1e-4, negative values too).
+    #[inline]
+    pub fn with_alpha(&self, alpha_u: f32, alpha_v: f32) -> Self {
+        Self { distr: Microfacet::new(self.distr.kind, alpha_u, alpha_v), ..*self }
+    }
+
     /// The microfacet distribution (roughness after Mitsuba's 1e-4 clamp).
     pub fn distribution(&self) -> Microfacet {
         self.distr

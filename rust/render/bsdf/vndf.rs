@@ -68,6 +68,10 @@ fn visible_slope_x(cos_t: f32, sin_t: f32, u: f32) -> f32 {
     let s_max = libm::erff(cot_t);
     let tail = if cot_t.is_finite() { c * (-cot_t * cot_t).exp() } else { 0.0 };
     let target = u * (1.0 + s_max + tail);
+    if !(s_max >= -1.0 && target.is_finite()) {
+        // Degenerate incidence (NaN or zero-length wi): a slope whose normal has pdf 0.
+        return 0.0;
+    }
     let (mut lo, mut hi) = (-1.0f32, s_max);
     // The root of C without its (non-negative) exp term lies at or right of the true root.
     let mut s = (target - 1.0).clamp(lo, hi);

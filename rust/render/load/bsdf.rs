@@ -1,10 +1,15 @@
-//! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `conductor`, `roughconductor`
-//! and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`, `roughdiffuse` (parameters validated by
-//! the kernels' own parser, the same one the Mitsuba plugin uses).
+//! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
+//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`,
+//! `principledthin` and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
+//! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
+//! plugin uses).
 
-use super::{Builder, err, texture, values};
+use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{ParamValue, Params, BSDF_TYPES};
-use crate::render::bsdf::{Bsdf, Conductor, Dielectric, MicrofacetDistribution, RoughConductor, Texture, conductor_material};
+use super::bsdf_params::{MAX_MAGNITUDE, constant, ior, microfacet, optional_constant, relative_ior, too_large};
+use crate::render::bsdf::{
+    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic, Texture, TexturedRoughness, ThinDielectric, conductor_material,
+};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
@@ -60,9 +65,18 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 [f, bk] => (build(b, f)?, build(b, bk)?),
                 _ => return Err(err(obj, format!("needs one or two nested BSDFs, found {}", nested.len()))),
             };
+            // Mitsuba's `allow_transmission` (default false) lifts the check below.
+            let allow_transmission = values::boolean(obj, "allow_transmission", false)?;
             for side in [&front, &back] {
-                if matches!(side, Bsdf::Dielectric(_)) {
-                    return Err(err(obj, "a twosided BSDF cannot wrap a transmissive BSDF (as in Mitsuba)"));
+                let transmissive = match side {
+                    // principledthin always declares a diffuse transmission component.
+                    Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::PrincipledThin(_) => true,
+                    Bsdf::Principled(p) => p.spec_trans.is_some(),
+                    Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
+                    _ => false,
+                };
+                if transmissive && !allow_transmission {
+                    return Err(err(obj, "a twosided BSDF cannot wrap a transmissive BSDF unless allow_transmission is true (as in Mitsuba)"));
                 }
             }
             Bsdf::TwoSided { front: Box::new(front), back: Box::new(back) }
@@ -79,76 +93,75 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             Bsdf::Conductor(Conductor::new(eta, k, constant(obj, "specular_reflectance")?).map_err(|e| err(obj, e))?)
         }
         "roughconductor" => {
-            // Case-insensitive, as Mitsuba's `string::to_lower` (src/bsdfs/roughconductor.cpp).
-            let distribution = match values::string(obj, "distribution", "beckmann")?.to_lowercase().as_str() {
-                "beckmann" => MicrofacetDistribution::Beckmann,
-                "ggx" => MicrofacetDistribution::Ggx,
-                other => return Err(values::prop_err(obj, "distribution", format!("must be beckmann or ggx, got \"{other}\""))),
-            };
-            let names = match (obj.properties.contains("alpha_u"), obj.properties.contains("alpha_v")) {
-                (false, false) => ["alpha", "alpha"],
-                (true, true) => ["alpha_u", "alpha_v"],
-                _ => return Err(err(obj, "alpha_u and alpha_v must be given together")),
-            };
-            let (au, av) = (values::float(obj, names[0], 0.1)?, values::float(obj, names[1], 0.1)?);
-            // α = 0 is valid: Mitsuba (and RoughConductor::new) raise it to 1e-4. A negative
-            // roughness Mitsuba would take silently is an error here.
-            for (n, a) in [(names[0], au), (names[1], av)] {
-                if !(a.is_finite() && a >= 0.0) {
-                    return Err(values::prop_err(obj, n, format!("roughness must be finite and ≥ 0, got {a}")));
-                }
-                if a > MAX_MAGNITUDE {
-                    return Err(values::prop_err(obj, n, too_large(a)));
-                }
-            }
-            let sample_visible = values::boolean(obj, "sample_visible", true)?;
+            let mf = microfacet(Some(b), obj, true)?;
             let (eta, k) = conductor_ior(obj)?;
             let r = constant(obj, "specular_reflectance")?;
-            Bsdf::RoughConductor(RoughConductor::new(distribution, au as f32, av as f32, sample_visible, eta, k, r).map_err(|e| err(obj, e))?)
+            let lobe = RoughConductor::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, k, r).map_err(|e| err(obj, e))?;
+            match mf.alpha_tex {
+                None => Bsdf::RoughConductor(lobe),
+                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness { alpha_u, alpha_v, lobe: RoughLobe::Conductor(lobe) })),
+            }
+        }
+        "thindielectric" => {
+            let eta = ior(obj, "int_ior", 1.5046)? / ior(obj, "ext_ior", 1.000277)?;
+            let r = constant(obj, "specular_reflectance")?;
+            let t = constant(obj, "specular_transmittance")?;
+            Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t).map_err(|e| err(obj, e))?)
+        }
+        "roughdielectric" => {
+            let mf = microfacet(Some(b), obj, true)?;
+            let eta = relative_ior(obj, 1.5046)?;
+            let r = constant(obj, "specular_reflectance")?;
+            let t = constant(obj, "specular_transmittance")?;
+            let lobe = RoughDielectric::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, r, t).map_err(|e| err(obj, e))?;
+            match mf.alpha_tex {
+                None => Bsdf::RoughDielectric(lobe),
+                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness { alpha_u, alpha_v, lobe: RoughLobe::Dielectric(lobe) })),
+            }
+        }
+        "normalmap" => {
+            let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
+            let [inner] = nested.as_slice() else {
+                return Err(err(obj, format!("needs exactly one nested BSDF, found {}", nested.len())));
+            };
+            if obj.child("normalmap").is_none() && !obj.properties.contains("normalmap") {
+                return Err(err(obj, "missing the \"normalmap\" texture"));
+            }
+            let normals = texture::get(b, obj, "normalmap", ColorUse::Unbounded, Vec3::new(0.5, 0.5, 1.0))?;
+            let flip_invalid_normals = values::boolean(obj, "flip_invalid_normals", true)?;
+            let use_shadowing_function = values::boolean(obj, "use_shadowing_function", true)?;
+            Bsdf::NormalMap(NormalMap { normals, nested: Box::new(build(b, inner)?), flip_invalid_normals, use_shadowing_function })
+        }
+        "principled" => Bsdf::Principled(Box::new(bsdf_principled::principled(b, obj)?)),
+        "principledthin" => Bsdf::PrincipledThin(Box::new(bsdf_principled::principled_thin(b, obj)?)),
+        "plastic" => {
+            let eta = ior(obj, "int_ior", 1.49)? / ior(obj, "ext_ior", 1.000277)?;
+            let diffuse = texture::get(b, obj, "diffuse_reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
+            let specular = optional_constant(obj, "specular_reflectance")?;
+            let nonlinear = values::boolean(obj, "nonlinear", false)?;
+            Bsdf::Plastic(Box::new(Plastic::new(eta, diffuse, specular, nonlinear).map_err(|e| err(obj, e))?))
+        }
+        "roughplastic" => {
+            let mf = microfacet(None, obj, false)?;
+            let eta = relative_ior(obj, 1.49)?;
+            let diffuse = texture::get(b, obj, "diffuse_reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
+            let specular = optional_constant(obj, "specular_reflectance")?;
+            let nonlinear = values::boolean(obj, "nonlinear", false)?;
+            Bsdf::RoughPlastic(Box::new(
+                RoughPlastic::new(mf.kind, mf.alpha_u, mf.sample_visible, eta, diffuse, specular, nonlinear).map_err(|e| err(obj, e))?,
+            ))
         }
         other => {
             return Err(err(
                 obj,
-                format!("unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, conductor, roughconductor, {})", BSDF_TYPES.join(", ")),
+                format!(
+                    "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
+                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, principledthin, {})", BSDF_TYPES.join(", ")),
             ));
         }
     };
     obj.check_all_used()?;
     Ok(bsdf)
-}
-
-/// A float or a named IOR (Mitsuba's table, shared with the kernels).
-fn ior(obj: &SceneObject, name: &str, default: f64) -> Result<f32, SceneError> {
-    let v = match obj.properties.get(name).map(|p| p.value.clone()) {
-        None => default,
-        Some(Value::String(s)) => crate::brdf::params::lookup_ior(&s).ok_or_else(|| values::prop_err(obj, name, format!("unknown IOR name \"{s}\"")))?,
-        Some(_) => values::float(obj, name, default)?,
-    };
-    if !(v.is_finite() && v >= 1.0) {
-        return Err(values::prop_err(obj, name, format!("must be ≥ 1, got {v}")));
-    }
-    if v > MAX_MAGNITUDE {
-        return Err(values::prop_err(obj, name, too_large(v)));
-    }
-    Ok(v as f32)
-}
-
-/// Largest magnitude matte accepts for a BSDF number (IORs, η/k, roughness, the matte
-/// kernels' parameters). Mitsuba takes any float, but the f32 kernels overflow into NaN
-/// around 1e15–1e19 (e.g. η⁴ in the conductor Fresnel term), long after values stopped
-/// meaning anything physically.
-const MAX_MAGNITUDE: f64 = 1e6;
-
-fn too_large(v: f64) -> String {
-    format!("is {v}; matte accepts magnitudes up to {MAX_MAGNITUDE:e}")
-}
-
-/// `specular_*` weights: constant colours only (default 1).
-fn constant(obj: &SceneObject, name: &str) -> Result<Vec3, SceneError> {
-    if obj.child(name).is_some() {
-        return Err(err(obj, format!("a texture for \"{name}\" is not supported by matte render")));
-    }
-    values::color(obj, name, ColorUse::Bounded, Vec3::ONE)
 }
 
 /// `material` (default "none": a perfect mirror) or explicit `eta` and `k`. As in Mitsuba
@@ -171,3 +184,4 @@ fn conductor_ior(obj: &SceneObject) -> Result<(Vec3, Vec3), SceneError> {
     let m = values::string(obj, "material", "none")?;
     conductor_material(&m).map_err(|e| values::prop_err(obj, "material", e))
 }
+

@@ -4,6 +4,8 @@
 //! does the same: `unused_properties = Error`).
 
 mod bsdf;
+mod bsdf_params;
+mod bsdf_principled;
 mod emitter;
 mod instance;
 mod integrator;

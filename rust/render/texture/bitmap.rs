@@ -109,6 +109,33 @@ impl BitmapTexture {
         }
     }
 
+    /// Mitsuba's `BitmapTexture::eval_1_grad` (used by `bumpmap`): the uv gradient of the
+    /// bilinearly interpolated luminance, through the `to_uv` transform (transpose multiply),
+    /// in units of the texture's resolution. Zero for nearest filtering.
+    #[inline]
+    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+        if self.filter == BitmapFilter::Nearest {
+            return Vec2::ZERO;
+        }
+        let t = self.to_uv.transform_point2(uv);
+        let t = if t.is_finite() { t } else { Vec2::ZERO };
+        let res = Vec2::new(self.width as f32, self.height as f32);
+        let p = (t * res - 0.5).clamp(Vec2::splat(-MAX_COORD), Vec2::splat(MAX_COORD));
+        let i = p.floor();
+        let w1 = p - i;
+        let w0 = 1.0 - w1;
+        let (x, y) = (i.x as i64, i.y as i64);
+        let lum = |v: Vec3| v.dot(Vec3::new(0.212_671, 0.715_160, 0.072_169));
+        let (f00, f10) = (lum(self.texel(x, y)), lum(self.texel(x + 1, y)));
+        let (f01, f11) = (lum(self.texel(x, y + 1)), lum(self.texel(x + 1, y + 1)));
+        let dx = w0.y.mul_add(f10 - f00, w1.y * (f11 - f01));
+        let dy = w0.x.mul_add(f01 - f00, w1.x * (f11 - f10));
+        let m = self.to_uv.matrix2;
+        let du = m.x_axis.x * dx + m.x_axis.y * dy;
+        let dv = m.y_axis.x * dx + m.y_axis.y * dy;
+        res * Vec2::new(du, dv)
+    }
+
     /// Per-channel mean of the linear texels.
     pub fn mean(&self) -> Vec3 {
         self.mean

@@ -1,0 +1,97 @@
+//! Mitsuba's `bumpmap` (`src/bsdfs/bumpmap.cpp`, v3.9.1): a wrapper that evaluates its nested
+//! BSDF in a shading frame tilted by the gradient of a height texture.
+//!
+//! With g = `scale`·∇_uv h (the texture's `eval_1_grad`: bilinear luminance derivative) and
+//! the shading normal n_s, the displaced tangents are ∂p/∂u + n_s·(g_u − n_s·∂p/∂u) and
+//! likewise for v; their normalised cross product, turned to the geometric normal's side and
+//! expressed in the shading frame, is the perturbed normal n̂ (with `flip_invalid_normals`,
+//! default true, its tangential part is negated when wi is on the other side of n̂). The
+//! tangent is ŝ = normalize(∂p/∂u − n̂(n̂·∂p/∂u)) — Mitsuba mixes the local n̂ with the
+//! world-space ∂p/∂u here, and matte does the same so that images agree. Values and weights
+//! get the shadow-terminator term of `normalmap` (`use_shadowing_function`, default true).
+//!
+//! **Not yet wired into the renderer**: the integrator passes only the hit's uv to a BSDF,
+//! and matte's shapes do not compute ∂p/∂u, ∂p/∂v (nor orient the shading frame along ∂p/∂u
+//! as Mitsuba does). The loader therefore still rejects `bumpmap`; [`BumpMap::eval_pdf_at`]
+//! and [`BumpMap::sample_at`] take the hit geometry explicitly and are tested against Mitsuba.
+
+use super::normal_map::shadow_terminator;
+use super::sample::BsdfSample;
+use super::texture::Texture;
+use super::Bsdf;
+use crate::render::geometry::Frame;
+use glam::{Vec2, Vec3};
+
+/// What `bumpmap` reads from Mitsuba's `SurfaceInteraction3f`, in world space.
+#[derive(Clone, Copy, Debug)]
+pub struct HitGeometry {
+    pub dp_du: Vec3,
+    pub dp_dv: Vec3,
+    /// Geometric normal.
+    pub n: Vec3,
+    pub sh_frame: Frame,
+}
+
+#[derive(Clone, Debug)]
+pub struct BumpMap {
+    pub height: Texture,
+    pub nested: Box<Bsdf>,
+    pub scale: f32,
+    pub flip_invalid_normals: bool,
+    pub use_shadowing_function: bool,
+}
+
+impl BumpMap {
+    /// Mitsuba's `BumpMap::frame`, relative to the shading frame (`wi` local).
+    pub fn frame(&self, uv: Vec2, wi: Vec3, g: &HitGeometry) -> Frame {
+        let grad = self.height.eval_1_grad(uv) * self.scale;
+        let ns = g.sh_frame.n;
+        let dp_du = g.dp_du + ns * (grad.x - ns.dot(g.dp_du));
+        let dp_dv = g.dp_dv + ns * (grad.y - ns.dot(g.dp_dv));
+        let mut n = dp_du.cross(dp_dv).normalize();
+        if g.n.dot(n) < 0.0 {
+            n = -n;
+        }
+        let mut n = g.sh_frame.to_local(n);
+        if self.flip_invalid_normals && wi.z * wi.dot(n) <= 0.0 {
+            n = Vec3::new(-n.x, -n.y, n.z);
+        }
+        let s = (g.dp_du - n * n.dot(g.dp_du)).normalize();
+        Frame { s, t: n.cross(s), n }
+    }
+
+    /// `(f·|cos θo|, pdf)` at a hit with geometry `g`.
+    pub fn eval_pdf_at(&self, uv: Vec2, g: &HitGeometry, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        let frame = self.frame(uv, wi, g);
+        if !(frame.s.is_finite() && frame.t.is_finite() && frame.n.is_finite()) {
+            return (Vec3::ZERO, 0.0);
+        }
+        let (pwi, pwo) = (frame.to_local(wi), frame.to_local(wo));
+        if !(wo.z * pwo.z > 0.0) {
+            return (Vec3::ZERO, 0.0);
+        }
+        let (mut f, pdf) = self.nested.eval_pdf(uv, pwi, pwo);
+        if self.use_shadowing_function {
+            f *= shadow_terminator(frame.n, wo);
+        }
+        (f, pdf)
+    }
+
+    /// Samples the nested BSDF in the perturbed frame.
+    pub fn sample_at(&self, uv: Vec2, g: &HitGeometry, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let frame = self.frame(uv, wi, g);
+        if !(frame.s.is_finite() && frame.t.is_finite() && frame.n.is_finite()) {
+            return None;
+        }
+        let mut s = self.nested.sample(uv, frame.to_local(wi), u_lobe, u)?;
+        let wo = frame.to_world(s.wo);
+        if !(s.wo.z * wo.z > 0.0) || s.weight == Vec3::ZERO {
+            return None;
+        }
+        s.wo = wo;
+        if self.use_shadowing_function {
+            s.weight *= shadow_terminator(frame.n, wo);
+        }
+        Some(s)
+    }
+}

@@ -1,0 +1,115 @@
+//! Helpers of Mitsuba's Disney-style BSDFs (`src/bsdfs/principledhelpers.h`, v3.9.1): the
+//! GTR1 clearcoat distribution, Schlick terms, the macro/micro-surface side test and the
+//! roughness → (α_u, α_v) map. Semantics as there, including the quirks (e.g. `calc_schlick`
+//! switches to the refracted cosine when light leaves the denser side).
+
+use glam::Vec3;
+use std::f32::consts::{PI, TAU};
+
+/// (1 − cos)⁵ with cos clamped to [0, 1].
+#[inline]
+pub fn schlick_weight(cos_i: f32) -> f32 {
+    let m = (1.0 - cos_i).clamp(0.0, 1.0);
+    let m2 = m * m;
+    m2 * m2 * m
+}
+
+/// Mitsuba's `calc_schlick(R0, cos_theta_i, eta)`: lerp(w, 1, R0) with w the Schlick weight of
+/// |cos θi| when entering the denser side, else of the refracted cosine (0 under TIR).
+#[inline]
+pub fn calc_schlick(r0: Vec3, cos_i: f32, eta: f32) -> Vec3 {
+    let outside = cos_i >= 0.0;
+    let (eta_it, eta_ti) = if outside { (eta, 1.0 / eta) } else { (1.0 / eta, eta) };
+    let cos_t2 = 1.0 - (1.0 - cos_i * cos_i) * (eta_ti * eta_ti);
+    let cos_t = cos_t2.max(0.0).sqrt();
+    let w = if eta_it > 1.0 { schlick_weight(cos_i.abs()) } else { schlick_weight(cos_t) };
+    Vec3::splat(w) + r0 * (1.0 - w)
+}
+
+/// ((η − 1)/(η + 1))².
+#[inline]
+pub fn schlick_r0_eta(eta: f32) -> f32 {
+    let r = (eta - 1.0) / (eta + 1.0);
+    r * r
+}
+
+/// `m` flipped to wi's side: Mitsuba's `mulsign(m, cos_theta_i)` (sign bit of the cosine).
+#[inline]
+fn mulsign(m: Vec3, c: f32) -> Vec3 {
+    if c.is_sign_negative() { -m } else { m }
+}
+
+/// Mitsuba's `mac_mic_compatibility`: wi on the side of m (oriented like wi's hemisphere), and
+/// wo on the same side (reflection) or the other (transmission).
+#[inline]
+pub fn mac_mic_compatibility(m: Vec3, wi: Vec3, wo: Vec3, cos_i: f32, reflection: bool) -> bool {
+    let ms = mulsign(m, cos_i);
+    if reflection { wi.dot(ms) > 0.0 && wo.dot(ms) > 0.0 } else { wi.dot(ms) > 0.0 && wo.dot(-ms) > 0.0 }
+}
+
+/// Mitsuba's `calc_dist_params`: α = max(0.001, roughness²), stretched by
+/// aspect = √(1 − 0.9·anisotropic) when the anisotropic flag is set.
+#[inline]
+pub fn dist_params(anisotropic: f32, roughness: f32, has_anisotropic: bool) -> (f32, f32) {
+    let r2 = roughness * roughness;
+    if !has_anisotropic {
+        let a = r2.max(0.001);
+        return (a, a);
+    }
+    let aspect = (1.0 - 0.9 * anisotropic).sqrt();
+    ((r2 / aspect).max(0.001), (r2 * aspect).max(0.001))
+}
+
+/// GGX smith G1 with a fixed α (`smith_ggx1`), used by the clearcoat.
+#[inline]
+pub fn smith_ggx1(v: Vec3, wh: Vec3, alpha: f32) -> f32 {
+    let a2 = alpha * alpha;
+    let c = v.z.abs();
+    let c2 = c * c;
+    let tan2 = (1.0 - c2) / c2;
+    let mut r = 2.0 / (1.0 + (1.0 + a2 * tan2).sqrt());
+    if v.z == 1.0 {
+        r = 1.0;
+    }
+    if v.dot(wh) * v.z <= 0.0 {
+        r = 0.0;
+    }
+    r
+}
+
+/// The clearcoat's isotropic GTR1 ("Berry") distribution.
+#[derive(Clone, Copy, Debug)]
+pub struct Gtr1 {
+    pub alpha: f32,
+}
+
+impl Gtr1 {
+    #[inline]
+    pub fn eval(&self, m: Vec3) -> f32 {
+        let c2 = m.z * m.z;
+        let a2 = self.alpha * self.alpha;
+        let r = (a2 - 1.0) / (PI * a2.ln() * (1.0 + (a2 - 1.0) * c2));
+        if r * m.z > 1e-20 { r } else { 0.0 }
+    }
+
+    #[inline]
+    pub fn pdf(&self, m: Vec3) -> f32 {
+        if m.z < 0.0 { 0.0 } else { m.z * self.eval(m) }
+    }
+
+    #[inline]
+    pub fn sample(&self, u: glam::Vec2) -> Vec3 {
+        let (sin_phi, cos_phi) = (TAU * u.x).sin_cos();
+        let a2 = self.alpha * self.alpha;
+        let cos2 = (1.0 - a2.powf(1.0 - u.y)) / (1.0 - a2);
+        let sin_t = (1.0 - cos2).max(0.0).sqrt();
+        let cos_t = cos2.max(0.0).sqrt();
+        Vec3::new(cos_phi * sin_t, sin_phi * sin_t, cos_t)
+    }
+}
+
+/// Rec. 709 luminance (Mitsuba's `luminance` in RGB mode).
+#[inline]
+pub fn luminance(c: Vec3) -> f32 {
+    c.dot(Vec3::new(0.212_671, 0.715_160, 0.072_169))
+}

@@ -1,0 +1,240 @@
+//! Mitsuba's `principledthin` (`src/bsdfs/principledthin.cpp`, v3.9.1): the thin-surface
+//! Disney BSDF (no interior). Both sides behave alike (wi and wo are mirrored to wi's side
+//! first). Lobes: diffuse reflection (retro-reflection, `flatness`, sheen), diffuse
+//! transmission (`diff_trans`, halved to [0, 1]), a GGX specular reflection with the thin
+//! Fresnel mix, and a GGX "transmission" that reflects about the microfacet and mirrors the
+//! result through the surface, with the roughness scaled by (0.65·η − 0.35). The specular
+//! lobes exist only with `spec_trans` (Mitsuba's `get_flag`); lobe probabilities follow the
+//! `*_sampling_rate`s; the sample weight is eval/pdf of the mixture.
+
+use super::fresnel::fresnel_dielectric;
+use super::microfacet::{Microfacet, MicrofacetDistribution};
+use super::principled_helpers::{calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight};
+use super::sample::BsdfSample;
+use super::texture::Texture;
+use crate::brdf::sampling::square_to_cosine_hemisphere;
+use glam::{Vec2, Vec3};
+use std::f32::consts::FRAC_1_PI;
+
+#[derive(Clone, Debug)]
+pub struct PrincipledThin {
+    pub base_color: Texture,
+    pub roughness: Texture,
+    pub anisotropic: Option<Texture>,
+    pub spec_trans: Option<Texture>,
+    pub sheen: Option<Texture>,
+    pub sheen_tint: Option<Texture>,
+    pub flatness: Option<Texture>,
+    pub spec_tint: Option<Texture>,
+    pub diff_trans: Option<Texture>,
+    /// `eta` (an unbounded texture, default 1.5).
+    pub eta: Texture,
+    pub spec_refl_srate: f32,
+    pub spec_trans_srate: f32,
+    pub diff_trans_srate: f32,
+    pub diff_refl_srate: f32,
+}
+
+#[inline]
+fn opt(t: &Option<Texture>, uv: Vec2) -> f32 {
+    t.as_ref().map_or(0.0, |t| t.eval_1(uv))
+}
+
+#[inline]
+fn mulsign(v: Vec3, c: f32) -> Vec3 {
+    if c.is_sign_negative() { -v } else { v }
+}
+
+impl PrincipledThin {
+    /// Normalised (spec reflect, spec trans, diffuse reflect, diffuse trans) probabilities.
+    #[inline]
+    fn probs(&self, spec_trans: f32, diff_trans: f32) -> [f32; 4] {
+        let has_st = self.spec_trans.is_some();
+        let sr = if has_st { spec_trans * self.spec_refl_srate / 2.0 } else { 0.0 };
+        let st = if has_st { spec_trans * self.spec_trans_srate / 2.0 } else { 0.0 };
+        let cr = self.diff_refl_srate * (1.0 - spec_trans) * (1.0 - diff_trans);
+        let ct = if self.diff_trans.is_some() { self.diff_trans_srate * (1.0 - spec_trans) * diff_trans } else { 0.0 };
+        let rcp = 1.0 / (sr + st + cr + ct);
+        [sr * rcp, st * rcp, cr * rcp, ct * rcp]
+    }
+
+    /// The two GGX distributions: reflection, and transmission with the scaled roughness.
+    #[inline]
+    fn distributions(&self, uv: Vec2, eta_t: f32) -> (Microfacet, Microfacet) {
+        let anisotropic = opt(&self.anisotropic, uv);
+        let roughness = self.roughness.eval_1(uv);
+        let has_aniso = self.anisotropic.is_some();
+        let (ax, ay) = dist_params(anisotropic, roughness, has_aniso);
+        let (sx, sy) = dist_params(anisotropic, (0.65 * eta_t - 0.35) * roughness, has_aniso);
+        (Microfacet::new(MicrofacetDistribution::Ggx, ax, ay), Microfacet::new(MicrofacetDistribution::Ggx, sx, sy))
+    }
+
+    /// Mitsuba's `eval`: f·|cos θo|.
+    pub fn eval(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> Vec3 {
+        let cos_i = wi.z;
+        if cos_i == 0.0 || !wi.is_finite() || !wo.is_finite() {
+            return Vec3::ZERO;
+        }
+        let roughness = self.roughness.eval_1(uv);
+        let flatness = opt(&self.flatness, uv);
+        let spec_trans = opt(&self.spec_trans, uv);
+        let eta_t = self.eta.eval_1(uv);
+        let diff_trans = opt(&self.diff_trans, uv) / 2.0;
+        let base = self.base_color.eval(uv);
+        let wi = mulsign(wi, cos_i);
+        let wo_t = mulsign(wo, cos_i);
+        let cos_i = cos_i.abs();
+        let cos_o = wo_t.z;
+        let (reflect, refract) = (cos_o > 0.0, cos_o < 0.0);
+        let wo_r = Vec3::new(wo_t.x, wo_t.y, wo_t.z.abs());
+        let wh = (wi + wo_r).normalize();
+        let mut value = Vec3::ZERO;
+        if self.spec_trans.is_some() {
+            let f_diel = fresnel_dielectric(wi.dot(wh), eta_t).r;
+            let (refl_distr, trans_distr) = self.distributions(uv, eta_t);
+            if spec_trans > 0.0 && reflect && mac_mic_compatibility(wh, wi, wo_t, wi.z, true) {
+                let spec_tint = opt(&self.spec_tint, uv);
+                let mut f_schlick = Vec3::ZERO;
+                if self.spec_tint.is_some() {
+                    let lum = luminance(base);
+                    let c_tint = if lum > 0.0 { base / lum } else { Vec3::ONE };
+                    f_schlick = calc_schlick(c_tint * schlick_r0_eta(eta_t), wi.dot(wh), eta_t);
+                }
+                let f_thin = Vec3::splat(f_diel) + (f_schlick - Vec3::splat(f_diel)) * spec_tint;
+                let d = refl_distr.d(wh);
+                let g = refl_distr.smith_g1(wi, wh) * refl_distr.smith_g1(wo_t, wh);
+                value += f_thin * (spec_trans * d * g / (4.0 * cos_i));
+            }
+            if refract && spec_trans > 0.0 && mac_mic_compatibility(wh, wi, wo_t, wi.z, false) {
+                let d = trans_distr.d(wh);
+                let g = trans_distr.smith_g1(wi, wh) * trans_distr.smith_g1(wo_t, wh);
+                value += base * (spec_trans * (1.0 - f_diel) * d * g / (4.0 * cos_i));
+            }
+        }
+        if reflect && spec_trans < 1.0 && diff_trans < 1.0 {
+            let fo = schlick_weight(cos_o.abs());
+            let fi = schlick_weight(cos_i);
+            let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
+            let cos_d = wh.dot(wo_t);
+            let rr = 2.0 * roughness * cos_d * cos_d;
+            let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
+            let lobe = if self.flatness.is_some() {
+                let fss90 = rr / 2.0;
+                let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
+                let f_ss = 1.25 * (fss * (1.0 / (cos_o.abs() + cos_i) - 0.5) + 0.5);
+                let a = f_diff + f_retro;
+                a + (f_ss - a) * flatness
+            } else {
+                f_diff + f_retro
+            };
+            value += base * ((1.0 - spec_trans) * cos_o * FRAC_1_PI * (1.0 - diff_trans) * lobe);
+            let sheen = opt(&self.sheen, uv);
+            if self.sheen.is_some() && sheen > 0.0 {
+                let fd = schlick_weight(cos_d.abs());
+                let tint = if self.sheen_tint.is_some() {
+                    let st = opt(&self.sheen_tint, uv);
+                    let lum = luminance(base);
+                    let c_tint = if lum > 0.0 { base / lum } else { Vec3::ONE };
+                    Vec3::ONE + (c_tint - Vec3::ONE) * st
+                } else {
+                    Vec3::ONE
+                };
+                value += tint * (sheen * (1.0 - spec_trans) * fd * (1.0 - diff_trans) * cos_o.abs());
+            }
+        }
+        if self.diff_trans.is_some() && refract && spec_trans < 1.0 && diff_trans > 0.0 {
+            value += base * ((1.0 - spec_trans) * diff_trans * FRAC_1_PI * cos_o.abs());
+        }
+        // Extreme parameters (e.g. roughness 1e30 → α = ∞) give NaN in Mitsuba; no
+        // contribution here instead.
+        if value.is_finite() { value } else { Vec3::ZERO }
+    }
+
+    /// Mitsuba's `pdf`.
+    pub fn pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> f32 {
+        let cos_i = wi.z;
+        if cos_i == 0.0 || !wi.is_finite() || !wo.is_finite() {
+            return 0.0;
+        }
+        let spec_trans = opt(&self.spec_trans, uv);
+        let eta_t = self.eta.eval_1(uv);
+        let diff_trans = opt(&self.diff_trans, uv) / 2.0;
+        let wi = mulsign(wi, cos_i);
+        let wo_t = mulsign(wo, cos_i);
+        let cos_o = wo_t.z;
+        let (reflect, refract) = (cos_o > 0.0, cos_o < 0.0);
+        let [psr, pst, pcr, pct] = self.probs(spec_trans, diff_trans);
+        let mut pdf = 0.0;
+        if self.spec_trans.is_some() {
+            let wo_r = Vec3::new(wo_t.x, wo_t.y, wo_t.z.abs());
+            let wh = (wi + wo_r).normalize();
+            let dwh_dwo = (1.0 / (4.0 * wo_r.dot(wh))).abs();
+            let (refl_distr, trans_distr) = self.distributions(uv, eta_t);
+            if mac_mic_compatibility(wh, wi, wo_t, wi.z, true) && reflect {
+                pdf += psr * refl_distr.normal_pdf(wi, wh, true) * dwh_dwo;
+            }
+            if mac_mic_compatibility(wh, wi, wo_t, wi.z, false) && refract {
+                pdf += pst * trans_distr.normal_pdf(wi, wh, true) * dwh_dwo;
+            }
+        }
+        if reflect {
+            pdf += pcr * FRAC_1_PI * wo_t.z;
+        }
+        if self.diff_trans.is_some() && refract {
+            pdf += pct * FRAC_1_PI * -wo_t.z;
+        }
+        if pdf.is_finite() { pdf } else { 0.0 }
+    }
+
+    #[inline]
+    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        (self.eval(uv, wi, wo), self.pdf(uv, wi, wo))
+    }
+
+    /// Mitsuba's `sample` (lobe by `u_lobe`, direction by `u`; weight = eval/pdf).
+    pub fn sample(&self, uv: Vec2, wi_in: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let cos_i = wi_in.z;
+        if cos_i == 0.0 || !wi_in.is_finite() {
+            return None;
+        }
+        let spec_trans = opt(&self.spec_trans, uv);
+        let diff_trans = opt(&self.diff_trans, uv) / 2.0;
+        let wi = mulsign(wi_in, cos_i);
+        let [psr, pst, pcr, _] = self.probs(spec_trans, diff_trans);
+        let has_st = self.spec_trans.is_some();
+        let wo = if has_st && u_lobe < psr {
+            let (refl_distr, _) = self.distributions(uv, self.eta.eval_1(uv));
+            let m = refl_distr.sample(wi, u, true);
+            let wo = 2.0 * wi.dot(m) * m - wi;
+            if !(mac_mic_compatibility(m, wi, wo, wi.z, true) && wo.z > 0.0) {
+                return None;
+            }
+            wo
+        } else if has_st && u_lobe >= psr && u_lobe < psr + pst {
+            let (_, trans_distr) = self.distributions(uv, self.eta.eval_1(uv));
+            let m = trans_distr.sample(wi, u, true);
+            let r = 2.0 * wi.dot(m) * m - wi;
+            let wo = Vec3::new(r.x, r.y, -r.z);
+            if !(mac_mic_compatibility(m, wi, wo, wi.z, false) && wo.z < 0.0) {
+                return None;
+            }
+            wo
+        } else if u_lobe >= psr + pst && u_lobe < psr + pst + pcr {
+            square_to_cosine_hemisphere(u)
+        } else if self.diff_trans.is_some() && u_lobe >= psr + pst + pcr {
+            -square_to_cosine_hemisphere(u)
+        } else {
+            return None;
+        };
+        let wo = mulsign(wo, cos_i);
+        let pdf = self.pdf(uv, wi_in, wo);
+        if !(pdf > 0.0) || !wo.is_finite() {
+            return None;
+        }
+        let weight = self.eval(uv, wi_in, wo) / pdf;
+        if !weight.is_finite() {
+            return None;
+        }
+        Some(BsdfSample { wo, weight, pdf, delta: false, eta: 1.0 })
+    }
+}
