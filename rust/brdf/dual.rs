@@ -3,7 +3,7 @@
 //! the CPU and Dr.Jit run. matte uses them to measure the traced kernels' roughness gradient
 //! against finite differences of the reference integral ([`super::ginneken::accuracy`]).
 
-use super::real::Real;
+use super::real::{Nodes, Real};
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -52,7 +52,7 @@ impl Neg for Dual {
 
 impl Real for Dual {
     type Mask = bool;
-    type Table<'t> = &'t [f32];
+    type Table<'t> = Nodes<'t>;
 
     fn c(v: f64) -> Self {
         Dual { v, d: 0.0 }
@@ -101,7 +101,7 @@ impl Real for Dual {
         let (s, c) = self.v.sin_cos();
         (Dual { v: s, d: c * self.d }, Dual { v: c, d: -s * self.d })
     }
-    fn gather(table: &[f32], idx: Self, offset: u32) -> Self {
-        <Dual as Real>::c(table.get(idx.v as usize + offset as usize).copied().unwrap_or(0.0) as f64)
+    fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {
+        <Dual as Real>::c(table.at(idx.v as usize + offset as usize) as f64)
     }
 }

@@ -7,7 +7,7 @@ use crate::brdf::dual::Dual;
 use crate::brdf::frame::spherical_direction_f64;
 use crate::brdf::kernel::Kernel;
 use crate::brdf::model::DiffuseBrdf;
-use crate::brdf::real::{Real, V3};
+use crate::brdf::real::{Nodes, Real, V3};
 
 #[derive(Clone, Copy, Debug)]
 pub struct FastPathError {
@@ -69,9 +69,9 @@ pub fn roughness_gradient_error(model: &Ginneken, max_theta_deg: f64, samples: u
     let minus = Ginneken::new(m - h, model.shadowing()).expect("valid roughness");
     let t = model.table();
     let kernel = GinnekenKernel::<Dual> {
-        slope: t.slope_nodes(),
-        mu_lambda: t.mu_lambda_nodes(),
-        roughness_derivative: Some((t.slope_derivative_nodes(), t.mu_lambda_derivative_nodes(), Dual::variable(0.0))),
+        slope: Nodes::new(t.slope_nodes()),
+        mu_lambda: Nodes::new(t.mu_lambda_nodes()),
+        roughness_derivative: Some((Nodes::new(t.slope_derivative_nodes()), Nodes::new(t.mu_lambda_derivative_nodes()), Dual::variable(0.0))),
         shadowing: model.shadowing(),
     };
     let g = 1.220_744_084_605_759_5_f64;

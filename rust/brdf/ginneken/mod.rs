@@ -19,7 +19,7 @@ use super::approx;
 use super::kernel::{self, Kernel, azimuthal_dot};
 use super::model::{BsdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
-use super::real::{Real, V3};
+use super::real::{Nodes, Real, V3};
 use glam::{Vec2, Vec3};
 use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
@@ -154,7 +154,12 @@ impl Ginneken {
     /// The CPU kernel: this roughness's tables, no derivative.
     #[inline(always)]
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
-        GinnekenKernel { slope: self.table.slope_nodes(), mu_lambda: self.table.mu_lambda_nodes(), roughness_derivative: None, shadowing: self.shadowing }
+        GinnekenKernel {
+            slope: Nodes::new(self.table.slope_nodes()),
+            mu_lambda: Nodes::new(self.table.mu_lambda_nodes()),
+            roughness_derivative: None,
+            shadowing: self.shadowing,
+        }
     }
 
     /// The tables (shared between instances of the same roughness).

@@ -30,9 +30,16 @@ pub const LAMBDA_NODES: usize = 1024;
 /// Gauss–Legendre nodes per radial piece when building (converged to ~1e-7, see tests).
 const BUILD_NODES: usize = 24;
 
-/// `I` at the nodes, `[iu_i][iu_o][ic]`. Fixed-size arrays (not a flat `Vec`) so that the
-/// compiler sees every index of [`SlopeTable::lookup`] is in range: no bounds checks per eval.
-type Grid = [[[f32; C_NODES]; U_NODES]; U_NODES];
+/// Nodes of the slope table: `I` at `[iu_i][iu_o][ic]`, flat in that order.
+pub const SLOPE_NODES: usize = U_NODES * U_NODES * C_NODES;
+
+/// `I` (or `∂I/∂m`) at the nodes. A fixed size, so that lookups know the length at compile time.
+type Grid = [f32; SLOPE_NODES];
+
+/// Flat index of node `(iu_i, iu_o, ic)`.
+const fn node_index(iu_i: usize, iu_o: usize, ic: usize) -> usize {
+    (iu_i * U_NODES + iu_o) * C_NODES + ic
+}
 
 #[derive(Debug)]
 pub struct SlopeTable {
@@ -65,14 +72,14 @@ impl SlopeTable {
                 row
             })
             .collect();
-        let zeros = || -> Box<Grid> { vec![[[0.0f32; C_NODES]; U_NODES]; U_NODES].into_boxed_slice().try_into().expect("U_NODES rows") };
+        let zeros = || -> Box<Grid> { vec![0.0f32; SLOPE_NODES].into_boxed_slice().try_into().expect("SLOPE_NODES nodes") };
         let (mut data, mut d_data) = (zeros(), zeros());
         for iu_i in 0..n_u {
             for iu_o in iu_i..n_u {
                 for ic in 0..n_c {
                     let (v, d) = rows[iu_i][iu_o * n_c + ic];
-                    (data[iu_i][iu_o][ic], d_data[iu_i][iu_o][ic]) = (v, d);
-                    (data[iu_o][iu_i][ic], d_data[iu_o][iu_i][ic]) = (v, d);
+                    (data[node_index(iu_i, iu_o, ic)], d_data[node_index(iu_i, iu_o, ic)]) = (v, d);
+                    (data[node_index(iu_o, iu_i, ic)], d_data[node_index(iu_o, iu_i, ic)]) = (v, d);
                 }
             }
         }
@@ -86,23 +93,23 @@ impl SlopeTable {
     }
 
     /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_in`] gathers from).
-    pub fn slope_nodes(&self) -> &[f32] {
-        self.data.as_flattened().as_flattened()
+    pub fn slope_nodes(&self) -> &[f32; SLOPE_NODES] {
+        &self.data
     }
 
     /// `∂I/∂m` at the nodes, flat as [`Self::slope_nodes`].
-    pub fn slope_derivative_nodes(&self) -> &[f32] {
-        self.d_data.as_flattened().as_flattened()
+    pub fn slope_derivative_nodes(&self) -> &[f32; SLOPE_NODES] {
+        &self.d_data
     }
 
     /// `μΛ` at the nodes of its axis.
-    pub fn mu_lambda_nodes(&self) -> &[f32] {
-        &self.mu_lambda[..]
+    pub fn mu_lambda_nodes(&self) -> &[f32; LAMBDA_NODES] {
+        &self.mu_lambda
     }
 
     /// `∂(μΛ)/∂m` at the nodes of its axis.
-    pub fn mu_lambda_derivative_nodes(&self) -> &[f32] {
-        &self.d_mu_lambda[..]
+    pub fn mu_lambda_derivative_nodes(&self) -> &[f32; LAMBDA_NODES] {
+        &self.d_mu_lambda
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -182,7 +189,7 @@ pub fn cos_of_axis(x: f64) -> f64 {
 impl SlopeTable {
     /// `I` at node `(iu_i, iu_o, ic)`, for tests that re-interpolate the table independently.
     pub(crate) fn node(&self, iu_i: usize, iu_o: usize, ic: usize) -> f32 {
-        self.data[iu_i][iu_o][ic]
+        self.data[node_index(iu_i, iu_o, ic)]
     }
 
     /// `μΛ` at node `k` of its axis.
