@@ -1,4 +1,4 @@
-//! Rays with zero direction components (issue 13): along ±x, ±y, ±z and with one zero
+//! Rays with zero direction components (the straight-down sun that cast no shadow): along ±x, ±y, ±z and with one zero
 //! component, with the zeros signed both ways (`-(0, 0, -1)` is `(-0, -0, 1)`, the shadow
 //! ray of a directional light pointing straight down), against every shape type, for the
 //! closest hit and for occlusion. Origins sit outside, inside, on the shape's bounding-box
@@ -245,7 +245,7 @@ fn cylinder_axis_rays() {
     }
 }
 
-/// Issue 13's scene in miniature: a ground rectangle under shapes of every type, and shadow
+/// The straight-down sun scene in miniature: a ground rectangle under shapes of every type, and shadow
 /// rays straight up from the ground, i.e. `-(0, 0, -1)` = `(-0, -0, 1)`.
 #[test]
 fn shadow_rays_straight_up_find_every_occluder() {

@@ -1,4 +1,4 @@
-//! Loader tests for the Mitsuba elements added for Mitsuba's own test scenes (issue 13):
+//! Loader tests for the Mitsuba elements added for Mitsuba's own test scenes (README "Mitsuba's own render tests"):
 //! `<path>`, integrator `moment`, sensor `orthographic`, texture `checkerboard`. Expected
 //! values are Mitsuba 3.9.1's documented semantics (the source file is named at each test)
 //! worked out by hand; errors name `file:line`.
@@ -303,7 +303,7 @@ fn instances_place_their_group() {
 }
 
 /// The bundled scenes for these elements load, render without NaN, and the sun scene's
-/// sphere shadows the ground straight below it (issue 13).
+/// sphere shadows the ground straight below it (the straight-down sun regression).
 #[test]
 fn bundled_element_scenes_render() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");

@@ -1,4 +1,4 @@
-//! Mitsuba's `perspective` sensor (`src/sensors/perspective.cpp`, semantics §4): x_fov from
+//! Mitsuba's `perspective` sensor (`src/sensors/perspective.cpp`, docs/renderer-semantics.md §4): x_fov from
 //! `fov_axis` with the full-film aspect; image x grows towards local −x and y downwards;
 //! the ray starts on the near plane.
 

@@ -1,5 +1,5 @@
 //! The Rust path tracer: reads the same Mitsuba XML scenes as Mitsuba 3.9.1 and produces the
-//! same expected image (`shared/docs/mitsuba-semantics.md`).
+//! same expected image (`docs/renderer-semantics.md`).
 //!
 //! Data flow: `scene::` XML → [`load`] builds a [`scene::Scene`] (shapes, BSDFs, emitters,
 //! BVH) plus camera, film and integrator → [`renderer`] runs the integrator per pixel sample

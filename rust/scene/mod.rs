@@ -1,5 +1,5 @@
 //! Mitsuba 3 XML scenes → a typed description the renderer builds from. Parsing keeps source
-//! positions so every error names file, line and element (`shared/docs/mitsuba-semantics.md`
+//! positions so every error names file, line and element (`docs/renderer-semantics.md`
 //! §1–3 and §8 list the semantics matched here).
 
 pub mod error;

@@ -1,6 +1,6 @@
 //! Mitsuba's smooth `dielectric` (`src/bsdfs/dielectric.cpp`): a glass interface with one
 //! Dirac reflection and one Dirac refraction lobe, the lobe chosen with probability Fresnel R
-//! (semantics doc §10). Two-sided: the interior is the side opposite the normal.
+//! (docs/renderer-semantics.md §10). Two-sided: the interior is the side opposite the normal.
 
 use super::fresnel::fresnel_dielectric;
 use super::sample::BsdfSample;

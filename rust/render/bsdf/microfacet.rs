@@ -1,5 +1,5 @@
 //! Beckmann and GGX microfacet distributions as Mitsuba 3.9.1 defines them
-//! (`include/mitsuba/render/microfacet.h`, semantics doc §10): the normal distribution D,
+//! (`include/mitsuba/render/microfacet.h`, docs/renderer-semantics.md §10): the normal distribution D,
 //! Smith's masking G1 (Beckmann by its rational approximation, as Mitsuba), and the density
 //! of the microfacet normal either sampler draws. The samplers themselves are in
 //! [`super::vndf`] (visible normals) and [`Microfacet::sample_d_cos`] (plain D·cos θ).

@@ -1,4 +1,4 @@
-//! Mitsuba's `roughconductor` (`src/bsdfs/roughconductor.cpp`, semantics doc §10): a
+//! Mitsuba's `roughconductor` (`src/bsdfs/roughconductor.cpp`, docs/renderer-semantics.md §10): a
 //! one-sided Cook–Torrance microfacet reflector with the complex-index Fresnel term,
 //!
 //! ```text

@@ -4,7 +4,7 @@
 use glam::Vec3;
 
 /// Colour parameters must be finite and non-negative. (The scene parser enforces Mitsuba's
-/// [0, 1] range for bounded textures, semantics doc §2; this guards direct construction.)
+/// [0, 1] range for bounded textures, docs/renderer-semantics.md §2; this guards direct construction.)
 pub(crate) fn check_colour(bsdf: &str, name: &str, v: Vec3) -> Result<(), String> {
     if v.is_finite() && v.min_element() >= 0.0 {
         Ok(())

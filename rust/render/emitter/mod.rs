@@ -1,4 +1,4 @@
-//! Emitters (Mitsuba `src/emitters/*.cpp`, semantics §9): `area` (one-sided w.r.t. the
+//! Emitters (Mitsuba `src/emitters/*.cpp`, docs/renderer-semantics.md §9): `area` (one-sided w.r.t. the
 //! shading normal, attached to a shape), `point`, `spot`, `projector`, `directional`, and the
 //! `constant` and `envmap` environments. Radiance values are linear RGB.
 

@@ -1,4 +1,4 @@
-//! Reconstruction filters and their 31-bin discretisation (`shared/docs/mitsuba-semantics.md`
+//! Reconstruction filters and their 31-bin discretisation (`docs/renderer-semantics.md`
 //! §6; `include/mitsuba/core/rfilter.h`, `src/core/rfilter.cpp`, `src/rfilters/*.cpp`).
 //!
 //! Pitfall reproduced on purpose: Mitsuba's scalar variants never evaluate the kernel per

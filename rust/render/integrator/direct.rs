@@ -2,7 +2,7 @@
 //! then `emitter_samples` light samples and `bsdf_samples` BSDF samples combined with the
 //! power heuristic on the sample-count-weighted densities.
 //!
-//! Quirk copied on purpose (semantics §7): a light sample from a **delta** light gets MIS
+//! Quirk copied on purpose (docs/renderer-semantics.md §7): a light sample from a **delta** light gets MIS
 //! weight exactly 1 without the 1/Ne factor, so `emitter_samples = 4` makes point, spot and
 //! directional lights 4× brighter in Mitsuba, and must here too for `validate` to agree.
 

@@ -1,5 +1,5 @@
 //! Integrators: Mitsuba's `path` and `direct`, both with multiple importance sampling
-//! (power heuristic) exactly where Mitsuba applies it (semantics §7).
+//! (power heuristic) exactly where Mitsuba applies it (docs/renderer-semantics.md §7).
 
 pub mod direct;
 pub mod mis;

@@ -1,5 +1,5 @@
 //! `<emitter>`: `area` (nested in a shape), `point`, `spot`, `directional`, `constant`
-//! (semantics §9; emissive colours follow §2: `<spectrum value=v>` is not white), and
+//! (docs/renderer-semantics.md §9; emissive colours follow §2: `<spectrum value=v>` is not white), and
 //! `envmap` (`src/emitters/envmap.cpp`: filename, scale, to_world, mis_compensation).
 
 use super::{Builder, err, values};

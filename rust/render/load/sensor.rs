@@ -1,5 +1,5 @@
 //! `<sensor type="perspective">` with its `hdrfilm` (and rfilter) and `independent` sampler
-//! (semantics §4–6): fov/fov_axis or focal_length (default "50mm"), near/far clip, principal
+//! (docs/renderer-semantics.md §4–6): fov/fov_axis or focal_length (default "50mm"), near/far clip, principal
 //! point offsets, no scale in `to_world`. `<sensor type="orthographic">`
 //! (`src/sensors/orthographic.cpp`): near_clip, far_clip and `to_world`, which may scale.
 

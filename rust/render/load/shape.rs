@@ -1,6 +1,6 @@
 //! `<shape>`: `obj`, `ply`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
 //! `cylinder`, each with `to_world`, `flip_normals`, a nested or referenced `<bsdf>` and an
-//! optional nested `area` emitter (semantics §8). A shape without a BSDF gets diffuse 0.5,
+//! optional nested `area` emitter (docs/renderer-semantics.md §8). A shape without a BSDF gets diffuse 0.5,
 //! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
 
 use super::{Builder, bsdf, emitter, err, values};

@@ -1,5 +1,5 @@
 //! Reflectance-like parameters: a colour property (`<rgb>`, `<float>`, `<spectrum>`) or a
-//! nested/referenced `<texture type="bitmap">` (semantics §2, §11) or `checkerboard`.
+//! nested/referenced `<texture type="bitmap">` (docs/renderer-semantics.md §2, §11) or `checkerboard`.
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;

@@ -39,7 +39,7 @@ pub fn positive(obj: &SceneObject, name: &str, default: f64) -> Result<f64, Scen
     Ok(v)
 }
 
-/// A constant colour read as `usage` demands (semantics §2). NaN or ∞ is an error for every
+/// A constant colour read as `usage` demands (docs/renderer-semantics.md §2). NaN or ∞ is an error for every
 /// usage, and so is a negative reflectance-like value (`<float>`/`<spectrum>`; the parser
 /// already rejects an `<rgb>` outside [0, 1]). Mitsuba takes such floats silently; they
 /// would only produce NaN or negative pixels. A `<float>` reflectance above 1 stays

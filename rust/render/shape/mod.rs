@@ -1,6 +1,6 @@
 //! Shapes as the renderer sees them: world-space triangle meshes (`obj`, `ply`,
 //! `rectangle`, `cube`) and the analytic `sphere`, `disk` and `cylinder`, each with its BSDF
-//! and optional area emitter (semantics §8).
+//! and optional area emitter (docs/renderer-semantics.md §8).
 
 pub mod area_sampling;
 pub mod cylinder;

@@ -2,7 +2,7 @@
 //! (radius = |to_world·x̂|, a negative scale toggles `flip_normals`), normal outward even
 //! when hit from inside, uv = (φ/2π, θ/π) in the object frame. Emission is sampled in the
 //! visible cone from outside and uniformly by area from inside, with Mitsuba's branch
-//! conditions (semantics §8: the two branches' densities do not match on the surface, and
+//! conditions (docs/renderer-semantics.md §8: the two branches' densities do not match on the surface, and
 //! copying them keeps the expected image identical).
 
 use super::interaction::{DirectionSample, SurfaceInteraction};

@@ -1,7 +1,7 @@
 //! World-space triangle meshes: `obj`, `ply`, `rectangle` and `cube` all end up here
 //! (Mitsuba `src/render/mesh.cpp`). Geometric normal = normalize((p1−p0)×(p2−p0)), i.e.
 //! counter-clockwise faces the viewer; shading normal = interpolated vertex normals when the
-//! mesh has them; `flip_normals` negates both at query time (semantics §8).
+//! mesh has them; `flip_normals` negates both at query time (docs/renderer-semantics.md §8).
 
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
@@ -107,7 +107,7 @@ impl Triangles {
     }
 
     /// Uniform point on the surface (triangle ∝ area, then uniform inside it); area pdf
-    /// `1/A` turned into solid angle at `ref_p` with the shading normal (semantics §8).
+    /// `1/A` turned into solid angle at `ref_p` with the shading normal (docs/renderer-semantics.md §8).
     #[inline]
     pub fn sample_direction(&self, ref_p: Vec3, u: Vec2) -> Option<DirectionSample> {
         if self.area <= 0.0 {

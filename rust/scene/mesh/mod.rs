@@ -1,6 +1,6 @@
 //! Triangle meshes in world space: the `obj`, `ply`, `rectangle` and `cube` shapes of Mitsuba
 //! 3.9.1 (`src/shapes/{obj,ply,rectangle,cube}.cpp`, `src/render/mesh.cpp`), loaded the way
-//! Mitsuba loads them (`shared/docs/mitsuba-semantics.md` §8):
+//! Mitsuba loads them (`docs/renderer-semantics.md` §8):
 //!
 //! 1. positions × `to_world` (affine: the bottom matrix row is ignored, as for Mitsuba's
 //!    `AffineTransform4f`);

@@ -1,5 +1,5 @@
 //! Colorimetric tables for turning a wavelength-sampled spectrum into RGB the way Mitsuba's
-//! RGB variants do (semantics doc §2 and §10): the CIE 1931 2° standard observer and the CIE
+//! RGB variants do (docs/renderer-semantics.md §2 and §10): the CIE 1931 2° standard observer and the CIE
 //! D65 illuminant, both at 5 nm from 360 to 830 nm (95 samples). These are the published CIE
 //! tables; Mitsuba stores them as `float` (`src/core/spectrum.cpp`, `include/mitsuba/core/spectrum.h`),
 //! so they are kept in `f32` here too and widened, which reproduces its numbers bit for bit.

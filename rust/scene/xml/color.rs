@@ -1,4 +1,4 @@
-//! Colours as Mitsuba's `scalar_rgb` variant reads them (semantics doc §2,
+//! Colours as Mitsuba's `scalar_rgb` variant reads them (docs/renderer-semantics.md §2,
 //! `src/core/properties.cpp::get_texture_impl`, `src/spectra/srgb.cpp`,
 //! `src/core/spectrum.cpp::spectrum_list_to_srgb`).
 

@@ -1,4 +1,4 @@
-//! Mitsuba 3 XML → a generic object tree with typed properties (semantics doc §1–3;
+//! Mitsuba 3 XML → a generic object tree with typed properties (docs/renderer-semantics.md §1–3;
 //! Mitsuba's `src/core/parser.cpp`, `src/core/properties.cpp`). This layer knows the file
 //! format, not the plugins: the scene builder walks the tree, queries what each plugin
 //! reads, and finally calls [`SceneObject::check_all_used`] (or [`SceneObject::check_tree_used`])
@@ -48,7 +48,7 @@
 //! # For the builder
 //! * `pos.file` of an object from an included file is that file, but Mitsuba resolves asset
 //!   file names (`obj`/`ply`/`bitmap` `filename`) against the MAIN scene's folder, not the
-//!   including one (semantics doc §1 pitfall).
+//!   including one (docs/renderer-semantics.md §1 pitfall).
 //! * Unnamed children have `name: None` (Mitsuba's `_arg_N`).
 //!
 //! Not reproduced because it does not change the image: merging of identical nodes and the

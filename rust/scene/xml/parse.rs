@@ -1,6 +1,6 @@
 //! The XML walk: elements → [`RawScene`] nodes, with `$` substitution on every attribute,
 //! `<default>`, `<include>`, `<alias>` and all property tags (`src/core/parser.cpp::
-//! parse_xml_node`, `parse_file_impl`; semantics doc §1).
+//! parse_xml_node`, `parse_file_impl`; docs/renderer-semantics.md §1).
 
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

@@ -1,6 +1,6 @@
 //! Typed properties of one scene object, with Mitsuba's conversion rules and its
 //! "every property must be queried" check (`include/mitsuba/core/properties.h::get`,
-//! `src/core/properties.cpp`, `src/core/parser.cpp::instantiate_node`; semantics doc §1–2).
+//! `src/core/properties.cpp`, `src/core/parser.cpp::instantiate_node`; docs/renderer-semantics.md §1–2).
 
 use std::cell::Cell;
 
@@ -176,7 +176,7 @@ impl Properties {
         })
     }
 
-    /// A constant colour as linear RGB, read the way `usage` demands (semantics doc §2):
+    /// A constant colour as linear RGB, read the way `usage` demands (docs/renderer-semantics.md §2):
     /// `<float>`/`<integer>` v → (v,v,v); `<rgb>` as is, but a [`ColorUse::Bounded`] channel
     /// outside [0, 1] is an error; `<spectrum value="v">` → (v,v,v), or
     /// v·(1.204794, 0.948291, 0.908916) when [`ColorUse::Emissive`]; a sampled spectrum is

@@ -1,6 +1,6 @@
 //! `$name` parameters: `-D` overrides, `<default>` and the plain-text substitution Mitsuba
 //! applies to every attribute value (`src/core/parser.cpp::substitute_parameters`,
-//! `make_sorted_parameters`, `TagType::Default`; semantics doc §1 "Parameters").
+//! `make_sorted_parameters`, `TagType::Default`; docs/renderer-semantics.md §1 "Parameters").
 
 use crate::scene::error::{SceneError, SourcePos};
 

@@ -1,4 +1,4 @@
-//! `<transform>` and its operations (semantics doc §3; `src/core/parser.cpp::
+//! `<transform>` and its operations (docs/renderer-semantics.md §3; `src/core/parser.cpp::
 //! parse_transform_node`, `include/mitsuba/core/transform.h`, `drjit/transform.h::rotate`,
 //! `include/mitsuba/core/vector.h::coordinate_system`).
 //!

@@ -1,6 +1,6 @@
 //! Property tags → [`Value`] (`src/core/parser.cpp::parse_xml_node`, the Float, Integer,
 //! Boolean, String, Point/Vector, RGB and Spectrum cases; `src/core/properties.cpp::
-//! Spectrum::Spectrum(string_view)`; semantics doc §1 "Property tags").
+//! Spectrum::Spectrum(string_view)`; docs/renderer-semantics.md §1 "Property tags").
 
 use super::attrs::Attrs;
 use super::numbers::{parse_bool, parse_f64, parse_i64, tokenize};
