@@ -6,6 +6,15 @@ import pytest
 from conftest import random_pairs
 
 
+def cornell_render(mi, kind, res, spp, seed):
+    """mi.cornell_box() at res², every material of type `kind`, rendered with `seed`."""
+    d = mi.cornell_box()
+    d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = res
+    for name in ("white", "red", "green"):
+        d[name]["type"] = kind
+    return np.array(mi.render(mi.load_dict(d), spp=spp, seed=seed))
+
+
 @pytest.mark.parametrize("mi_variant", ["scalar_rgb"], indirect=True)
 def test_eval_pdf_sample_match_diffuse(mi_variant):
     mi = mi_variant
@@ -39,14 +48,7 @@ def test_eval_pdf_sample_match_diffuse(mi_variant):
 def test_cornell_box_render_matches_diffuse(mi_variant):
     mi = mi_variant
 
-    def render(kind):
-        d = mi.cornell_box()
-        d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = 64
-        for name in ("white", "red", "green"):
-            d[name]["type"] = kind
-        return np.array(mi.render(mi.load_dict(d), spp=16, seed=7))
-
-    ref, img = render("diffuse"), render("lambert")
+    ref, img = cornell_render(mi, "diffuse", 64, 16, 7), cornell_render(mi, "lambert", 64, 16, 7)
     assert np.isfinite(img).all()
     diff = np.abs(img - ref).max()
     print(f"{mi.variant()}: max |lambert - diffuse| = {diff:.2e} (mean {ref.mean():.4f})")
@@ -62,14 +64,7 @@ def test_symbolic_render_is_bit_identical_to_diffuse_with_one_thread(mi_variant)
     threads = dr.thread_count()
     dr.set_thread_count(1)
     try:
-        def render(kind):
-            d = mi.cornell_box()
-            d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = 48
-            for name in ("white", "red", "green"):
-                d[name]["type"] = kind
-            return np.array(mi.render(mi.load_dict(d), spp=8, seed=3))
-
-        ref, img = render("diffuse"), render("lambert")
+        ref, img = cornell_render(mi, "diffuse", 48, 8, 3), cornell_render(mi, "lambert", 48, 8, 3)
     finally:
         dr.set_thread_count(threads)
     assert ref.mean() > 0.05

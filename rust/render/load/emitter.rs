@@ -4,7 +4,7 @@
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
-use crate::render::camera::{FovAxis, PerspectiveCamera, x_half_tan};
+use crate::render::camera::x_half_tan;
 use crate::render::emitter::{self, Emitter, EnvMap};
 use crate::render::texture::{BitmapOptions, BitmapTexture};
 use std::sync::Arc;
@@ -111,11 +111,8 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
     Ok(())
 }
 
-/// `envmap`: the image file (found through the scene's search folders), `scale` (default 1),
-/// `to_world`, `mis_compensation` (default false). Mitsuba's `bitmap` property (an in-memory
-/// image) has no XML form.
-fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
-    let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+/// `scale` (finite, default 1) and an invertible `to_world`, as `envmap` and `projector` take them.
+fn scale_and_to_world(obj: &SceneObject) -> Result<(f64, glam::Affine3A), SceneError> {
     let scale = values::float(obj, "scale", 1.0)?;
     if !scale.is_finite() {
         return Err(values::prop_err(obj, "scale", "must be finite"));
@@ -124,6 +121,15 @@ fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
     if to_world.matrix3.determinant() == 0.0 {
         return Err(values::prop_err(obj, "to_world", "must be invertible"));
     }
+    Ok((scale, to_world))
+}
+
+/// `envmap`: the image file (found through the scene's search folders), `scale` (default 1),
+/// `to_world`, `mis_compensation` (default false). Mitsuba's `bitmap` property (an in-memory
+/// image) has no XML form.
+fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
+    let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+    let (scale, to_world) = scale_and_to_world(obj)?;
     let mis_compensation = values::boolean(obj, "mis_compensation", false)?;
     let path = b.resolve(&filename);
     let tex = BitmapTexture::load(&path, &BitmapOptions::default())
@@ -153,39 +159,8 @@ fn projector(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
         Some(c) => return Err(err(&c.object, "\"irradiance\" must be a colour or a texture")),
         None => (Texture::Constant(emissive(obj, "irradiance")?), 1.0),
     };
-    let scale = values::float(obj, "scale", 1.0)?;
-    if !scale.is_finite() {
-        return Err(values::prop_err(obj, "scale", "must be finite"));
-    }
-    let to_world = values::transform(obj, "to_world")?;
-    if to_world.matrix3.determinant() == 0.0 {
-        return Err(values::prop_err(obj, "to_world", "must be invertible"));
-    }
-    let fov = values::float_opt(obj, "fov")?;
-    let focal = obj.properties.string("focal_length")?;
-    let (fov_deg, axis) = match (fov, focal) {
-        (Some(_), Some(_)) => return Err(err(obj, "give either fov or focal_length, not both")),
-        (Some(f), None) => {
-            if !(f > 0.0 && f < 180.0) {
-                return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
-            }
-            let axis = match values::string(obj, "fov_axis", "x")?.to_lowercase().as_str() {
-                "x" => FovAxis::X,
-                "y" => FovAxis::Y,
-                "diagonal" => FovAxis::Diagonal,
-                "smaller" => FovAxis::Smaller,
-                "larger" => FovAxis::Larger,
-                other => return Err(values::prop_err(obj, "fov_axis", format!("must be x, y, diagonal, smaller or larger, got \"{other}\""))),
-            };
-            (f, axis)
-        }
-        (None, focal) => {
-            let text = focal.unwrap_or_else(|| "50mm".into());
-            let mm: f64 = text.trim().strip_suffix("mm").unwrap_or(&text).trim().parse().ok().filter(|v: &f64| *v > 0.0)
-                .ok_or_else(|| values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
-            (PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal)
-        }
-    };
+    let (scale, to_world) = scale_and_to_world(obj)?;
+    let (fov_deg, axis) = super::sensor::field_of_view(obj)?;
     let tan_half = x_half_tan(fov_deg, axis, aspect) as f32;
     Ok(Emitter::Projector { to_world, to_local: to_world.inverse(), irradiance, tan_half, aspect: aspect as f32, scale: scale as f32 })
 }

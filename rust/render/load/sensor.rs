@@ -52,9 +52,22 @@ fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
     if has_scale(&to_world) {
         return Err(values::prop_err(obj, "to_world", "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)"));
     }
+    let (fov_deg, axis) = field_of_view(obj)?;
+    let (near, far) = clip_range(obj)?;
+    let ppo = Vec2::new(principal_point_offset(obj, "principal_point_offset_x")?, principal_point_offset(obj, "principal_point_offset_y")?);
+    let (film, spp, seed) = film_and_sampler(obj)?;
+    obj.check_all_used()?;
+    let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
+    Ok(Sensor { camera: Camera::Perspective(camera), film, spp, seed })
+}
+
+/// The field of view as `perspective` reads it (`src/sensors/perspective.cpp`), also used by
+/// the `projector` emitter: `fov` in degrees with `fov_axis` (default x), or `focal_length`
+/// (default "50mm", a diagonal field of view), never both.
+pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneError> {
     let fov = values::float_opt(obj, "fov")?;
     let focal = obj.properties.string("focal_length")?;
-    let (fov_deg, axis) = match (fov, focal) {
+    match (fov, focal) {
         (Some(_), Some(_)) => return Err(err(obj, "give either fov or focal_length, not both")),
         (Some(f), None) => {
             if !(f > 0.0 && f < 180.0) {
@@ -68,7 +81,7 @@ fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
                 "larger" => FovAxis::Larger,
                 other => return Err(values::prop_err(obj, "fov_axis", format!("must be x, y, diagonal, smaller or larger, got \"{other}\""))),
             };
-            (f, axis)
+            Ok((f, axis))
         }
         (None, focal) => {
             let text = focal.unwrap_or_else(|| "50mm".into());
@@ -81,15 +94,9 @@ fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
                 .ok()
                 .filter(|v: &f64| *v > 0.0)
                 .ok_or_else(|| values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
-            (PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal)
+            Ok((PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal))
         }
-    };
-    let (near, far) = clip_range(obj)?;
-    let ppo = Vec2::new(principal_point_offset(obj, "principal_point_offset_x")?, principal_point_offset(obj, "principal_point_offset_y")?);
-    let (film, spp, seed) = film_and_sampler(obj)?;
-    obj.check_all_used()?;
-    let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
-    Ok(Sensor { camera: Camera::Perspective(camera), film, spp, seed })
+    }
 }
 
 /// The sensor's nested film (default: 768×576, gaussian) and sampler (default: 4 spp,
