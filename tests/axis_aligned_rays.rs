@@ -16,7 +16,10 @@ use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
 use matte::scene::mesh::{MeshOptions, cube, rectangle};
 
 fn scene(geometries: Vec<Geometry>) -> Scene {
-    let shapes = geometries.into_iter().map(|geometry| Shape { geometry, bsdf: 0, emitter: None, plugin: "test".into() }).collect();
+    let shapes = geometries
+        .into_iter()
+        .map(|geometry| Shape { geometry, bsdf: 0, emitter: None, plugin: "test".into() })
+        .collect();
     Scene::new(shapes, vec![Bsdf::Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) }], vec![], vec![])
 }
 
@@ -113,7 +116,10 @@ fn sphere_axis_rays() {
     let c = Vec3::new(0.5, -0.25, 0.75);
     let r = 1.5;
     for centre in [Vec3::ZERO, c] {
-        let s = scene(vec![Geometry::Sphere(Sphere::new(Affine3A::from_scale_rotation_translation(Vec3::splat(r), Quat::IDENTITY, centre), false))]);
+        let s = scene(vec![Geometry::Sphere(Sphere::new(
+            Affine3A::from_scale_rotation_translation(Vec3::splat(r), Quat::IDENTITY, centre),
+            false,
+        ))]);
         for (a, d) in axis_dirs() {
             let mut offs = offsets(a);
             offs.push(Vec3::ZERO);
@@ -249,11 +255,24 @@ fn cylinder_axis_rays() {
 /// rays straight up from the ground, i.e. `-(0, 0, -1)` = `(-0, -0, 1)`.
 #[test]
 fn shadow_rays_straight_up_find_every_occluder() {
-    let ground = rectangle(&MeshOptions { to_world: Mat4::from_scale(Vec3::new(10.0, 10.0, 1.0)), ..Default::default() });
-    let sphere = Sphere::new(Affine3A::from_scale_rotation_translation(Vec3::splat(0.5), Quat::IDENTITY, Vec3::new(0.0, 0.0, 1.0)), false);
-    let cube_mesh = cube(&MeshOptions { to_world: Mat4::from_scale_rotation_translation(Vec3::splat(0.5), Quat::IDENTITY, Vec3::new(3.0, 0.0, 1.0)), ..Default::default() });
+    let ground =
+        rectangle(&MeshOptions { to_world: Mat4::from_scale(Vec3::new(10.0, 10.0, 1.0)), ..Default::default() });
+    let sphere = Sphere::new(
+        Affine3A::from_scale_rotation_translation(Vec3::splat(0.5), Quat::IDENTITY, Vec3::new(0.0, 0.0, 1.0)),
+        false,
+    );
+    let cube_mesh = cube(&MeshOptions {
+        to_world: Mat4::from_scale_rotation_translation(Vec3::splat(0.5), Quat::IDENTITY, Vec3::new(3.0, 0.0, 1.0)),
+        ..Default::default()
+    });
     let disk = Disk::new(Affine3A::from_translation(Vec3::new(-3.0, 0.0, 1.0)), false);
-    let cyl = Cylinder::new(Affine3A::from_rotation_translation(Quat::from_rotation_x(std::f32::consts::FRAC_PI_2), Vec3::new(0.0, 3.5, 2.0)), false);
+    let cyl = Cylinder::new(
+        Affine3A::from_rotation_translation(
+            Quat::from_rotation_x(std::f32::consts::FRAC_PI_2),
+            Vec3::new(0.0, 3.5, 2.0),
+        ),
+        false,
+    );
     let s = scene(vec![
         Geometry::Triangles(Triangles::new(ground, false)),
         Geometry::Sphere(sphere),
@@ -266,10 +285,10 @@ fn shadow_rays_straight_up_find_every_occluder() {
     let eps = 1e-4;
     // (x, y, distance to the occluder's lower surface from z = eps)
     let cases = [
-        (0.0, 0.0, 0.5 - eps),               // sphere bottom
+        (0.0, 0.0, 0.5 - eps), // sphere bottom
         (0.25, 0.1, 1.0 - (0.25f32 - 0.0725).sqrt() - eps),
-        (3.1, -0.2, 0.5 - eps),              // cube bottom face
-        (-3.0, 0.0, 1.0 - eps),              // disk
+        (3.1, -0.2, 0.5 - eps), // cube bottom face
+        (-3.0, 0.0, 1.0 - eps), // disk
         (-2.5, 0.5, 1.0 - eps),
     ];
     for &(x, y, t) in &cases {
@@ -291,7 +310,10 @@ fn shadow_rays_straight_up_find_every_occluder() {
 #[test]
 fn hits_closer_than_the_traversal_epsilon() {
     let ground = rectangle(&MeshOptions::default());
-    let sphere = Sphere::new(Affine3A::from_scale_rotation_translation(Vec3::splat(0.5), Quat::IDENTITY, Vec3::new(3.0, 0.0, 0.0)), false);
+    let sphere = Sphere::new(
+        Affine3A::from_scale_rotation_translation(Vec3::splat(0.5), Quat::IDENTITY, Vec3::new(3.0, 0.0, 0.0)),
+        false,
+    );
     let s = scene(vec![Geometry::Triangles(Triangles::new(ground, false)), Geometry::Sphere(sphere)]);
     for (h, d) in [(5e-5f32, Vec3::NEG_Z), (1e-6, Vec3::NEG_Z), (5e-5, Vec3::new(0.6, 0.0, -0.8))] {
         let t = h / -d.z;

@@ -41,7 +41,8 @@ fn targets_compare_in_the_stated_direction() {
 
 #[test]
 fn zero_repeats_is_a_usage_error() {
-    let out = Command::new(env!("CARGO_BIN_EXE_matte")).args(["bench", "--repeats", "0", "--no-mitsuba"]).output().unwrap();
+    let out =
+        Command::new(env!("CARGO_BIN_EXE_matte")).args(["bench", "--repeats", "0", "--no-mitsuba"]).output().unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--repeats"));
 }

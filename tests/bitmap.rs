@@ -97,14 +97,8 @@ fn columns() -> Vec<Vec3> {
 fn wrap_modes_pick_the_expected_texels() {
     // u → p = 4u → texel floor(p); expected columns by the definitions: repeat = p mod 4,
     // mirror = reflected every other period (…3 2 1 0 | 0 1 2 3 | 3 2 1 0…), clamp = [0, 3].
-    let cases: [(f32, [usize; 3]); 6] = [
-        (-0.1, [3, 0, 0]),
-        (1.1, [0, 3, 3]),
-        (-1.1, [3, 3, 0]),
-        (2.3, [1, 1, 3]),
-        (1.9, [3, 0, 3]),
-        (0.6, [2, 2, 2]),
-    ];
+    let cases: [(f32, [usize; 3]); 6] =
+        [(-0.1, [3, 0, 0]), (1.1, [0, 3, 3]), (-1.1, [3, 3, 0]), (2.3, [1, 1, 3]), (1.9, [3, 0, 3]), (0.6, [2, 2, 2])];
     for (k, wrap) in [WrapMode::Repeat, WrapMode::Mirror, WrapMode::Clamp].into_iter().enumerate() {
         let t = BitmapTexture::from_linear(4, 2, columns(), &nearest(wrap)).unwrap();
         for (u, want) in cases {
@@ -163,7 +157,11 @@ fn sixteen_bit_png_is_decoded_to_half_precision() {
 
 #[test]
 fn exr_textures_stay_linear() {
-    let img = Image { width: 2, height: 2, pixels: vec![Vec3::new(2.5, 0.0, 0.1), Vec3::ONE, Vec3::splat(-0.5), Vec3::splat(0.25)] };
+    let img = Image {
+        width: 2,
+        height: 2,
+        pixels: vec![Vec3::new(2.5, 0.0, 0.1), Vec3::ONE, Vec3::splat(-0.5), Vec3::splat(0.25)],
+    };
     let p = temp_path("t.exr");
     write_exr(&p, &img).unwrap();
     let t = load(&p, nearest(WrapMode::Repeat));
@@ -251,10 +249,14 @@ json.dump(out, open(sys.argv[2], 'w'))
         for (wname, wrap) in [("repeat", WrapMode::Repeat), ("mirror", WrapMode::Mirror), ("clamp", WrapMode::Clamp)] {
             for (rname, raw) in [("False", false), ("True", true)] {
                 let t = load(&png, BitmapOptions { filter, wrap, raw, to_uv });
-                let want: Vec<[f32; 3]> = serde_json::from_value(j[format!("{fname}-{wname}-{rname}")].clone()).unwrap();
+                let want: Vec<[f32; 3]> =
+                    serde_json::from_value(j[format!("{fname}-{wname}-{rname}")].clone()).unwrap();
                 for (uv, w) in uvs.iter().zip(&want) {
                     let got = t.eval(Vec2::from(*uv));
-                    assert!((got - Vec3::from(*w)).abs().max_element() < 1e-5, "{fname} {wname} raw={raw} uv {uv:?}: {got} vs {w:?}");
+                    assert!(
+                        (got - Vec3::from(*w)).abs().max_element() < 1e-5,
+                        "{fname} {wname} raw={raw} uv {uv:?}: {got} vs {w:?}"
+                    );
                 }
             }
         }

@@ -17,7 +17,10 @@ fn sampling_matches_pdf() {
             let wi = Vec3::new(t.sin(), 0.0, t.cos());
             match chi2_sampling(bsdf, wi, (i * 16 + j) as u64) {
                 Ok(o) if o.p_value >= level => {}
-                Ok(o) => failures.push(format!("{label} θi={deg}: p = {:.3e} < {level:.3e} (χ² = {:.1}, dof {})", o.p_value, o.statistic, o.dof)),
+                Ok(o) => failures.push(format!(
+                    "{label} θi={deg}: p = {:.3e} < {level:.3e} (χ² = {:.1}, dof {})",
+                    o.p_value, o.statistic, o.dof
+                )),
                 Err(e) => failures.push(format!("{label} θi={deg}: {e}")),
             }
         }
@@ -47,7 +50,11 @@ fn chi_square_rejects_a_wrong_pdf() {
         }
     }
     let wrong = chi2_sampling(&Tilted, Vec3::Z, 99);
-    assert!(matches!(wrong, Err(_)) || wrong.as_ref().unwrap().p_value < sidak(1), "a wrong pdf passed: p = {:?}", wrong.map(|o| o.p_value));
+    assert!(
+        matches!(wrong, Err(_)) || wrong.as_ref().unwrap().p_value < sidak(1),
+        "a wrong pdf passed: p = {:?}",
+        wrong.map(|o| o.p_value)
+    );
     let right = chi2_sampling(&common::model("lambert", &[]), Vec3::Z, 99).unwrap();
     assert!(right.p_value >= sidak(1), "lambert must pass: p = {}", right.p_value);
 }

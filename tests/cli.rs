@@ -8,17 +8,37 @@ use std::process::Command;
 
 fn matte(args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_matte")).args(args).output().expect("run matte");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 #[test]
 fn brdf_answers_for_every_type() {
     for kind in BSDF_TYPES {
-        let (ok, out, err) = matte(&["brdf", "--bsdf", kind, "--reflectance", "0.8", "--theta-i", "30", "--theta-o", "60", "--phi", "45"]);
+        let (ok, out, err) = matte(&[
+            "brdf",
+            "--bsdf",
+            kind,
+            "--reflectance",
+            "0.8",
+            "--theta-i",
+            "30",
+            "--theta-o",
+            "60",
+            "--phi",
+            "45",
+        ]);
         assert!(ok, "{kind}: {err}");
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
         let bsdf = common::model(kind, &[]);
-        let want = bsdf.eval(spherical_direction(30f32.to_radians(), 0.0), spherical_direction(60f32.to_radians(), 45f32.to_radians()), [0.8])[0];
+        let want = bsdf.eval(
+            spherical_direction(30f32.to_radians(), 0.0),
+            spherical_direction(60f32.to_radians(), 45f32.to_radians()),
+            [0.8],
+        )[0];
         let got = v["f"].as_f64().unwrap() as f32;
         assert!((got - want).abs() <= 1e-6 * want, "{kind}: {got} vs {want}");
         assert!((v["pdf"].as_f64().unwrap() - 0.5 / std::f64::consts::PI).abs() < 1e-6, "{kind}: pdf {}", v["pdf"]);
@@ -28,7 +48,19 @@ fn brdf_answers_for_every_type() {
 
 #[test]
 fn parameters_and_grid() {
-    let (ok, out, err) = matte(&["brdf", "--bsdf", "oren_nayar", "--param", "sigma=0.5", "--param", "model=full", "--reflectance", "0.8", "--grid", "4"]);
+    let (ok, out, err) = matte(&[
+        "brdf",
+        "--bsdf",
+        "oren_nayar",
+        "--param",
+        "sigma=0.5",
+        "--param",
+        "model=full",
+        "--reflectance",
+        "0.8",
+        "--grid",
+        "4",
+    ]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["params"]["model"], "full");

@@ -126,7 +126,10 @@ fn light_sampling_estimates_the_integral_of_radiance() {
     for a in 0..n {
         // A stratified 2-D sequence (R2), deterministic.
         k += 1;
-        let u = Vec2::new((0.5 + k as f64 * 0.7548776662466927).fract() as f32, (0.5 + k as f64 * 0.5698402909980532).fract() as f32);
+        let u = Vec2::new(
+            (0.5 + k as f64 * 0.7548776662466927).fract() as f32,
+            (0.5 + k as f64 * 0.5698402909980532).fract() as f32,
+        );
         let _ = a;
         let x = match e.sample(u) {
             Some((_, radiance, pdf)) => lum(radiance) / pdf as f64,

@@ -252,7 +252,8 @@ fn tiles_cover_the_crop_exactly_once() {
             let c = film.crop();
             for y in 0..h {
                 for x in 0..w {
-                    let inside = (c.offset[0]..c.offset[0] + c.size[0]).contains(&x) && (c.offset[1]..c.offset[1] + c.size[1]).contains(&y);
+                    let inside = (c.offset[0]..c.offset[0] + c.size[0]).contains(&x)
+                        && (c.offset[1]..c.offset[1] + c.size[1]).contains(&y);
                     assert_eq!(cover[(y * w + x) as usize], inside as u32, "({x},{y}) tile {ts}");
                 }
             }
@@ -281,7 +282,8 @@ fn crop_is_a_window_of_the_full_film() {
     let mut full = Film::new(12, 9, None, ReconstructionFilter::GAUSSIAN).unwrap();
     let full_img = render(&mut full, 4, &samples);
     let mut part = Film::new(12, 9, Some(crop), ReconstructionFilter::GAUSSIAN).unwrap();
-    let in_crop: Vec<_> = samples.iter().copied().filter(|(p, _)| in_tile(&Tile { offset: crop.offset, size: crop.size }, *p)).collect();
+    let in_crop: Vec<_> =
+        samples.iter().copied().filter(|(p, _)| in_tile(&Tile { offset: crop.offset, size: crop.size }, *p)).collect();
     let part_img = render(&mut part, 4, &in_crop);
     for y in 2..3 {
         for x in 2..4 {
@@ -354,7 +356,10 @@ json.dump(out, open(sys.argv[1], 'w'))
             for (y, row) in want.iter().enumerate() {
                 for (x, w) in row.iter().enumerate() {
                     let got = img.get(x as u32, y as u32);
-                    assert!((got - Vec3::from(*w)).abs().max_element() < 1e-6, "{name} tile {tile_size} ({x},{y}): {got} vs {w:?}");
+                    assert!(
+                        (got - Vec3::from(*w)).abs().max_element() < 1e-6,
+                        "{name} tile {tile_size} ({x},{y}): {got} vs {w:?}"
+                    );
                 }
             }
         }
@@ -382,11 +387,19 @@ fn film_rejects_bad_configurations() {
 
 #[test]
 fn stray_samples_never_panic_or_leak() {
-    for filter in [ReconstructionFilter::Box, ReconstructionFilter::GAUSSIAN, ReconstructionFilter::Tent { radius: 3.0 }] {
+    for filter in
+        [ReconstructionFilter::Box, ReconstructionFilter::GAUSSIAN, ReconstructionFilter::Tent { radius: 3.0 }]
+    {
         let mut film = Film::new(4, 4, None, filter).unwrap();
         let tile = film.tiles(2)[3];
         let mut block = film.new_block(&tile);
-        for p in [Vec2::NAN, Vec2::new(f32::INFINITY, 1.0), Vec2::new(1e30, -1e30), Vec2::new(-1e9, 2.5), Vec2::new(3e7, 3e7)] {
+        for p in [
+            Vec2::NAN,
+            Vec2::new(f32::INFINITY, 1.0),
+            Vec2::new(1e30, -1e30),
+            Vec2::new(-1e9, 2.5),
+            Vec2::new(3e7, 3e7),
+        ] {
             block.put(p, Vec3::ONE);
         }
         film.put_block(&block);
@@ -424,7 +437,8 @@ fn exr_round_trip_is_exact() {
 fn png_is_clamped_srgb_8bit() {
     // sRGB OETF closed form, rounded: 0.5 → 1.055·0.5^(1/2.4) − 0.055 = 0.73536 → 188.
     let values = [0.0f32, 0.5, 1.0, 2.0, -1.0, 0.001, 0.2, f32::NAN];
-    let img = Image { width: values.len() as u32, height: 1, pixels: values.iter().map(|&v| Vec3::new(v, v, 0.5)).collect() };
+    let img =
+        Image { width: values.len() as u32, height: 1, pixels: values.iter().map(|&v| Vec3::new(v, v, 0.5)).collect() };
     let path = temp_path("preview.png");
     write_png(&path, &img).unwrap();
     let png = image::open(&path).unwrap().into_rgb8();
@@ -470,7 +484,11 @@ film.write(sys.argv[2])
             for x in 0..4 {
                 let want = Vec3::new(val(x, y, 0), val(x, y, 1), val(x, y, 2));
                 let got = img.get(x, y);
-                assert!(((got - want) / want).abs().max_element() < rel_tol, "{}: ({x},{y}) {got} vs {want}", path.display());
+                assert!(
+                    ((got - want) / want).abs().max_element() < rel_tol,
+                    "{}: ({x},{y}) {got} vs {want}",
+                    path.display()
+                );
             }
         }
     }

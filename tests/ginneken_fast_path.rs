@@ -11,9 +11,16 @@ use matte::brdf::{Bsdf, DiffuseBrdf};
 fn fast_path_within_half_a_percent_away_from_grazing() {
     for m in ["0.1", "0.3", "0.5", "1.0"] {
         for shadowing in ["vginneken", "height_correlated"] {
-            let Bsdf::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)]) else { unreachable!() };
+            let Bsdf::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)]) else {
+                unreachable!()
+            };
             let e = fast_path_error(&g, 80.0, 1500);
-            assert!(e.max_relative < 5e-3, "m={m} {shadowing}: max relative error {:.3} % at {:?}", 100.0 * e.max_relative, e.worst);
+            assert!(
+                e.max_relative < 5e-3,
+                "m={m} {shadowing}: max relative error {:.3} % at {:?}",
+                100.0 * e.max_relative,
+                e.worst
+            );
         }
     }
 }
@@ -22,7 +29,11 @@ fn fast_path_within_half_a_percent_away_from_grazing() {
 fn vanishing_roughness_is_lambert() {
     let g = common::model("ginneken", &[("roughness", "0.001")]);
     for (ti, to, ph) in [(0.0f32, 0.0f32, 0.0f32), (30.0, 60.0, 90.0), (70.0, 70.0, 180.0)] {
-        let f = g.eval(spherical_direction(ti.to_radians(), 0.0), spherical_direction(to.to_radians(), ph.to_radians()), [1.0])[0];
+        let f = g.eval(
+            spherical_direction(ti.to_radians(), 0.0),
+            spherical_direction(to.to_radians(), ph.to_radians()),
+            [1.0],
+        )[0];
         assert!((f - std::f32::consts::FRAC_1_PI).abs() < 2e-4, "{ti}/{to}/{ph}: {f}");
     }
 }
@@ -35,9 +46,14 @@ fn roughness_gradient_matches_the_reference_derivative() {
     use matte::brdf::ginneken::accuracy::roughness_gradient_error;
     for m in ["0.1", "0.3", "0.7"] {
         for shadowing in ["vginneken", "height_correlated"] {
-            let Bsdf::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)]) else { unreachable!() };
+            let Bsdf::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)]) else {
+                unreachable!()
+            };
             let e = roughness_gradient_error(&g, 80.0, 600);
-            println!("m={m} {shadowing}: ∂ln f/∂ln m error max {:.2e} mean {:.2e} at {:?}", e.max_log_error, e.mean_log_error, e.worst);
+            println!(
+                "m={m} {shadowing}: ∂ln f/∂ln m error max {:.2e} mean {:.2e} at {:?}",
+                e.max_log_error, e.mean_log_error, e.worst
+            );
             assert!(e.max_log_error < 0.01, "m={m} {shadowing}: {e:?}");
         }
     }

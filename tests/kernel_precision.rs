@@ -25,7 +25,9 @@ fn pairs() -> Vec<(Vec3, Vec3)> {
         .filter(|(a, b)| a.z >= 1e-3 && b.z >= 1e-3)
         .collect();
     let dir = |t: f32, p: f32| Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
-    for (ti, to, dp) in [(0.0f32, 0.0f32, 0.0f32), (0.5, 0.5, 0.0), (1.2, 1.2, std::f32::consts::PI), (1.5, 0.3, 1.0), (0.3, 1.5, 2.0)] {
+    for (ti, to, dp) in
+        [(0.0f32, 0.0f32, 0.0f32), (0.5, 0.5, 0.0), (1.2, 1.2, std::f32::consts::PI), (1.5, 0.3, 1.0), (0.3, 1.5, 2.0)]
+    {
         out.push((dir(ti, 0.2), dir(to, 0.2 + dp)));
     }
     out
@@ -142,7 +144,8 @@ fn fresnel_average(n: f64) -> f64 {
     let mu_c = if n < 1.0 { (1.0 - n * n).sqrt() } else { 0.0 };
     let steps = 400_000;
     let h = (1.0 - mu_c) / steps as f64;
-    let upper: f64 = (0..steps).map(|k| mu_c + (k as f64 + 0.5) * h).map(|mu| 2.0 * fresnel_snell(mu, n) * mu * h).sum();
+    let upper: f64 =
+        (0..steps).map(|k| mu_c + (k as f64 + 0.5) * h).map(|mu| 2.0 * fresnel_snell(mu, n) * mu * h).sum();
     mu_c * mu_c + upper
 }
 
@@ -153,7 +156,10 @@ fn wolff_matches_snell_fresnel_in_f64() {
         let f0 = ((n - 1.0) / (n + 1.0)).powi(2);
         let (f_ext, f_int) = (fresnel_average(n), fresnel_average(1.0 / n));
         for norm in ["physical", "normal", "raw"] {
-            let bsdf = model("wolff", &[("int_ior", &int_ior.to_string()), ("ext_ior", &ext_ior.to_string()), ("normalization", norm)]);
+            let bsdf = model(
+                "wolff",
+                &[("int_ior", &int_ior.to_string()), ("ext_ior", &ext_ior.to_string()), ("normalization", norm)],
+            );
             let k = |rho: f64| match norm {
                 "raw" => rho / PI,
                 "normal" => rho / (PI * (1.0 - f0) * (1.0 - f_ext)),

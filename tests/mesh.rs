@@ -180,7 +180,8 @@ fn obj_smooth_normals_are_computed_in_world_space() {
 #[test]
 fn obj_file_normals_use_the_inverse_transpose() {
     let p = obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 1 1 0\nvn 0 0 -3\nf 1//1 2//2 3//2\n");
-    let m = load_obj(&p, &MeshOptions { to_world: Mat4::from_scale(Vec3::new(2.0, 1.0, 1.0)), ..Default::default() }).unwrap();
+    let m = load_obj(&p, &MeshOptions { to_world: Mat4::from_scale(Vec3::new(2.0, 1.0, 1.0)), ..Default::default() })
+        .unwrap();
     assert_close3(m.normals[0], Vec3::new(0.5, 1.0, 0.0).normalize(), 1e-6);
     assert_close3(m.normals[1], Vec3::NEG_Z, 1e-6);
     // Rotation + translation: normals rotate, ignore the translation.
@@ -273,7 +274,9 @@ fn obj_without_triangles_or_file_is_an_error() {
 
 #[test]
 fn obj_ignores_other_statements_and_crlf() {
-    let m = load("# comment\r\nmtllib x.mtl\r\no thing\r\ng grp\r\ns 1\r\nusemtl red\r\n  v 0 0 0 1\r\nv 1 0 0 # x\r\nv\t0 1 0\r\nf 1 2 3 # a triangle\r\n");
+    let m = load(
+        "# comment\r\nmtllib x.mtl\r\no thing\r\ng grp\r\ns 1\r\nusemtl red\r\n  v 0 0 0 1\r\nv 1 0 0 # x\r\nv\t0 1 0\r\nf 1 2 3 # a triangle\r\n",
+    );
     assert_eq!(m.positions, vec![Vec3::ZERO, Vec3::X, Vec3::Y]);
     assert_eq!(m.triangles, vec![[0, 1, 2]]);
 }
@@ -355,7 +358,8 @@ fn ply_texture_coordinate_names_and_flip() {
     for uv in [("s", "t"), ("texture_u", "texture_v")] {
         assert_eq!(load_ply(&ply(&ply_ascii(uv, "vertex_index")), &MeshOptions::default()).unwrap(), expected_ply());
     }
-    let m = load_ply(&ply(&ply_binary(false)), &MeshOptions { flip_tex_coords: Some(true), ..Default::default() }).unwrap();
+    let m =
+        load_ply(&ply(&ply_binary(false)), &MeshOptions { flip_tex_coords: Some(true), ..Default::default() }).unwrap();
     assert_eq!(m.uvs[0], Vec2::new(0.0, 0.75));
     // u,v wins over s,t when both exist.
     let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\nproperty double z\n\
@@ -463,10 +467,30 @@ type Buffers = (Vec<[f32; 3]>, Vec<[f32; 3]>, Vec<[f32; 2]>, Vec<[u32; 3]>);
 /// vertex_texcoords / faces, verbatim.
 fn mitsuba_cube() -> Buffers {
     let pos = vec![
-        [1., -1., -1.], [1., -1., 1.], [-1., -1., 1.], [-1., -1., -1.], [1., 1., -1.], [-1., 1., -1.],
-        [-1., 1., 1.], [1., 1., 1.], [1., -1., -1.], [1., 1., -1.], [1., 1., 1.], [1., -1., 1.],
-        [1., -1., 1.], [1., 1., 1.], [-1., 1., 1.], [-1., -1., 1.], [-1., -1., 1.], [-1., 1., 1.],
-        [-1., 1., -1.], [-1., -1., -1.], [1., 1., -1.], [1., -1., -1.], [-1., -1., -1.], [-1., 1., -1.],
+        [1., -1., -1.],
+        [1., -1., 1.],
+        [-1., -1., 1.],
+        [-1., -1., -1.],
+        [1., 1., -1.],
+        [-1., 1., -1.],
+        [-1., 1., 1.],
+        [1., 1., 1.],
+        [1., -1., -1.],
+        [1., 1., -1.],
+        [1., 1., 1.],
+        [1., -1., 1.],
+        [1., -1., 1.],
+        [1., 1., 1.],
+        [-1., 1., 1.],
+        [-1., -1., 1.],
+        [-1., -1., 1.],
+        [-1., 1., 1.],
+        [-1., 1., -1.],
+        [-1., -1., -1.],
+        [1., 1., -1.],
+        [1., -1., -1.],
+        [-1., -1., -1.],
+        [-1., 1., -1.],
     ];
     let nrm = [[0., -1., 0.], [0., 1., 0.], [1., 0., 0.], [0., 0., 1.], [-1., 0., 0.], [0., 0., -1.]]
         .iter()
@@ -474,8 +498,18 @@ fn mitsuba_cube() -> Buffers {
         .collect();
     let uv = (0..6).flat_map(|_| [[0., 1.], [1., 1.], [1., 0.], [0., 0.]]).collect();
     let faces = vec![
-        [0, 1, 2], [3, 0, 2], [4, 5, 6], [7, 4, 6], [8, 9, 10], [11, 8, 10],
-        [12, 13, 14], [15, 12, 14], [16, 17, 18], [19, 16, 18], [20, 21, 22], [23, 20, 22],
+        [0, 1, 2],
+        [3, 0, 2],
+        [4, 5, 6],
+        [7, 4, 6],
+        [8, 9, 10],
+        [11, 8, 10],
+        [12, 13, 14],
+        [15, 12, 14],
+        [16, 17, 18],
+        [19, 16, 18],
+        [20, 21, 22],
+        [23, 20, 22],
     ];
     (pos, nrm, uv, faces)
 }
@@ -534,7 +568,9 @@ fn rectangle_matches_mitsuba_ray_queries() {
     // to_world = scale(-1, 2, 1) [verified]: (0.5,-0.5) → uv (0.25, 0.375), prim 0;
     // (-0.6, 0.2) → uv (0.8, 0.55), prim 1; si.n = -z (winding), sh_n = +z (M⁻ᵀ z).
     let m = rectangle(&MeshOptions { to_world: Mat4::from_scale(Vec3::new(-1.0, 2.0, 1.0)), ..Default::default() });
-    for (p, uv, prim) in [(Vec2::new(0.5, -0.5), Vec2::new(0.25, 0.375), 0), (Vec2::new(-0.6, 0.2), Vec2::new(0.8, 0.55), 1)] {
+    for (p, uv, prim) in
+        [(Vec2::new(0.5, -0.5), Vec2::new(0.25, 0.375), 0), (Vec2::new(-0.6, 0.2), Vec2::new(0.8, 0.55), 1)]
+    {
         let (tri, got) = interpolate_uv(&m, p.extend(0.0));
         assert!((got - uv).abs().max_element() < 1e-6, "{got} vs {uv}");
         assert_eq!(tri, prim);

@@ -5,10 +5,11 @@
 //! oracle: sample weight = eval/pdf, Mitsuba's χ² test of the sampled directions against the
 //! pdf, and the Dirac lobes' probabilities.
 
-mod common;
 #[path = "mitsuba_bsdfs/bumpmap_reference.rs"]
 mod bumpmap_reference;
+mod common;
 #[path = "mitsuba_bsdfs/reference.rs"]
+#[rustfmt::skip] // generated data, one configuration per line
 mod reference;
 
 use common::{Pcg32, chi2_sampling_ires, sidak};
@@ -75,7 +76,11 @@ fn samples_match_mitsuba() {
             let e = (s.wo - wo_ref).abs().max_element();
             let ew = (0..3).map(|k| rel_err(s.weight[k], w_ref[k], w_ref.max_element())).fold(0.0, f32::max);
             let ep = rel_err(s.pdf, p_ref, 0.0);
-            assert!(e < 1e-5 && ew < 1e-4 && ep < 1e-4, "{}: wi {wi} u ({s1}, {s2:?}): {s:?} vs Mitsuba wo {wo_ref} weight {w_ref} pdf {p_ref}", c.name);
+            assert!(
+                e < 1e-5 && ew < 1e-4 && ep < 1e-4,
+                "{}: wi {wi} u ({s1}, {s2:?}): {s:?} vs Mitsuba wo {wo_ref} weight {w_ref} pdf {p_ref}",
+                c.name
+            );
             max_err = max_err.max(ew).max(ep);
             checked += 1;
         }
@@ -96,7 +101,9 @@ fn sphere(rng: &mut Pcg32) -> Vec3 {
 /// (A principled BSDF without `spec_trans` samples nothing from below, while Mitsuba's pdf
 /// there is that of a reflection lobe whose value is 0: such directions are left out.)
 fn two_sided(c: &reference::Config) -> bool {
-    c.name.contains("dielectric") || c.name.starts_with("principledthin") || (c.name.starts_with("principled") && c.xml.contains("spec_trans"))
+    c.name.contains("dielectric")
+        || c.name.starts_with("principledthin")
+        || (c.name.starts_with("principled") && c.xml.contains("spec_trans"))
 }
 
 #[test]
@@ -215,7 +222,10 @@ fn samples_follow_pdf_chi_square() {
             Ok(out) => {
                 println!("{name:34} θ={theta:5}: p = {:.3e}", out.p_value);
                 if out.p_value <= level {
-                    failures.push(format!("{name} θ={theta}: p = {} (χ² {} / {} dof)", out.p_value, out.statistic, out.dof));
+                    failures.push(format!(
+                        "{name} θ={theta}: p = {} (χ² {} / {} dof)",
+                        out.p_value, out.statistic, out.dof
+                    ));
                 }
             }
         }
@@ -269,19 +279,51 @@ fn bad_parameters_are_errors_at_file_and_line() {
     let cases: &[(&str, u32, &str)] = &[
         ("<bsdf type=\"plastic\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>", 4, "roughness"),
         ("<bsdf type=\"plastic\">\n<string name=\"int_ior\" value=\"unobtainium\"/>\n</bsdf>", 4, "unknown IOR name"),
-        ("<bsdf type=\"plastic\">\n<rgb name=\"diffuse_reflectance\" value=\"1.5, 0.2, 0.2\"/>\n</bsdf>", 4, "diffuse_reflectance"),
-        ("<bsdf type=\"roughplastic\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/>\n</bsdf>", 4, "anisotropic"),
-        ("<bsdf type=\"roughplastic\">\n<string name=\"distribution\" value=\"phong\"/>\n</bsdf>", 4, "beckmann or ggx"),
+        (
+            "<bsdf type=\"plastic\">\n<rgb name=\"diffuse_reflectance\" value=\"1.5, 0.2, 0.2\"/>\n</bsdf>",
+            4,
+            "diffuse_reflectance",
+        ),
+        (
+            "<bsdf type=\"roughplastic\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.2\"/>\n</bsdf>",
+            4,
+            "anisotropic",
+        ),
+        (
+            "<bsdf type=\"roughplastic\">\n<string name=\"distribution\" value=\"phong\"/>\n</bsdf>",
+            4,
+            "beckmann or ggx",
+        ),
         ("<bsdf type=\"roughplastic\">\n<float name=\"int_ior\" value=\"1.000277\"/>\n</bsdf>", 4, "must differ"),
         ("<bsdf type=\"roughdielectric\">\n<float name=\"alpha\" value=\"-0.1\"/>\n</bsdf>", 4, "roughness"),
-        ("<bsdf type=\"roughdielectric\">\n<float name=\"alpha\" value=\"0.1\"/>\n<float name=\"alpha_u\" value=\"0.1\"/>\n</bsdf>", 3, "given together"),
-        ("<bsdf type=\"roughplastic\">\n<texture type=\"bitmap\" name=\"alpha\"/>\n</bsdf>", 3, "texture for \"alpha\""),
+        (
+            "<bsdf type=\"roughdielectric\">\n<float name=\"alpha\" value=\"0.1\"/>\n<float name=\"alpha_u\" value=\"0.1\"/>\n</bsdf>",
+            3,
+            "given together",
+        ),
+        (
+            "<bsdf type=\"roughplastic\">\n<texture type=\"bitmap\" name=\"alpha\"/>\n</bsdf>",
+            3,
+            "texture for \"alpha\"",
+        ),
         ("<bsdf type=\"roughdielectric\">\n<texture type=\"bitmap\" name=\"alpha\"/>\n</bsdf>", 4, "filename"),
         ("<bsdf type=\"thindielectric\">\n<float name=\"int_ior\" value=\"nan\"/>\n</bsdf>", 4, "int_ior"),
-        ("<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Gold\"/>\n</bsdf>", 4, "unknown conductor material \"Gold\""),
-        ("<bsdf type=\"normalmap\">\n<rgb name=\"normalmap\" value=\"0.5, 0.5, 1\"/>\n</bsdf>", 3, "exactly one nested BSDF"),
+        (
+            "<bsdf type=\"conductor\">\n<string name=\"material\" value=\"Gold\"/>\n</bsdf>",
+            4,
+            "unknown conductor material \"Gold\"",
+        ),
+        (
+            "<bsdf type=\"normalmap\">\n<rgb name=\"normalmap\" value=\"0.5, 0.5, 1\"/>\n</bsdf>",
+            3,
+            "exactly one nested BSDF",
+        ),
         ("<bsdf type=\"normalmap\">\n<bsdf type=\"diffuse\"/>\n</bsdf>", 3, "missing the \"normalmap\" texture"),
-        ("<bsdf type=\"normalmap\">\n<rgb name=\"normalmap\" value=\"0.5, 0.5, 1\"/>\n<bsdf type=\"diffuse\"/>\n<float name=\"scale\" value=\"2\"/>\n</bsdf>", 6, "scale"),
+        (
+            "<bsdf type=\"normalmap\">\n<rgb name=\"normalmap\" value=\"0.5, 0.5, 1\"/>\n<bsdf type=\"diffuse\"/>\n<float name=\"scale\" value=\"2\"/>\n</bsdf>",
+            6,
+            "scale",
+        ),
         ("<bsdf type=\"twosided\">\n<bsdf type=\"roughdielectric\"/>\n</bsdf>", 3, "transmissive"),
     ];
     for &(body, line, needle) in cases {
@@ -325,7 +367,8 @@ fn odd_values_never_panic_and_render_finite() {
             let xml = format!(
                 "<scene version=\"3.0.0\">\n{camera}<shape type=\"sphere\">{bsdf}</shape><shape type=\"sphere\"><transform name=\"to_world\"><translate z=\"-3\"/></transform></shape><emitter type=\"constant\"/><emitter type=\"point\"><point name=\"position\" value=\"0 3 3\"/></emitter>\n</scene>"
             );
-            let loaded = std::panic::catch_unwind(|| load_str(&xml, Path::new("/virtual/odd.xml"), &[])).unwrap_or_else(|_| panic!("panicked on {bsdf}"));
+            let loaded = std::panic::catch_unwind(|| load_str(&xml, Path::new("/virtual/odd.xml"), &[]))
+                .unwrap_or_else(|_| panic!("panicked on {bsdf}"));
             let s = match loaded {
                 Err(e) => {
                     let text = e.to_string();
@@ -357,13 +400,15 @@ fn odd_values_never_panic_and_render_finite() {
 #[test]
 fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
     use bumpmap_reference::{HEIGHT, NESTED, ROWS, TEXELS, WIDTH};
-    use matte::render::bsdf::bump_map::{BumpMap, HitGeometry};
     use matte::render::bsdf::Texture;
+    use matte::render::bsdf::bump_map::{BumpMap, HitGeometry};
     use matte::render::geometry::Frame;
     use matte::render::texture::{BitmapOptions, BitmapTexture};
     use std::sync::Arc;
     let texels = TEXELS.iter().map(|&g| Vec3::splat(g)).collect();
-    let height = Texture::Bitmap(Arc::new(BitmapTexture::from_linear(WIDTH, HEIGHT, texels, &BitmapOptions::default()).unwrap()));
+    let height = Texture::Bitmap(Arc::new(
+        BitmapTexture::from_linear(WIDTH, HEIGHT, texels, &BitmapOptions::default()).unwrap(),
+    ));
     let maps: Vec<BumpMap> = NESTED
         .iter()
         .map(|&(xml, scale)| BumpMap {
@@ -386,7 +431,10 @@ fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
         let f_ref = Vec3::from(f_ref);
         let ef = (0..3).map(|c| rel_err(f[c], f_ref[c], f_ref.max_element())).fold(0.0, f32::max);
         let ep = rel_err(p, p_ref, 0.0);
-        assert!(ef < 1e-4 && ep < 1e-4, "config {k} uv {uv:?} wi {wi:?} wo {wo:?}: ({f}, {p}) vs Mitsuba ({f_ref}, {p_ref})");
+        assert!(
+            ef < 1e-4 && ep < 1e-4,
+            "config {k} uv {uv:?} wi {wi:?} wo {wo:?}: ({f}, {p}) vs Mitsuba ({f_ref}, {p_ref})"
+        );
         max_f = max_f.max(ef);
         max_p = max_p.max(ep);
         nonzero += usize::from(p_ref > 0.0);

@@ -58,7 +58,9 @@ fn defaults_follow_the_seed_study() {
 
 #[test]
 fn boundary_values_are_accepted() {
-    for (kind, name, v) in [("oren_nayar", "sigma", 0.0), ("eon", "roughness", 0.0), ("eon", "roughness", 1.0), ("wolff", "int_ior", 1.0)] {
+    for (kind, name, v) in
+        [("oren_nayar", "sigma", 0.0), ("eon", "roughness", 0.0), ("eon", "roughness", 1.0), ("wolff", "int_ior", 1.0)]
+    {
         Bsdf::from_params(kind, Params::new().with(name, N(v))).unwrap_or_else(|e| panic!("{kind} {name}={v}: {e}"));
     }
 }

@@ -34,11 +34,20 @@ fn sample_weight_is_eval_cos_over_pdf() {
             let Some(s) = bsdf.sample(wi, rng.next_vec2(), rho) else {
                 panic!("{label}: no sample for wi {wi} above the surface")
             };
-            assert!((s.pdf - bsdf.pdf(wi, s.wo)).abs() <= 1e-6 * s.pdf, "{label}: sample pdf {} vs pdf() {}", s.pdf, bsdf.pdf(wi, s.wo));
+            assert!(
+                (s.pdf - bsdf.pdf(wi, s.wo)).abs() <= 1e-6 * s.pdf,
+                "{label}: sample pdf {} vs pdf() {}",
+                s.pdf,
+                bsdf.pdf(wi, s.wo)
+            );
             let f = bsdf.eval(wi, s.wo, rho);
             for k in 0..2 {
                 let want = f[k] * s.wo.z / s.pdf;
-                assert!((s.weight[k] - want).abs() <= 1e-5 * want.abs() + 1e-12, "{label}: weight {} vs {want}", s.weight[k]);
+                assert!(
+                    (s.weight[k] - want).abs() <= 1e-5 * want.abs() + 1e-12,
+                    "{label}: weight {} vs {want}",
+                    s.weight[k]
+                );
             }
         }
     }
@@ -68,7 +77,10 @@ fn furnace_estimates_agree_with_albedo() {
             for (name, m1, m2) in [("importance", s1, s2), ("uniform", u1, u2)] {
                 let mean = m1 / n as f64;
                 let se = ((m2 / n as f64 - mean * mean).max(0.0) / n as f64).sqrt();
-                assert!((mean - want).abs() <= 4.0 * se + 2e-4, "{label} θi={deg}: {name} estimate {mean:.5} ± {se:.5} vs albedo {want:.5}");
+                assert!(
+                    (mean - want).abs() <= 4.0 * se + 2e-4,
+                    "{label} θi={deg}: {name} estimate {mean:.5} ± {se:.5} vs albedo {want:.5}"
+                );
             }
         }
     }
@@ -94,12 +106,18 @@ fn finite_everywhere_and_zero_below_horizon() {
             let (wi, wo) = (draw(&mut rng), draw(&mut rng));
             let f = bsdf.eval(wi, wo, [1.0, 0.5, 0.0]);
             let p = bsdf.pdf(wi, wo);
-            assert!(f.iter().all(|x| x.is_finite() && *x >= 0.0) && p.is_finite() && p >= 0.0, "{label}: f={f:?} pdf={p} at {wi:?}, {wo:?}");
+            assert!(
+                f.iter().all(|x| x.is_finite() && *x >= 0.0) && p.is_finite() && p >= 0.0,
+                "{label}: f={f:?} pdf={p} at {wi:?}, {wo:?}"
+            );
             if wi.z <= 0.0 || wo.z <= 0.0 {
                 assert!(f == [0.0; 3] && p == 0.0, "{label}: nonzero below the horizon at {wi:?}, {wo:?}");
             }
             if let Some(s) = bsdf.sample(wi, rng.next_vec2(), [1.0]) {
-                assert!(s.pdf > 0.0 && s.pdf.is_finite() && s.weight[0].is_finite() && s.wo.z >= 0.0, "{label}: bad sample {s:?}");
+                assert!(
+                    s.pdf > 0.0 && s.pdf.is_finite() && s.weight[0].is_finite() && s.wo.z >= 0.0,
+                    "{label}: bad sample {s:?}"
+                );
             } else {
                 assert!(wi.z <= 0.0 || matches!(bsdf, Bsdf::Lambert(_)) || wi.z > 0.0, "{label}");
             }

@@ -73,11 +73,18 @@ fn triangle_hit_reports_distance_and_barycentrics() {
 
 #[test]
 fn analytic_shapes_hit_where_geometry_says() {
-    let sphere = Sphere::new(Affine3A::from_scale_rotation_translation(Vec3::splat(2.0), Default::default(), Vec3::new(0.0, 0.0, -1.0)), false);
+    let sphere = Sphere::new(
+        Affine3A::from_scale_rotation_translation(Vec3::splat(2.0), Default::default(), Vec3::new(0.0, 0.0, -1.0)),
+        false,
+    );
     let disk = Disk::new(Affine3A::from_translation(Vec3::new(10.0, 0.0, 0.0)), false);
     let cyl = Cylinder::new(Affine3A::from_translation(Vec3::new(-10.0, 0.0, 0.0)), false);
     let scene = Scene::new(
-        vec![shape(Geometry::Sphere(sphere), 0, None), shape(Geometry::Disk(disk), 0, None), shape(Geometry::Cylinder(cyl), 0, None)],
+        vec![
+            shape(Geometry::Sphere(sphere), 0, None),
+            shape(Geometry::Disk(disk), 0, None),
+            shape(Geometry::Cylinder(cyl), 0, None),
+        ],
         vec![diffuse(0.5)],
         vec![],
         vec![],
@@ -105,9 +112,42 @@ fn analytic_shapes_hit_where_geometry_says() {
 fn emitter_sampling_densities_are_consistent_and_normalised() {
     let cases: Vec<(&str, Geometry, bool)> = vec![
         ("square", Geometry::Triangles(square(0.7, 1.5)), true),
-        ("sphere", Geometry::Sphere(Sphere::new(Affine3A::from_scale_rotation_translation(Vec3::splat(0.8), Default::default(), Vec3::new(0.3, 0.2, 2.5)), false)), true),
-        ("disk", Geometry::Disk(Disk::new(Affine3A::from_scale_rotation_translation(Vec3::new(1.0, 0.5, 1.0), glam::Quat::from_rotation_x(0.3), Vec3::new(0.0, 0.0, 2.0)), false)), true),
-        ("cylinder", Geometry::Cylinder(Cylinder::new(Affine3A::from_scale_rotation_translation(Vec3::new(0.5, 0.5, 2.0), glam::Quat::from_rotation_x(1.2), Vec3::new(0.0, 1.0, 2.0)), false)), false),
+        (
+            "sphere",
+            Geometry::Sphere(Sphere::new(
+                Affine3A::from_scale_rotation_translation(
+                    Vec3::splat(0.8),
+                    Default::default(),
+                    Vec3::new(0.3, 0.2, 2.5),
+                ),
+                false,
+            )),
+            true,
+        ),
+        (
+            "disk",
+            Geometry::Disk(Disk::new(
+                Affine3A::from_scale_rotation_translation(
+                    Vec3::new(1.0, 0.5, 1.0),
+                    glam::Quat::from_rotation_x(0.3),
+                    Vec3::new(0.0, 0.0, 2.0),
+                ),
+                false,
+            )),
+            true,
+        ),
+        (
+            "cylinder",
+            Geometry::Cylinder(Cylinder::new(
+                Affine3A::from_scale_rotation_translation(
+                    Vec3::new(0.5, 0.5, 2.0),
+                    glam::Quat::from_rotation_x(1.2),
+                    Vec3::new(0.0, 1.0, 2.0),
+                ),
+                false,
+            )),
+            false,
+        ),
     ];
     let ref_p = Vec3::new(0.1, -0.2, 0.0);
     for (name, geometry, integrates_to_one) in cases {
@@ -155,8 +195,19 @@ fn emitter_sampling_densities_are_consistent_and_normalised() {
 #[test]
 fn white_furnace_returns_the_environment_radiance() {
     let sphere = Sphere::new(Affine3A::IDENTITY, false);
-    for bsdf in [diffuse(1.0), Bsdf::Matte { model: matte::brdf::Bsdf::Lambert(matte::brdf::Lambert), reflectance: Texture::Constant(Vec3::ONE) }] {
-        let scene = Scene::new(vec![shape(Geometry::Sphere(sphere.clone()), 0, None)], vec![bsdf], vec![Emitter::Constant { radiance: Vec3::ONE }], vec![1.0]);
+    for bsdf in [
+        diffuse(1.0),
+        Bsdf::Matte {
+            model: matte::brdf::Bsdf::Lambert(matte::brdf::Lambert),
+            reflectance: Texture::Constant(Vec3::ONE),
+        },
+    ] {
+        let scene = Scene::new(
+            vec![shape(Geometry::Sphere(sphere.clone()), 0, None)],
+            vec![bsdf],
+            vec![Emitter::Constant { radiance: Vec3::ONE }],
+            vec![1.0],
+        );
         for (x, y) in [(0.0, 0.0), (0.6, 0.3), (0.0, 0.97)] {
             let ray = Ray::new(Vec3::new(x, y, 5.0), Vec3::NEG_Z, f32::INFINITY);
             let (mean, se) = estimate(&scene, &path(u32::MAX), ray, 40_000, 3);
@@ -180,7 +231,8 @@ fn plane_under_point_light_matches_closed_form() {
         vec![Emitter::Point { position: Vec3::new(0.0, 0.0, h), intensity: Vec3::splat(i) }],
         vec![1.0],
     );
-    let direct = |ne, nb| Integrator::Direct(DirectIntegrator { emitter_samples: ne, bsdf_samples: nb, hide_emitters: false });
+    let direct =
+        |ne, nb| Integrator::Direct(DirectIntegrator { emitter_samples: ne, bsdf_samples: nb, hide_emitters: false });
     for x in [0.0f32, 1.0, 3.0] {
         let p = Vec3::new(x, if x == 0.0 { 0.0 } else { 0.5 }, 0.0);
         let d2 = (Vec3::new(0.0, 0.0, h) - p).length_squared();
@@ -189,7 +241,12 @@ fn plane_under_point_light_matches_closed_form() {
         let ray = Ray::new(p + Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY);
         for (integrator, factor) in [(path(2), 1.0), (path(u32::MAX), 1.0), (direct(1, 1), 1.0), (direct(4, 1), 4.0)] {
             let (mean, _) = estimate(&scene, &integrator, ray, 64, 5);
-            assert!((mean.x - expected * factor).abs() < 1e-4 * expected * factor, "x={x} {integrator:?}: {} vs {}", mean.x, expected * factor);
+            assert!(
+                (mean.x - expected * factor).abs() < 1e-4 * expected * factor,
+                "x={x} {integrator:?}: {} vs {}",
+                mean.x,
+                expected * factor
+            );
         }
     }
 }
@@ -214,14 +271,28 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
                 pos.push(p);
             }
             // Normal of (u,v) order is +axis; inward needs −sign·axis.
-            if sign < 0.0 { tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]]) } else { tris.extend([[base, base + 2, base + 1], [base, base + 3, base + 2]]) }
+            if sign < 0.0 {
+                tris.extend([[base, base + 1, base + 2], [base, base + 2, base + 3]])
+            } else {
+                tris.extend([[base, base + 2, base + 1], [base, base + 3, base + 2]])
+            }
         }
     }
     let mesh = TriangleMesh { positions: pos, normals: vec![], uvs: vec![], triangles: tris };
-    let scene = Scene::new(vec![shape(Geometry::Triangles(Triangles::new(mesh, false)), 0, Some(0))], vec![diffuse(0.5)], vec![Emitter::Area { shape: 0, radiance: Vec3::ONE }], vec![1.0]);
+    let scene = Scene::new(
+        vec![shape(Geometry::Triangles(Triangles::new(mesh, false)), 0, Some(0))],
+        vec![diffuse(0.5)],
+        vec![Emitter::Area { shape: 0, radiance: Vec3::ONE }],
+        vec![1.0],
+    );
     let ray = Ray::new(Vec3::new(0.1, 0.2, 0.0), Vec3::new(0.3, -0.2, 1.0).normalize(), f32::INFINITY);
     for (depth, expected) in [(1u32, 1.0f32), (2, 1.5), (3, 1.75), (u32::MAX, 2.0)] {
         let (mean, se) = estimate(&scene, &path(depth), ray, 20_000, 11);
-        assert!((mean.x - expected).abs() < 4.0 * se.x + 1e-4, "max_depth {depth}: {} ± {} vs {expected}", mean.x, se.x);
+        assert!(
+            (mean.x - expected).abs() < 4.0 * se.x + 1e-4,
+            "max_depth {depth}: {} ± {} vs {expected}",
+            mean.x,
+            se.x
+        );
     }
 }

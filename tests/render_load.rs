@@ -94,7 +94,9 @@ fn shape_bsdf(s: &LoadedScene, i: usize) -> &Bsdf {
 
 fn constant_reflectance(b: &Bsdf) -> Vec3 {
     match b {
-        Bsdf::Diffuse { reflectance: Texture::Constant(c) } | Bsdf::Matte { reflectance: Texture::Constant(c), .. } => *c,
+        Bsdf::Diffuse { reflectance: Texture::Constant(c) } | Bsdf::Matte { reflectance: Texture::Constant(c), .. } => {
+            *c
+        }
         other => panic!("expected a constant diffuse reflectance, got {other:?}"),
     }
 }
@@ -155,7 +157,8 @@ fn path_integrator_defaults_and_values() {
     ));
     let Integrator::Path(p) = s.integrator else { panic!("not path") };
     assert_eq!((p.max_depth, p.rr_depth, p.hide_emitters), (3, 2, true));
-    let Integrator::Path(p) = ok(&with_sensor("<integrator type=\"path\"><integer name=\"max_depth\" value=\"0\"/></integrator>")).integrator
+    let Integrator::Path(p) =
+        ok(&with_sensor("<integrator type=\"path\"><integer name=\"max_depth\" value=\"0\"/></integrator>")).integrator
     else {
         panic!("not path")
     };
@@ -167,7 +170,9 @@ fn path_integrator_defaults_and_values() {
 
 #[test]
 fn direct_integrator_defaults_and_values() {
-    let Integrator::Direct(d) = ok(&with_sensor("<integrator type=\"direct\"/>")).integrator else { panic!("not direct") };
+    let Integrator::Direct(d) = ok(&with_sensor("<integrator type=\"direct\"/>")).integrator else {
+        panic!("not direct")
+    };
     assert_eq!((d.emitter_samples, d.bsdf_samples, d.hide_emitters), (1, 1, false));
     let s = ok(&with_sensor(
         "<integrator type=\"direct\"><integer name=\"emitter_samples\" value=\"4\"/><integer name=\"bsdf_samples\" value=\"0\"/>\
@@ -176,7 +181,8 @@ fn direct_integrator_defaults_and_values() {
     let Integrator::Direct(d) = s.integrator else { panic!("not direct") };
     assert_eq!((d.emitter_samples, d.bsdf_samples, d.hide_emitters), (4, 0, true));
     // shading_samples sets both.
-    let s = ok(&with_sensor("<integrator type=\"direct\"><integer name=\"shading_samples\" value=\"3\"/></integrator>"));
+    let s =
+        ok(&with_sensor("<integrator type=\"direct\"><integer name=\"shading_samples\" value=\"3\"/></integrator>"));
     let Integrator::Direct(d) = s.integrator else { panic!("not direct") };
     assert_eq!((d.emitter_samples, d.bsdf_samples), (3, 3));
 }
@@ -184,11 +190,31 @@ fn direct_integrator_defaults_and_values() {
 #[test]
 fn integrator_errors() {
     assert_body_err("<integrator type=\"volpath\"/>", 1, "unsupported integrator type \"volpath\"");
-    assert_body_err("<integrator type=\"path\">\n<integer name=\"max_depth\" value=\"-2\"/>\n</integrator>", 2, "max_depth");
-    assert_body_err("<integrator type=\"path\">\n<integer name=\"rr_depth\" value=\"0\"/>\n</integrator>", 2, "rr_depth");
-    assert_body_err("<integrator type=\"path\">\n<float name=\"max_depth\" value=\"3\"/>\n</integrator>", 2, "wrong type");
-    assert_body_err("<integrator type=\"path\">\n<string name=\"hide_emitters\" value=\"yes\"/>\n</integrator>", 2, "wrong type");
-    assert_body_err("<integrator type=\"path\">\n<integer name=\"samples\" value=\"3\"/>\n</integrator>", 2, "unreferenced property \"samples\"");
+    assert_body_err(
+        "<integrator type=\"path\">\n<integer name=\"max_depth\" value=\"-2\"/>\n</integrator>",
+        2,
+        "max_depth",
+    );
+    assert_body_err(
+        "<integrator type=\"path\">\n<integer name=\"rr_depth\" value=\"0\"/>\n</integrator>",
+        2,
+        "rr_depth",
+    );
+    assert_body_err(
+        "<integrator type=\"path\">\n<float name=\"max_depth\" value=\"3\"/>\n</integrator>",
+        2,
+        "wrong type",
+    );
+    assert_body_err(
+        "<integrator type=\"path\">\n<string name=\"hide_emitters\" value=\"yes\"/>\n</integrator>",
+        2,
+        "wrong type",
+    );
+    assert_body_err(
+        "<integrator type=\"path\">\n<integer name=\"samples\" value=\"3\"/>\n</integrator>",
+        2,
+        "unreferenced property \"samples\"",
+    );
     assert_body_err(
         "<integrator type=\"direct\">\n<integer name=\"shading_samples\" value=\"2\"/>\n<integer name=\"bsdf_samples\" value=\"2\"/>\n</integrator>",
         1,
@@ -248,8 +274,14 @@ fn default_focal_length_gives_38_1848_degrees_at_4_to_3() {
 #[test]
 fn fov_axis_converts_with_the_full_film_aspect() {
     // §4 [verified]: fov 45 at 768×576 → y 57.8224, diagonal 36.6674, smaller 57.8224, larger 45.
-    for (axis, x_fov) in [("x", 45.0), ("y", 57.8224), ("diagonal", 36.6674), ("smaller", 57.8224), ("larger", 45.0), ("Y", 57.8224)] {
-        let s = camera(&format!("<float name=\"fov\" value=\"45\"/><string name=\"fov_axis\" value=\"{axis}\"/>"), 768, 576);
+    for (axis, x_fov) in
+        [("x", 45.0), ("y", 57.8224), ("diagonal", 36.6674), ("smaller", 57.8224), ("larger", 45.0), ("Y", 57.8224)]
+    {
+        let s = camera(
+            &format!("<float name=\"fov\" value=\"45\"/><string name=\"fov_axis\" value=\"{axis}\"/>"),
+            768,
+            576,
+        );
         assert!((tan_half_x_fov(&s) - tan_half_deg(x_fov)).abs() < 2e-6, "{axis}");
     }
     // Portrait film (a < 1): smaller is x, larger is y: tan = tan(fov/2)·a.
@@ -261,7 +293,11 @@ fn fov_axis_converts_with_the_full_film_aspect() {
 
 #[test]
 fn near_far_clip_principal_point_and_to_world() {
-    let s = camera("<float name=\"fov\" value=\"90\"/><float name=\"near_clip\" value=\"0.5\"/><float name=\"far_clip\" value=\"20\"/>", 4, 2);
+    let s = camera(
+        "<float name=\"fov\" value=\"90\"/><float name=\"near_clip\" value=\"0.5\"/><float name=\"far_clip\" value=\"20\"/>",
+        4,
+        2,
+    );
     let r = s.camera.ray(Vec2::new(2.0, 1.0));
     assert_vec(r.o, Vec3::new(0.0, 0.0, 0.5), 1e-6);
     assert!((r.maxt - 19.5).abs() < 1e-5);
@@ -270,8 +306,12 @@ fn near_far_clip_principal_point_and_to_world() {
     assert!((r.maxt - 19.5 * 1.5).abs() < 1e-4);
 
     // Principal point offsets are fractions of the film added to the screen position (§4).
-    let off = camera("<float name=\"fov\" value=\"60\"/><float name=\"principal_point_offset_x\" value=\"0.25\"/>\
-                      <float name=\"principal_point_offset_y\" value=\"-0.125\"/>", 8, 4);
+    let off = camera(
+        "<float name=\"fov\" value=\"60\"/><float name=\"principal_point_offset_x\" value=\"0.25\"/>\
+                      <float name=\"principal_point_offset_y\" value=\"-0.125\"/>",
+        8,
+        4,
+    );
     let plain = camera("<float name=\"fov\" value=\"60\"/>", 8, 4);
     assert_vec(off.camera.ray(Vec2::new(4.0, 2.0)).d, plain.camera.ray(Vec2::new(6.0, 1.5)).d, 1e-6);
 
@@ -299,7 +339,9 @@ fn camera_transform_may_mirror_but_not_scale_or_shear() {
     assert_vec(s.camera.ray(Vec2::ZERO).d, Vec3::new(2.0, 1.0, -2.0) / 3.0, 1e-6);
     // 1.0004² − 1 < 1e-3: accepted (as by Mitsuba); 1.0008² − 1 > 1e-3: rejected.
     camera("<transform name=\"to_world\"><scale value=\"1.0004\"/></transform>", 4, 2);
-    let sensor = |tf: &str| scene(&format!("<sensor type=\"perspective\">\n<transform name=\"to_world\">{tf}</transform>\n</sensor>"));
+    let sensor = |tf: &str| {
+        scene(&format!("<sensor type=\"perspective\">\n<transform name=\"to_world\">{tf}</transform>\n</sensor>"))
+    };
     assert_err(load(&sensor("<scale value=\"2\"/>")), 3, "scale factors are not allowed");
     assert_err(load(&sensor("<scale value=\"1.0008\"/>")), 3, "scale factors are not allowed");
     // Unit-length but not orthogonal columns: a shear.
@@ -321,8 +363,10 @@ fn film_defaults_size_crop_and_filters() {
              <integer name=\"height\" value=\"6\"/>{inner}</film></sensor>"
         )))
     };
-    let s = film("<integer name=\"crop_offset_x\" value=\"2\"/><integer name=\"crop_offset_y\" value=\"1\"/>\
-                  <integer name=\"crop_width\" value=\"4\"/><integer name=\"crop_height\" value=\"3\"/>");
+    let s = film(
+        "<integer name=\"crop_offset_x\" value=\"2\"/><integer name=\"crop_offset_y\" value=\"1\"/>\
+                  <integer name=\"crop_width\" value=\"4\"/><integer name=\"crop_height\" value=\"3\"/>",
+    );
     assert_eq!((s.film.width(), s.film.height()), (8, 6));
     assert_eq!(s.film.crop(), CropWindow { offset: [2, 1], size: [4, 3] });
     // The camera still projects the full film (§6 crop): same rays as without the crop.
@@ -331,16 +375,27 @@ fn film_defaults_size_crop_and_filters() {
         assert_eq!(s.camera.ray(p).d, full.camera.ray(p).d);
     }
     // A size alone keeps offset 0.
-    assert_eq!(film("<integer name=\"crop_width\" value=\"5\"/>").film.crop(), CropWindow { offset: [0, 0], size: [5, 6] });
+    assert_eq!(
+        film("<integer name=\"crop_width\" value=\"5\"/>").film.crop(),
+        CropWindow { offset: [0, 0], size: [5, 6] }
+    );
     // Filters with their defaults: box; tent radius 1; gaussian σ 0.5.
     let filter = |xml: &str| film(xml).film.filter();
     assert_eq!(filter("<rfilter type=\"box\"/>"), ReconstructionFilter::Box);
     assert_eq!(filter("<rfilter type=\"tent\"/>"), ReconstructionFilter::Tent { radius: 1.0 });
-    assert_eq!(filter("<rfilter type=\"tent\"><float name=\"radius\" value=\"1.5\"/></rfilter>"), ReconstructionFilter::Tent { radius: 1.5 });
+    assert_eq!(
+        filter("<rfilter type=\"tent\"><float name=\"radius\" value=\"1.5\"/></rfilter>"),
+        ReconstructionFilter::Tent { radius: 1.5 }
+    );
     assert_eq!(filter("<rfilter type=\"gaussian\"/>"), ReconstructionFilter::Gaussian { stddev: 0.5 });
-    assert_eq!(filter("<rfilter type=\"gaussian\"><float name=\"stddev\" value=\"0.25\"/></rfilter>"), ReconstructionFilter::Gaussian { stddev: 0.25 });
+    assert_eq!(
+        filter("<rfilter type=\"gaussian\"><float name=\"stddev\" value=\"0.25\"/></rfilter>"),
+        ReconstructionFilter::Gaussian { stddev: 0.25 }
+    );
     // Output-format properties are read (they only matter for files Mitsuba writes).
-    film("<string name=\"pixel_format\" value=\"RGBA\"/><string name=\"component_format\" value=\"float32\"/><string name=\"file_format\" value=\"openexr\"/>");
+    film(
+        "<string name=\"pixel_format\" value=\"RGBA\"/><string name=\"component_format\" value=\"float32\"/><string name=\"file_format\" value=\"openexr\"/>",
+    );
 }
 
 #[test]
@@ -359,8 +414,16 @@ fn sampler_defaults_and_values() {
 fn sensor_film_sampler_errors() {
     let sensor = |inner: &str| scene(&format!("<sensor type=\"perspective\">\n{inner}\n</sensor>"));
     assert_err(load(&scene("<sensor type=\"thinlens\"/>")), 2, "unsupported sensor type \"thinlens\"");
-    assert_err(load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"focal_length\" value=\"35mm\"/>")), 2, "either fov or focal_length");
-    assert_err(load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"fov_axis\" value=\"z\"/>")), 4, "fov_axis");
+    assert_err(
+        load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"focal_length\" value=\"35mm\"/>")),
+        2,
+        "either fov or focal_length",
+    );
+    assert_err(
+        load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"fov_axis\" value=\"z\"/>")),
+        4,
+        "fov_axis",
+    );
     assert_err(load(&sensor("<string name=\"fov_axis\" value=\"y\"/>")), 3, "unreferenced property \"fov_axis\"");
     assert_err(load(&sensor("<float name=\"fov\" value=\"180\"/>")), 3, "fov");
     assert_err(load(&sensor("<float name=\"fov\" value=\"0\"/>")), 3, "fov");
@@ -369,31 +432,69 @@ fn sensor_film_sampler_errors() {
     assert_err(load(&sensor("<string name=\"focal_length\" value=\"0mm\"/>")), 3, "focal_length");
     assert_err(load(&sensor("<float name=\"near_clip\" value=\"0\"/>")), 3, "near_clip");
     // A principal point offset that is NaN or would overflow the ray direction (matte's limit).
-    assert_err(load(&sensor("<float name=\"principal_point_offset_y\" value=\"nan\"/>")), 3, "principal_point_offset_y");
-    assert_err(load(&sensor("<float name=\"principal_point_offset_x\" value=\"1e30\"/>")), 3, "principal_point_offset_x");
-    assert_err(load(&sensor("<float name=\"near_clip\" value=\"5\"/>\n<float name=\"far_clip\" value=\"2\"/>")), 2, "far_clip");
+    assert_err(
+        load(&sensor("<float name=\"principal_point_offset_y\" value=\"nan\"/>")),
+        3,
+        "principal_point_offset_y",
+    );
+    assert_err(
+        load(&sensor("<float name=\"principal_point_offset_x\" value=\"1e30\"/>")),
+        3,
+        "principal_point_offset_x",
+    );
+    assert_err(
+        load(&sensor("<float name=\"near_clip\" value=\"5\"/>\n<float name=\"far_clip\" value=\"2\"/>")),
+        2,
+        "far_clip",
+    );
     assert_err(load(&sensor("<shape type=\"sphere\"/>")), 3, "cannot be nested in a sensor");
     assert_err(load(&sensor("<film type=\"hdrfilm\"/>\n<film type=\"hdrfilm\"/>")), 4, "only one film");
-    assert_err(load(&sensor("<sampler type=\"independent\"/>\n<sampler type=\"independent\"/>")), 4, "only one sampler");
+    assert_err(
+        load(&sensor("<sampler type=\"independent\"/>\n<sampler type=\"independent\"/>")),
+        4,
+        "only one sampler",
+    );
     // Film.
     assert_err(load(&sensor("<film type=\"specfilm\"/>")), 3, "unsupported film type \"specfilm\"");
-    let film = |inner: &str| sensor(&format!("<film type=\"hdrfilm\">\n<integer name=\"width\" value=\"8\"/>\n{inner}\n</film>"));
+    let film = |inner: &str| {
+        sensor(&format!("<film type=\"hdrfilm\">\n<integer name=\"width\" value=\"8\"/>\n{inner}\n</film>"))
+    };
     assert_err(load(&film("<integer name=\"height\" value=\"0\"/>")), 5, "height");
     assert_err(load(&film("<float name=\"height\" value=\"6\"/>")), 5, "wrong type");
     // An offset alone keeps the full-size default crop, which then sticks out (Mitsuba:
     // "Invalid crop window specification").
     assert_err(load(&film("<integer name=\"crop_offset_x\" value=\"2\"/>")), 3, "invalid crop window");
-    assert_err(load(&film("<integer name=\"crop_offset_x\" value=\"4\"/>\n<integer name=\"crop_width\" value=\"5\"/>")), 3, "invalid crop window");
+    assert_err(
+        load(&film("<integer name=\"crop_offset_x\" value=\"4\"/>\n<integer name=\"crop_width\" value=\"5\"/>")),
+        3,
+        "invalid crop window",
+    );
     assert_err(load(&film("<integer name=\"crop_width\" value=\"0\"/>")), 5, "crop_width");
     assert_err(load(&film("<string name=\"pixel_format\" value=\"xyz\"/>")), 5, "pixel_format");
     assert_err(load(&film("<boolean name=\"sample_border\" value=\"true\"/>")), 5, "sample_border");
     assert_err(load(&film("<rfilter type=\"lanczos\"/>")), 5, "unsupported rfilter type \"lanczos\"");
     assert_err(load(&film("<rfilter type=\"tent\">\n<float name=\"radius\" value=\"-1\"/>\n</rfilter>")), 6, "radius");
-    assert_err(load(&film("<rfilter type=\"gaussian\">\n<float name=\"sigma\" value=\"1\"/>\n</rfilter>")), 6, "unreferenced property \"sigma\"");
+    assert_err(
+        load(&film("<rfilter type=\"gaussian\">\n<float name=\"sigma\" value=\"1\"/>\n</rfilter>")),
+        6,
+        "unreferenced property \"sigma\"",
+    );
     // Filters wider than 1024 px (4σ for the Gaussian) cannot get their image-block border.
-    assert_err(load(&film("<rfilter type=\"tent\">\n<float name=\"radius\" value=\"2000\"/>\n</rfilter>")), 6, "filter radius");
-    assert_err(load(&film("<rfilter type=\"gaussian\">\n<float name=\"stddev\" value=\"300\"/>\n</rfilter>")), 6, "filter radius");
-    assert_err(load(&film("<rfilter type=\"box\"/>\n<rfilter type=\"tent\"/>")), 6, "only have one reconstruction filter");
+    assert_err(
+        load(&film("<rfilter type=\"tent\">\n<float name=\"radius\" value=\"2000\"/>\n</rfilter>")),
+        6,
+        "filter radius",
+    );
+    assert_err(
+        load(&film("<rfilter type=\"gaussian\">\n<float name=\"stddev\" value=\"300\"/>\n</rfilter>")),
+        6,
+        "filter radius",
+    );
+    assert_err(
+        load(&film("<rfilter type=\"box\"/>\n<rfilter type=\"tent\"/>")),
+        6,
+        "only have one reconstruction filter",
+    );
     assert_err(load(&film("<sampler type=\"independent\"/>")), 5, "cannot be nested in a film");
     // Sampler.
     assert_err(load(&sensor("<sampler type=\"stratified\"/>")), 3, "unsupported sampler type \"stratified\"");
@@ -471,7 +572,9 @@ fn cylinder_p0_p1_radius_without_caps() {
     assert!(hit(&s, Vec3::new(5.0, -0.1, 0.0), Vec3::NEG_X).is_none());
     assert!(hit(&s, Vec3::new(0.0, 5.0, 0.0), Vec3::NEG_Y).is_none());
     // Defaults p0 (0,0,0), p1 (0,0,1), radius 1, inside to_world.
-    let s = ok(&with_sensor("<shape type=\"cylinder\"><transform name=\"to_world\"><translate x=\"3\"/></transform></shape>"));
+    let s = ok(&with_sensor(
+        "<shape type=\"cylinder\"><transform name=\"to_world\"><translate x=\"3\"/></transform></shape>",
+    ));
     let si = hit(&s, Vec3::new(3.0, 5.0, 0.5), Vec3::NEG_Y).expect("hit");
     assert_vec(si.p, Vec3::new(3.0, 1.0, 0.5), 1e-5);
     assert!(hit(&s, Vec3::new(3.0, 5.0, 1.1), Vec3::NEG_Y).is_none());
@@ -490,7 +593,9 @@ fn disk_rectangle_cube_and_flip_normals() {
     assert_vec(hit(&s, Vec3::new(0.2, 0.0, 5.0), Vec3::NEG_Z).expect("hit").sh_frame.n, Vec3::NEG_Z, 1e-6);
 
     // Rectangle [−1,1]² in z=0, +z normal; flip_normals negates n and sh_n (§8).
-    let s = ok(&with_sensor("<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/></transform></shape>"));
+    let s = ok(&with_sensor(
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale value=\"3\"/></transform></shape>",
+    ));
     let si = hit(&s, Vec3::new(2.5, -2.5, 4.0), Vec3::NEG_Z).expect("hit");
     assert_vec(si.p, Vec3::new(2.5, -2.5, 0.0), 1e-5);
     assert_vec(si.n, Vec3::Z, 1e-6);
@@ -532,7 +637,10 @@ fn obj_and_ply_meshes_from_files() {
     // Relative file names resolve against the scene file's folder.
     let path = dir.join("scene.xml");
     std::fs::write(&path, &xml).unwrap();
-    for s in [load_file(&path, &[]).unwrap_or_else(|e| panic!("{e}")), load_str(&xml, &path, &[]).unwrap_or_else(|e| panic!("{e}"))] {
+    for s in [
+        load_file(&path, &[]).unwrap_or_else(|e| panic!("{e}")),
+        load_str(&xml, &path, &[]).unwrap_or_else(|e| panic!("{e}")),
+    ] {
         assert_eq!(s.scene.shapes.len(), 2);
         assert_eq!(s.scene.primitive_count(), 3);
         // The quad (fan-triangulated, CCW seen from +z) moved to z = 2.
@@ -592,7 +700,8 @@ fn shape_errors() {
     std::fs::write(dir.join("garbage.ply"), "this is not a ply file\n").unwrap();
     let path = dir.join("scene.xml");
     let mesh_err = |plugin: &str, file: &str, needle: &str| {
-        let xml = with_sensor(&format!("<shape type=\"{plugin}\">\n<string name=\"filename\" value=\"{file}\"/>\n</shape>"));
+        let xml =
+            with_sensor(&format!("<shape type=\"{plugin}\">\n<string name=\"filename\" value=\"{file}\"/>\n</shape>"));
         let Err(e) = load_str(&xml, &path, &[]) else { panic!("{file}: expected an error") };
         assert_error_at(&e, &path, 4, needle);
         assert!(e.to_string().contains(file), "{e}");
@@ -610,25 +719,57 @@ fn shape_errors() {
     assert_body_err("<shape type=\"sphere\">\n<float name=\"radius\" value=\"nan\"/>\n</shape>", 2, "radius");
     assert_body_err("<shape type=\"sphere\">\n<rgb name=\"center\" value=\"1 2 3\"/>\n</shape>", 2, "wrong type");
     // Beyond ±1e15 the BVH's f32 box areas overflow (matte's limit).
-    assert_body_err("<shape type=\"sphere\">\n<float name=\"radius\" value=\"1e20\"/>\n</shape>", 1, "reaches coordinate");
-    assert_body_err("<shape type=\"cube\">\n<transform name=\"to_world\"><translate x=\"1e16\"/></transform>\n</shape>", 1, "reaches coordinate");
-    assert_body_err("<shape type=\"sphere\">\n<boolean name=\"face_normals\" value=\"true\"/>\n</shape>", 2, "unreferenced property \"face_normals\"");
-    assert_body_err("<shape type=\"disk\">\n<float name=\"radius\" value=\"2\"/>\n</shape>", 2, "unreferenced property \"radius\"");
+    assert_body_err(
+        "<shape type=\"sphere\">\n<float name=\"radius\" value=\"1e20\"/>\n</shape>",
+        1,
+        "reaches coordinate",
+    );
+    assert_body_err(
+        "<shape type=\"cube\">\n<transform name=\"to_world\"><translate x=\"1e16\"/></transform>\n</shape>",
+        1,
+        "reaches coordinate",
+    );
+    assert_body_err(
+        "<shape type=\"sphere\">\n<boolean name=\"face_normals\" value=\"true\"/>\n</shape>",
+        2,
+        "unreferenced property \"face_normals\"",
+    );
+    assert_body_err(
+        "<shape type=\"disk\">\n<float name=\"radius\" value=\"2\"/>\n</shape>",
+        2,
+        "unreferenced property \"radius\"",
+    );
     assert_body_err(
         "<shape type=\"cylinder\">\n<point name=\"p0\" value=\"1 1 1\"/>\n<point name=\"p1\" value=\"1 1 1\"/>\n</shape>",
         1,
         "p0 ≠ p1",
     );
-    assert_body_err("<shape type=\"sphere\">\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/>\n</shape>", 1, "more than one BSDF");
-    assert_body_err("<shape type=\"sphere\">\n<emitter type=\"area\"/>\n<emitter type=\"area\"/>\n</shape>", 1, "more than one emitter");
-    assert_body_err("<shape type=\"sphere\">\n<sensor type=\"perspective\"/>\n</shape>", 2, "cannot be nested in a shape");
+    assert_body_err(
+        "<shape type=\"sphere\">\n<bsdf type=\"diffuse\"/>\n<bsdf type=\"diffuse\"/>\n</shape>",
+        1,
+        "more than one BSDF",
+    );
+    assert_body_err(
+        "<shape type=\"sphere\">\n<emitter type=\"area\"/>\n<emitter type=\"area\"/>\n</shape>",
+        1,
+        "more than one emitter",
+    );
+    assert_body_err(
+        "<shape type=\"sphere\">\n<sensor type=\"perspective\"/>\n</shape>",
+        2,
+        "cannot be nested in a shape",
+    );
     // NaN anywhere in a transform is an error at its line (the parser's check).
     assert_body_err(
         "<shape type=\"rectangle\">\n<transform name=\"to_world\">\n<matrix value=\"1 0 0 0 0 nan 0 0 0 0 1 0 0 0 0 1\"/>\n</transform>\n</shape>",
         3,
         "NaN",
     );
-    assert_body_err("<shape type=\"rectangle\">\n<transform name=\"to_world\">\n<translate x=\"inf\"/>\n</transform>\n</shape>", 3, "NaN or infinity");
+    assert_body_err(
+        "<shape type=\"rectangle\">\n<transform name=\"to_world\">\n<translate x=\"inf\"/>\n</transform>\n</shape>",
+        3,
+        "NaN or infinity",
+    );
 }
 
 // ------------------------------------------------------------------------------------------
@@ -658,7 +799,8 @@ fn area_emitter_colours() {
 #[test]
 fn point_spot_directional_constant() {
     // point: intensity default 1, position or to_world's translation (§9).
-    let Emitter::Point { position, intensity } = one_emitter("<emitter type=\"point\"><point name=\"position\" x=\"1\" y=\"2\" z=\"3\"/></emitter>")
+    let Emitter::Point { position, intensity } =
+        one_emitter("<emitter type=\"point\"><point name=\"position\" x=\"1\" y=\"2\" z=\"3\"/></emitter>")
     else {
         panic!()
     };
@@ -676,7 +818,9 @@ fn point_spot_directional_constant() {
     assert_eq!(position, Vec3::ZERO);
 
     // spot: cutoff 20°, beam 0.75·cutoff = 15°, intensity 1, emits along to_world's +z.
-    let Emitter::Spot { to_world, intensity, cutoff, beam_width, .. } = one_emitter("<emitter type=\"spot\"/>") else { panic!() };
+    let Emitter::Spot { to_world, intensity, cutoff, beam_width, .. } = one_emitter("<emitter type=\"spot\"/>") else {
+        panic!()
+    };
     assert!((cutoff - 20f32.to_radians()).abs() < 1e-6 && (beam_width - 15f32.to_radians()).abs() < 1e-6);
     assert_eq!((to_world, intensity), (glam::Affine3A::IDENTITY, Vec3::ONE));
     let Emitter::Spot { to_world, intensity, cutoff, beam_width, .. } = one_emitter(
@@ -716,11 +860,15 @@ fn point_spot_directional_constant() {
     assert_eq!(irradiance, Vec3::new(0.4, 0.35, 0.3));
 
     // constant: radiance 1; the environment; to_world is accepted and changes nothing.
-    let s = ok(&with_sensor("<shape type=\"sphere\"/><emitter type=\"constant\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"30\"/></transform></emitter>"));
+    let s = ok(&with_sensor(
+        "<shape type=\"sphere\"/><emitter type=\"constant\"><transform name=\"to_world\"><rotate y=\"1\" angle=\"30\"/></transform></emitter>",
+    ));
     assert_eq!(s.scene.environment, Some(0));
     let Emitter::Constant { radiance } = s.scene.emitters[0] else { panic!() };
     assert_eq!(radiance, Vec3::ONE);
-    let Emitter::Constant { radiance } = one_emitter("<emitter type=\"constant\"><spectrum name=\"radiance\" value=\"1\"/></emitter>") else {
+    let Emitter::Constant { radiance } =
+        one_emitter("<emitter type=\"constant\"><spectrum name=\"radiance\" value=\"1\"/></emitter>")
+    else {
         panic!()
     };
     assert_vec(radiance, Vec3::new(1.204794, 0.948292, 0.908916), 1e-5);
@@ -737,7 +885,9 @@ fn sampling_weights_set_the_selection_pmf() {
     let pdf = s.scene.pdf_emitter_direction(Vec3::ZERO, env, None);
     assert!((pdf - 0.75 / (4.0 * PI)).abs() < 1e-7, "{pdf}");
     // Uniform when all weights are 1 (area emitters count one each).
-    let s = ok(&with_sensor("<emitter type=\"constant\"/><emitter type=\"point\"/><shape type=\"sphere\"><emitter type=\"area\"/></shape>"));
+    let s = ok(&with_sensor(
+        "<emitter type=\"constant\"/><emitter type=\"point\"/><shape type=\"sphere\"><emitter type=\"area\"/></shape>",
+    ));
     let pdf = s.scene.pdf_emitter_direction(Vec3::ZERO, s.scene.environment.unwrap(), None);
     assert!((pdf - 1.0 / 3.0 / (4.0 * PI)).abs() < 1e-7, "{pdf}");
 }
@@ -752,7 +902,11 @@ fn emitter_errors() {
         3,
         "to_world",
     );
-    assert_body_err("<shape type=\"sphere\">\n<emitter type=\"point\"/>\n</shape>", 2, "only an \"area\" emitter can be nested");
+    assert_body_err(
+        "<shape type=\"sphere\">\n<emitter type=\"point\"/>\n</shape>",
+        2,
+        "only an \"area\" emitter can be nested",
+    );
     assert_body_err(
         "<emitter type=\"point\">\n<point name=\"position\" value=\"0 0 0\"/>\n<transform name=\"to_world\"><translate x=\"1\"/></transform>\n</emitter>",
         1,
@@ -763,13 +917,29 @@ fn emitter_errors() {
         1,
         "either direction or to_world",
     );
-    assert_body_err("<emitter type=\"directional\">\n<vector name=\"direction\" value=\"0 0 0\"/>\n</emitter>", 1, "non-zero");
+    assert_body_err(
+        "<emitter type=\"directional\">\n<vector name=\"direction\" value=\"0 0 0\"/>\n</emitter>",
+        1,
+        "non-zero",
+    );
     assert_body_err("<emitter type=\"spot\">\n<float name=\"beam_width\" value=\"30\"/>\n</emitter>", 1, "beam_width");
     assert_body_err("<emitter type=\"constant\"/>\n<emitter type=\"constant\"/>", 2, "only one environment");
-    assert_body_err("<emitter type=\"point\">\n<float name=\"sampling_weight\" value=\"-1\"/>\n</emitter>", 2, "sampling_weight");
-    assert_body_err("<emitter type=\"point\">\n<float name=\"radiance\" value=\"1\"/>\n</emitter>", 2, "unreferenced property \"radiance\"");
+    assert_body_err(
+        "<emitter type=\"point\">\n<float name=\"sampling_weight\" value=\"-1\"/>\n</emitter>",
+        2,
+        "sampling_weight",
+    );
+    assert_body_err(
+        "<emitter type=\"point\">\n<float name=\"radiance\" value=\"1\"/>\n</emitter>",
+        2,
+        "unreferenced property \"radiance\"",
+    );
     assert_body_err("<emitter type=\"constant\">\n<float name=\"radiance\" value=\"inf\"/>\n</emitter>", 2, "finite");
-    assert_body_err("<emitter type=\"constant\">\n<string name=\"radiance\" value=\"white\"/>\n</emitter>", 2, "wrong type");
+    assert_body_err(
+        "<emitter type=\"constant\">\n<string name=\"radiance\" value=\"white\"/>\n</emitter>",
+        2,
+        "wrong type",
+    );
     assert_body_err(
         "<emitter type=\"constant\">\n<texture type=\"bitmap\" name=\"radiance\"><string name=\"filename\" value=\"x.png\"/></texture>\n</emitter>",
         1,
@@ -809,7 +979,11 @@ fn matte_models_with_documented_defaults() {
     let cases: [Case; 9] = [
         ("lambert", "", vec![]),
         ("oren_nayar", "", vec![("sigma", num(0.3)), ("model", Text("qualitative".into()))]),
-        ("oren_nayar", "<float name=\"sigma\" value=\"0.5\"/><string name=\"model\" value=\"full\"/>", vec![("sigma", num(0.5)), ("model", Text("full".into()))]),
+        (
+            "oren_nayar",
+            "<float name=\"sigma\" value=\"0.5\"/><string name=\"model\" value=\"full\"/>",
+            vec![("sigma", num(0.5)), ("model", Text("full".into()))],
+        ),
         ("eon", "", vec![("roughness", num(0.3))]),
         ("eon", "<float name=\"roughness\" value=\"0.6\"/>", vec![("roughness", num(0.6))]),
         ("wolff", "", vec![("int_ior", num(1.4)), ("ext_ior", num(1.0)), ("normalization", Text("physical".into()))]),
@@ -839,16 +1013,22 @@ fn matte_models_with_documented_defaults() {
 
 #[test]
 fn twosided_wraps_one_or_two_bsdfs() {
-    let b = one_bsdf("<bsdf type=\"twosided\"><bsdf type=\"diffuse\"><float name=\"reflectance\" value=\"0.2\"/></bsdf></bsdf>");
+    let b = one_bsdf(
+        "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"><float name=\"reflectance\" value=\"0.2\"/></bsdf></bsdf>",
+    );
     let Bsdf::TwoSided { front, back } = b else { panic!() };
     assert_eq!((constant_reflectance(&front), constant_reflectance(&back)), (Vec3::splat(0.2), Vec3::splat(0.2)));
-    let b = one_bsdf("<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"eon\"><float name=\"reflectance\" value=\"0.9\"/></bsdf></bsdf>");
+    let b = one_bsdf(
+        "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"eon\"><float name=\"reflectance\" value=\"0.9\"/></bsdf></bsdf>",
+    );
     let Bsdf::TwoSided { front, back } = b else { panic!() };
     assert_eq!(constant_reflectance(&front), Vec3::splat(0.5));
     assert!(matches!(*back, Bsdf::Matte { ref model, .. } if model.kind() == "eon"));
     assert_eq!(constant_reflectance(&back), Vec3::splat(0.9));
     // A referenced inner BSDF works too.
-    let s = ok(&with_sensor("<bsdf type=\"conductor\" id=\"m\"/><shape type=\"sphere\"><bsdf type=\"twosided\"><ref id=\"m\"/></bsdf></shape>"));
+    let s = ok(&with_sensor(
+        "<bsdf type=\"conductor\" id=\"m\"/><shape type=\"sphere\"><bsdf type=\"twosided\"><ref id=\"m\"/></bsdf></shape>",
+    ));
     assert!(matches!(shape_bsdf(&s, 0), Bsdf::TwoSided { front, .. } if matches!(**front, Bsdf::Conductor(_))));
 }
 
@@ -857,14 +1037,16 @@ fn dielectric_iors_and_weights() {
     // §10: int_ior bk7 1.5046 / ext_ior air 1.000277 → η = 1.504183 [verified].
     let Bsdf::Dielectric(d) = one_bsdf("<bsdf type=\"dielectric\"/>") else { panic!() };
     assert!((d.eta() - 1.504183).abs() < 1e-6, "{}", d.eta());
-    let Bsdf::Dielectric(d) = one_bsdf("<bsdf type=\"dielectric\"><string name=\"int_ior\" value=\"water\"/><string name=\"ext_ior\" value=\"Vacuum\"/></bsdf>")
-    else {
+    let Bsdf::Dielectric(d) = one_bsdf(
+        "<bsdf type=\"dielectric\"><string name=\"int_ior\" value=\"water\"/><string name=\"ext_ior\" value=\"Vacuum\"/></bsdf>",
+    ) else {
         panic!()
     };
     assert!((d.eta() - 1.333).abs() < 1e-6);
     // int < ext is fine (a bubble): only each index must be ≥ 1.
-    let Bsdf::Dielectric(d) = one_bsdf("<bsdf type=\"dielectric\"><float name=\"int_ior\" value=\"1\"/><float name=\"ext_ior\" value=\"1.33\"/></bsdf>")
-    else {
+    let Bsdf::Dielectric(d) = one_bsdf(
+        "<bsdf type=\"dielectric\"><float name=\"int_ior\" value=\"1\"/><float name=\"ext_ior\" value=\"1.33\"/></bsdf>",
+    ) else {
         panic!()
     };
     assert!((d.eta() - 1.0 / 1.33).abs() < 1e-6);
@@ -893,7 +1075,11 @@ fn conductors_fresnel_at_normal_incidence() {
     // §10: default material "none" → η = 0, k = 1 → a perfect mirror.
     assert_vec(f0(&one_bsdf("<bsdf type=\"conductor\"/>")), Vec3::ONE, 1e-6);
     // §10: normal-incidence Au in a white furnace → (0.96668, 0.80201, 0.32412) [verified].
-    assert_vec(f0(&one_bsdf("<bsdf type=\"conductor\"><string name=\"material\" value=\"Au\"/></bsdf>")), Vec3::new(0.96668, 0.80201, 0.32412), 2e-5);
+    assert_vec(
+        f0(&one_bsdf("<bsdf type=\"conductor\"><string name=\"material\" value=\"Au\"/></bsdf>")),
+        Vec3::new(0.96668, 0.80201, 0.32412),
+        2e-5,
+    );
     // Explicit η = 1.5, k = 0: ((η−1)/(η+1))² = 0.04, times specular_reflectance.
     let b = one_bsdf(
         "<bsdf type=\"conductor\"><float name=\"eta\" value=\"1.5\"/><float name=\"k\" value=\"0\"/>\
@@ -901,7 +1087,9 @@ fn conductors_fresnel_at_normal_incidence() {
     );
     assert_vec(f0(&b), Vec3::new(0.04, 0.02, 0.01), 1e-6);
     // "none" spelt out next to eta/k is accepted, as by Mitsuba.
-    let b = one_bsdf("<bsdf type=\"conductor\"><string name=\"material\" value=\"none\"/><float name=\"eta\" value=\"1.5\"/><float name=\"k\" value=\"0\"/></bsdf>");
+    let b = one_bsdf(
+        "<bsdf type=\"conductor\"><string name=\"material\" value=\"none\"/><float name=\"eta\" value=\"1.5\"/><float name=\"k\" value=\"0\"/></bsdf>",
+    );
     assert_vec(f0(&b), Vec3::splat(0.04), 1e-6);
 }
 
@@ -915,7 +1103,9 @@ fn roughconductor_defaults_and_roughness() {
     };
     assert_eq!(rc(""), want(MicrofacetDistribution::Beckmann, 0.1, 0.1, true));
     assert_eq!(
-        rc("<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.3\"/><boolean name=\"sample_visible\" value=\"false\"/>"),
+        rc(
+            "<string name=\"distribution\" value=\"ggx\"/><float name=\"alpha\" value=\"0.3\"/><boolean name=\"sample_visible\" value=\"false\"/>"
+        ),
         want(MicrofacetDistribution::Ggx, 0.3, 0.3, false)
     );
     // Case-insensitive distribution names, as Mitsuba's to_lower.
@@ -953,7 +1143,9 @@ fn bitmap_reflectance_nested_and_referenced() {
     );
     let s = load_str(&xml, &path, &[]).unwrap_or_else(|e| panic!("{e}"));
     let tex = |i: usize| match &s.scene.bsdfs[i] {
-        Bsdf::Diffuse { reflectance: Texture::Bitmap(t) } | Bsdf::Matte { reflectance: Texture::Bitmap(t), .. } => t.clone(),
+        Bsdf::Diffuse { reflectance: Texture::Bitmap(t) } | Bsdf::Matte { reflectance: Texture::Bitmap(t), .. } => {
+            t.clone()
+        }
         other => panic!("{other:?}"),
     };
     // §11: 8-bit PNG is sRGB → 128 decodes to 0.215861; bilinear averages the LINEAR texels:
@@ -976,17 +1168,33 @@ fn bitmap_reflectance_nested_and_referenced() {
 #[test]
 fn bsdf_errors() {
     assert_body_err("<bsdf type=\"bumpmap\"/>", 1, "unsupported bsdf type \"bumpmap\"");
-    assert_body_err("<bsdf type=\"diffuse\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>", 2, "unreferenced property \"roughness\"");
+    assert_body_err(
+        "<bsdf type=\"diffuse\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>",
+        2,
+        "unreferenced property \"roughness\"",
+    );
     assert_body_err("<bsdf type=\"diffuse\">\n<string name=\"reflectance\" value=\"red\"/>\n</bsdf>", 2, "wrong type");
     assert_body_err("<bsdf type=\"oren_nayar\">\n<rgb name=\"sigma\" value=\"0.1 0.2 0.3\"/>\n</bsdf>", 2, "sigma");
     assert_body_err("<bsdf type=\"eon\">\n<boolean name=\"roughness\" value=\"true\"/>\n</bsdf>", 2, "roughness");
     // Reflectance above 1 or below 0 (§2: "Invalid RGB reflectance value").
     for kind in ["diffuse", "lambert", "wolff"] {
-        assert_body_err(&format!("<bsdf type=\"{kind}\">\n<rgb name=\"reflectance\" value=\"1.2 0.5 0.5\"/>\n</bsdf>"), 2, "reflectance");
+        assert_body_err(
+            &format!("<bsdf type=\"{kind}\">\n<rgb name=\"reflectance\" value=\"1.2 0.5 0.5\"/>\n</bsdf>"),
+            2,
+            "reflectance",
+        );
     }
-    assert_body_err("<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"0.5 -0.1 0.5\"/>\n</bsdf>", 2, "reflectance");
+    assert_body_err(
+        "<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"0.5 -0.1 0.5\"/>\n</bsdf>",
+        2,
+        "reflectance",
+    );
     // A <float> reflectance may exceed 1 (Mitsuba's uniform texture), but not be negative or NaN.
-    assert_body_err("<bsdf type=\"diffuse\">\n<float name=\"reflectance\" value=\"-0.5\"/>\n</bsdf>", 2, "must not be negative");
+    assert_body_err(
+        "<bsdf type=\"diffuse\">\n<float name=\"reflectance\" value=\"-0.5\"/>\n</bsdf>",
+        2,
+        "must not be negative",
+    );
     assert_body_err("<bsdf type=\"eon\">\n<float name=\"reflectance\" value=\"nan\"/>\n</bsdf>", 2, "must be finite");
     assert_body_err("<bsdf type=\"conductor\">\n<float name=\"eta\" value=\"inf\"/>\n</bsdf>", 2, "must be finite");
     // Magnitudes beyond 1e6 (matte's limit: the f32 kernels overflow far above it).
@@ -1010,11 +1218,27 @@ fn bsdf_errors() {
     assert_body_err("<bsdf type=\"wolff\">\n<float name=\"int_ior\" value=\"0.8\"/>\n</bsdf>", 2, "int_ior");
     assert_body_err("<bsdf type=\"dielectric\">\n<float name=\"int_ior\" value=\"0.8\"/>\n</bsdf>", 2, "int_ior");
     assert_body_err("<bsdf type=\"dielectric\">\n<float name=\"ext_ior\" value=\"-1\"/>\n</bsdf>", 2, "ext_ior");
-    assert_body_err("<bsdf type=\"dielectric\">\n<string name=\"int_ior\" value=\"unobtainium\"/>\n</bsdf>", 2, "unknown IOR name");
-    assert_body_err("<bsdf type=\"wolff\">\n<string name=\"int_ior\" value=\"unobtainium\"/>\n</bsdf>", 2, "unobtainium");
-    assert_body_err("<bsdf type=\"dielectric\">\n<rgb name=\"specular_transmittance\" value=\"1.5 1 1\"/>\n</bsdf>", 2, "specular_transmittance");
+    assert_body_err(
+        "<bsdf type=\"dielectric\">\n<string name=\"int_ior\" value=\"unobtainium\"/>\n</bsdf>",
+        2,
+        "unknown IOR name",
+    );
+    assert_body_err(
+        "<bsdf type=\"wolff\">\n<string name=\"int_ior\" value=\"unobtainium\"/>\n</bsdf>",
+        2,
+        "unobtainium",
+    );
+    assert_body_err(
+        "<bsdf type=\"dielectric\">\n<rgb name=\"specular_transmittance\" value=\"1.5 1 1\"/>\n</bsdf>",
+        2,
+        "specular_transmittance",
+    );
     // Conductors.
-    assert_body_err("<bsdf type=\"roughconductor\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n</bsdf>", 1, "alpha_u and alpha_v");
+    assert_body_err(
+        "<bsdf type=\"roughconductor\">\n<float name=\"alpha_u\" value=\"0.1\"/>\n</bsdf>",
+        1,
+        "alpha_u and alpha_v",
+    );
     assert_body_err(
         "<bsdf type=\"roughconductor\">\n<float name=\"alpha\" value=\"0.1\"/>\n<float name=\"alpha_u\" value=\"0.1\"/>\n<float name=\"alpha_v\" value=\"0.1\"/>\n</bsdf>",
         2,
@@ -1022,18 +1246,36 @@ fn bsdf_errors() {
     );
     for kind in ["conductor", "roughconductor"] {
         assert_body_err(
-            &format!("<bsdf type=\"{kind}\">\n<string name=\"material\" value=\"Au\"/>\n<float name=\"eta\" value=\"1\"/>\n</bsdf>"),
+            &format!(
+                "<bsdf type=\"{kind}\">\n<string name=\"material\" value=\"Au\"/>\n<float name=\"eta\" value=\"1\"/>\n</bsdf>"
+            ),
             1,
             "either material or eta/k",
         );
-        assert_body_err(&format!("<bsdf type=\"{kind}\">\n<string name=\"material\" value=\"Xx\"/>\n</bsdf>"), 2, "material");
+        assert_body_err(
+            &format!("<bsdf type=\"{kind}\">\n<string name=\"material\" value=\"Xx\"/>\n</bsdf>"),
+            2,
+            "material",
+        );
     }
-    assert_body_err("<bsdf type=\"roughconductor\">\n<string name=\"distribution\" value=\"phong\"/>\n</bsdf>", 2, "beckmann or ggx");
+    assert_body_err(
+        "<bsdf type=\"roughconductor\">\n<string name=\"distribution\" value=\"phong\"/>\n</bsdf>",
+        2,
+        "beckmann or ggx",
+    );
     // twosided.
     assert_body_err("<bsdf type=\"twosided\"/>", 1, "one or two nested BSDFs");
-    assert_body_err("<bsdf type=\"twosided\">\n<bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/>\n</bsdf>", 1, "found 3");
+    assert_body_err(
+        "<bsdf type=\"twosided\">\n<bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/>\n</bsdf>",
+        1,
+        "found 3",
+    );
     assert_body_err("<bsdf type=\"twosided\">\n<bsdf type=\"dielectric\"/>\n</bsdf>", 1, "transmissive");
-    assert_body_err("<bsdf type=\"twosided\">\n<bsdf type=\"diffuse\">\n<float name=\"alpha\" value=\"1\"/>\n</bsdf>\n</bsdf>", 3, "unreferenced property \"alpha\"");
+    assert_body_err(
+        "<bsdf type=\"twosided\">\n<bsdf type=\"diffuse\">\n<float name=\"alpha\" value=\"1\"/>\n</bsdf>\n</bsdf>",
+        3,
+        "unreferenced property \"alpha\"",
+    );
 }
 
 #[test]
@@ -1042,7 +1284,11 @@ fn texture_errors() {
     write_png(&dir.join("ok.png"), 1, 1, &[10, 20, 30]);
     std::fs::write(dir.join("broken.png"), b"not a png").unwrap();
     let path = dir.join("scene.xml");
-    let tex = |inner: &str| with_sensor(&format!("<bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\">\n{inner}\n</texture>\n</bsdf>"));
+    let tex = |inner: &str| {
+        with_sensor(&format!(
+            "<bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\">\n{inner}\n</texture>\n</bsdf>"
+        ))
+    };
     let check = |inner: &str, line: u32, needle: &str| match load_str(&tex(inner), &path, &[]) {
         Ok(_) => panic!("{inner}: expected an error"),
         Err(e) => assert_error_at(&e, &path, line + 2, needle),
@@ -1050,17 +1296,27 @@ fn texture_errors() {
     check("<string name=\"filename\" value=\"missing.png\"/>", 3, "missing.png");
     check("<string name=\"filename\" value=\"broken.png\"/>", 3, "broken.png");
     check("", 2, "missing property \"filename\"");
-    check("<string name=\"filename\" value=\"ok.png\"/>\n<string name=\"filter_type\" value=\"cubic\"/>", 4, "filter_type");
+    check(
+        "<string name=\"filename\" value=\"ok.png\"/>\n<string name=\"filter_type\" value=\"cubic\"/>",
+        4,
+        "filter_type",
+    );
     check("<string name=\"filename\" value=\"ok.png\"/>\n<string name=\"wrap_mode\" value=\"zero\"/>", 4, "wrap_mode");
-    check("<string name=\"filename\" value=\"ok.png\"/>\n<float name=\"gamma\" value=\"2.2\"/>", 4, "unreferenced property \"gamma\"");
+    check(
+        "<string name=\"filename\" value=\"ok.png\"/>\n<float name=\"gamma\" value=\"2.2\"/>",
+        4,
+        "unreferenced property \"gamma\"",
+    );
     // Unknown texture type, both nested and at the top level.
-    assert_body_err("<bsdf type=\"diffuse\">\n<texture type=\"mesh_attribute\" name=\"reflectance\"/>\n</bsdf>", 2, "unsupported texture type \"mesh_attribute\"");
+    assert_body_err(
+        "<bsdf type=\"diffuse\">\n<texture type=\"mesh_attribute\" name=\"reflectance\"/>\n</bsdf>",
+        2,
+        "unsupported texture type \"mesh_attribute\"",
+    );
     assert_body_err("<texture type=\"volume\"/>", 1, "unsupported texture type");
     // Given twice: as a property and as a texture (the parser rejects the duplicate name).
-    let both = tex("<string name=\"filename\" value=\"ok.png\"/>").replace(
-        "<bsdf type=\"diffuse\">\n",
-        "<bsdf type=\"diffuse\">\n<float name=\"reflectance\" value=\"0.5\"/>",
-    );
+    let both = tex("<string name=\"filename\" value=\"ok.png\"/>")
+        .replace("<bsdf type=\"diffuse\">\n", "<bsdf type=\"diffuse\">\n<float name=\"reflectance\" value=\"0.5\"/>");
     let Err(e) = load_str(&both, &path, &[]) else { panic!("expected an error") };
     assert!(e.to_string().starts_with(&format!("{}:", path.display())) && e.to_string().contains("reflectance"), "{e}");
 }
@@ -1071,7 +1327,11 @@ fn texture_errors() {
 #[test]
 fn malformed_xml_unknown_tags_and_parameters() {
     assert_err(load("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>"), 3, "malformed XML");
-    assert_err(load(&with_sensor("<shape type=\"sphere\"><float name=\"radius\" value=\"1\"></shape>")), 3, "malformed XML");
+    assert_err(
+        load(&with_sensor("<shape type=\"sphere\"><float name=\"radius\" value=\"1\"></shape>")),
+        3,
+        "malformed XML",
+    );
     assert_body_err("<rfilter type=\"box\"/>", 1, "not allowed at the top level");
     assert_body_err("<medium type=\"homogeneous\"/>", 1, "not allowed at the top level");
     assert_body_err("<shape type=\"$kind\"/>", 1, "undefined parameter $kind");
@@ -1079,7 +1339,9 @@ fn malformed_xml_unknown_tags_and_parameters() {
     let xml = with_sensor("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>");
     let s = load_str(&xml, Path::new(FILE), &[("r".into(), "2".into())]).unwrap_or_else(|e| panic!("{e}"));
     assert!(hit(&s, Vec3::new(1.9, 0.0, 5.0), Vec3::NEG_Z).is_some());
-    let Err(e) = load_str(&xml, Path::new(FILE), &[("r".into(), "2".into()), ("foo".into(), "3".into())]) else { panic!("expected an error") };
+    let Err(e) = load_str(&xml, Path::new(FILE), &[("r".into(), "2".into()), ("foo".into(), "3".into())]) else {
+        panic!("expected an error")
+    };
     assert!(e.to_string().starts_with(FILE) && e.to_string().contains("unused parameter $foo=3"), "{e}");
     // Missing scene file.
     let Err(e) = load_file(Path::new("/nonexistent/dir/scene.xml"), &[]) else { panic!("expected an error") };
@@ -1091,7 +1353,11 @@ fn malformed_xml_unknown_tags_and_parameters() {
 
 fn matte(args: &[&str]) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_matte")).args(args).output().expect("run matte");
-    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
 }
 
 fn features_xml() -> PathBuf {
@@ -1103,13 +1369,17 @@ fn cli_renders_features_xml() {
     let dir = temp_dir("cli_features");
     let exr = dir.join("features.exr");
     let scene = features_xml();
-    let (ok, out, err) = matte(&["render", scene.to_str().unwrap(), "--spp", "2", "-o", exr.to_str().unwrap(), "--quiet", "--png"]);
+    let (ok, out, err) =
+        matte(&["render", scene.to_str().unwrap(), "--spp", "2", "-o", exr.to_str().unwrap(), "--quiet", "--png"]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}): {out}"));
     // The scene's crop window is 144×112 of a 160×120 film.
     let img = matte::render::image_io::read_exr(&exr).unwrap();
     assert_eq!((img.width, img.height), (144, 112));
-    assert_eq!((v["width"].as_u64(), v["height"].as_u64(), v["spp"].as_u64(), v["seed"].as_u64()), (Some(144), Some(112), Some(2), Some(3)));
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64(), v["spp"].as_u64(), v["seed"].as_u64()),
+        (Some(144), Some(112), Some(2), Some(3))
+    );
     assert_eq!(v["samples"].as_u64(), Some(144 * 112 * 2));
     assert!(v["rays"].as_u64().unwrap() >= 144 * 112 * 2, "{out}");
     assert!(v["samples_per_second"].as_f64().unwrap() > 0.0);
@@ -1125,7 +1395,8 @@ fn cli_defines_override_scene_parameters() {
     let dir = temp_dir("cli_defines");
     // -D spp=1 on features.xml replaces its <default name="spp" value="64">.
     let exr = dir.join("f.exr");
-    let (ok, out, err) = matte(&["render", features_xml().to_str().unwrap(), "-D", "spp=1", "-o", exr.to_str().unwrap(), "-q"]);
+    let (ok, out, err) =
+        matte(&["render", features_xml().to_str().unwrap(), "-D", "spp=1", "-o", exr.to_str().unwrap(), "-q"]);
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap();
     assert_eq!(v["spp"].as_u64(), Some(1));
@@ -1166,7 +1437,8 @@ fn cli_errors_are_one_line_with_file_and_line() {
     assert!(err.contains(&format!("{}:5", scene.display())) && err.contains("roughness"), "{err}");
     assert!(!out.exists());
     // An unknown -D parameter.
-    let (ok, _, err) = matte(&["render", features_xml().to_str().unwrap(), "-D", "nope=1", "-o", out.to_str().unwrap(), "-q"]);
+    let (ok, _, err) =
+        matte(&["render", features_xml().to_str().unwrap(), "-D", "nope=1", "-o", out.to_str().unwrap(), "-q"]);
     assert!(!ok);
     assert_eq!(err.trim_end().lines().count(), 1, "{err}");
     assert!(err.contains("features.xml") && err.contains("nope=1"), "{err}");
@@ -1241,7 +1513,9 @@ fn odd_values_never_panic_and_accepted_scenes_render_finite() {
             // unless the element under test brings its own sensor (or environment).
             let camera = r#"<sensor type="perspective"><float name="fov" value="60"/><transform name="to_world"><lookat origin="0,0,5" target="0,0,0"/></transform><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="2"/></film></sensor>"#;
             let mut body = if !element.starts_with("<sensor") {
-                format!(r#"{camera}{element}<shape type="sphere"><transform name="to_world"><translate z="-3"/></transform></shape>"#)
+                format!(
+                    r#"{camera}{element}<shape type="sphere"><transform name="to_world"><translate z="-3"/></transform></shape>"#
+                )
             } else if element.contains("<film") {
                 element.replace("<film type=\"hdrfilm\">", "<film type=\"hdrfilm\"><integer name=\"width\" value=\"4\"/><integer name=\"height\" value=\"2\"/>")
                     + r#"<shape type="sphere"/>"#

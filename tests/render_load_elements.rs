@@ -50,7 +50,9 @@ fn path_adds_a_search_folder() {
     std::fs::create_dir_all(dir.join("scenes")).unwrap();
     std::fs::write(dir.join("assets/meshes/tri.obj"), TRIANGLE_OBJ).unwrap();
     let body = |path: &str| {
-        scene(&format!("{path}\n{SENSOR}\n<shape type=\"obj\"><string name=\"filename\" value=\"meshes/tri.obj\"/></shape>"))
+        scene(&format!(
+            "{path}\n{SENSOR}\n<shape type=\"obj\"><string name=\"filename\" value=\"meshes/tri.obj\"/></shape>"
+        ))
     };
     let file = dir.join("scenes/s.xml");
     std::fs::write(&file, body("<path value=\"../assets\"/>")).unwrap();
@@ -79,7 +81,12 @@ fn moment_renders_its_nested_integrator() {
     }
     let s = load(&scene(&format!("{SENSOR}\n<integrator type=\"moment\"><integrator type=\"path\"><integer name=\"max_depth\" value=\"2\"/></integrator><integrator type=\"direct\"/></integrator>"))).unwrap();
     assert!(matches!(s.integrator, Integrator::Path(ref p) if p.max_depth == 2), "{:?}", s.integrator);
-    assert_err_at(load(&scene(&format!("{SENSOR}\n<integrator type=\"moment\"/>"))), Path::new(FILE), 3, "needs at least one nested <integrator>");
+    assert_err_at(
+        load(&scene(&format!("{SENSOR}\n<integrator type=\"moment\"/>"))),
+        Path::new(FILE),
+        3,
+        "needs at least one nested <integrator>",
+    );
     assert_err_at(
         load(&scene(&format!("{SENSOR}\n<integrator type=\"moment\">\n<integrator type=\"bogus\"/></integrator>"))),
         Path::new(FILE),
@@ -101,7 +108,11 @@ fn orthographic_camera_rays() {
     );
     let s = load(&xml).unwrap();
     // aspect 2: pixel corner (0, 0) is camera (1, 0.5, 0.5) → world 2·p + (1, 2, 3).
-    let cases = [(Vec2::ZERO, Vec3::new(3.0, 3.0, 4.0)), (Vec2::new(4.0, 2.0), Vec3::new(-1.0, 1.0, 4.0)), (Vec2::new(2.0, 1.0), Vec3::new(1.0, 2.0, 4.0))];
+    let cases = [
+        (Vec2::ZERO, Vec3::new(3.0, 3.0, 4.0)),
+        (Vec2::new(4.0, 2.0), Vec3::new(-1.0, 1.0, 4.0)),
+        (Vec2::new(2.0, 1.0), Vec3::new(1.0, 2.0, 4.0)),
+    ];
     for (pos, o) in cases {
         let r = s.camera.ray(pos);
         assert!((r.o - o).length() < 1e-5, "{pos}: o = {}, expected {o}", r.o);
@@ -119,9 +130,7 @@ fn orthographic_camera_rays() {
 #[test]
 fn checkerboard_texture() {
     let xml = |tex: &str| {
-        scene(&format!(
-            "{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n{tex}\n</bsdf></shape>"
-        ))
+        scene(&format!("{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n{tex}\n</bsdf></shape>"))
     };
     let reflectance_at = |s: &LoadedScene, x: f32, y: f32| -> Vec3 {
         let si = s.scene.intersect(&Ray::new(Vec3::new(x, y, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
@@ -134,16 +143,27 @@ fn checkerboard_texture() {
     let s = load(&xml(r#"<texture type="checkerboard" name="reflectance"><rgb name="color0" value="0.9"/><rgb name="color1" value="0.1, 0.2, 0.3"/><transform name="to_uv"><scale x="2" y="2"/></transform></texture>"#)).unwrap();
     let c0 = Vec3::splat(0.9);
     let c1 = Vec3::new(0.1, 0.2, 0.3);
-    for (x, y, expect) in [(-0.75, -0.75, c0), (-0.25, -0.75, c1), (-0.25, -0.25, c0), (0.25, -0.75, c0), (0.75, -0.25, c0), (0.75, -0.75, c1), (0.75, 0.75, c0)] {
+    for (x, y, expect) in [
+        (-0.75, -0.75, c0),
+        (-0.25, -0.75, c1),
+        (-0.25, -0.25, c0),
+        (0.25, -0.75, c0),
+        (0.75, -0.25, c0),
+        (0.75, -0.75, c1),
+        (0.75, 0.75, c0),
+    ] {
         let got = reflectance_at(&s, x, y);
         assert!((got - expect).length() < 1e-6, "({x}, {y}): {got}, expected {expect}");
     }
     let d = load(&xml(r#"<texture type="checkerboard" name="reflectance"/>"#)).unwrap();
     assert!((reflectance_at(&d, -0.75, -0.75) - Vec3::splat(0.4)).length() < 1e-6);
     assert!((reflectance_at(&d, 0.25, -0.75) - Vec3::splat(0.2)).length() < 1e-6);
-    let bad = xml("<texture type=\"checkerboard\" name=\"reflectance\"><float name=\"colour0\" value=\"0.5\"/></texture>");
+    let bad =
+        xml("<texture type=\"checkerboard\" name=\"reflectance\"><float name=\"colour0\" value=\"0.5\"/></texture>");
     assert_err_at(load(&bad), Path::new(FILE), 4, "colour0");
-    let textured = xml("<texture type=\"checkerboard\" name=\"reflectance\"><texture type=\"checkerboard\" name=\"color0\"/></texture>");
+    let textured = xml(
+        "<texture type=\"checkerboard\" name=\"reflectance\"><texture type=\"checkerboard\" name=\"color0\"/></texture>",
+    );
     assert_err_at(load(&textured), Path::new(FILE), 4, "\"color0\" must be a colour");
 }
 
@@ -189,10 +209,18 @@ fn spot_texture_is_looked_up_along_the_local_direction() {
         let uv = Vec2::new(0.5 + 0.5 * a / t, 0.5 + 0.5 * b / t);
         assert!(uv.min_element() > 0.0 && uv.max_element() < 1.0);
         let expect = colours[texel] * 2.0 / p.length_squared();
-        assert!((es.weight - expect).length() < 1e-5 * expect.length().max(1.0), "({a}, {b}): {} vs {expect}", es.weight);
+        assert!(
+            (es.weight - expect).length() < 1e-5 * expect.length().max(1.0),
+            "({a}, {b}): {} vs {expect}",
+            es.weight
+        );
     }
     // A constant `texture` is refused, as in Mitsuba ("must be spatially varying").
-    std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"spot\">\n<rgb name=\"texture\" value=\"0.5\"/></emitter>"))).unwrap();
+    std::fs::write(
+        &file,
+        scene(&format!("{SENSOR}\n<emitter type=\"spot\">\n<rgb name=\"texture\" value=\"0.5\"/></emitter>")),
+    )
+    .unwrap();
     assert_err_at(load_file(&file, &[]), &file, 4, "spatially varying");
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -265,7 +293,11 @@ fn envmap_loads_as_the_environment() {
     assert!((got - 2.0 * Vec3::new(0.4, 0.6, 0.5)).length() < 1e-4, "{got}");
     std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"constant\"/>\n<emitter type=\"envmap\"><string name=\"filename\" value=\"tex/sky.exr\"/></emitter>"))).unwrap();
     assert_err_at(load_file(&file, &[]), &file, 4, "only one environment emitter");
-    std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"envmap\"><string name=\"filename\" value=\"nope.exr\"/></emitter>"))).unwrap();
+    std::fs::write(
+        &file,
+        scene(&format!("{SENSOR}\n<emitter type=\"envmap\"><string name=\"filename\" value=\"nope.exr\"/></emitter>")),
+    )
+    .unwrap();
     assert_err_at(load_file(&file, &[]), &file, 3, "nope.exr");
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -295,11 +327,19 @@ fn instances_place_their_group() {
     let alone = load(&scene(&format!("{SENSOR}\n{group}"))).unwrap();
     assert!(alone.scene.shapes.is_empty());
     // Errors: emitters in groups, nested groups, instances without a group.
-    let bad_emitter = scene(&format!("{SENSOR}\n<shape type=\"shapegroup\" id=\"g\"><shape type=\"sphere\">\n<emitter type=\"area\"/></shape></shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>"));
+    let bad_emitter = scene(&format!(
+        "{SENSOR}\n<shape type=\"shapegroup\" id=\"g\"><shape type=\"sphere\">\n<emitter type=\"area\"/></shape></shape>\n<shape type=\"instance\"><ref id=\"g\"/></shape>"
+    ));
     assert_err_at(load(&bad_emitter), Path::new(FILE), 4, "shapegroup");
-    let nested = scene(&format!("{SENSOR}\n<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"shapegroup\"/></shape>"));
+    let nested =
+        scene(&format!("{SENSOR}\n<shape type=\"shapegroup\" id=\"g\">\n<shape type=\"shapegroup\"/></shape>"));
     assert_err_at(load(&nested), Path::new(FILE), 4, "nested instancing");
-    assert_err_at(load(&scene(&format!("{SENSOR}\n<shape type=\"instance\"/>"))), Path::new(FILE), 3, "needs a shapegroup");
+    assert_err_at(
+        load(&scene(&format!("{SENSOR}\n<shape type=\"instance\"/>"))),
+        Path::new(FILE),
+        3,
+        "needs a shapegroup",
+    );
 }
 
 /// The bundled scenes for these elements load, render without NaN, and the sun scene's
@@ -309,18 +349,28 @@ fn bundled_element_scenes_render() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");
     for name in ["sun_straight_down.xml", "envmap_sky.xml", "orthographic_instances.xml"] {
         let s = load_file(&root.join(name), &[("res".into(), "8".into())]).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let (img, _) = matte::render::renderer::render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 4, 0, &|_, _| {});
+        let (img, _) =
+            matte::render::renderer::render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 4, 0, &|_, _| {});
         assert!(img.pixels.iter().all(|p| p.is_finite()), "{name}: non-finite pixel");
         assert!(img.pixels.iter().any(|p| p.max_element() > 0.0), "{name}: black image");
     }
     let s = load_file(&root.join("sun_straight_down.xml"), &[]).unwrap();
     let light = &s.scene.emitters[0];
-    let ground = s.scene.intersect(&Ray::new(Vec3::new(-0.8, 0.0, 5.0), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY)).expect("sphere top");
+    let ground = s
+        .scene
+        .intersect(&Ray::new(Vec3::new(-0.8, 0.0, 5.0), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY))
+        .expect("sphere top");
     assert!((ground.p.z - 1.8).abs() < 1e-4, "the ray down meets the sphere first");
-    let below = s.scene.intersect(&Ray::new(Vec3::new(-0.8, 0.0, 0.5), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY)).expect("ground");
+    let below = s
+        .scene
+        .intersect(&Ray::new(Vec3::new(-0.8, 0.0, 0.5), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY))
+        .expect("ground");
     let es = light.sample_direction(below.p, Vec2::ZERO, &s.scene.shapes).unwrap();
     assert!(!s.scene.emitter_visible(&below, &es), "the ground below the sphere is lit");
-    let open = s.scene.intersect(&Ray::new(Vec3::new(0.2, -1.5, 0.5), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY)).expect("ground");
+    let open = s
+        .scene
+        .intersect(&Ray::new(Vec3::new(0.2, -1.5, 0.5), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY))
+        .expect("ground");
     let es = light.sample_direction(open.p, Vec2::ZERO, &s.scene.shapes).unwrap();
     assert!(s.scene.emitter_visible(&open, &es), "open ground is shadowed");
 }
@@ -328,7 +378,9 @@ fn bundled_element_scenes_render() {
 /// `src/spectra/rawconstant.cpp`: `value` as a float (every channel) or a vector, unconverted.
 #[test]
 fn rawconstant_texture() {
-    let xml = |tex: &str| scene(&format!("{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n{tex}\n</bsdf></shape>"));
+    let xml = |tex: &str| {
+        scene(&format!("{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"diffuse\">\n{tex}\n</bsdf></shape>"))
+    };
     let refl = |s: &LoadedScene| {
         let si = s.scene.intersect(&Ray::new(Vec3::new(0.1, 0.2, 1.0), Vec3::NEG_Z, f32::INFINITY)).unwrap();
         match s.scene.bsdf(&si) {
@@ -336,10 +388,24 @@ fn rawconstant_texture() {
             other => panic!("{other:?}"),
         }
     };
-    let v = load(&xml(r#"<texture type="rawconstant" name="reflectance"><vector name="value" value="0.5, 0.25, 1"/></texture>"#)).unwrap();
+    let v = load(&xml(
+        r#"<texture type="rawconstant" name="reflectance"><vector name="value" value="0.5, 0.25, 1"/></texture>"#,
+    ))
+    .unwrap();
     assert_eq!(refl(&v), Vec3::new(0.5, 0.25, 1.0));
-    let f = load(&xml(r#"<texture type="rawconstant" name="reflectance"><float name="value" value="0.3"/></texture>"#)).unwrap();
+    let f = load(&xml(r#"<texture type="rawconstant" name="reflectance"><float name="value" value="0.3"/></texture>"#))
+        .unwrap();
     assert_eq!(refl(&f), Vec3::splat(0.3));
-    assert_err_at(load(&xml(r#"<texture type="rawconstant" name="reflectance"/>"#)), Path::new(FILE), 4, "missing required parameter \"value\"");
-    assert_err_at(load(&xml(r#"<texture type="rawconstant" name="reflectance"><rgb name="value" value="0.5"/></texture>"#)), Path::new(FILE), 4, "expected float or vector");
+    assert_err_at(
+        load(&xml(r#"<texture type="rawconstant" name="reflectance"/>"#)),
+        Path::new(FILE),
+        4,
+        "missing required parameter \"value\"",
+    );
+    assert_err_at(
+        load(&xml(r#"<texture type="rawconstant" name="reflectance"><rgb name="value" value="0.5"/></texture>"#)),
+        Path::new(FILE),
+        4,
+        "expected float or vector",
+    );
 }

@@ -18,9 +18,15 @@ fn alpha_is_oren_nayar_sigma_times_one_over_sqrt2() {
             let on = common::model("oren_nayar", &[("sigma", &sigma), ("model", model)]);
             for k in 0..2000 {
                 let t = k as f32 * 0.618_034;
-                let wi = Vec3::new((t * 3.1).sin() * 0.6, (t * 1.7).cos() * 0.5, (t * 0.9).sin().abs() + 0.01).normalize();
-                let wo = Vec3::new((t * 2.3).cos() * 0.7, (t * 0.7).sin() * 0.4, (t * 1.3).cos().abs() + 0.01).normalize();
-                assert_eq!(rd.eval(wi, wo, [0.3, 0.7, 1.0]), on.eval(wi, wo, [0.3, 0.7, 1.0]), "alpha {alpha} fast {fast}");
+                let wi =
+                    Vec3::new((t * 3.1).sin() * 0.6, (t * 1.7).cos() * 0.5, (t * 0.9).sin().abs() + 0.01).normalize();
+                let wo =
+                    Vec3::new((t * 2.3).cos() * 0.7, (t * 0.7).sin() * 0.4, (t * 1.3).cos().abs() + 0.01).normalize();
+                assert_eq!(
+                    rd.eval(wi, wo, [0.3, 0.7, 1.0]),
+                    on.eval(wi, wo, [0.3, 0.7, 1.0]),
+                    "alpha {alpha} fast {fast}"
+                );
             }
         }
     }
@@ -29,14 +35,22 @@ fn alpha_is_oren_nayar_sigma_times_one_over_sqrt2() {
 #[test]
 fn defaults_are_mitsuba_0_6s() {
     let rd = common::model("roughdiffuse", &[]);
-    assert_eq!(rd.parameters(), vec![("alpha", ParamValue::Number(0.2f32 as f64)), ("use_fast_approx", ParamValue::Text("false".into()))]);
+    assert_eq!(
+        rd.parameters(),
+        vec![("alpha", ParamValue::Number(0.2f32 as f64)), ("use_fast_approx", ParamValue::Text("false".into()))]
+    );
 }
 
 #[test]
 fn bad_alpha_names_the_parameter() {
-    let e = Model::from_params("roughdiffuse", matte::brdf::Params::new().with("alpha", ParamValue::Number(-0.1))).unwrap_err();
+    let e = Model::from_params("roughdiffuse", matte::brdf::Params::new().with("alpha", ParamValue::Number(-0.1)))
+        .unwrap_err();
     assert_eq!(e.param, "alpha");
-    let e = Model::from_params("roughdiffuse", matte::brdf::Params::new().with("use_fast_approx", ParamValue::Text("maybe".into()))).unwrap_err();
+    let e = Model::from_params(
+        "roughdiffuse",
+        matte::brdf::Params::new().with("use_fast_approx", ParamValue::Text("maybe".into())),
+    )
+    .unwrap_err();
     assert_eq!(e.param, "use_fast_approx");
 }
 
@@ -49,5 +63,8 @@ fn mitsuba_0_6_xml_loads_through_the_upgrade() {
     let s = load_str(xml, Path::new("/virtual/scene.xml"), &[]).unwrap();
     let Bsdf::Matte { model, .. } = &s.scene.bsdfs[0] else { panic!("{:?}", s.scene.bsdfs[0]) };
     assert_eq!(model.kind(), "roughdiffuse");
-    assert_eq!(model.parameters(), vec![("alpha", ParamValue::Number(0.4f32 as f64)), ("use_fast_approx", ParamValue::Text("true".into()))]);
+    assert_eq!(
+        model.parameters(),
+        vec![("alpha", ParamValue::Number(0.4f32 as f64)), ("use_fast_approx", ParamValue::Text("true".into()))]
+    );
 }

@@ -12,7 +12,8 @@ use matte::scene::mesh::TriangleMesh;
 
 fn hit(g: Geometry, o: Vec3, d: Vec3) -> SurfaceInteraction {
     let shapes = vec![Shape { geometry: g, bsdf: 0, emitter: None, plugin: "test".into() }];
-    let scene = Scene::new(shapes, vec![Bsdf::Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) }], vec![], vec![]);
+    let scene =
+        Scene::new(shapes, vec![Bsdf::Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) }], vec![], vec![]);
     scene.intersect(&Ray::new(o, d, f32::INFINITY)).expect("hit")
 }
 
@@ -25,7 +26,12 @@ fn assert_frame(si: &SurfaceInteraction, s: Vec3, what: &str) {
 
 fn triangle(uvs: Vec<Vec2>) -> Geometry {
     // p0 = 0, p1 = 2y, p2 = −x: face normal (p1 − p0) × (p2 − p0) = +z.
-    let mesh = TriangleMesh { positions: vec![Vec3::ZERO, Vec3::new(0.0, 2.0, 0.0), Vec3::new(-1.0, 0.0, 0.0)], normals: vec![], uvs, triangles: vec![[0, 1, 2]] };
+    let mesh = TriangleMesh {
+        positions: vec![Vec3::ZERO, Vec3::new(0.0, 2.0, 0.0), Vec3::new(-1.0, 0.0, 0.0)],
+        normals: vec![],
+        uvs,
+        triangles: vec![[0, 1, 2]],
+    };
     Geometry::Triangles(Triangles::new(mesh, false))
 }
 
@@ -46,7 +52,10 @@ fn analytic_frames_follow_dp_du() {
     let s = Geometry::Sphere(Sphere::new(Affine3A::IDENTITY, false));
     assert_frame(&hit(s, Vec3::new(3.0, 0.0, 0.0), Vec3::NEG_X), Vec3::Y, "sphere");
     // Rotated by 90° about z: local +x sits at world +y and its tangent is world −x.
-    let r = Geometry::Sphere(Sphere::new(Affine3A::from_rotation_translation(Quat::from_rotation_z(std::f32::consts::FRAC_PI_2), Vec3::ZERO), false));
+    let r = Geometry::Sphere(Sphere::new(
+        Affine3A::from_rotation_translation(Quat::from_rotation_z(std::f32::consts::FRAC_PI_2), Vec3::ZERO),
+        false,
+    ));
     assert_frame(&hit(r, Vec3::new(0.0, 3.0, 0.0), Vec3::NEG_Y), Vec3::NEG_X, "rotated sphere");
     // Cylinder: dp_du ∝ (−y, x, 0); at local (1, 0, ½) that is +y.
     let c = Geometry::Cylinder(Cylinder::new(Affine3A::IDENTITY, false));

@@ -5,6 +5,7 @@
 
 mod common;
 #[path = "specular_bsdfs/mitsuba_reference.rs"]
+#[rustfmt::skip] // generated data, one configuration per line
 mod mitsuba_reference;
 
 use common::{Pcg32, chi2_sampling, sidak};
@@ -133,7 +134,8 @@ fn dielectric_fresnel_agrees_with_the_one_sided_brdf_version() {
 
 #[test]
 fn conductor_fresnel_matches_complex_arithmetic() {
-    let cases = [(0.143036, 3.982997), (1.657501, 9.223811), (0.2, 0.0), (1.5, 0.0), (2.5, 1.3), (0.05, 0.4), (0.0, 1.0)];
+    let cases =
+        [(0.143036, 3.982997), (1.657501, 9.223811), (0.2, 0.0), (1.5, 0.0), (2.5, 1.3), (0.05, 0.4), (0.0, 1.0)];
     for &(eta, k) in &cases {
         for i in 0..=100 {
             let c = i as f32 / 100.0;
@@ -149,7 +151,9 @@ fn conductor_fresnel_matches_complex_arithmetic() {
 #[test]
 fn conductor_fresnel_is_finite_at_its_singular_points() {
     // η = 1, k = 0 at grazing and η = k = 0 at normal incidence are 0/0 in the formula.
-    for &(c, eta, k) in &[(0.0f32, 1.0f32, 0.0f32), (1.0, 0.0, 0.0), (0.0, 0.0, 0.0), (-0.5, 1.2, 0.3), (1.0000001, 0.2, 3.0)] {
+    for &(c, eta, k) in
+        &[(0.0f32, 1.0f32, 0.0f32), (1.0, 0.0, 0.0), (0.0, 0.0, 0.0), (-0.5, 1.2, 0.3), (1.0000001, 0.2, 3.0)]
+    {
         let f = fresnel_conductor(c, Vec3::splat(eta), Vec3::splat(k));
         assert!(f.is_finite() && f.min_element() >= 0.0 && f.max_element() <= 1.0 + 1e-6, "{c} {eta} {k}: {f}");
     }
@@ -271,8 +275,14 @@ fn dielectric_rejects_bad_parameters() {
     assert!(Dielectric::new(-1.5, 1.0, Vec3::ONE, Vec3::ONE).unwrap_err().contains("int_ior"));
     assert!(Dielectric::new(1.5, 0.0, Vec3::ONE, Vec3::ONE).unwrap_err().contains("ext_ior"));
     assert!(Dielectric::new(f32::NAN, 1.0, Vec3::ONE, Vec3::ONE).is_err());
-    assert!(Dielectric::new(1.5, 1.0, Vec3::new(0.5, -0.1, 0.5), Vec3::ONE).unwrap_err().contains("specular_reflectance"));
-    assert!(Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::splat(f32::INFINITY)).unwrap_err().contains("specular_transmittance"));
+    assert!(
+        Dielectric::new(1.5, 1.0, Vec3::new(0.5, -0.1, 0.5), Vec3::ONE).unwrap_err().contains("specular_reflectance")
+    );
+    assert!(
+        Dielectric::new(1.5, 1.0, Vec3::ONE, Vec3::splat(f32::INFINITY))
+            .unwrap_err()
+            .contains("specular_transmittance")
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -361,7 +371,10 @@ fn rough_conductor_matches_mitsuba_3_9_1() {
                 }
                 let p = b.pdf(wi, wo);
                 let expected = if visible { pdf_vis } else { pdf_plain };
-                assert!(if expected == 0.0 { p == 0.0 } else { rel(p, expected) < 1e-4 }, "pdf {ctx}: {p} vs {expected}");
+                assert!(
+                    if expected == 0.0 { p == 0.0 } else { rel(p, expected) < 1e-4 },
+                    "pdf {ctx}: {p} vs {expected}"
+                );
             }
         }
     }
@@ -482,7 +495,12 @@ fn integrate_pdf(b: &RoughConductor, wi: Vec3) -> f64 {
 #[test]
 fn rough_conductor_pdf_integrates_to_at_most_one() {
     let mut configs = rough_configs();
-    configs.extend([(BECKMANN, 0.05, 0.05, true), (GGX, 0.05, 0.05, false), (GGX, 0.05, 0.12, true), (BECKMANN, 1.0, 1.0, false)]);
+    configs.extend([
+        (BECKMANN, 0.05, 0.05, true),
+        (GGX, 0.05, 0.05, false),
+        (GGX, 0.05, 0.12, true),
+        (BECKMANN, 1.0, 1.0, false),
+    ]);
     for (kind, au, av, visible) in configs {
         let b = rough(kind, au, av, visible);
         for &theta in &[0.0f64, 40.0, 80.0] {
@@ -568,12 +586,18 @@ fn nothing_returns_nan_or_inf() {
         for &wo in &dirs {
             for b in &bsdfs {
                 let (e, p) = (b.eval(wi, wo), b.pdf(wi, wo));
-                assert!(e.is_finite() && e.min_element() >= 0.0 && p.is_finite() && p >= 0.0, "{b:?} {wi} {wo}: {e} {p}");
+                assert!(
+                    e.is_finite() && e.min_element() >= 0.0 && p.is_finite() && p >= 0.0,
+                    "{b:?} {wi} {wo}: {e} {p}"
+                );
             }
         }
         let check = |s: Option<matte::render::bsdf::BsdfSample>, what: &str| {
             if let Some(s) = s {
-                assert!(s.wo.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.eta.is_finite(), "{what} {wi}: {s:?}");
+                assert!(
+                    s.wo.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.eta.is_finite(),
+                    "{what} {wi}: {s:?}"
+                );
                 assert!(s.weight.min_element() >= 0.0 && s.pdf >= 0.0, "{what} {wi}: {s:?}");
             }
         };
@@ -602,7 +626,9 @@ fn rough_conductor_rejects_bad_parameters() {
     let e = RoughConductor::new(GGX, -0.1, 0.1, true, eta, k, Vec3::ONE).unwrap_err();
     assert!(e.contains("alpha_u"), "{e}");
     assert!(RoughConductor::new(GGX, 0.1, f32::NAN, true, eta, k, Vec3::ONE).unwrap_err().contains("alpha_v"));
-    assert!(RoughConductor::new(GGX, 0.1, 0.1, true, Vec3::splat(f32::INFINITY), k, Vec3::ONE).unwrap_err().contains("eta"));
+    assert!(
+        RoughConductor::new(GGX, 0.1, 0.1, true, Vec3::splat(f32::INFINITY), k, Vec3::ONE).unwrap_err().contains("eta")
+    );
     assert!(RoughConductor::new(GGX, 0.1, 0.1, true, eta, k, -Vec3::ONE).unwrap_err().contains("specular_reflectance"));
     // α = 0 is accepted and clamped to 1e-4, as Mitsuba does.
     let b = RoughConductor::new(BECKMANN, 0.0, 0.0, true, eta, k, Vec3::ONE).unwrap();

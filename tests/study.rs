@@ -125,7 +125,11 @@ const SCENE: &str = r#"<?xml version="1.0"?>
 "#;
 
 fn raw_variant() -> Derivation {
-    Derivation { bsdf: Some("wolff".into()), bsdf_properties: vec![Property::string("normalization", "raw")], ..Default::default() }
+    Derivation {
+        bsdf: Some("wolff".into()),
+        bsdf_properties: vec![Property::string("normalization", "raw")],
+        ..Default::default()
+    }
 }
 
 #[test]
@@ -158,7 +162,8 @@ fn derived_scene_sets_the_property_only_in_bsdf_parameter_elements() {
     let default = doc.descendants().find(|n| n.has_tag_name("default")).unwrap();
     assert_eq!(default.attribute("value"), Some("wolff"));
     let film = doc.descendants().find(|n| n.has_tag_name("film")).unwrap();
-    let fval = |name: &str| film.children().find(|c| c.attribute("name") == Some(name)).and_then(|c| c.attribute("value"));
+    let fval =
+        |name: &str| film.children().find(|c| c.attribute("name") == Some(name)).and_then(|c| c.attribute("value"));
     assert_eq!(fval("crop_offset_x"), Some("3"));
     assert_eq!(fval("width"), Some("16"), "an existing film property is replaced, not duplicated");
     assert_eq!(film.children().filter(|c| c.attribute("name") == Some("width")).count(), 1);
@@ -176,8 +181,16 @@ fn derived_scene_makes_relative_file_names_absolute() {
     let doc = roxmltree::Document::parse(&out).unwrap();
     let include = doc.descendants().find(|n| n.has_tag_name("include")).unwrap();
     assert_eq!(include.attribute("filename").map(PathBuf::from), Some(dir.join("parts/sub.xml")));
-    let names: Vec<&str> = doc.descendants().filter(|n| n.attribute("name") == Some("filename")).filter_map(|n| n.attribute("value")).collect();
-    assert_eq!(names[0], dir.join("meshes/a & b.obj").to_str().unwrap(), "relative name joined to the scene's folder (entities kept)");
+    let names: Vec<&str> = doc
+        .descendants()
+        .filter(|n| n.attribute("name") == Some("filename"))
+        .filter_map(|n| n.attribute("value"))
+        .collect();
+    assert_eq!(
+        names[0],
+        dir.join("meshes/a & b.obj").to_str().unwrap(),
+        "relative name joined to the scene's folder (entities kept)"
+    );
     assert_eq!(names[1], "/abs/mesh.ply", "absolute names are kept");
     assert_eq!(names[2], "$mesh", "parameters are left to their value");
     let _ = std::fs::remove_dir_all(&dir);
@@ -189,13 +202,19 @@ fn derived_scene_errors_name_the_file() {
     let source = dir.join("broken.xml");
     let e = derive_text("<scene><bsdf type=\"$bsdf\"></scene>", &source, &raw_variant()).unwrap_err();
     assert!(e.contains("broken.xml") && e.contains("malformed"), "{e}");
-    let e = derive_text("<scene version=\"3.0.0\"><bsdf type=\"diffuse\"/></scene>", &source, &raw_variant()).unwrap_err();
+    let e =
+        derive_text("<scene version=\"3.0.0\"><bsdf type=\"diffuse\"/></scene>", &source, &raw_variant()).unwrap_err();
     assert!(e.contains("broken.xml") && e.contains("$bsdf"), "{e}");
-    let clash = "<scene version=\"3.0.0\"><bsdf type=\"$bsdf\"><float name=\"normalization\" value=\"1\"/></bsdf></scene>";
+    let clash =
+        "<scene version=\"3.0.0\"><bsdf type=\"$bsdf\"><float name=\"normalization\" value=\"1\"/></bsdf></scene>";
     let e = derive_text(clash, &source, &raw_variant()).unwrap_err();
     assert!(e.contains("broken.xml") && e.contains("line 1") && e.contains("normalization"), "{e}");
     // An included file naming a relative asset would resolve against the derived scene's folder.
-    std::fs::write(dir.join("sub.xml"), "<scene version=\"3.0.0\">\n<shape type=\"obj\"><string name=\"filename\" value=\"m.obj\"/></shape></scene>").unwrap();
+    std::fs::write(
+        dir.join("sub.xml"),
+        "<scene version=\"3.0.0\">\n<shape type=\"obj\"><string name=\"filename\" value=\"m.obj\"/></shape></scene>",
+    )
+    .unwrap();
     let inc = "<scene version=\"3.0.0\"><include filename=\"sub.xml\"/><bsdf type=\"$bsdf\"/></scene>";
     let e = derive_text(inc, &source, &raw_variant()).unwrap_err();
     assert!(e.contains("sub.xml") && e.contains("line 2") && e.contains("m.obj"), "{e}");
@@ -236,18 +255,32 @@ fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() 
     let back_wall = [0.35f32, 0.25, 0.65, 0.45];
     let render = |normalization: &str| {
         let file = dir.join(format!("{normalization}.xml"));
-        let d = Derivation { bsdf: Some("wolff".into()), bsdf_properties: vec![Property::string("normalization", normalization)], ..Default::default() };
+        let d = Derivation {
+            bsdf: Some("wolff".into()),
+            bsdf_properties: vec![Property::string("normalization", normalization)],
+            ..Default::default()
+        };
         write_derived(&cornell, &file, &d).expect("derive");
-        let defines = vec![("bsdf".to_string(), "wolff".to_string()), ("max_depth".into(), "2".into()), ("res".into(), "32".into())];
+        let defines = vec![
+            ("bsdf".to_string(), "wolff".to_string()),
+            ("max_depth".into(), "2".into()),
+            ("res".into(), "32".into()),
+        ];
         let plan = PassPlan { passes: 1, spp: Budget::PerPass(8), seed: 5, defines, regions: vec![back_wall] };
-        rust_side(&file, &plan, &|_| {}).expect("the derived scene loads (absolute mesh paths) and renders").region_pass_means[0][0]
+        rust_side(&file, &plan, &|_| {})
+            .expect("the derived scene loads (absolute mesh paths) and renders")
+            .region_pass_means[0][0]
     };
     let raw = render("raw");
     let physical = render("physical");
     for (c, (r, p)) in [(raw.x, physical.x), (raw.y, physical.y), (raw.z, physical.z)].into_iter().enumerate() {
         let expected = n * n * (1.0 - white[c] * f_int);
         assert!(expected > 1.0);
-        assert!(p > 0.0 && (r / p / expected - 1.0).abs() < 1e-5, "channel {c}: raw/physical = {} (expected {expected})", r / p);
+        assert!(
+            p > 0.0 && (r / p / expected - 1.0).abs() < 1e-5,
+            "channel {c}: raw/physical = {} (expected {expected})",
+            r / p
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -260,7 +293,9 @@ fn crop_box_holds_exactly_the_region_pixels() {
     use matte::render::film::Image;
     // Pixel value = its index: the mean over the crop box equals region_mean for odd sizes and
     // fractions that fall between pixels.
-    for (w, h, r) in [(256u32, 256u32, [0.5f32, 0.9, 0.8, 0.97]), (17, 9, [0.1, 0.33, 0.71, 0.5]), (8, 8, [0.99, 0.99, 1.0, 1.0])] {
+    for (w, h, r) in
+        [(256u32, 256u32, [0.5f32, 0.9, 0.8, 0.97]), (17, 9, [0.1, 0.33, 0.71, 0.5]), (8, 8, [0.99, 0.99, 1.0, 1.0])]
+    {
         let mut img = Image::new(w, h);
         for y in 0..h {
             for x in 0..w {
@@ -283,7 +318,8 @@ fn crop_box_holds_exactly_the_region_pixels() {
 
 #[test]
 fn convergence_verdicts_follow_interval_overlap() {
-    let pt = |spp, renderer: &str, ratio| Point { spp, renderer: renderer.into(), model: "oren_nayar", ratio, seconds: 0.0 };
+    let pt =
+        |spp, renderer: &str, ratio| Point { spp, renderer: renderer.into(), model: "oren_nayar", ratio, seconds: 0.0 };
     let series = |points| Series {
         scene_name: "s".into(),
         region: "r".into(),
@@ -308,7 +344,12 @@ fn convergence_verdicts_follow_interval_overlap() {
     assert_eq!(stable.agreement("oren_nayar"), (3, 3));
     assert_eq!(stable.best("oren_nayar", "mitsuba").map(|p| p.spp), Some(256));
     // Drift: 1.10 ± 0.01 at 16 spp misses 0.85 ± 0.005; renderers 0.85 vs 0.95 disagree at 256.
-    let drift = series(vec![pt(16, "matte", (1.10, 0.01)), pt(64, "matte", (0.86, 0.01)), pt(256, "matte", (0.85, 0.005)), pt(256, "mitsuba", (0.95, 0.01))]);
+    let drift = series(vec![
+        pt(16, "matte", (1.10, 0.01)),
+        pt(64, "matte", (0.86, 0.01)),
+        pt(256, "matte", (0.85, 0.005)),
+        pt(256, "mitsuba", (0.95, 0.01)),
+    ]);
     assert_eq!(drift.stable("oren_nayar", "matte"), (2, 3));
     assert_eq!(drift.agreement("oren_nayar"), (0, 1));
     let answers = matte::study::answers::convergence_answers(&drift, None);
@@ -337,7 +378,11 @@ fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
     let physical = rows.iter().find(|r| r["key"] == "wolff_physical").unwrap();
     assert_eq!(physical["ratio_global"], main_wolff["ratio_global"], "the default variant is the main run");
     for r in rows {
-        assert!(r["ratio_global"].as_f64().is_some_and(f64::is_finite) && r["ratio_direct_ci99"].as_f64().is_some_and(f64::is_finite), "{r}");
+        assert!(
+            r["ratio_global"].as_f64().is_some_and(f64::is_finite)
+                && r["ratio_direct_ci99"].as_f64().is_some_and(f64::is_finite),
+            "{r}"
+        );
         if r["main_run"] == false {
             assert!(out.join(r["scene_file"].as_str().unwrap()).is_file());
         }

@@ -34,7 +34,8 @@ fn every_scene_renders_with_every_model() {
         let path = study_dir().join(format!("{scene}.xml"));
         let mut images = Vec::new();
         for t in BSDF_TYPES {
-            let s = load_file(&path, &defines(&[("bsdf", t), ("res", "32")])).unwrap_or_else(|e| panic!("{scene} with {t}: {e}"));
+            let s = load_file(&path, &defines(&[("bsdf", t), ("res", "32")]))
+                .unwrap_or_else(|e| panic!("{scene} with {t}: {e}"));
             let (img, stats) = render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 2, 0, &|_, _| {});
             assert_eq!((img.width, img.height), (32, 32), "{scene}: res sets a square film");
             assert_eq!(stats.invalid_samples, 0, "{scene} with {t}: non-finite samples");
@@ -60,7 +61,8 @@ fn defaults_and_direct_only_override() {
         assert_eq!((s.film.width(), s.film.height(), s.spp), (256, 256, 64), "{scene}: defaults res 256, spp 64");
         // The study renders "direct only" with max_depth 2, and full paths with -1.
         for depth in ["2", "-1"] {
-            load_file(&path, &defines(&[("max_depth", depth)])).unwrap_or_else(|e| panic!("{scene} max_depth {depth}: {e}"));
+            load_file(&path, &defines(&[("max_depth", depth)]))
+                .unwrap_or_else(|e| panic!("{scene} max_depth {depth}: {e}"));
         }
     }
 }
@@ -81,7 +83,12 @@ fn diffuse_surfaces_use_the_bsdf_parameter() {
             match ty {
                 "$bsdf" => {
                     diffuse += 1;
-                    assert_eq!(kids.len(), 1, "{scene}: $bsdf at byte {} must hold only a reflectance", node.range().start);
+                    assert_eq!(
+                        kids.len(),
+                        1,
+                        "{scene}: $bsdf at byte {} must hold only a reflectance",
+                        node.range().start
+                    );
                     assert!(kids[0].has_tag_name("rgb") && kids[0].attribute("name") == Some("reflectance"));
                 }
                 "dielectric" | "conductor" | "roughconductor" => {}
@@ -90,7 +97,9 @@ fn diffuse_surfaces_use_the_bsdf_parameter() {
         }
         assert!(diffuse >= 2, "{scene}: only {diffuse} diffuse bsdfs");
         let default = |name: &str| {
-            doc.descendants().find(|n| n.has_tag_name("default") && n.attribute("name") == Some(name)).and_then(|n| n.attribute("value"))
+            doc.descendants()
+                .find(|n| n.has_tag_name("default") && n.attribute("name") == Some(name))
+                .and_then(|n| n.attribute("value"))
         };
         assert_eq!(default("bsdf"), Some("lambert"), "{scene}");
         assert_eq!(default("spp"), Some("64"), "{scene}");
@@ -109,7 +118,8 @@ fn diffuse_surfaces_use_the_bsdf_parameter() {
 fn bunny_default_is_direct_lighting() {
     let path = study_dir().join("bunny.xml");
     let text = std::fs::read_to_string(&path).unwrap();
-    let path_integrator = "<integrator type=\"path\">\n        <integer name=\"max_depth\" value=\"$max_depth\"/>\n    </integrator>";
+    let path_integrator =
+        "<integrator type=\"path\">\n        <integer name=\"max_depth\" value=\"$max_depth\"/>\n    </integrator>";
     assert!(text.contains(path_integrator));
     // `direct` has no max_depth, so its default goes too.
     let direct_text = text
@@ -203,7 +213,8 @@ fn generated_meshes_are_closed_outward_and_sized() {
     }
     // The bunny: closed, outward, height 1 standing on y = 0, footprint centred on x = z = 0.
     let bytes = std::fs::read(assets.join("bunny.ply")).unwrap();
-    let header = String::from_utf8_lossy(&bytes[..bytes.windows(10).position(|w| w == b"end_header").unwrap()]).into_owned();
+    let header =
+        String::from_utf8_lossy(&bytes[..bytes.windows(10).position(|w| w == b"end_header").unwrap()]).into_owned();
     assert!(!header.contains("property float nx"), "bunny.ply carries no normals: renderers compute smooth ones");
     let m = load_ply(&assets.join("bunny.ply"), &opts).unwrap_or_else(|e| panic!("{e}"));
     closed_outward_volume("bunny.ply", &m);

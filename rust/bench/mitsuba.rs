@@ -32,7 +32,13 @@ impl MitsubaTimes {
 
 /// Times every job in every variant (and the plugins when `plugin` is set).
 /// `work` receives the job list.
-pub fn time_mitsuba(jobs: &[RenderJob], variants: &[String], repeats: u32, plugin: Option<(u32, u32)>, work: &Path) -> Result<MitsubaTimes, String> {
+pub fn time_mitsuba(
+    jobs: &[RenderJob],
+    variants: &[String],
+    repeats: u32,
+    plugin: Option<(u32, u32)>,
+    work: &Path,
+) -> Result<MitsubaTimes, String> {
     let root = repo_root();
     let python = root.join(".venv/bin/python");
     if !python.exists() {
@@ -47,9 +53,16 @@ pub fn time_mitsuba(jobs: &[RenderJob], variants: &[String], repeats: u32, plugi
         .collect();
     std::fs::create_dir_all(work).map_err(|e| format!("{}: {e}", work.display()))?;
     let jobs_file = work.join("mitsuba_jobs.json");
-    std::fs::write(&jobs_file, serde_json::to_string_pretty(&list).expect("json")).map_err(|e| format!("{}: {e}", jobs_file.display()))?;
+    std::fs::write(&jobs_file, serde_json::to_string_pretty(&list).expect("json"))
+        .map_err(|e| format!("{}: {e}", jobs_file.display()))?;
     let mut cmd = Command::new(&python);
-    cmd.arg(root.join("validation/bench_mitsuba.py")).arg("--jobs").arg(&jobs_file).arg("--repeats").arg(repeats.to_string()).arg("--variants").args(variants);
+    cmd.arg(root.join("validation/bench_mitsuba.py"))
+        .arg("--jobs")
+        .arg(&jobs_file)
+        .arg("--repeats")
+        .arg(repeats.to_string())
+        .arg("--variants")
+        .args(variants);
     if let Some((res, spp)) = plugin {
         cmd.args(["--plugin-res", &res.to_string(), "--plugin-spp", &spp.to_string()]);
     }
@@ -57,13 +70,15 @@ pub fn time_mitsuba(jobs: &[RenderJob], variants: &[String], repeats: u32, plugi
     if !out.status.success() {
         return Err(format!("bench_mitsuba.py failed ({})", out.status));
     }
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).map_err(|e| format!("bench_mitsuba.py printed invalid JSON: {e}"))?;
+    let v: serde_json::Value =
+        serde_json::from_slice(&out.stdout).map_err(|e| format!("bench_mitsuba.py printed invalid JSON: {e}"))?;
     let renders = v["renders"]
         .as_array()
         .ok_or("bench_mitsuba.py: no \"renders\"")?
         .iter()
         .map(|r| {
-            let s = |k: &str| r[k].as_str().map(str::to_string).ok_or(format!("bench_mitsuba.py: render without \"{k}\""));
+            let s =
+                |k: &str| r[k].as_str().map(str::to_string).ok_or(format!("bench_mitsuba.py: render without \"{k}\""));
             Ok((s("name")?, s("variant")?, r["seconds"].as_f64().ok_or("bench_mitsuba.py: render without seconds")?))
         })
         .collect::<Result<Vec<_>, String>>()?;

@@ -32,7 +32,8 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
         renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, job.spp, 0, &|_, _| {}).1
     };
     run();
-    let best = (0..repeats.max(1)).map(|_| run()).min_by(|a, b| a.seconds.total_cmp(&b.seconds)).expect("at least one run");
+    let best =
+        (0..repeats.max(1)).map(|_| run()).min_by(|a, b| a.seconds.total_cmp(&b.seconds)).expect("at least one run");
     Ok(MatteTime {
         seconds: best.seconds,
         accel_build_seconds: loaded.scene.accel_build_seconds(),
@@ -48,7 +49,9 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
 pub fn spp_scaling(job: &RenderJob, spp: &[u32], repeats: u32) -> Result<Vec<(u32, f64)>, String> {
     let loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
     let run = |n: u32| {
-        let s = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film.clone(), n, 0, &|_, _| {}).1;
+        let s =
+            renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film.clone(), n, 0, &|_, _| {})
+                .1;
         s.samples as f64 / s.seconds
     };
     run(spp[0]);

@@ -36,11 +36,15 @@ pub fn targets(m: &Measurements) -> Vec<Target> {
             t.push(le(format!("plugin {kind} / diffuse time (llvm_ad_rgb, symbolic)"), ratio, plugin_limit(&kind)));
         }
     }
-    if let (Some(lo), Some(hi)) = (
-        m.scaling.iter().map(|s| s.1).min_by(f64::total_cmp),
-        m.scaling.iter().map(|s| s.1).max_by(f64::total_cmp),
-    ) {
-        t.push(Target { what: "Cornell samples/s: slowest / fastest over spp".into(), measured: lo / hi, limit: 0.9, at_least: true });
+    if let (Some(lo), Some(hi)) =
+        (m.scaling.iter().map(|s| s.1).min_by(f64::total_cmp), m.scaling.iter().map(|s| s.1).max_by(f64::total_cmp))
+    {
+        t.push(Target {
+            what: "Cornell samples/s: slowest / fastest over spp".into(),
+            measured: lo / hi,
+            limit: 0.9,
+            at_least: true,
+        });
     }
     if let Some((job, mt)) = m.jobs.iter().find(|(j, _)| j.name == "bunny") {
         t.push(le(format!("{}: BVH build / render time", job.name), mt.accel_build_seconds / mt.seconds, 0.10));
@@ -69,7 +73,12 @@ fn plugin_limit(kind: &str) -> f64 {
 pub fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_string()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
         .unwrap_or_else(|| "unknown CPU".into());
     format!("{cpu}, {} threads", rayon::current_num_threads())
 }
@@ -79,7 +88,10 @@ pub fn table(m: &Measurements) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let _ = writeln!(s, "machine: {}", machine());
-    let _ = writeln!(s, "\n| scene | res, spp | matte s | Mrays/s | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |");
+    let _ = writeln!(
+        s,
+        "\n| scene | res, spp | matte s | Mrays/s | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
     for (job, mt) in &m.jobs {
         let res = job.defines.iter().find(|d| d.0 == "res").map_or("?", |d| d.1.as_str());
@@ -104,7 +116,11 @@ pub fn table(m: &Measurements) -> String {
     for k in &m.kernels {
         let _ = writeln!(s, "| {} | {:.2} | {:.2}× |", k.model, k.ns_per_eval, k.ns_per_eval / lambert);
     }
-    let _ = writeln!(s, "\nCornell box samples/s by spp: {}", m.scaling.iter().map(|(n, r)| format!("{n} spp {:.3} M/s", r / 1e6)).collect::<Vec<_>>().join(", "));
+    let _ = writeln!(
+        s,
+        "\nCornell box samples/s by spp: {}",
+        m.scaling.iter().map(|(n, r)| format!("{n} spp {:.3} M/s", r / 1e6)).collect::<Vec<_>>().join(", ")
+    );
     if let Some(mi) = m.mitsuba.as_ref().filter(|mi| !mi.plugin.is_empty()) {
         let times: Vec<String> = mi.plugin.iter().map(|(k, sec)| format!("{k} {sec:.3} s")).collect();
         let _ = writeln!(s, "Mitsuba llvm_ad_rgb (symbolic) Cornell box, one process per type: {}", times.join(", "));
@@ -112,7 +128,15 @@ pub fn table(m: &Measurements) -> String {
     let _ = writeln!(s, "\n| target | measured | limit | met |");
     let _ = writeln!(s, "|---|---|---|---|");
     for t in targets(m) {
-        let _ = writeln!(s, "| {} | {:.3} | {} {} | {} |", t.what, t.measured, if t.at_least { "≥" } else { "≤" }, t.limit, if t.met() { "yes" } else { "**no**" });
+        let _ = writeln!(
+            s,
+            "| {} | {:.3} | {} {} | {} |",
+            t.what,
+            t.measured,
+            if t.at_least { "≥" } else { "≤" },
+            t.limit,
+            if t.met() { "yes" } else { "**no**" }
+        );
     }
     s
 }

@@ -68,10 +68,20 @@ impl<T: Real> EonKernel<T> {
     }
 
     pub fn coefficients(&self) -> [T; 7] {
-        [self.a_f, self.b_f, self.e_avg, self.one_minus_e_avg, self.one_minus_a_f, self.b_f_over_pi, self.inv_one_minus_e_avg]
+        [
+            self.a_f,
+            self.b_f,
+            self.e_avg,
+            self.one_minus_e_avg,
+            self.one_minus_a_f,
+            self.b_f_over_pi,
+            self.inv_one_minus_e_avg,
+        ]
     }
 
-    pub fn from_coefficients([a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg]: [T; 7]) -> Self {
+    pub fn from_coefficients(
+        [a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg]: [T; 7],
+    ) -> Self {
         Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg }
     }
 

@@ -47,7 +47,13 @@ pub fn eval_cos_pdf<T: Real, K: Kernel<T>, const N: usize>(k: &K, wi: V3<T>, wo:
 /// A cosine-weighted sample: `(wo, weight = f cos θo / pdf per channel, pdf)`. Weight and pdf
 /// are 0 when nothing can be drawn (`wi` at or below the horizon, or `wo` on it).
 #[inline(always)]
-pub fn sample<T: Real, K: Kernel<T>, const N: usize>(k: &K, wi: V3<T>, u1: T, u2: T, rho: [T; N]) -> (V3<T>, [T; N], T) {
+pub fn sample<T: Real, K: Kernel<T>, const N: usize>(
+    k: &K,
+    wi: V3<T>,
+    u1: T,
+    u2: T,
+    rho: [T; N],
+) -> (V3<T>, [T; N], T) {
     let zero = T::c(0.0);
     if T::none(wi.z.gt(zero)) {
         return (V3::new(zero, zero, zero), [zero; N], zero);

@@ -7,8 +7,8 @@
 pub mod approx;
 pub mod dual;
 pub mod eon;
-pub mod fresnel;
 pub mod frame;
+pub mod fresnel;
 pub mod ginneken;
 pub mod kernel;
 pub mod lambert;
@@ -73,9 +73,14 @@ impl Bsdf {
             "eon" => (Bsdf::Eon(Eon::from_params(&mut params)?), &["roughness"]),
             "wolff" => (Bsdf::Wolff(Wolff::from_params(&mut params)?), &["int_ior", "ext_ior", "normalization"]),
             "ginneken" => (Bsdf::Ginneken(Ginneken::from_params(&mut params)?), &["roughness", "shadowing"]),
-            "roughdiffuse" => (Bsdf::RoughDiffuse(RoughDiffuse::from_params(&mut params)?), &["alpha", "use_fast_approx"]),
+            "roughdiffuse" => {
+                (Bsdf::RoughDiffuse(RoughDiffuse::from_params(&mut params)?), &["alpha", "use_fast_approx"])
+            }
             other => {
-                return Err(ParamError::new("type", format!("unknown bsdf type \"{other}\" (known: {})", BSDF_TYPES.join(", "))));
+                return Err(ParamError::new(
+                    "type",
+                    format!("unknown bsdf type \"{other}\" (known: {})", BSDF_TYPES.join(", ")),
+                ));
             }
         };
         params.finish(kind, known)?;
@@ -109,7 +114,9 @@ impl Bsdf {
             Bsdf::Ginneken(b) => {
                 vec![("roughness", Number(b.roughness() as f64)), ("shadowing", Text(b.shadowing().as_str().into()))]
             }
-            Bsdf::RoughDiffuse(b) => vec![("alpha", Number(b.alpha() as f64)), ("use_fast_approx", Text(b.use_fast_approx().to_string()))],
+            Bsdf::RoughDiffuse(b) => {
+                vec![("alpha", Number(b.alpha() as f64)), ("use_fast_approx", Text(b.use_fast_approx().to_string()))]
+            }
         }
     }
 }

@@ -4,8 +4,8 @@
 //! physical normalisation), so an RGB or spectral caller cannot scale a grey result.
 
 use super::quadrature::GaussLegendre;
-use super::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use super::real::V3;
+use super::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use glam::{DVec3, Vec2, Vec3};
 
 /// A sampled direction with its solid-angle density and the path weight
@@ -107,7 +107,9 @@ pub fn albedo_by_quadrature<B: DiffuseBrdf + ?Sized>(brdf: &B, cos_theta_i: f64,
         }
         for (mu_o, w_mu) in gl.mapped(mu_a, mu_b) {
             let sin_o = (1.0 - mu_o * mu_o).max(0.0).sqrt();
-            for (phi_a, phi_b) in [(0.0, std::f64::consts::FRAC_PI_2), (std::f64::consts::FRAC_PI_2, std::f64::consts::PI)] {
+            for (phi_a, phi_b) in
+                [(0.0, std::f64::consts::FRAC_PI_2), (std::f64::consts::FRAC_PI_2, std::f64::consts::PI)]
+            {
                 for (phi, w_phi) in gl.mapped(phi_a, phi_b) {
                     let wo = DVec3::new(sin_o * phi.cos(), sin_o * phi.sin(), mu_o).as_vec3();
                     let f = brdf.eval(wi, wo, [reflectance])[0] as f64;

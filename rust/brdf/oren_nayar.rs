@@ -49,7 +49,13 @@ impl<T: Real> OrenNayarKernel<T> {
     pub fn new(sigma: T, model: OrenNayarModel) -> Self {
         let s2 = sigma * sigma;
         let ratio = |k: f64, d: f64| s2.scale(k) / (s2 + T::c(d));
-        Self { a: T::c(1.0) - ratio(0.5, 0.33), b: ratio(0.45, 0.09), c3: ratio(0.125, 0.09), l2: ratio(0.17, 0.13), model }
+        Self {
+            a: T::c(1.0) - ratio(0.5, 0.33),
+            b: ratio(0.45, 0.09),
+            c3: ratio(0.125, 0.09),
+            l2: ratio(0.17, 0.13),
+            model,
+        }
     }
 
     pub fn coefficients(&self) -> [T; 4] {
@@ -67,7 +73,8 @@ impl<T: Real> OrenNayarKernel<T> {
         let sin_theta = |w: V3<T>| (w.x * w.x + w.y * w.y).sqrt();
         let (sin_i, sin_o) = (sin_theta(wi), sin_theta(wo));
         let sin_prod = sin_i * sin_o;
-        let cos_phi = T::select(sin_prod.gt(tiny), (azimuthal_dot(wi, wo) / sin_prod.max(tiny)).clamp_to(-1.0, 1.0), T::c(0.0));
+        let cos_phi =
+            T::select(sin_prod.gt(tiny), (azimuthal_dot(wi, wo) / sin_prod.max(tiny)).clamp_to(-1.0, 1.0), T::c(0.0));
         // α belongs to the direction with the smaller cosine.
         let i_is_alpha = wi.z.lt(wo.z);
         let cos_alpha = T::select(i_is_alpha, wi.z, wo.z);
@@ -81,7 +88,11 @@ impl<T: Real> OrenNayarKernel<T> {
         // tan((α+β)/2) by the half-angle identity: no trig, finite while μi + μo > 0.
         let tan_half_sum = (sin_alpha + sin_beta) / (cos_alpha + cos_beta).max(tiny);
         let two_beta_pi = beta.scale(FRAC_2_PI);
-        let c2 = T::select(cos_phi.ge(T::c(0.0)), self.b * sin_alpha, self.b * (sin_alpha - two_beta_pi * two_beta_pi * two_beta_pi));
+        let c2 = T::select(
+            cos_phi.ge(T::c(0.0)),
+            self.b * sin_alpha,
+            self.b * (sin_alpha - two_beta_pi * two_beta_pi * two_beta_pi),
+        );
         let four_ab = (alpha * beta).scale(4.0 * FRAC_1_PI * FRAC_1_PI);
         let c3 = self.c3 * four_ab * four_ab;
         let direct = self.a + cos_phi * c2 * tan_beta + (T::c(1.0) - cos_phi.abs()) * c3 * tan_half_sum;
@@ -126,7 +137,10 @@ impl OrenNayar {
             return Err(ParamError::new("sigma", format!("must be a finite angle >= 0 in radians (got {sigma})")));
         }
         let k = OrenNayarKernel::<f64>::new(sigma, model);
-        Ok(Self { sigma: sigma as f32, kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model) })
+        Ok(Self {
+            sigma: sigma as f32,
+            kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model),
+        })
     }
 
     pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {

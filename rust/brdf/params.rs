@@ -134,10 +134,9 @@ impl Params {
     pub fn finish(&self, bsdf: &str, known: &[&str]) -> Result<(), ParamError> {
         match self.entries.iter().find(|(_, _, used)| !used) {
             None => Ok(()),
-            Some((n, _, _)) => Err(ParamError::new(
-                n,
-                format!("unknown parameter for bsdf \"{bsdf}\" (known: {})", known.join(", ")),
-            )),
+            Some((n, _, _)) => {
+                Err(ParamError::new(n, format!("unknown parameter for bsdf \"{bsdf}\" (known: {})", known.join(", "))))
+            }
         }
     }
 }

@@ -23,7 +23,6 @@ use super::params::{ParamError, Params};
 use super::real::{Real, V3};
 use glam::{Vec2, Vec3};
 
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WolffNormalization {
     Physical,
@@ -123,22 +122,41 @@ impl Wolff {
 
     pub fn new(int_ior: f64, ext_ior: f64, normalization: WolffNormalization) -> Result<Self, ParamError> {
         if !(int_ior >= 1.0) || !int_ior.is_finite() {
-            return Err(ParamError::new("int_ior", format!("must be a finite index of refraction >= 1 (got {int_ior})")));
+            return Err(ParamError::new(
+                "int_ior",
+                format!("must be a finite index of refraction >= 1 (got {int_ior})"),
+            ));
         }
         if !(ext_ior >= 1.0) || !ext_ior.is_finite() {
-            return Err(ParamError::new("ext_ior", format!("must be a finite index of refraction >= 1 (got {ext_ior})")));
+            return Err(ParamError::new(
+                "ext_ior",
+                format!("must be a finite index of refraction >= 1 (got {ext_ior})"),
+            ));
         }
         let eta = int_ior / ext_ior;
         if eta < 1.0 {
             return Err(ParamError::new(
                 "int_ior",
-                format!("must be >= ext_ior: Wolff's model is a denser body under a smooth interface (got int_ior {int_ior} < ext_ior {ext_ior})"),
+                format!(
+                    "must be >= ext_ior: Wolff's model is a denser body under a smooth interface (got int_ior {int_ior} < ext_ior {ext_ior})"
+                ),
             ));
         }
         let k = WolffKernel::<f64>::new(eta, normalization);
         let [_, _, k_pi, f_dr_int] = k.coefficients();
-        let kernel = WolffKernel { transmittance: k.transmittance.rounded(), k_pi: k_pi as f32, f_dr_int: f_dr_int as f32, normalization };
-        Ok(Self { int_ior: int_ior as f32, ext_ior: ext_ior as f32, eta: eta as f32, f_dr_ext: diffuse_fresnel_external(eta) as f32, kernel })
+        let kernel = WolffKernel {
+            transmittance: k.transmittance.rounded(),
+            k_pi: k_pi as f32,
+            f_dr_int: f_dr_int as f32,
+            normalization,
+        };
+        Ok(Self {
+            int_ior: int_ior as f32,
+            ext_ior: ext_ior as f32,
+            eta: eta as f32,
+            f_dr_ext: diffuse_fresnel_external(eta) as f32,
+            kernel,
+        })
     }
 
     pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {

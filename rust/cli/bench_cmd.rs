@@ -34,7 +34,8 @@ pub fn run(a: &BenchArgs) -> Result<(), String> {
         }
     })?;
     let path = a.out.join("bench.json");
-    std::fs::write(&path, serde_json::to_string_pretty(&bench::report::json(&m)).expect("json")).map_err(|e| format!("{}: {e}", path.display()))?;
+    std::fs::write(&path, serde_json::to_string_pretty(&bench::report::json(&m)).expect("json"))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
     print!("{}", bench::report::table(&m));
     println!("\n(JSON: {})", path.display());
     Ok(())

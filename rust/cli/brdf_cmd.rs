@@ -68,7 +68,11 @@ fn check_reflectance(r: f64) -> Result<f32, String> {
 }
 
 fn check_angle(name: &str, deg: f64, max: f64) -> Result<f64, String> {
-    if deg.is_finite() && (0.0..=max).contains(&deg) { Ok(deg) } else { Err(format!("--{name} must lie in [0, {max}] degrees (got {deg})")) }
+    if deg.is_finite() && (0.0..=max).contains(&deg) {
+        Ok(deg)
+    } else {
+        Err(format!("--{name} must lie in [0, {max}] degrees (got {deg})"))
+    }
 }
 
 fn header(bsdf: &Bsdf, reflectance: f64) -> Map<String, Value> {

@@ -11,7 +11,11 @@ pub mod validate_cmd;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser, Debug)]
-#[command(name = "matte", version, about = "Diffuse reflection models for global illumination, checked against Mitsuba 3")]
+#[command(
+    name = "matte",
+    version,
+    about = "Diffuse reflection models for global illumination, checked against Mitsuba 3"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
@@ -43,7 +47,10 @@ pub enum Command {
 pub fn parse() -> Result<Cli, String> {
     Cli::try_parse().map_err(|e| {
         use clap::error::ErrorKind;
-        if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand) {
+        if matches!(
+            e.kind(),
+            ErrorKind::DisplayHelp | ErrorKind::DisplayVersion | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+        ) {
             e.exit();
         }
         let text = e.to_string();

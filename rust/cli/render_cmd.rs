@@ -61,13 +61,18 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
     }
     let seed = a.seed.unwrap_or(loaded.seed);
     let output = a.output.clone().unwrap_or_else(|| {
-        PathBuf::from(a.scene.file_stem().map(|s| s.to_os_string()).unwrap_or_else(|| "render".into())).with_extension("exr")
+        PathBuf::from(a.scene.file_stem().map(|s| s.to_os_string()).unwrap_or_else(|| "render".into()))
+            .with_extension("exr")
     });
     let bar = if a.quiet || !std::io::stderr().is_terminal() {
         ProgressBar::hidden()
     } else {
         let b = ProgressBar::new(0);
-        b.set_style(ProgressStyle::with_template("{msg} [{bar:40}] {percent:>3}% {elapsed} (eta {eta})").expect("template").progress_chars("=> "));
+        b.set_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {percent:>3}% {elapsed} (eta {eta})")
+                .expect("template")
+                .progress_chars("=> "),
+        );
         b.set_message(format!("rendering {}", a.scene.display()));
         b
     };
@@ -75,7 +80,8 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
         bar.set_length(total);
         bar.set_position(done);
     };
-    let (image, stats) = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film, spp, seed, &progress);
+    let (image, stats) =
+        renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film, spp, seed, &progress);
     bar.finish_and_clear();
     image_io::write_exr(&output, &image).map_err(|e| format!("{}: {e}", output.display()))?;
     let png = a.png.then(|| output.with_extension("png"));

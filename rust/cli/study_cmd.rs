@@ -92,14 +92,22 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
             total += variants::pass_count(a.passes);
         }
         if !opts.convergence_spp.is_empty() {
-            for r in study::load_regions(scene).map_err(|e| format!("{}: {e}", scene.display()))?.into_iter().filter(|r| r.convergence) {
+            for r in study::load_regions(scene)
+                .map_err(|e| format!("{}: {e}", scene.display()))?
+                .into_iter()
+                .filter(|r| r.convergence)
+            {
                 total += convergence::pass_count(&opts);
                 series_regions.push((scene.clone(), name.clone(), r));
             }
         }
     }
     let bar = if !a.quiet && std::io::stderr().is_terminal() { ProgressBar::new(total) } else { ProgressBar::hidden() };
-    bar.set_style(ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} passes {elapsed} (eta {eta})").expect("template").progress_chars("=> "));
+    bar.set_style(
+        ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} passes {elapsed} (eta {eta})")
+            .expect("template")
+            .progress_chars("=> "),
+    );
     let progress = |what: &str, _k: u32| {
         bar.set_message(what.to_string());
         bar.inc(1);
@@ -109,20 +117,31 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     for scene in &scenes {
         let s = study::study_scene(scene, &opts, &progress).map_err(|e| format!("{}: {e}", scene.display()))?;
         if opts.variants_for(&s.name) {
-            variant_studies.push(variants::run(&s, &opts, &progress).map_err(|e| format!("{}: variants: {e}", scene.display()))?);
+            variant_studies
+                .push(variants::run(&s, &opts, &progress).map_err(|e| format!("{}: variants: {e}", scene.display()))?);
         }
         studies.push(s);
     }
     let mut series = Vec::new();
     for (scene, name, region) in &series_regions {
-        series.push(convergence::run(scene, name, region, &opts, &progress).map_err(|e| format!("{}: convergence: {e}", scene.display()))?);
+        series.push(
+            convergence::run(scene, name, region, &opts, &progress)
+                .map_err(|e| format!("{}: convergence: {e}", scene.display()))?,
+        );
     }
     bar.finish_and_clear();
     let label = match &opts.renderer {
         Reference::Matte => "matte".to_string(),
         Reference::Mitsuba(v) => format!("mitsuba {v}"),
     };
-    let study = Study { renderer: label, passes: a.passes, spp: a.spp, scenes: studies, variants: variant_studies, convergence: series };
+    let study = Study {
+        renderer: label,
+        passes: a.passes,
+        spp: a.spp,
+        scenes: studies,
+        variants: variant_studies,
+        convergence: series,
+    };
     study::report::write(&a.out, &study)?;
     println!("{}", serde_json::to_string_pretty(&study::report::json(&study)).expect("json"));
     Ok(())

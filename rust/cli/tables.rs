@@ -57,7 +57,8 @@ fn build(kind: &str, params: &[(&str, &str)]) -> Result<Bsdf, String> {
 }
 
 pub fn run(args: &TablesArgs) -> Result<(), String> {
-    let models: Vec<(&str, Bsdf)> = ROWS.iter().map(|(l, k, p)| build(k, p).map(|b| (*l, b))).collect::<Result<_, _>>()?;
+    let models: Vec<(&str, Bsdf)> =
+        ROWS.iter().map(|(l, k, p)| build(k, p).map(|b| (*l, b))).collect::<Result<_, _>>()?;
 
     println!("Table 1: f(wi, wo) in 1/sr, reflectance 0.8 (columns: θi/θo/Δφ in degrees)");
     print!("{:<26}", "model");
@@ -93,7 +94,10 @@ pub fn run(args: &TablesArgs) -> Result<(), String> {
     }
 
     if args.error_samples > 0 {
-        println!("\nvan Ginneken fast path vs reference integral ({} quasi-random configurations each)", args.error_samples);
+        println!(
+            "\nvan Ginneken fast path vs reference integral ({} quasi-random configurations each)",
+            args.error_samples
+        );
         for (label, bsdf) in &models {
             if let Bsdf::Ginneken(g) = bsdf {
                 for max_theta in [80.0, 85.0, 89.0] {

@@ -78,17 +78,25 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     if !(a.alpha > 0.0 && a.alpha < 1.0) {
         return Err("--alpha must be in (0, 1)".into());
     }
-    let opts = Options { passes, spp, seed: a.seed, alpha: a.alpha, out: a.out.clone(), matte_defines, reference_defines };
+    let opts =
+        Options { passes, spp, seed: a.seed, alpha: a.alpha, out: a.out.clone(), matte_defines, reference_defines };
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    let references: Vec<Reference> =
-        if a.self_check { vec![Reference::Matte] } else { a.variants.iter().map(|v| Reference::Mitsuba(v.clone())).collect() };
+    let references: Vec<Reference> = if a.self_check {
+        vec![Reference::Matte]
+    } else {
+        a.variants.iter().map(|v| Reference::Mitsuba(v.clone())).collect()
+    };
     let show = !a.quiet && std::io::stderr().is_terminal();
     let mut results: Vec<SceneResult> = Vec::new();
     let mut errors = Vec::new();
     for scene in &scenes {
         for reference in &references {
             let bar = if show { ProgressBar::new(passes as u64) } else { ProgressBar::hidden() };
-            bar.set_style(ProgressStyle::with_template("{msg:50} [{bar:30}] {pos}/{len} passes {elapsed}").expect("template").progress_chars("=> "));
+            bar.set_style(
+                ProgressStyle::with_template("{msg:50} [{bar:30}] {pos}/{len} passes {elapsed}")
+                    .expect("template")
+                    .progress_chars("=> "),
+            );
             let name = scene.file_name().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
             let progress = |who: &str, k: u32, _n: u32| {
                 bar.set_message(format!("{name}: {who}"));
@@ -126,7 +134,11 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     if a.json {
         println!("{}", serde_json::to_string_pretty(&validate::report::summary_json(&results)).expect("json"));
     }
-    let failed: Vec<String> = results.iter().filter(|r| !r.comparison.passed()).map(|r| format!("{} (vs {})", r.scene.display(), r.reference)).collect();
+    let failed: Vec<String> = results
+        .iter()
+        .filter(|r| !r.comparison.passed())
+        .map(|r| format!("{} (vs {})", r.scene.display(), r.reference))
+        .collect();
     if !errors.is_empty() || !failed.is_empty() {
         for e in &errors {
             eprintln!("matte: validate: error: {e}");
@@ -134,7 +146,12 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
         if !failed.is_empty() {
             eprintln!("matte: validate: FAILED: {}", failed.join(", "));
         }
-        return Err(format!("{} scene(s) failed, {} could not be validated; report: {}", failed.len(), errors.len(), a.out.join("report.html").display()));
+        return Err(format!(
+            "{} scene(s) failed, {} could not be validated; report: {}",
+            failed.len(),
+            errors.len(),
+            a.out.join("report.html").display()
+        ));
     }
     if !a.json {
         println!("all {} comparison(s) passed; report: {}", results.len(), a.out.join("report.html").display());

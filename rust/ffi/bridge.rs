@@ -69,7 +69,15 @@ pub mod ffi {
         fn eval_pdf(self: &Model, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32;
         fn pdf(self: &Model, wi: &Vec3f, wo: &Vec3f) -> f32;
         /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample).
-        fn sample(self: &Model, wi: &Vec3f, u1: f32, u2: f32, reflectance: &Channels, wo: &mut Vec3f, weight: &mut Channels) -> f32;
+        fn sample(
+            self: &Model,
+            wi: &Vec3f,
+            u1: f32,
+            u2: f32,
+            reflectance: &Channels,
+            wo: &mut Vec3f,
+            weight: &mut Channels,
+        ) -> f32;
 
         // ---- traced (JIT variants): arguments and results are arena indices ----
         /// How many tables the traced kernel gathers from (van Ginneken: 4), and their
@@ -81,7 +89,15 @@ pub mod ffi {
         /// Ginneken then adds its roughness-derivative tables to the kernel).
         fn traced_coefficients(self: &Model, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32>;
         /// f·cos θo per channel into `value`; returns the pdf.
-        fn traced_eval_pdf(self: &Model, arena: &Arena, coefficients: &[u32], wi: &[u32], wo: &[u32], rho: &[u32], value: &mut [u32]) -> u32;
+        fn traced_eval_pdf(
+            self: &Model,
+            arena: &Arena,
+            coefficients: &[u32],
+            wi: &[u32],
+            wo: &[u32],
+            rho: &[u32],
+            value: &mut [u32],
+        ) -> u32;
         /// Draws wo (into `wo`), the weight f·cos θo/pdf (into `weight`); returns the pdf.
         fn traced_sample(
             self: &Model,

@@ -38,7 +38,8 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
     let built = catch_unwind(AssertUnwindSafe(|| {
         let mut p = Params::new();
         for param in params {
-            let value = if param.is_number { ParamValue::Number(param.number) } else { ParamValue::Text(param.text.clone()) };
+            let value =
+                if param.is_number { ParamValue::Number(param.number) } else { ParamValue::Text(param.text.clone()) };
             p.push(&param.name, value);
         }
         Bsdf::from_params(kind, p).map_err(|e| e.to_string())
@@ -106,13 +107,23 @@ impl Model {
     }
 
     /// Samples `wo`; writes it and the weight `f cos θo / pdf`; returns the pdf (0: no sample).
-    fn sample(&self, wi: &Vec3f, u1: f32, u2: f32, reflectance: &Channels, wo: &mut Vec3f, weight: &mut Channels) -> f32 {
+    fn sample(
+        &self,
+        wi: &Vec3f,
+        u1: f32,
+        u2: f32,
+        reflectance: &Channels,
+        wo: &mut Vec3f,
+        weight: &mut Channels,
+    ) -> f32 {
         let (wi, u) = (v3(wi), Vec2::new(u1, u2));
         weight.n = reflectance.n;
         weight.v = [0.0; MAX_CHANNELS];
         let drawn = match *used(reflectance) {
             [a] => self.bsdf.sample(wi, u, [a]).map(|s| (s.wo, s.pdf, [s.weight[0], 0.0, 0.0, 0.0])),
-            [a, b, c] => self.bsdf.sample(wi, u, [a, b, c]).map(|s| (s.wo, s.pdf, [s.weight[0], s.weight[1], s.weight[2], 0.0])),
+            [a, b, c] => {
+                self.bsdf.sample(wi, u, [a, b, c]).map(|s| (s.wo, s.pdf, [s.weight[0], s.weight[1], s.weight[2], 0.0]))
+            }
             ref rho => {
                 let mut r = [0.0; MAX_CHANNELS];
                 r[..rho.len()].copy_from_slice(rho);

@@ -30,7 +30,12 @@ enum TracedKernel<'a> {
 
 impl<'a> Kernel<Traced<'a>> for TracedKernel<'a> {
     #[inline]
-    fn reduced_f<const N: usize>(&self, wi: V3<Traced<'a>>, wo: V3<Traced<'a>>, rho: [Traced<'a>; N]) -> [Traced<'a>; N] {
+    fn reduced_f<const N: usize>(
+        &self,
+        wi: V3<Traced<'a>>,
+        wo: V3<Traced<'a>>,
+        rho: [Traced<'a>; N],
+    ) -> [Traced<'a>; N] {
         match self {
             TracedKernel::Lambert(k) => k.reduced_f(wi, wo, rho),
             TracedKernel::OrenNayar(k) => k.reduced_f(wi, wo, rho),
@@ -94,13 +99,20 @@ impl Model {
         let p = |k: usize| params.get(k).map(|&i| Traced::node(arena, i));
         match &self.bsdf {
             Bsdf::Lambert(_) => vec![],
-            Bsdf::OrenNayar(b) => p(0).map_or(vec![], |sigma| ids(arena, OrenNayarKernel::new(sigma, b.model()).coefficients())),
+            Bsdf::OrenNayar(b) => {
+                p(0).map_or(vec![], |sigma| ids(arena, OrenNayarKernel::new(sigma, b.model()).coefficients()))
+            }
             Bsdf::Eon(_) => p(0).map_or(vec![], |r| ids(arena, EonKernel::new(r).coefficients())),
             Bsdf::RoughDiffuse(b) => p(0).map_or(vec![], |alpha| {
-                ids(arena, OrenNayarKernel::new(RoughDiffuse::sigma_of_alpha(alpha), b.oren_nayar().model()).coefficients())
+                ids(
+                    arena,
+                    OrenNayarKernel::new(RoughDiffuse::sigma_of_alpha(alpha), b.oren_nayar().model()).coefficients(),
+                )
             }),
             Bsdf::Wolff(b) => match (p(0), p(1)) {
-                (Some(int_ior), Some(ext_ior)) => ids(arena, WolffKernel::new(int_ior / ext_ior, b.normalization()).coefficients()),
+                (Some(int_ior), Some(ext_ior)) => {
+                    ids(arena, WolffKernel::new(int_ior / ext_ior, b.normalization()).coefficients())
+                }
                 _ => vec![],
             },
             // m − m₀: zero in value (the tables were built at the parameter's value m₀), the
@@ -116,22 +128,48 @@ impl Model {
     fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32]) -> Option<TracedKernel<'a>> {
         Some(match &self.bsdf {
             Bsdf::Lambert(k) => TracedKernel::Lambert(*k),
-            Bsdf::OrenNayar(b) => TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.model())),
-            Bsdf::Eon(_) => TracedKernel::Eon(EonKernel::from_coefficients(nodes(arena, coefficients)?)),
-            Bsdf::RoughDiffuse(b) => {
-                TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.oren_nayar().model()))
+            Bsdf::OrenNayar(b) => {
+                TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.model()))
             }
-            Bsdf::Wolff(b) => TracedKernel::Wolff(WolffKernel::from_coefficients(nodes(arena, coefficients)?, b.normalization())),
+            Bsdf::Eon(_) => TracedKernel::Eon(EonKernel::from_coefficients(nodes(arena, coefficients)?)),
+            Bsdf::RoughDiffuse(b) => TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(
+                nodes(arena, coefficients)?,
+                b.oren_nayar().model(),
+            )),
+            Bsdf::Wolff(b) => {
+                TracedKernel::Wolff(WolffKernel::from_coefficients(nodes(arena, coefficients)?, b.normalization()))
+            }
             Bsdf::Ginneken(b) => {
                 let table = |id| TracedTable { arena, id };
                 let roughness_derivative = nodes::<1>(arena, coefficients).map(|[dm]| (table(1), table(3), dm));
-                TracedKernel::Ginneken(GinnekenKernel { slope: table(0), mu_lambda: table(2), roughness_derivative, shadowing: b.shadowing() })
+                TracedKernel::Ginneken(GinnekenKernel {
+                    slope: table(0),
+                    mu_lambda: table(2),
+                    roughness_derivative,
+                    shadowing: b.shadowing(),
+                })
             }
         })
     }
 
-    pub(super) fn traced_eval_pdf(&self, arena: &Arena, coefficients: &[u32], wi: &[u32], wo: &[u32], rho: &[u32], value: &mut [u32]) -> u32 {
-        fn go<const N: usize>(m: &Model, arena: &Arena, coefficients: &[u32], wi: &[u32], wo: &[u32], rho: &[u32], value: &mut [u32]) -> Option<u32> {
+    pub(super) fn traced_eval_pdf(
+        &self,
+        arena: &Arena,
+        coefficients: &[u32],
+        wi: &[u32],
+        wo: &[u32],
+        rho: &[u32],
+        value: &mut [u32],
+    ) -> u32 {
+        fn go<const N: usize>(
+            m: &Model,
+            arena: &Arena,
+            coefficients: &[u32],
+            wi: &[u32],
+            wo: &[u32],
+            rho: &[u32],
+            value: &mut [u32],
+        ) -> Option<u32> {
             let k = m.traced_kernel(arena, coefficients)?;
             let ([wx, wy, wz], [ox, oy, oz]) = (nodes::<3>(arena, wi)?, nodes::<3>(arena, wo)?);
             let (v, pdf) = kernel::eval_cos_pdf(&k, V3::new(wx, wy, wz), V3::new(ox, oy, oz), nodes::<N>(arena, rho)?);
@@ -174,6 +212,7 @@ impl Model {
             Some(pdf.id(arena))
         }
         let zero = || arena.lit(0.0);
-        by_channels!(rho.len(), go, zero())(self, arena, coefficients, wi, [u1, u2], rho, wo, weight).unwrap_or_else(zero)
+        by_channels!(rho.len(), go, zero())(self, arena, coefficients, wi, [u1, u2], rho, wo, weight)
+            .unwrap_or_else(zero)
     }
 }

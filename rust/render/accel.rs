@@ -80,7 +80,11 @@ impl Accel {
         if prims.is_empty() {
             return Accel { bvh: None, prims };
         }
-        let bvh = obvhs::cwbvh::builder::build_cwbvh(&aabbs, obvhs::BvhBuildParams::medium_build(), &mut Duration::ZERO.clone());
+        let bvh = obvhs::cwbvh::builder::build_cwbvh(
+            &aabbs,
+            obvhs::BvhBuildParams::medium_build(),
+            &mut Duration::ZERO.clone(),
+        );
         let prims = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
         Accel { bvh: Some(bvh), prims }
     }

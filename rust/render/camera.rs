@@ -53,8 +53,20 @@ pub fn x_half_tan(fov_deg: f64, axis: FovAxis, aspect: f64) -> f64 {
         FovAxis::X => half,
         FovAxis::Y => half * aspect,
         FovAxis::Diagonal => half / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
-        FovAxis::Smaller => if aspect > 1.0 { half * aspect } else { half },
-        FovAxis::Larger => if aspect > 1.0 { half } else { half * aspect },
+        FovAxis::Smaller => {
+            if aspect > 1.0 {
+                half * aspect
+            } else {
+                half
+            }
+        }
+        FovAxis::Larger => {
+            if aspect > 1.0 {
+                half
+            } else {
+                half * aspect
+            }
+        }
     }
 }
 

@@ -61,8 +61,15 @@ fn layer_rgb(layer: &Layer<AnyChannels<FlatSamples>>) -> Option<Image> {
 pub fn write_png(path: &Path, img: &Image) -> Result<(), String> {
     check_size(img)?;
     let bytes: Vec<u8> = img.pixels.iter().flat_map(|p| p.to_array().map(encode_srgb8)).collect();
-    image::save_buffer_with_format(path, &bytes, img.width, img.height, image::ExtendedColorType::Rgb8, image::ImageFormat::Png)
-        .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
+    image::save_buffer_with_format(
+        path,
+        &bytes,
+        img.width,
+        img.height,
+        image::ExtendedColorType::Rgb8,
+        image::ImageFormat::Png,
+    )
+    .map_err(|e| format!("{}: cannot write PNG: {e}", path.display()))
 }
 
 /// Linear → 8-bit sRGB code value.

@@ -8,13 +8,13 @@
 pub mod accel;
 pub mod bsdf;
 pub mod camera;
-pub mod orthographic;
 pub mod emitter;
 pub mod film;
 pub mod geometry;
 pub mod image_io;
 pub mod integrator;
 pub mod load;
+pub mod orthographic;
 pub mod renderer;
 pub mod sampler;
 pub mod scene;

@@ -30,7 +30,8 @@ impl Scene {
         let accel = Accel::build(&shapes);
         let accel_build_seconds = t0.elapsed().as_secs_f64();
         let total: f32 = sampling_weights.iter().sum();
-        let emitter_pmf: Vec<f32> = sampling_weights.iter().map(|w| if total > 0.0 { w / total } else { 0.0 }).collect();
+        let emitter_pmf: Vec<f32> =
+            sampling_weights.iter().map(|w| if total > 0.0 { w / total } else { 0.0 }).collect();
         let mut acc = 0.0;
         let emitter_cdf = emitter_pmf
             .iter()
@@ -102,11 +103,8 @@ impl Scene {
     /// spawned as Mitsuba does, towards `es.p`, or along `es.d` for lights at infinity).
     #[inline]
     pub fn emitter_visible(&self, si: &SurfaceInteraction, es: &EmitterSample) -> bool {
-        let shadow = if es.dist.is_finite() {
-            ray::spawn_ray_to(si.p, si.n, es.p)
-        } else {
-            ray::spawn_ray(si.p, si.n, es.d)
-        };
+        let shadow =
+            if es.dist.is_finite() { ray::spawn_ray_to(si.p, si.n, es.p) } else { ray::spawn_ray(si.p, si.n, es.d) };
         !self.occluded(&shadow)
     }
 

@@ -94,7 +94,9 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
         // The paper's "Ginneken darkest": van Ginneken's rank among the models (1 = darkest).
         let mut global: Vec<_> = s.results.iter().filter(|r| r.lighting == Lighting::Global).collect();
         global.sort_by(|a, b| a.ratio.0.total_cmp(&b.ratio.0));
-        if let (Some(rank), Some(on)) = (global.iter().position(|r| r.model.bsdf == "ginneken"), ratio(s, "oren_nayar", Lighting::Global)) {
+        if let (Some(rank), Some(on)) =
+            (global.iter().position(|r| r.model.bsdf == "ginneken"), ratio(s, "oren_nayar", Lighting::Global))
+        {
             let vg = global[rank].ratio;
             let versus = if vg.0 + vg.1 < on.0 - on.1 {
                 "darker than"
@@ -120,7 +122,11 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
             .map(|r| (r.model.label, r.ratio));
         if let Some((label, r)) = darkest {
             let setting = if direct_only { "" } else { " under global illumination" };
-            out.push(format!("{}: the darkest model{setting} is {label} ({} against Lambert).", s.name, pct_ci(r.0 - 1.0, r.1)));
+            out.push(format!(
+                "{}: the darkest model{setting} is {label} ({} against Lambert).",
+                s.name,
+                pct_ci(r.0 - 1.0, r.1)
+            ));
         }
         for r in s.results.iter().filter(|r| r.model.bsdf == "oren_nayar" && r.lighting == Lighting::Global) {
             for (name, m, hw) in &r.regions {
@@ -131,7 +137,11 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
                 } else {
                     "not distinguishable from Lambert"
                 };
-                out.push(format!("{}, region \"{name}\": Oren–Nayar is {verdict}: ratio {} (99 %).", s.name, ci((*m, *hw))));
+                out.push(format!(
+                    "{}, region \"{name}\": Oren–Nayar is {verdict}: ratio {} (99 %).",
+                    s.name,
+                    ci((*m, *hw))
+                ));
             }
         }
     }
@@ -244,13 +254,22 @@ pub fn convergence_answers(s: &Series, variants: Option<&VariantStudy>) -> Vec<S
             _ => "on different sides of Lambert in the two renderers",
         };
         let verdict = if s.renderers.len() < 2 {
-            format!("Stable over spp: {}. Only one renderer ran, so agreement is untested. The model is {brightness}.", if stable { "yes" } else { "no (it drifts)" })
+            format!(
+                "Stable over spp: {}. Only one renderer ran, so agreement is untested. The model is {brightness}.",
+                if stable { "yes" } else { "no (it drifts)" }
+            )
         } else if stable && ak == an && an > 0 {
-            format!("The ratio is stable over spp, and the renderers agree at {ak} of {an} levels. It is a converged property of the model, not a bias or noise artefact. The model is {brightness}.")
+            format!(
+                "The ratio is stable over spp, and the renderers agree at {ak} of {an} levels. It is a converged property of the model, not a bias or noise artefact. The model is {brightness}."
+            )
         } else if !stable {
-            format!("The ratio drifts with spp (renderers agree at {ak} of {an} levels), so noise or a bias affects it at low spp. At the highest level the model is {brightness}.")
+            format!(
+                "The ratio drifts with spp (renderers agree at {ak} of {an} levels), so noise or a bias affects it at low spp. At the highest level the model is {brightness}."
+            )
         } else {
-            format!("The ratio is stable over spp, but the renderers agree at only {ak} of {an} levels, which means a renderer bias. The model is {brightness}.")
+            format!(
+                "The ratio is stable over spp, but the renderers agree at only {ak} of {an} levels, which means a renderer bias. The model is {brightness}."
+            )
         };
         out.push(format!(
             "{}, region \"{}\", {label} / Lambert under global illumination, {lo}–{hi} spp, 99 % intervals. {}. {verdict}",
@@ -259,7 +278,10 @@ pub fn convergence_answers(s: &Series, variants: Option<&VariantStudy>) -> Vec<S
             per_renderer.join("; ")
         ));
     }
-    if let Some(r) = variants.and_then(|v| v.result("oren_nayar_full", Lighting::Global)).and_then(|r| r.regions.iter().find(|x| x.0 == s.region)) {
+    if let Some(r) = variants
+        .and_then(|v| v.result("oren_nayar_full", Lighting::Global))
+        .and_then(|r| r.regions.iter().find(|x| x.0 == s.region))
+    {
         out.push(format!(
             "{}, region \"{}\", variant run at the study's full budget: Oren–Nayar full / Lambert = {} ({} Lambert).",
             s.scene_name,

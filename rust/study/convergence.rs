@@ -33,7 +33,12 @@ pub struct SeriesModel {
 pub const SERIES_MODELS: [SeriesModel; 3] = [
     SeriesModel { key: "lambert", label: "Lambert", bsdf: "lambert", property: None },
     SeriesModel { key: "oren_nayar", label: "Oren–Nayar (qualitative)", bsdf: "oren_nayar", property: None },
-    SeriesModel { key: "oren_nayar_full", label: "Oren–Nayar full", bsdf: "oren_nayar", property: Some(("model", "full")) },
+    SeriesModel {
+        key: "oren_nayar_full",
+        label: "Oren–Nayar full",
+        bsdf: "oren_nayar",
+        property: Some(("model", "full")),
+    },
 ];
 
 /// One model's region ratio to Lambert at one level in one renderer.
@@ -93,7 +98,8 @@ impl Series {
             [a, b, ..] => [a, b],
             _ => return (0, 0),
         };
-        let pairs: Vec<(&Point, &Point)> = self.levels.iter().filter_map(|&s| Some((self.point(model, a, s)?, self.point(model, b, s)?))).collect();
+        let pairs: Vec<(&Point, &Point)> =
+            self.levels.iter().filter_map(|&s| Some((self.point(model, a, s)?, self.point(model, b, s)?))).collect();
         (pairs.iter().filter(|(p, q)| overlap(p.ratio, q.ratio)).count(), pairs.len())
     }
 }
@@ -131,11 +137,19 @@ fn slug(s: &str) -> String {
 
 /// Renders the series for `region` of `scene` (named `name`); writes the derived crop scenes
 /// into `<out>/<name>/convergence/`. A Mitsuba side that cannot run becomes a note.
-pub fn run(scene: &Path, name: &str, region: &Region, opts: &Options, progress: &dyn Fn(&str, u32)) -> Result<Series, String> {
+pub fn run(
+    scene: &Path,
+    name: &str,
+    region: &Region,
+    opts: &Options,
+    progress: &dyn Fn(&str, u32),
+) -> Result<Series, String> {
     let rel_dir = PathBuf::from(name).join("convergence");
     let dir = opts.out.join(&rel_dir);
     // The film size with the study's parameters (the crop is in its pixels).
-    let film = load::load_file(scene, &super::image_defines(opts, "lambert", Lighting::Global)).map_err(|e| e.to_string())?.film;
+    let film = load::load_file(scene, &super::image_defines(opts, "lambert", Lighting::Global))
+        .map_err(|e| e.to_string())?
+        .film;
     let (w, h) = (film.width(), film.height());
     let [x0, y0, x1, y1] = region_pixels(w, h, region.rect);
     let crop = vec![
@@ -148,7 +162,11 @@ pub fn run(scene: &Path, name: &str, region: &Region, opts: &Options, progress: 
     for m in SERIES_MODELS {
         let file = opts.out.join(&rel_dir).join(format!("{}_{}.xml", slug(&region.name), m.key));
         let bsdf_properties = m.property.map(|(k, v)| vec![Property::string(k, v)]).unwrap_or_default();
-        variant_scene::write_derived(scene, &file, &Derivation { bsdf: Some(m.bsdf.into()), bsdf_properties, film_properties: crop.clone() })?;
+        variant_scene::write_derived(
+            scene,
+            &file,
+            &Derivation { bsdf: Some(m.bsdf.into()), bsdf_properties, film_properties: crop.clone() },
+        )?;
         files.push(file);
     }
     let mitsuba = format!("mitsuba {}", opts.mitsuba_variant);
@@ -181,13 +199,18 @@ pub fn run(scene: &Path, name: &str, region: &Region, opts: &Options, progress: 
                 let side = if renderer == "matte" {
                     passes::rust_side(file, &plan, &|k| progress(&what, k))
                 } else {
-                    passes::mitsuba_side_in_venv(file, &opts.mitsuba_variant, &plan, &dir.join("work"), &|k| progress(&what, k))
+                    passes::mitsuba_side_in_venv(file, &opts.mitsuba_variant, &plan, &dir.join("work"), &|k| {
+                        progress(&what, k)
+                    })
                 };
                 match side {
                     Ok(s) => sides.push(s),
                     Err(e) if renderer != "matte" => {
                         eprintln!("matte study: warning: the convergence series' Mitsuba side failed: {e}");
-                        notes.push(format!("Mitsuba failed at {spp} spp ({}): {e}. Its later levels were skipped.", m.label));
+                        notes.push(format!(
+                            "Mitsuba failed at {spp} spp ({}): {e}. Its later levels were skipped.",
+                            m.label
+                        ));
                         active.retain(|r| *r != renderer);
                         break;
                     }
@@ -202,7 +225,8 @@ pub fn run(scene: &Path, name: &str, region: &Region, opts: &Options, progress: 
             }
         }
     }
-    let renderers = ["matte".to_string(), mitsuba].into_iter().filter(|r| points.iter().any(|p| p.renderer == *r)).collect();
+    let renderers =
+        ["matte".to_string(), mitsuba].into_iter().filter(|r| points.iter().any(|p| p.renderer == *r)).collect();
     Ok(Series {
         scene_name: name.to_string(),
         region: region.name.clone(),

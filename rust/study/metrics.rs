@@ -40,7 +40,8 @@ pub fn luminance_ratio(model: &Moments, lambert: &Moments) -> (f64, f64) {
 
 /// Mean and 99 % half-width of the per-pass luminance ratios of paired pass means.
 pub fn paired_luminance_ratio(model: &[DVec3], lambert: &[DVec3]) -> (f64, f64) {
-    let ratios: Vec<f64> = model.iter().zip(lambert).map(|(m, l)| luminance_d(*m) / luminance_d(*l).max(1e-12)).collect();
+    let ratios: Vec<f64> =
+        model.iter().zip(lambert).map(|(m, l)| luminance_d(*m) / luminance_d(*l).max(1e-12)).collect();
     mean_ci99(&ratios)
 }
 

@@ -24,8 +24,8 @@ pub mod variants;
 
 use crate::render::film::Image;
 use crate::render::image_io;
-use crate::validate::passes::{self, Budget, PassPlan, Side};
 use crate::validate::Reference;
+use crate::validate::passes::{self, Budget, PassPlan, Side};
 use std::path::{Path, PathBuf};
 
 /// A model column: plugin name and label.
@@ -125,10 +125,22 @@ pub fn load_regions(scene: &Path) -> Result<Vec<Region>, String> {
         .iter()
         .map(|r| {
             let name = r["name"].as_str().ok_or_else(bad)?.to_string();
-            let c: Vec<f32> = r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64().map(|x| x as f32)).collect();
+            let c: Vec<f32> =
+                r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64().map(|x| x as f32)).collect();
             match c.as_slice() {
-                [x0, y0, x1, y1] if (0.0..=1.0).contains(x0) && x0 < x1 && *x1 <= 1.0 && (0.0..=1.0).contains(y0) && y0 < y1 && *y1 <= 1.0 => {
-                    Ok(Region { name, rect: [*x0, *y0, *x1, *y1], convergence: r["convergence"].as_bool().unwrap_or(false) })
+                [x0, y0, x1, y1]
+                    if (0.0..=1.0).contains(x0)
+                        && x0 < x1
+                        && *x1 <= 1.0
+                        && (0.0..=1.0).contains(y0)
+                        && y0 < y1
+                        && *y1 <= 1.0 =>
+                {
+                    Ok(Region {
+                        name,
+                        rect: [*x0, *y0, *x1, *y1],
+                        convergence: r["convergence"].as_bool().unwrap_or(false),
+                    })
                 }
                 _ => Err(bad()),
             }
@@ -182,9 +194,22 @@ pub(crate) fn image_defines(opts: &Options, bsdf: &str, lighting: Lighting) -> V
 }
 
 /// K paired passes of `scene` with the study's seeds and budget, in the study's renderer.
-pub(crate) fn render_side(scene: &Path, opts: &Options, defines: Vec<(String, String)>, regions: &[Region], work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+pub(crate) fn render_side(
+    scene: &Path,
+    opts: &Options,
+    defines: Vec<(String, String)>,
+    regions: &[Region],
+    work: &Path,
+    progress: &dyn Fn(u32),
+) -> Result<Side, String> {
     let regions = regions.iter().map(|r| r.rect).collect();
-    let plan = PassPlan { passes: opts.passes, spp: Budget::PerPass((opts.spp / opts.passes).max(1)), seed: opts.seed, defines, regions };
+    let plan = PassPlan {
+        passes: opts.passes,
+        spp: Budget::PerPass((opts.spp / opts.passes).max(1)),
+        seed: opts.seed,
+        defines,
+        regions,
+    };
     match &opts.renderer {
         Reference::Matte => passes::rust_side(scene, &plan, progress),
         Reference::Mitsuba(variant) => passes::mitsuba_side_in_venv(scene, variant, &plan, work, progress),
@@ -235,7 +260,8 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
                     .iter()
                     .enumerate()
                     .map(|(i, r)| {
-                        let (m, hw) = metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]);
+                        let (m, hw) =
+                            metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]);
                         (r.name.clone(), m, hw)
                     })
                     .collect(),

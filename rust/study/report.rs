@@ -102,7 +102,9 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
         }
         h.push_str("<table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>edge / flat, global</th><th>edge / flat, direct</th></tr>");
         for m in super::MODELS {
-            let (Some(g), Some(d)) = (find(s, m.bsdf, Lighting::Global), find(s, m.bsdf, Lighting::Direct)) else { continue };
+            let (Some(g), Some(d)) = (find(s, m.bsdf, Lighting::Global), find(s, m.bsdf, Lighting::Direct)) else {
+                continue;
+            };
             let _ = write!(
                 h,
                 "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td><td>{:+.4}</td><td>{:.3} / {:.3}</td><td>{:.3} / {:.3}</td></tr>",
@@ -119,11 +121,17 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
             );
         }
         h.push_str("</table>");
-        let names: Vec<String> = s.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
+        let names: Vec<String> =
+            s.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
         for (i, name) in names.iter().enumerate() {
-            let _ = write!(h, "<h4>Region: {name}</h4><table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th></tr>");
+            let _ = write!(
+                h,
+                "<h4>Region: {name}</h4><table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th></tr>"
+            );
             for m in super::MODELS {
-                let (Some(g), Some(d)) = (find(s, m.bsdf, Lighting::Global), find(s, m.bsdf, Lighting::Direct)) else { continue };
+                let (Some(g), Some(d)) = (find(s, m.bsdf, Lighting::Global), find(s, m.bsdf, Lighting::Direct)) else {
+                    continue;
+                };
                 let _ = write!(
                     h,
                     "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td></tr>",

@@ -49,7 +49,14 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
         esc(&v.scene_name)
     );
     for x in VARIANTS {
-        let _ = write!(h, "<li><b>{}</b> (<code>{}={}</code>): {}</li>", esc(x.label), x.property.0, x.property.1, esc(x.meaning));
+        let _ = write!(
+            h,
+            "<li><b>{}</b> (<code>{}={}</code>): {}</li>",
+            esc(x.label),
+            x.property.0,
+            x.property.1,
+            esc(x.meaning)
+        );
     }
     h.push_str("</ul>");
     for (l, strip, diff, range) in &v.strips {
@@ -57,7 +64,9 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
     }
     h.push_str("<table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>source</th></tr>");
     for x in VARIANTS {
-        let (Some(g), Some(d)) = (v.result(x.key, Lighting::Global), v.result(x.key, Lighting::Direct)) else { continue };
+        let (Some(g), Some(d)) = (v.result(x.key, Lighting::Global), v.result(x.key, Lighting::Direct)) else {
+            continue;
+        };
         let _ = write!(
             h,
             "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td><td>{:+.4}</td>",
@@ -76,13 +85,28 @@ n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispher
         }
     }
     h.push_str("</table>");
-    let names: Vec<String> = v.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
+    let names: Vec<String> =
+        v.results.first().map(|r| r.regions.iter().map(|x| x.0.clone()).collect()).unwrap_or_default();
     for (i, name) in names.iter().enumerate() {
-        let _ = write!(h, "<h4>Region: {}</h4><table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th></tr>", esc(name));
+        let _ = write!(
+            h,
+            "<h4>Region: {}</h4><table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th></tr>",
+            esc(name)
+        );
         for x in VARIANTS {
-            let (Some(g), Some(d)) = (v.result(x.key, Lighting::Global), v.result(x.key, Lighting::Direct)) else { continue };
+            let (Some(g), Some(d)) = (v.result(x.key, Lighting::Global), v.result(x.key, Lighting::Direct)) else {
+                continue;
+            };
             let (Some(gr), Some(dr)) = (g.regions.get(i), d.regions.get(i)) else { continue };
-            let _ = write!(h, "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td></tr>", esc(x.label), gr.1, gr.2, dr.1, dr.2);
+            let _ = write!(
+                h,
+                "<tr><td>{}</td><td>{:.4} ± {:.4}</td><td>{:.4} ± {:.4}</td></tr>",
+                esc(x.label),
+                gr.1,
+                gr.2,
+                dr.1,
+                dr.2
+            );
         }
         h.push_str("</table>");
     }
@@ -127,25 +151,59 @@ fn plot(s: &Series, model: &str, title: &str) -> String {
     let x_of = |i: usize, r: usize| left + (w - left - right) * (i as f64 + 0.5) / n as f64 + (r as f64 - 0.5) * 10.0;
     let y_of = |v: f64| top + (h - top - bottom) * (hi - v) / (hi - lo);
     let mut g = String::new();
-    let _ = write!(g, r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" style="font:12px system-ui,sans-serif;margin:4px 12px 4px 0">"#);
+    let _ = write!(
+        g,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" style="font:12px system-ui,sans-serif;margin:4px 12px 4px 0">"#
+    );
     let _ = write!(g, r#"<text x="{left}" y="16" font-weight="bold">{}</text>"#, esc(title));
-    let _ = write!(g, r##"<rect x="{left}" y="{top}" width="{}" height="{}" fill="none" stroke="#999"/>"##, w - left - right, h - top - bottom);
+    let _ = write!(
+        g,
+        r##"<rect x="{left}" y="{top}" width="{}" height="{}" fill="none" stroke="#999"/>"##,
+        w - left - right,
+        h - top - bottom
+    );
     for k in 0..=4 {
         let v = lo + (hi - lo) * k as f64 / 4.0;
         let y = y_of(v);
-        let _ = write!(g, r##"<line x1="{}" x2="{left}" y1="{y:.1}" y2="{y:.1}" stroke="#999"/><text x="{}" y="{:.1}" text-anchor="end">{v:.3}</text>"##, left - 4.0, left - 6.0, y + 4.0);
+        let _ = write!(
+            g,
+            r##"<line x1="{}" x2="{left}" y1="{y:.1}" y2="{y:.1}" stroke="#999"/><text x="{}" y="{:.1}" text-anchor="end">{v:.3}</text>"##,
+            left - 4.0,
+            left - 6.0,
+            y + 4.0
+        );
     }
     if (lo..=hi).contains(&1.0) {
         let y1 = y_of(1.0);
-        let _ = write!(g, r##"<line x1="{left}" x2="{}" y1="{y1:.1}" y2="{y1:.1}" stroke="#444" stroke-dasharray="4 3"/><text x="{}" y="{:.1}" text-anchor="end" fill="#444">Lambert</text>"##, w - right, w - right - 4.0, y1 - 4.0);
+        let _ = write!(
+            g,
+            r##"<line x1="{left}" x2="{}" y1="{y1:.1}" y2="{y1:.1}" stroke="#444" stroke-dasharray="4 3"/><text x="{}" y="{:.1}" text-anchor="end" fill="#444">Lambert</text>"##,
+            w - right,
+            w - right - 4.0,
+            y1 - 4.0
+        );
     } else {
         let (y, arrow) = if hi < 1.0 { (top + 14.0, "↑ above") } else { (h - bottom - 6.0, "↓ below") };
-        let _ = write!(g, r##"<text x="{}" y="{y:.1}" text-anchor="end" fill="#444">Lambert (1) {arrow} the plot</text>"##, w - right - 6.0);
+        let _ = write!(
+            g,
+            r##"<text x="{}" y="{y:.1}" text-anchor="end" fill="#444">Lambert (1) {arrow} the plot</text>"##,
+            w - right - 6.0
+        );
     }
     for (i, spp) in s.levels.iter().enumerate() {
-        let _ = write!(g, r#"<text x="{:.1}" y="{}" text-anchor="middle">{spp}</text>"#, x_of(i, 0) + 5.0, h - bottom + 16.0);
+        let _ = write!(
+            g,
+            r#"<text x="{:.1}" y="{}" text-anchor="middle">{spp}</text>"#,
+            x_of(i, 0) + 5.0,
+            h - bottom + 16.0
+        );
     }
-    let _ = write!(g, r#"<text x="{:.1}" y="{}" text-anchor="middle">total spp</text>"#, left + (w - left - right) / 2.0, h - 4.0);
+    let _ = write!(
+        g,
+        r#"<text x="{:.1}" y="{}" text-anchor="middle">total spp</text>"#,
+        left + (w - left - right) / 2.0,
+        h - 4.0
+    );
     for (r, name) in s.renderers.iter().enumerate() {
         let c = COLOURS[r % 2];
         let mut line = Vec::new();
@@ -226,7 +284,10 @@ A bias or noise artefact drifts with spp or differs between the renderers.</p>"#
         h.push_str("</tr>");
     }
     h.push_str("</table>");
-    if let Some(r) = variants.and_then(|v| v.result("oren_nayar_full", Lighting::Global)).and_then(|r| r.regions.iter().find(|x| x.0 == s.region)) {
+    if let Some(r) = variants
+        .and_then(|v| v.result("oren_nayar_full", Lighting::Global))
+        .and_then(|r| r.regions.iter().find(|x| x.0 == s.region))
+    {
         let _ = write!(
             h,
             r#"<p class="small">The model-variant run at the study's full budget (whole image) gives Oren–Nayar full / Lambert = {:.4} ± {:.4} in this region.</p>"#,

@@ -99,7 +99,10 @@ impl Editor<'_> {
     }
 
     fn replace_value(&mut self, node: roxmltree::Node, attr: &str, value: &str) -> Result<(), String> {
-        let a = node.attributes().find(|a| a.name() == attr).ok_or_else(|| self.err(node.range().start, format!("<{}> has no {attr}=", node.tag_name().name())))?;
+        let a = node
+            .attributes()
+            .find(|a| a.name() == attr)
+            .ok_or_else(|| self.err(node.range().start, format!("<{}> has no {attr}=", node.tag_name().name())))?;
         self.edits.push((a.range_value(), escape(value)));
         Ok(())
     }
@@ -113,7 +116,16 @@ impl Editor<'_> {
             match existing {
                 Some(c) if c.tag_name().name() == p.tag => self.replace_value(c, "value", &p.value)?,
                 Some(c) => {
-                    return Err(self.err(c.range().start, format!("<{}> already has a <{}> named \"{}\"; cannot set it as <{}>", node.tag_name().name(), c.tag_name().name(), p.name, p.tag)));
+                    return Err(self.err(
+                        c.range().start,
+                        format!(
+                            "<{}> already has a <{}> named \"{}\"; cannot set it as <{}>",
+                            node.tag_name().name(),
+                            c.tag_name().name(),
+                            p.name,
+                            p.tag
+                        ),
+                    ));
                 }
                 None => insert.push(p),
             }
@@ -124,7 +136,12 @@ impl Editor<'_> {
         let indent = self.indent_at(node.range().start).to_string();
         let mut children = String::new();
         for p in insert {
-            children.push_str(&format!("\n{indent}    <{} name=\"{}\" value=\"{}\"/>", p.tag, escape(&p.name), escape(&p.value)));
+            children.push_str(&format!(
+                "\n{indent}    <{} name=\"{}\" value=\"{}\"/>",
+                p.tag,
+                escape(&p.name),
+                escape(&p.value)
+            ));
         }
         let (gt, self_closing) = self.start_tag_end(node)?;
         if self_closing {
@@ -215,8 +232,11 @@ pub fn derive_text(text: &str, source: &Path, d: &Derivation) -> Result<String, 
         return Err(ed.err(root, "no <film> to set the film properties in"));
     }
     // Provenance, just before the root element (a comment may not contain "--").
-    let what: Vec<String> = d.bsdf_properties.iter().chain(&d.film_properties).map(|p| format!("{}={}", p.name, p.value)).collect();
-    let note = format!("Derived by `matte study` from {} ({}); edit the original instead.", source.display(), what.join(", ")).replace("--", "- -");
+    let what: Vec<String> =
+        d.bsdf_properties.iter().chain(&d.film_properties).map(|p| format!("{}={}", p.name, p.value)).collect();
+    let note =
+        format!("Derived by `matte study` from {} ({}); edit the original instead.", source.display(), what.join(", "))
+            .replace("--", "- -");
     ed.edits.push((root..root, format!("<!-- {note} -->\n")));
     ed.apply()
 }

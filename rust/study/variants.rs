@@ -127,35 +127,60 @@ pub fn run(study: &SceneStudy, opts: &Options, progress: &dyn Fn(&str, u32)) -> 
         let mut images: Vec<(&str, Image)> = vec![("Lambert", lambert_img.clone())];
         for v in VARIANTS {
             let (ratio, regs, seconds, exr, scene_file, mean) = if v.main {
-                let r = study.result(v.bsdf, lighting).ok_or_else(|| format!("the main run has no {} image", v.bsdf))?;
+                let r =
+                    study.result(v.bsdf, lighting).ok_or_else(|| format!("the main run has no {} image", v.bsdf))?;
                 (r.ratio, r.regions.clone(), None, r.exr.clone(), None, r.mean.clone())
             } else {
                 let scene_file = rel_dir.join(format!("{}.xml", v.key));
-                let derivation = Derivation { bsdf: Some(v.bsdf.into()), bsdf_properties: vec![Property::string(v.property.0, v.property.1)], ..Default::default() };
+                let derivation = Derivation {
+                    bsdf: Some(v.bsdf.into()),
+                    bsdf_properties: vec![Property::string(v.property.0, v.property.1)],
+                    ..Default::default()
+                };
                 variant_scene::write_derived(&study.scene, &opts.out.join(&scene_file), &derivation)?;
                 let what = format!("{} {} {}", study.name, lighting.name(), v.label);
                 let defines = super::image_defines(opts, v.bsdf, lighting);
-                let side = super::render_side(&opts.out.join(&scene_file), opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
+                let side = super::render_side(
+                    &opts.out.join(&scene_file),
+                    opts,
+                    defines,
+                    &regions,
+                    &dir.join("work"),
+                    &|k| progress(&what, k),
+                )?;
                 let regs = regions
                     .iter()
                     .enumerate()
                     .map(|(i, r)| {
-                        let (m, hw) = metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]);
+                        let (m, hw) =
+                            metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]);
                         (r.name.clone(), m, hw)
                     })
                     .collect();
                 let mean = side.moments.mean_image();
                 let exr = rel_dir.join(format!("{}_{}.exr", lighting.name(), v.key));
                 image_io::write_exr(&opts.out.join(&exr), &mean)?;
-                (metrics::luminance_ratio(&side.moments, &lambert.moments), regs, Some(side.seconds), exr, Some(scene_file), mean)
+                (
+                    metrics::luminance_ratio(&side.moments, &lambert.moments),
+                    regs,
+                    Some(side.seconds),
+                    exr,
+                    Some(scene_file),
+                    mean,
+                )
             };
             images.push((v.tile, mean));
             results.push(VariantResult { variant: v, lighting, ratio, regions: regs, seconds, exr, scene_file });
         }
-        let rels: Vec<Vec<f32>> = images.iter().map(|(_, m)| metrics::relative_difference(m, &lambert_img, 1e-4)).collect();
+        let rels: Vec<Vec<f32>> =
+            images.iter().map(|(_, m)| metrics::relative_difference(m, &lambert_img, 1e-4)).collect();
         let range = metrics::heatmap_range(&rels[1..]);
         let tiles: Vec<strip::Tile> = images.iter().map(|(l, m)| strip::Tile::from_image(l, m)).collect();
-        let diff_tiles: Vec<strip::Tile> = images.iter().zip(&rels).map(|((l, m), rel)| strip::Tile::from_difference(l, m.width, m.height, rel, range)).collect();
+        let diff_tiles: Vec<strip::Tile> = images
+            .iter()
+            .zip(&rels)
+            .map(|((l, m), rel)| strip::Tile::from_difference(l, m.width, m.height, rel, range))
+            .collect();
         let strip_path = rel_dir.join(format!("strip_{}.png", lighting.name()));
         let diff_path = rel_dir.join(format!("difference_{}.png", lighting.name()));
         strip::write_strip(&opts.out.join(&strip_path), &tiles)?;

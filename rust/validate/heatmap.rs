@@ -47,7 +47,9 @@ pub fn write_pvalues(path: &Path, w: u32, h: u32, p_min: &[f32], alpha_pixel: f6
 /// Horizontal colour bars (256×12) for the two maps.
 pub fn write_colorbars(diff_path: &Path, p_path: &Path) -> Result<(), String> {
     let (w, h) = (256u32, 12u32);
-    let bar = |f: &dyn Fn(f64) -> [u8; 3]| -> Vec<u8> { (0..h).flat_map(|_| (0..w).flat_map(|x| f(x as f64 / (w - 1) as f64))).collect() };
+    let bar = |f: &dyn Fn(f64) -> [u8; 3]| -> Vec<u8> {
+        (0..h).flat_map(|_| (0..w).flat_map(|x| f(x as f64 / (w - 1) as f64))).collect()
+    };
     save(diff_path, w, h, bar(&|s| colorous::RED_BLUE.eval_continuous(1.0 - s).as_array()))?;
     save(p_path, w, h, bar(&|s| colorous::VIRIDIS.eval_continuous(s).as_array()))
 }

@@ -50,7 +50,12 @@ pub struct SceneResult {
     pub files: report::Files,
 }
 
-pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progress: &dyn Fn(&str, u32, u32)) -> Result<SceneResult, String> {
+pub fn validate_scene(
+    scene: &Path,
+    reference: &Reference,
+    opts: &Options,
+    progress: &dyn Fn(&str, u32, u32),
+) -> Result<SceneResult, String> {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
     let ref_label = match reference {
         Reference::Mitsuba(v) => v.clone(),
@@ -63,7 +68,13 @@ pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progr
         Some(total) => Budget::PerPass((total / opts.passes).max(1)),
         None => Budget::SceneMultiple(4),
     };
-    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan { passes: opts.passes, spp: budget, seed, defines: defines.clone(), regions: Vec::new() };
+    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan {
+        passes: opts.passes,
+        spp: budget,
+        seed,
+        defines: defines.clone(),
+        regions: Vec::new(),
+    };
     let k = opts.passes;
     let a: Side = passes::rust_side(scene, &plan(&opts.matte_defines, opts.seed), &|i| progress("matte", i, k))?;
     let b: Side = match reference {
@@ -75,7 +86,9 @@ pub fn validate_scene(scene: &Path, reference: &Reference, opts: &Options, progr
             &|i| progress(variant, i, k),
         )?,
         Reference::Matte => {
-            let mut s = passes::rust_side(scene, &plan(&opts.reference_defines, opts.seed + 1_000_003), &|i| progress("matte (reference)", i, k))?;
+            let mut s = passes::rust_side(scene, &plan(&opts.reference_defines, opts.seed + 1_000_003), &|i| {
+                progress("matte (reference)", i, k)
+            })?;
             s.label = "matte (other seeds)".into();
             s
         }

@@ -80,8 +80,15 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
     let mut region_pass_means = vec![Vec::new(); plan.regions.len()];
     for k in 0..plan.passes {
         let t = Instant::now();
-        let (img, stats) =
-            renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film.clone(), spp_used, plan.seed + k as u64, &|_, _| {});
+        let (img, stats) = renderer::render(
+            &loaded.scene,
+            &loaded.integrator,
+            &loaded.camera,
+            loaded.film.clone(),
+            spp_used,
+            plan.seed + k as u64,
+            &|_, _| {},
+        );
         seconds += t.elapsed().as_secs_f64();
         if stats.invalid_samples > 0 {
             eprintln!("matte: warning: {} non-finite samples set to zero in pass {k}", stats.invalid_samples);
@@ -97,7 +104,15 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
 }
 
 /// K passes of Mitsuba in `variant`, run by the Python driver; `work` receives its files.
-pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, plan: &PassPlan, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+pub fn mitsuba_side(
+    python: &Path,
+    driver: &Path,
+    scene: &Path,
+    variant: &str,
+    plan: &PassPlan,
+    work: &Path,
+    progress: &dyn Fn(u32),
+) -> Result<Side, String> {
     let mut cmd = Command::new(python);
     cmd.arg(driver).arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
     cmd.arg("--passes").arg(plan.passes.to_string()).arg("--seed").arg(plan.seed.to_string());
@@ -134,7 +149,9 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
     }
     let mean = image_io::read_exr(&work.join("mean.exr"))?;
     let var = image_io::read_exr(&work.join("var.exr"))?;
-    let info: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(work.join("passes.json")).map_err(|e| e.to_string())?).map_err(|e| e.to_string())?;
+    let info: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(work.join("passes.json")).map_err(|e| e.to_string())?)
+            .map_err(|e| e.to_string())?;
     let pass_means = info["pass_means"]
         .as_array()
         .ok_or("passes.json: no pass_means")?
@@ -145,10 +162,18 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
         })
         .collect();
     let moments = Moments::from_mean_var(&mean, &var, plan.passes, pass_means)?;
-    let triple = |v: &serde_json::Value| DVec3::new(v[0].as_f64().unwrap_or(f64::NAN), v[1].as_f64().unwrap_or(f64::NAN), v[2].as_f64().unwrap_or(f64::NAN));
+    let triple = |v: &serde_json::Value| {
+        DVec3::new(
+            v[0].as_f64().unwrap_or(f64::NAN),
+            v[1].as_f64().unwrap_or(f64::NAN),
+            v[2].as_f64().unwrap_or(f64::NAN),
+        )
+    };
     let region_pass_means = info["region_pass_means"]
         .as_array()
-        .map(|rs| rs.iter().map(|r| r.as_array().map(|ps| ps.iter().map(triple).collect()).unwrap_or_default()).collect())
+        .map(|rs| {
+            rs.iter().map(|r| r.as_array().map(|ps| ps.iter().map(triple).collect()).unwrap_or_default()).collect()
+        })
         .unwrap_or_default();
     Ok(Side {
         moments,
@@ -160,9 +185,23 @@ pub fn mitsuba_side(python: &Path, driver: &Path, scene: &Path, variant: &str, p
 }
 
 /// [`mitsuba_side`] with the project's `.venv` and driver; `work` is removed afterwards.
-pub fn mitsuba_side_in_venv(scene: &Path, variant: &str, plan: &PassPlan, work: &Path, progress: &dyn Fn(u32)) -> Result<Side, String> {
+pub fn mitsuba_side_in_venv(
+    scene: &Path,
+    variant: &str,
+    plan: &PassPlan,
+    work: &Path,
+    progress: &dyn Fn(u32),
+) -> Result<Side, String> {
     let root = repo_root();
-    let side = mitsuba_side(&root.join(".venv/bin/python"), &root.join("validation/mitsuba_passes.py"), scene, variant, plan, work, progress);
+    let side = mitsuba_side(
+        &root.join(".venv/bin/python"),
+        &root.join("validation/mitsuba_passes.py"),
+        scene,
+        variant,
+        plan,
+        work,
+        progress,
+    );
     let _ = std::fs::remove_dir_all(work);
     side
 }

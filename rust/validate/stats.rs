@@ -26,7 +26,14 @@ pub struct Moments {
 impl Moments {
     pub fn new(width: u32, height: u32) -> Self {
         let n = (width * height) as usize;
-        Moments { width, height, passes: 0, mean: vec![DVec3::ZERO; n], m2: vec![DVec3::ZERO; n], pass_means: Vec::new() }
+        Moments {
+            width,
+            height,
+            passes: 0,
+            mean: vec![DVec3::ZERO; n],
+            m2: vec![DVec3::ZERO; n],
+            pass_means: Vec::new(),
+        }
     }
 
     /// Adds one pass. Panics never: a size mismatch is an error.
@@ -54,7 +61,14 @@ impl Moments {
             return Err("mean/variance images differ in size, or fewer than 2 passes".into());
         }
         let m2 = var.pixels.iter().map(|v| v.as_dvec3() * (passes as f64 - 1.0)).collect();
-        Ok(Moments { width: mean.width, height: mean.height, passes, mean: mean.pixels.iter().map(|m| m.as_dvec3()).collect(), m2, pass_means })
+        Ok(Moments {
+            width: mean.width,
+            height: mean.height,
+            passes,
+            mean: mean.pixels.iter().map(|m| m.as_dvec3()).collect(),
+            m2,
+            pass_means,
+        })
     }
 
     /// Estimate of the expected image (mean over passes).

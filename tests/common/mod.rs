@@ -144,7 +144,8 @@ pub fn chi2_sampling_ires<B: DiffuseBrdf>(bsdf: &B, wi: Vec3, seed: u64, ires: u
                 for i in 0..ires {
                     let x = x0 + cx as f64 * cw + (i as f64 + 1e-4) * (1.0 - 2e-4) * sx;
                     let y = y0 + cy as f64 * ch + (j as f64 + 1e-4) * (1.0 - 2e-4) * sy;
-                    let w = if i == 0 || i == ires - 1 { 0.5 } else { 1.0 } * if j == 0 || j == ires - 1 { 0.5 } else { 1.0 };
+                    let w = if i == 0 || i == ires - 1 { 0.5 } else { 1.0 }
+                        * if j == 0 || j == ires - 1 { 0.5 } else { 1.0 };
                     let pdf = bsdf.pdf(wi, map_forward(x, y)) as f64;
                     if pdf < 0.0 || !pdf.is_finite() {
                         return Err(format!("pdf {pdf} at ({x}, {y})"));

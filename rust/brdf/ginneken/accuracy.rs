@@ -71,7 +71,11 @@ pub fn roughness_gradient_error(model: &Ginneken, max_theta_deg: f64, samples: u
     let kernel = GinnekenKernel::<Dual> {
         slope: Nodes::new(t.slope_nodes()),
         mu_lambda: Nodes::new(t.mu_lambda_nodes()),
-        roughness_derivative: Some((Nodes::new(t.slope_derivative_nodes()), Nodes::new(t.mu_lambda_derivative_nodes()), Dual::variable(0.0))),
+        roughness_derivative: Some((
+            Nodes::new(t.slope_derivative_nodes()),
+            Nodes::new(t.mu_lambda_derivative_nodes()),
+            Dual::variable(0.0),
+        )),
         shadowing: model.shadowing(),
     };
     let g = 1.220_744_084_605_759_5_f64;

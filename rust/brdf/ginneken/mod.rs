@@ -108,7 +108,10 @@ impl Ginneken {
             return Err(ParamError::new("roughness", format!("must be a finite rms slope > 0 (got {m})")));
         }
         if m > 4.0 {
-            return Err(ParamError::new("roughness", format!("must be <= 4 (rms slope; 1 is already a 45° mean facet tilt) (got {m})")));
+            return Err(ParamError::new(
+                "roughness",
+                format!("must be <= 4 (rms slope; 1 is already a 45° mean facet tilt) (got {m})"),
+            ));
         }
         Ok(Self { m: m as f32, shadowing, table: SlopeTable::shared(m) })
     }
@@ -143,9 +146,10 @@ impl Ginneken {
         let (si, so) = (wi.truncate().length(), wo.truncate().length());
         let cos_phi = if si * so > 1e-300 { ((wi.x * wo.x + wi.y * wo.y) / (si * so)).clamp(-1.0, 1.0) } else { 1.0 };
         let integral = REFERENCE.with(|r| r.integral(m, wi.z, wo.z, cos_phi.acos()));
-        let den = visibility_denominator(self.shadowing, wi.z, wo.z, mu_lambda(wi.z, si, m), mu_lambda(wo.z, so, m), || {
-            azimuth_correlation(cos_phi)
-        });
+        let den =
+            visibility_denominator(self.shadowing, wi.z, wo.z, mu_lambda(wi.z, si, m), mu_lambda(wo.z, so, m), || {
+                azimuth_correlation(cos_phi)
+            });
         reflectance * std::f64::consts::FRAC_1_PI * integral / den
     }
 }
@@ -234,7 +238,8 @@ mod tests {
                 let mut worst = (0.0f64, DVec3::ZERO, DVec3::ZERO);
                 for k in 0..20_000 {
                     let x: Vec<f64> = alpha.iter().map(|a| (0.5 + a * (k as f64 + 1.0)).fract()).collect();
-                    let (ti, to, ph) = (x[0] * 89.5f64.to_radians(), x[1] * 89.5f64.to_radians(), x[2] * std::f64::consts::TAU);
+                    let (ti, to, ph) =
+                        (x[0] * 89.5f64.to_radians(), x[1] * 89.5f64.to_radians(), x[2] * std::f64::consts::TAU);
                     let wi = spherical_direction_f64(ti, 0.3).as_vec3();
                     let wo = spherical_direction_f64(to, 0.3 + ph).as_vec3();
                     let got = model.eval(wi, wo, [1.0])[0] as f64;
@@ -244,7 +249,12 @@ mod tests {
                         worst = (err, wi.as_dvec3(), wo.as_dvec3());
                     }
                 }
-                assert!(worst.0 <= 6e-5, "m = {m} {shadowing:?}: relative error {:e} at {:?}", worst.0, (worst.1, worst.2));
+                assert!(
+                    worst.0 <= 6e-5,
+                    "m = {m} {shadowing:?}: relative error {:e} at {:?}",
+                    worst.0,
+                    (worst.1, worst.2)
+                );
             }
         }
     }

@@ -88,7 +88,14 @@ pub fn visibility_fraction<T: Real>(shadowing: Shadowing, mu_i: T, mu_o: T, ml_i
 /// `μi μo / P_ill+vis`: the denominator of the van Ginneken BRDF, finite for all μ > 0.
 /// Arguments are cosines, sines and `μΛ` of both directions.
 #[inline]
-pub fn visibility_denominator<T>(shadowing: Shadowing, mu_i: T, mu_o: T, ml_i: T, ml_o: T, alpha: impl FnOnce() -> T) -> T
+pub fn visibility_denominator<T>(
+    shadowing: Shadowing,
+    mu_i: T,
+    mu_o: T,
+    ml_i: T,
+    ml_o: T,
+    alpha: impl FnOnce() -> T,
+) -> T
 where
     T: Copy + PartialOrd + std::ops::Add<Output = T> + std::ops::Mul<Output = T>,
 {
@@ -96,7 +103,8 @@ where
         Shadowing::HeightCorrelated => mu_i * mu_o + mu_o * ml_i + mu_i * ml_o,
         Shadowing::VanGinneken => {
             // θmax belongs to the smaller cosine: P = 1/(1 + Λ(μmin) + α Λ(μmax)).
-            let (mu_min, ml_min, mu_max, ml_max) = if mu_i <= mu_o { (mu_i, ml_i, mu_o, ml_o) } else { (mu_o, ml_o, mu_i, ml_i) };
+            let (mu_min, ml_min, mu_max, ml_max) =
+                if mu_i <= mu_o { (mu_i, ml_i, mu_o, ml_o) } else { (mu_o, ml_o, mu_i, ml_i) };
             mu_min * mu_max + mu_max * ml_min + alpha() * mu_min * ml_max
         }
     }

@@ -63,7 +63,8 @@ impl SlopeIntegrator {
         breaks.push(t_max);
         breaks.sort_by(|a, b| a.total_cmp(b));
         let inv_m2 = 1.0 / (m * m);
-        let radial = |t: f64| t * inv_m2 * (-0.5 * t * t * inv_m2).exp() / (1.0 + t * t).sqrt() * angular(di, do_, phi, t);
+        let radial =
+            |t: f64| t * inv_m2 * (-0.5 * t * t * inv_m2).exp() / (1.0 + t * t).sqrt() * angular(di, do_, phi, t);
         let dlog_density = |t: f64| (t * t * inv_m2 - 2.0) / m;
         let (mut sum, mut dsum) = (0.0, 0.0);
         let mut add = |t: f64, weight: f64| {
@@ -154,7 +155,14 @@ mod tests {
     fn semi_analytic_agrees_with_brute_force_midpoint_rule() {
         let reference = SlopeIntegrator::new(REFERENCE_NODES);
         for &m in &[0.1, 0.3, 0.5, 1.0] {
-            for &(ti, to, ph) in &[(0.0, 0.0, 0.0), (30.0, 60.0, 45.0), (75.0, 75.0, 180.0), (80.0, 10.0, 0.0), (60.0, 60.0, 90.0), (85.0, 70.0, 150.0)] {
+            for &(ti, to, ph) in &[
+                (0.0, 0.0, 0.0),
+                (30.0, 60.0, 45.0),
+                (75.0, 75.0, 180.0),
+                (80.0, 10.0, 0.0),
+                (60.0, 60.0, 90.0),
+                (85.0, 70.0, 150.0),
+            ] {
                 let (mi, mo, p) = (f64::to_radians(ti).cos(), f64::to_radians(to).cos(), f64::to_radians(ph));
                 let a = reference.integral(m, mi, mo, p);
                 // The midpoint rule converges slowly across the clamping kinks: at m = 1, 75/75/180 it
@@ -186,7 +194,9 @@ mod tests {
     fn derivative_matches_central_differences() {
         let r = SlopeIntegrator::new(REFERENCE_NODES);
         for &m in &[0.1, 0.3, 0.7] {
-            for &(ti, to, ph) in &[(0.0, 0.0, 0.0), (30.0, 60.0, 45.0), (75.0, 75.0, 180.0), (80.0, 10.0, 0.0), (85.0, 70.0, 150.0)] {
+            for &(ti, to, ph) in
+                &[(0.0, 0.0, 0.0), (30.0, 60.0, 45.0), (75.0, 75.0, 180.0), (80.0, 10.0, 0.0), (85.0, 70.0, 150.0)]
+            {
                 let (mi, mo, p) = (f64::to_radians(ti).cos(), f64::to_radians(to).cos(), f64::to_radians(ph));
                 let h = 1e-3 * m;
                 let fd = (r.integral(m + h, mi, mo, p) - r.integral(m - h, mi, mo, p)) / (2.0 * h);

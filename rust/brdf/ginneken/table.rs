@@ -65,14 +65,16 @@ impl SlopeTable {
                 for iu_o in iu_i..n_u {
                     for ic in 0..n_c {
                         let c = -1.0 + 2.0 * ic as f64 / (n_c - 1) as f64;
-                        let (v, d) = integrator.integral_and_derivative(m, mu_at(iu_i), mu_at(iu_o), c.clamp(-1.0, 1.0).acos());
+                        let (v, d) =
+                            integrator.integral_and_derivative(m, mu_at(iu_i), mu_at(iu_o), c.clamp(-1.0, 1.0).acos());
                         row[iu_o * n_c + ic] = (v as f32, d as f32);
                     }
                 }
                 row
             })
             .collect();
-        let zeros = || -> Box<Grid> { vec![0.0f32; SLOPE_NODES].into_boxed_slice().try_into().expect("SLOPE_NODES nodes") };
+        let zeros =
+            || -> Box<Grid> { vec![0.0f32; SLOPE_NODES].into_boxed_slice().try_into().expect("SLOPE_NODES nodes") };
         let (mut data, mut d_data) = (zeros(), zeros());
         for iu_i in 0..n_u {
             for iu_o in iu_i..n_u {
@@ -89,7 +91,12 @@ impl SlopeTable {
                 f(mu, (1.0 - mu * mu).max(0.0).sqrt()) as f32
             }))
         };
-        Self { data, d_data, mu_lambda: on_axis(&|mu, sin| mu_lambda(mu, sin, m)), d_mu_lambda: on_axis(&|mu, sin| d_mu_lambda_dm(mu, sin, m)) }
+        Self {
+            data,
+            d_data,
+            mu_lambda: on_axis(&|mu, sin| mu_lambda(mu, sin, m)),
+            d_mu_lambda: on_axis(&|mu, sin| d_mu_lambda_dm(mu, sin, m)),
+        }
     }
 
     /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_in`] gathers from).
@@ -129,7 +136,6 @@ impl SlopeTable {
         guard.insert(key, Arc::downgrade(&table));
         table
     }
-
 }
 
 /// Trilinear interpolation of a flat [`SlopeTable::slope_nodes`]-shaped table at axis

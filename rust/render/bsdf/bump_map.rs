@@ -15,10 +15,10 @@
 //! as Mitsuba does). The loader therefore still rejects `bumpmap`; [`BumpMap::eval_pdf_at`]
 //! and [`BumpMap::sample_at`] take the hit geometry explicitly and are tested against Mitsuba.
 
+use super::Bsdf;
 use super::normal_map::shadow_terminator;
 use super::sample::BsdfSample;
 use super::texture::Texture;
-use super::Bsdf;
 use crate::render::geometry::Frame;
 use glam::{Vec2, Vec3};
 

@@ -19,14 +19,12 @@ pub fn conductor_material(name: &str) -> Result<(Vec3, Vec3), String> {
     if name == "none" {
         return Ok((Vec3::ZERO, Vec3::ONE));
     }
-    MATERIALS
-        .iter()
-        .find(|(n, _, _)| *n == name)
-        .map(|(_, eta, k)| (Vec3::from(*eta), Vec3::from(*k)))
-        .ok_or_else(|| {
+    MATERIALS.iter().find(|(n, _, _)| *n == name).map(|(_, eta, k)| (Vec3::from(*eta), Vec3::from(*k))).ok_or_else(
+        || {
             let names: Vec<&str> = MATERIALS.iter().map(|(n, _, _)| *n).collect();
             format!("unknown conductor material \"{name}\"; Mitsuba 3.9.1 knows: none, {}", names.join(", "))
-        })
+        },
+    )
 }
 
 /// Every material name (without "none"), for tests and messages.

@@ -20,7 +20,12 @@ impl Dielectric {
     /// `int_ior`/`ext_ior` are the interior/exterior indices (named ones resolved by the caller
     /// with `brdf::params::lookup_ior`; Mitsuba's defaults are bk7 = 1.5046 and air =
     /// 1.000277). Both must be finite and positive, the colours finite and non-negative.
-    pub fn new(int_ior: f32, ext_ior: f32, specular_reflectance: Vec3, specular_transmittance: Vec3) -> Result<Self, String> {
+    pub fn new(
+        int_ior: f32,
+        ext_ior: f32,
+        specular_reflectance: Vec3,
+        specular_transmittance: Vec3,
+    ) -> Result<Self, String> {
         for (name, v) in [("int_ior", int_ior), ("ext_ior", ext_ior)] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(format!("dielectric: {name} must be a positive finite number, got {v}"));

@@ -40,21 +40,29 @@ pub use principled_thin::PrincipledThin;
 pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
-pub use textured_roughness::{RoughLobe, TexturedRoughness};
-pub use thin_dielectric::ThinDielectric;
 pub use sample::BsdfSample;
 pub use texture::Texture;
+pub use textured_roughness::{RoughLobe, TexturedRoughness};
+pub use thin_dielectric::ThinDielectric;
 
 use glam::{Vec2, Vec3};
 
 /// One BSDF of the scene.
 #[derive(Clone, Debug)]
 pub enum Bsdf {
-    Diffuse { reflectance: Texture },
-    Matte { model: crate::brdf::Bsdf, reflectance: Texture },
+    Diffuse {
+        reflectance: Texture,
+    },
+    Matte {
+        model: crate::brdf::Bsdf,
+        reflectance: Texture,
+    },
     /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` (the same BSDF when only one is
     /// nested) for the other side with both directions mirrored.
-    TwoSided { front: Box<Bsdf>, back: Box<Bsdf> },
+    TwoSided {
+        front: Box<Bsdf>,
+        back: Box<Bsdf>,
+    },
     Dielectric(Dielectric),
     Conductor(Conductor),
     RoughConductor(RoughConductor),

@@ -14,9 +14,9 @@
 //! Only the local shading frame is involved, so the result depends on the shape's tangent
 //! orientation exactly as in Mitsuba (`sh_frame.s` along ∂p/∂u there).
 
+use super::Bsdf;
 use super::sample::BsdfSample;
 use super::texture::Texture;
-use super::Bsdf;
 use crate::render::geometry::Frame;
 use glam::{Vec2, Vec3};
 

@@ -118,7 +118,13 @@ impl Plastic {
         let prob_diffuse = 1.0 - prob_specular;
         if u_lobe < prob_specular {
             let weight = self.specular.unwrap_or(Vec3::ONE) * (f_i / prob_specular);
-            return Some(BsdfSample { wo: Vec3::new(-wi.x, -wi.y, wi.z), weight, pdf: prob_specular, delta: true, eta: 1.0 });
+            return Some(BsdfSample {
+                wo: Vec3::new(-wi.x, -wi.y, wi.z),
+                weight,
+                pdf: prob_specular,
+                delta: true,
+                eta: 1.0,
+            });
         }
         let wo = square_to_cosine_hemisphere(u);
         let pdf = prob_diffuse * cosine_hemisphere_pdf(wo);

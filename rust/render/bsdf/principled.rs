@@ -11,7 +11,9 @@
 
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
-use super::principled_helpers::{Gtr1, calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight, smith_ggx1};
+use super::principled_helpers::{
+    Gtr1, calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight, smith_ggx1,
+};
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
@@ -152,7 +154,8 @@ impl Principled {
         if self.spec_trans.is_some() && p.bsdf > 0.0 && refract && trans_ok && f_diel < 1.0 {
             let (ih, oh) = (wi.dot(wh), wo.dot(wh));
             let denom = ih + eta_path * oh;
-            let t = (inv_eta_path * inv_eta_path * (1.0 - f_diel) * d * g * eta_path * eta_path * ih * oh) / (cos_i * denom * denom);
+            let t = (inv_eta_path * inv_eta_path * (1.0 - f_diel) * d * g * eta_path * eta_path * ih * oh)
+                / (cos_i * denom * denom);
             value += p.base.map(f32::sqrt) * (p.bsdf * t.abs());
         }
         if self.clearcoat.is_some() && p.clearcoat > 0.0 && reflect && refl_ok && front {
@@ -200,7 +203,17 @@ impl Principled {
     /// Mitsuba's `principled_fresnel`.
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn principled_fresnel(&self, f_diel: f32, metallic: f32, spec_tint: f32, base: Vec3, lum: f32, cos_i: f32, front: bool, bsdf: f32) -> Vec3 {
+    fn principled_fresnel(
+        &self,
+        f_diel: f32,
+        metallic: f32,
+        spec_tint: f32,
+        base: Vec3,
+        lum: f32,
+        cos_i: f32,
+        front: bool,
+        bsdf: f32,
+    ) -> Vec3 {
         if !front {
             return Vec3::splat(bsdf * f_diel);
         }

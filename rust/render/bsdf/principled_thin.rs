@@ -9,7 +9,9 @@
 
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
-use super::principled_helpers::{calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight};
+use super::principled_helpers::{
+    calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight,
+};
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::sampling::square_to_cosine_hemisphere;

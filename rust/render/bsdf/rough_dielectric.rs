@@ -43,7 +43,9 @@ impl RoughDielectric {
         specular_transmittance: Vec3,
     ) -> Result<Self, String> {
         if !(eta.is_finite() && eta > 0.0 && eta != 1.0) {
-            return Err(format!("roughdielectric: int_ior/ext_ior must be positive, finite and differ from 1, got {eta}"));
+            return Err(format!(
+                "roughdielectric: int_ior/ext_ior must be positive, finite and differ from 1, got {eta}"
+            ));
         }
         for (name, a) in [("alpha_u", alpha_u), ("alpha_v", alpha_v)] {
             if !(a.is_finite() && a >= 0.0) {
@@ -168,7 +170,13 @@ impl RoughDielectric {
             let wo = m * wi.dot(m).mul_add(fr.eta_ti, fr.cos_t) - wi * fr.eta_ti;
             let eta = fr.eta_it;
             let denom = wi.dot(m) + eta * wo.dot(m);
-            (wo, self.specular_transmittance * (fr.eta_ti * fr.eta_ti), 1.0 - fr.r, eta, eta * eta * wo.dot(m) / (denom * denom))
+            (
+                wo,
+                self.specular_transmittance * (fr.eta_ti * fr.eta_ti),
+                1.0 - fr.r,
+                eta,
+                eta * eta * wo.dot(m) / (denom * denom),
+            )
         };
         weight *= if self.sample_visible {
             self.distr.smith_g1(wo, m)

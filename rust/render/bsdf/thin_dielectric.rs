@@ -42,7 +42,13 @@ impl ThinDielectric {
         }
         let r = self.reflectance(wi.z);
         if u_lobe <= r {
-            Some(BsdfSample { wo: Vec3::new(-wi.x, -wi.y, wi.z), weight: self.specular_reflectance, pdf: r, delta: true, eta: 1.0 })
+            Some(BsdfSample {
+                wo: Vec3::new(-wi.x, -wi.y, wi.z),
+                weight: self.specular_reflectance,
+                pdf: r,
+                delta: true,
+                eta: 1.0,
+            })
         } else {
             Some(BsdfSample { wo: -wi, weight: self.specular_transmittance, pdf: 1.0 - r, delta: true, eta: 1.0 })
         }

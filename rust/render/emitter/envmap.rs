@@ -42,7 +42,14 @@ pub struct EnvMap {
 
 impl EnvMap {
     /// `texels` as loaded (linear), `width` ≥ 2, `height` ≥ 3 (Mitsuba pads smaller images).
-    pub fn new(width: usize, height: usize, texels: Vec<Vec3>, scale: f32, to_world: Affine3A, mis_compensation: bool) -> Result<Self, String> {
+    pub fn new(
+        width: usize,
+        height: usize,
+        texels: Vec<Vec3>,
+        scale: f32,
+        to_world: Affine3A,
+        mis_compensation: bool,
+    ) -> Result<Self, String> {
         if width < 2 || height < 3 || texels.len() != width * height {
             return Err(format!("an environment map needs at least 2×3 texels (got {width}×{height})"));
         }
@@ -50,7 +57,10 @@ impl EnvMap {
             return Err("the environment map has negative or non-finite texels".into());
         }
         let nx = width + 1;
-        let mut lum: Vec<f32> = (0..height).flat_map(|y| (0..nx).map(move |x| (y, x % width))).map(|(y, x)| texels[y * width + x].dot(LUMINANCE)).collect();
+        let mut lum: Vec<f32> = (0..height)
+            .flat_map(|y| (0..nx).map(move |x| (y, x % width)))
+            .map(|(y, x)| texels[y * width + x].dot(LUMINANCE))
+            .collect();
         if mis_compensation {
             let (mut min, mut sum) = (f32::INFINITY, 0.0f64);
             for y in 0..height {
@@ -74,7 +84,8 @@ impl EnvMap {
         let mut sum = 0.0f64;
         for y in 0..height - 1 {
             for x in 0..width {
-                let avg = 0.25 * (lum[y * nx + x] + lum[y * nx + x + 1] + lum[(y + 1) * nx + x] + lum[(y + 1) * nx + x + 1]);
+                let avg =
+                    0.25 * (lum[y * nx + x] + lum[y * nx + x + 1] + lum[(y + 1) * nx + x] + lum[(y + 1) * nx + x + 1]);
                 sum += avg as f64;
                 cells.push(sum);
             }
@@ -130,7 +141,8 @@ impl EnvMap {
         let y0 = (y.floor() as usize).min(self.height - 2);
         let (tx, ty) = (x - x0 as f32, y - y0 as f32);
         let d = |i: usize, j: usize| self.density[j * nx + i];
-        (d(x0, y0) * (1.0 - tx) + d(x0 + 1, y0) * tx) * (1.0 - ty) + (d(x0, y0 + 1) * (1.0 - tx) + d(x0 + 1, y0 + 1) * tx) * ty
+        (d(x0, y0) * (1.0 - tx) + d(x0 + 1, y0) * tx) * (1.0 - ty)
+            + (d(x0, y0 + 1) * (1.0 - tx) + d(x0 + 1, y0 + 1) * tx) * ty
     }
 
     /// Solid-angle density of [`Self::sample`] for world direction `d`.

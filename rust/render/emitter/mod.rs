@@ -52,7 +52,10 @@ impl Emitter {
     /// Point, spot and directional lights: reachable only by light sampling.
     #[inline]
     pub fn is_delta(&self) -> bool {
-        matches!(self, Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. } | Emitter::Projector { .. })
+        matches!(
+            self,
+            Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. } | Emitter::Projector { .. }
+        )
     }
 
     /// Light sample towards the emitter from `ref_p` (the emitter-selection pmf not
@@ -66,7 +69,15 @@ impl Emitter {
                 if !(ds.d.dot(ds.n) < 0.0 && ds.pdf > 0.0) {
                     return None;
                 }
-                Some(EmitterSample { d: ds.d, dist: ds.dist, pdf: ds.pdf, delta: false, weight: *radiance / ds.pdf, p: ds.p, n: ds.n })
+                Some(EmitterSample {
+                    d: ds.d,
+                    dist: ds.dist,
+                    pdf: ds.pdf,
+                    delta: false,
+                    weight: *radiance / ds.pdf,
+                    p: ds.p,
+                    n: ds.n,
+                })
             }
             Emitter::Point { position, intensity } => {
                 let d = *position - ref_p;
@@ -78,7 +89,17 @@ impl Emitter {
                 let d = d / dist;
                 Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity / dist2, p: *position, n: -d })
             }
-            Emitter::Spot { to_world, to_local, intensity, cutoff, beam_width, cos_cutoff, cos_beam, texture, uv_factor } => {
+            Emitter::Spot {
+                to_world,
+                to_local,
+                intensity,
+                cutoff,
+                beam_width,
+                cos_cutoff,
+                cos_beam,
+                texture,
+                uv_factor,
+            } => {
                 let pos: Vec3 = to_world.translation.into();
                 let d = pos - ref_p;
                 let dist2 = d.length_squared();
@@ -98,11 +119,27 @@ impl Emitter {
                     let uv = Vec2::new(local_raw.x, local_raw.y) / (local_raw.z * *uv_factor) * 0.5 + 0.5;
                     radiance *= tex.eval(uv);
                 }
-                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: radiance * (falloff / dist2), p: pos, n: -d })
+                Some(EmitterSample {
+                    d,
+                    dist,
+                    pdf: 1.0,
+                    delta: true,
+                    weight: radiance * (falloff / dist2),
+                    p: pos,
+                    n: -d,
+                })
             }
             Emitter::Directional { direction, irradiance } => {
                 let d = -*direction;
-                Some(EmitterSample { d, dist: f32::INFINITY, pdf: 1.0, delta: true, weight: *irradiance, p: ref_p + d, n: *direction })
+                Some(EmitterSample {
+                    d,
+                    dist: f32::INFINITY,
+                    pdf: 1.0,
+                    delta: true,
+                    weight: *irradiance,
+                    p: ref_p + d,
+                    n: *direction,
+                })
             }
             Emitter::Projector { to_world, to_local, irradiance, tan_half, aspect, scale } => {
                 let local = to_local.transform_point3(ref_p);
@@ -131,7 +168,15 @@ impl Emitter {
             }
             Emitter::EnvMap(e) => {
                 let (d, radiance, pdf) = e.sample(u)?;
-                Some(EmitterSample { d, dist: f32::INFINITY, pdf, delta: false, weight: radiance / pdf, p: ref_p + d, n: -d })
+                Some(EmitterSample {
+                    d,
+                    dist: f32::INFINITY,
+                    pdf,
+                    delta: false,
+                    weight: radiance / pdf,
+                    p: ref_p + d,
+                    n: -d,
+                })
             }
             Emitter::Constant { radiance } => {
                 let d = warp::square_to_uniform_sphere(u);

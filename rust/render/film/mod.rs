@@ -48,7 +48,12 @@ impl Film {
     /// A `width`×`height` film rendering `crop` (default: all of it) with `filter`.
     /// Errors: zero size, a crop window that is empty or reaches outside the film (Mitsuba:
     /// "Invalid crop window specification"), invalid filter parameters.
-    pub fn new(width: u32, height: u32, crop: Option<CropWindow>, filter: ReconstructionFilter) -> Result<Film, String> {
+    pub fn new(
+        width: u32,
+        height: u32,
+        crop: Option<CropWindow>,
+        filter: ReconstructionFilter,
+    ) -> Result<Film, String> {
         if width == 0 || height == 0 {
             return Err(format!("invalid film size {width}x{height}: width and height must be positive"));
         }

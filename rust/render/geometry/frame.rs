@@ -47,8 +47,5 @@ pub fn coordinate_system(n: Vec3) -> (Vec3, Vec3) {
     let sign = 1.0f32.copysign(n.z);
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
-    (
-        Vec3::new(n.x * n.x * a * sign + 1.0, b * sign, -n.x * sign),
-        Vec3::new(b, sign + n.y * n.y * a, -n.y),
-    )
+    (Vec3::new(n.x * n.x * a * sign + 1.0, b * sign, -n.x * sign), Vec3::new(b, sign + n.y * n.y * a, -n.y))
 }

@@ -33,7 +33,11 @@ impl Integrator {
 /// The camera ray's first hit; with `hide_emitters`, area emitters are skipped (the ray is
 /// continued through them, as Mitsuba does).
 #[inline]
-pub(crate) fn first_hit(scene: &Scene, mut ray: Ray, hide_emitters: bool) -> Option<crate::render::shape::SurfaceInteraction> {
+pub(crate) fn first_hit(
+    scene: &Scene,
+    mut ray: Ray,
+    hide_emitters: bool,
+) -> Option<crate::render::shape::SurfaceInteraction> {
     loop {
         let si = scene.intersect(&ray)?;
         if !(hide_emitters && scene.surface_emitter(&si).is_some()) {

@@ -46,7 +46,11 @@ impl PathIntegrator {
             if let Some(em) = scene.surface_emitter(&si) {
                 let le = scene.emitters[em as usize].eval_surface(&si);
                 if le != Vec3::ZERO {
-                    let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, scene.pdf_emitter_direction(prev_p, em, Some(&si))) };
+                    let w = if prev_delta {
+                        1.0
+                    } else {
+                        power_heuristic(prev_pdf, scene.pdf_emitter_direction(prev_p, em, Some(&si)))
+                    };
                     l += beta * le * w;
                 }
             }

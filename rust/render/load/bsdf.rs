@@ -4,11 +4,12 @@
 //! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
 //! plugin uses).
 
-use super::{Builder, bsdf_principled, err, texture, values};
-use crate::brdf::{ParamValue, Params, BSDF_TYPES};
 use super::bsdf_params::{MAX_MAGNITUDE, constant, ior, microfacet, optional_constant, relative_ior, too_large};
+use super::{Builder, bsdf_principled, err, texture, values};
+use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
-    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic, Texture, TexturedRoughness, ThinDielectric, conductor_material,
+    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic, Texture,
+    TexturedRoughness, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
@@ -35,24 +36,37 @@ pub fn default_diffuse(b: &mut Builder, reflectance: f32) -> u32 {
 
 fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
     let bsdf = match obj.plugin.as_str() {
-        "diffuse" => Bsdf::Diffuse { reflectance: texture::get(b, obj, "reflectance", ColorUse::Bounded, Vec3::splat(0.5))? },
+        "diffuse" => {
+            Bsdf::Diffuse { reflectance: texture::get(b, obj, "reflectance", ColorUse::Bounded, Vec3::splat(0.5))? }
+        }
         kind if BSDF_TYPES.contains(&kind) => {
             let reflectance = texture::get(b, obj, "reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
             let mut params = Params::new();
             for p in obj.properties.iter().filter(|p| p.name != "reflectance") {
                 let value = match &p.value {
-                    Value::Float(x) if x.abs() > MAX_MAGNITUDE => return Err(values::prop_err(obj, &p.name, too_large(*x))),
-                    Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => return Err(values::prop_err(obj, &p.name, too_large(*i as f64))),
+                    Value::Float(x) if x.abs() > MAX_MAGNITUDE => {
+                        return Err(values::prop_err(obj, &p.name, too_large(*x)));
+                    }
+                    Value::Integer(i) if (*i as f64).abs() > MAX_MAGNITUDE => {
+                        return Err(values::prop_err(obj, &p.name, too_large(*i as f64)));
+                    }
                     Value::Float(x) => ParamValue::Number(*x),
                     Value::Integer(i) => ParamValue::Number(*i as f64),
                     Value::String(s) => ParamValue::Text(s.clone()),
                     Value::Boolean(v) => ParamValue::Text(v.to_string()),
-                    other => return Err(values::prop_err(obj, &p.name, format!("must be a number or a string, not {}", other.type_name()))),
+                    other => {
+                        return Err(values::prop_err(
+                            obj,
+                            &p.name,
+                            format!("must be a number or a string, not {}", other.type_name()),
+                        ));
+                    }
                 };
                 p.used.set(true);
                 params.push(&p.name, value);
             }
-            let model = crate::brdf::Bsdf::from_params(kind, params).map_err(|e| values::prop_err(obj, &e.param, e.message))?;
+            let model =
+                crate::brdf::Bsdf::from_params(kind, params).map_err(|e| values::prop_err(obj, &e.param, e.message))?;
             Bsdf::Matte { model, reflectance }
         }
         "twosided" => {
@@ -70,13 +84,19 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             for side in [&front, &back] {
                 let transmissive = match side {
                     // principledthin always declares a diffuse transmission component.
-                    Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::PrincipledThin(_) => true,
+                    Bsdf::Dielectric(_)
+                    | Bsdf::RoughDielectric(_)
+                    | Bsdf::ThinDielectric(_)
+                    | Bsdf::PrincipledThin(_) => true,
                     Bsdf::Principled(p) => p.spec_trans.is_some(),
                     Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
                     _ => false,
                 };
                 if transmissive && !allow_transmission {
-                    return Err(err(obj, "a twosided BSDF cannot wrap a transmissive BSDF unless allow_transmission is true (as in Mitsuba)"));
+                    return Err(err(
+                        obj,
+                        "a twosided BSDF cannot wrap a transmissive BSDF unless allow_transmission is true (as in Mitsuba)",
+                    ));
                 }
             }
             Bsdf::TwoSided { front: Box::new(front), back: Box::new(back) }
@@ -96,10 +116,15 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let mf = microfacet(Some(b), obj, true)?;
             let (eta, k) = conductor_ior(obj)?;
             let r = constant(obj, "specular_reflectance")?;
-            let lobe = RoughConductor::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, k, r).map_err(|e| err(obj, e))?;
+            let lobe = RoughConductor::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, k, r)
+                .map_err(|e| err(obj, e))?;
             match mf.alpha_tex {
                 None => Bsdf::RoughConductor(lobe),
-                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness { alpha_u, alpha_v, lobe: RoughLobe::Conductor(lobe) })),
+                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness {
+                    alpha_u,
+                    alpha_v,
+                    lobe: RoughLobe::Conductor(lobe),
+                })),
             }
         }
         "thindielectric" => {
@@ -113,10 +138,15 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let eta = relative_ior(obj, 1.5046)?;
             let r = constant(obj, "specular_reflectance")?;
             let t = constant(obj, "specular_transmittance")?;
-            let lobe = RoughDielectric::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, r, t).map_err(|e| err(obj, e))?;
+            let lobe = RoughDielectric::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, r, t)
+                .map_err(|e| err(obj, e))?;
             match mf.alpha_tex {
                 None => Bsdf::RoughDielectric(lobe),
-                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness { alpha_u, alpha_v, lobe: RoughLobe::Dielectric(lobe) })),
+                Some((alpha_u, alpha_v)) => Bsdf::TexturedRoughness(Box::new(TexturedRoughness {
+                    alpha_u,
+                    alpha_v,
+                    lobe: RoughLobe::Dielectric(lobe),
+                })),
             }
         }
         "normalmap" => {
@@ -130,7 +160,12 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let normals = texture::get(b, obj, "normalmap", ColorUse::Unbounded, Vec3::new(0.5, 0.5, 1.0))?;
             let flip_invalid_normals = values::boolean(obj, "flip_invalid_normals", true)?;
             let use_shadowing_function = values::boolean(obj, "use_shadowing_function", true)?;
-            Bsdf::NormalMap(NormalMap { normals, nested: Box::new(build(b, inner)?), flip_invalid_normals, use_shadowing_function })
+            Bsdf::NormalMap(NormalMap {
+                normals,
+                nested: Box::new(build(b, inner)?),
+                flip_invalid_normals,
+                use_shadowing_function,
+            })
         }
         "principled" => Bsdf::Principled(Box::new(bsdf_principled::principled(b, obj)?)),
         "principledthin" => Bsdf::PrincipledThin(Box::new(bsdf_principled::principled_thin(b, obj)?)),
@@ -148,7 +183,8 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let specular = optional_constant(obj, "specular_reflectance")?;
             let nonlinear = values::boolean(obj, "nonlinear", false)?;
             Bsdf::RoughPlastic(Box::new(
-                RoughPlastic::new(mf.kind, mf.alpha_u, mf.sample_visible, eta, diffuse, specular, nonlinear).map_err(|e| err(obj, e))?,
+                RoughPlastic::new(mf.kind, mf.alpha_u, mf.sample_visible, eta, diffuse, specular, nonlinear)
+                    .map_err(|e| err(obj, e))?,
             ))
         }
         other => {
@@ -156,7 +192,9 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 obj,
                 format!(
                     "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
-                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, principledthin, {})", BSDF_TYPES.join(", ")),
+                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, principledthin, {})",
+                    BSDF_TYPES.join(", ")
+                ),
             ));
         }
     };
@@ -184,4 +222,3 @@ fn conductor_ior(obj: &SceneObject) -> Result<(Vec3, Vec3), SceneError> {
     let m = values::string(obj, "material", "none")?;
     conductor_material(&m).map_err(|e| values::prop_err(obj, "material", e))
 }
-

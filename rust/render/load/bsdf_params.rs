@@ -22,7 +22,8 @@ pub fn too_large(v: f64) -> String {
 pub fn ior(obj: &SceneObject, name: &str, default: f64) -> Result<f32, SceneError> {
     let v = match obj.properties.get(name).map(|p| p.value.clone()) {
         None => default,
-        Some(Value::String(s)) => crate::brdf::params::lookup_ior(&s).ok_or_else(|| values::prop_err(obj, name, format!("unknown IOR name \"{s}\"")))?,
+        Some(Value::String(s)) => crate::brdf::params::lookup_ior(&s)
+            .ok_or_else(|| values::prop_err(obj, name, format!("unknown IOR name \"{s}\"")))?,
         Some(_) => values::float(obj, name, default)?,
     };
     if !(v.is_finite() && v >= 1.0) {
@@ -77,17 +78,26 @@ pub struct MicrofacetParams {
 /// error here. Roughness textures (nested `<texture name="alpha…">`) are read when `textures`
 /// is given (roughconductor, roughdielectric: Mitsuba's `get_unbounded_texture`), else an error
 /// (roughplastic reads plain floats).
-pub fn microfacet(textures: Option<&Builder>, obj: &SceneObject, anisotropic: bool) -> Result<MicrofacetParams, SceneError> {
+pub fn microfacet(
+    textures: Option<&Builder>,
+    obj: &SceneObject,
+    anisotropic: bool,
+) -> Result<MicrofacetParams, SceneError> {
     let kind = match values::string(obj, "distribution", "beckmann")?.to_lowercase().as_str() {
         "beckmann" => MicrofacetDistribution::Beckmann,
         "ggx" => MicrofacetDistribution::Ggx,
-        other => return Err(values::prop_err(obj, "distribution", format!("must be beckmann or ggx, got \"{other}\""))),
+        other => {
+            return Err(values::prop_err(obj, "distribution", format!("must be beckmann or ggx, got \"{other}\"")));
+        }
     };
     let nested = |n: &str| obj.children.iter().any(|c| c.name.as_deref() == Some(n));
     if textures.is_none() {
         for name in ["alpha", "alpha_u", "alpha_v"] {
             if nested(name) {
-                return Err(err(obj, format!("a texture for \"{name}\" is not supported by {} (give a number, as Mitsuba)", obj.plugin)));
+                return Err(err(
+                    obj,
+                    format!("a texture for \"{name}\" is not supported by {} (give a number, as Mitsuba)", obj.plugin),
+                ));
             }
         }
     }
@@ -116,7 +126,11 @@ pub fn microfacet(textures: Option<&Builder>, obj: &SceneObject, anisotropic: bo
         }
     }
     if !anisotropic && au != av {
-        return Err(values::prop_err(obj, "alpha_u", format!("{} does not support anisotropic roughness (as in Mitsuba)", obj.plugin)));
+        return Err(values::prop_err(
+            obj,
+            "alpha_u",
+            format!("{} does not support anisotropic roughness (as in Mitsuba)", obj.plugin),
+        ));
     }
     Ok(MicrofacetParams { kind, alpha_u: au as f32, alpha_v: av as f32, sample_visible, alpha_tex: None })
 }

@@ -67,7 +67,11 @@ pub fn principled(b: &Builder, obj: &SceneObject) -> Result<Principled, SceneErr
     if let Some(s) = specular
         && !(s.is_finite() && (0.0..12.5).contains(&s))
     {
-        return Err(values::prop_err(obj, "specular", format!("must be in [0, 12.5) (η = 2/(1 − √(0.08·specular)) − 1), got {s}")));
+        return Err(values::prop_err(
+            obj,
+            "specular",
+            format!("must be in [0, 12.5) (η = 2/(1 − √(0.08·specular)) − 1), got {s}"),
+        ));
     }
     let eta = Principled::eta_from(eta.map(|e| e as f32), specular.map(|s| s as f32), spec_trans.is_some());
     Ok(Principled {

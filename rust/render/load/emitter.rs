@@ -7,10 +7,10 @@ use crate::render::bsdf::Texture;
 use crate::render::camera::x_half_tan;
 use crate::render::emitter::{self, Emitter, EnvMap};
 use crate::render::texture::{BitmapOptions, BitmapTexture};
-use std::sync::Arc;
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject};
 use glam::Vec3;
+use std::sync::Arc;
 
 fn weight(obj: &SceneObject) -> Result<f32, SceneError> {
     let w = values::float(obj, "sampling_weight", 1.0)?;
@@ -78,7 +78,11 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
                 Some(c) => return Err(err(&c.object, "\"texture\" must be a texture (e.g. bitmap)")),
             };
             if obj.properties.contains("texture") {
-                return Err(values::prop_err(obj, "texture", "must be spatially varying (e.g. bitmap type), as in Mitsuba"));
+                return Err(values::prop_err(
+                    obj,
+                    "texture",
+                    "must be spatially varying (e.g. bitmap type), as in Mitsuba",
+                ));
             }
             emitter::spot(values::transform(obj, "to_world")?, intensity, cutoff as f32, beam as f32, texture)
         }
@@ -104,7 +108,14 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
         "envmap" => envmap(b, obj)?,
         "projector" => projector(b, obj)?,
         "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
-        other => return Err(err(obj, format!("unsupported emitter type \"{other}\" (matte renders: area, point, spot, projector, directional, constant, envmap)"))),
+        other => {
+            return Err(err(
+                obj,
+                format!(
+                    "unsupported emitter type \"{other}\" (matte renders: area, point, spot, projector, directional, constant, envmap)"
+                ),
+            ));
+        }
     };
     obj.check_all_used()?;
     push(b, e, w);
@@ -162,5 +173,12 @@ fn projector(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
     let (scale, to_world) = scale_and_to_world(obj)?;
     let (fov_deg, axis) = super::sensor::field_of_view(obj)?;
     let tan_half = x_half_tan(fov_deg, axis, aspect) as f32;
-    Ok(Emitter::Projector { to_world, to_local: to_world.inverse(), irradiance, tan_half, aspect: aspect as f32, scale: scale as f32 })
+    Ok(Emitter::Projector {
+        to_world,
+        to_local: to_world.inverse(),
+        irradiance,
+        tan_half,
+        aspect: aspect as f32,
+        scale: scale as f32,
+    })
 }

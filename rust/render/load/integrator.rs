@@ -25,11 +25,17 @@ pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
             let (ne, nb) = match shading {
                 Some(n) => {
                     if obj.properties.contains("emitter_samples") || obj.properties.contains("bsdf_samples") {
-                        return Err(err(obj, "shading_samples cannot be combined with emitter_samples or bsdf_samples"));
+                        return Err(err(
+                            obj,
+                            "shading_samples cannot be combined with emitter_samples or bsdf_samples",
+                        ));
                     }
                     (n, n)
                 }
-                None => (values::integer(obj, "emitter_samples", 1, 0, 1 << 20)?, values::integer(obj, "bsdf_samples", 1, 0, 1 << 20)?),
+                None => (
+                    values::integer(obj, "emitter_samples", 1, 0, 1 << 20)?,
+                    values::integer(obj, "bsdf_samples", 1, 0, 1 << 20)?,
+                ),
             };
             if ne < 0 || nb < 0 || ne + nb == 0 {
                 return Err(err(obj, "needs at least one emitter or BSDF sample"));
@@ -49,7 +55,10 @@ pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
             first.ok_or_else(|| err(obj, "needs at least one nested <integrator>"))?
         }
         other => {
-            return Err(err(obj, format!("unsupported integrator type \"{other}\" (matte renders: path, direct, moment)")));
+            return Err(err(
+                obj,
+                format!("unsupported integrator type \"{other}\" (matte renders: path, direct, moment)"),
+            ));
         }
     };
     obj.check_all_used()?;

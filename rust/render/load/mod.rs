@@ -19,8 +19,8 @@ use crate::render::emitter::Emitter;
 use crate::render::film::Film;
 use crate::render::integrator::Integrator;
 use crate::render::scene::Scene;
-use crate::scene::xml::{self, SceneObject};
 use crate::scene::SceneError;
+use crate::scene::xml::{self, SceneObject};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -101,13 +101,18 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             }
             "sensor" => {
                 if sensor.is_some() {
-                    return Err(SceneError::at(&obj.pos, "more than one <sensor> (matte renders the first sensor only; remove the others)"));
+                    return Err(SceneError::at(
+                        &obj.pos,
+                        "more than one <sensor> (matte renders the first sensor only; remove the others)",
+                    ));
                 }
                 sensor = Some(sensor::build(obj)?);
             }
             "shape" => shape::build(&mut b, obj)?,
             "emitter" => {
-                if (obj.plugin == "constant" || obj.plugin == "envmap") && b.emitters.iter().any(Emitter::is_environment) {
+                if (obj.plugin == "constant" || obj.plugin == "envmap")
+                    && b.emitters.iter().any(Emitter::is_environment)
+                {
                     return Err(SceneError::at(&obj.pos, "only one environment emitter (constant, envmap) is allowed"));
                 }
                 emitter::build_standalone(&mut b, obj)?
@@ -128,7 +133,11 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
     let integrator = match integrator {
         Some(i) => i,
         // Mitsuba's default integrator.
-        None => Integrator::Path(crate::render::integrator::PathIntegrator { max_depth: u32::MAX, rr_depth: 5, hide_emitters: false }),
+        None => Integrator::Path(crate::render::integrator::PathIntegrator {
+            max_depth: u32::MAX,
+            rr_depth: 5,
+            hide_emitters: false,
+        }),
     };
     let scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
     Ok(LoadedScene { scene, camera: sensor.camera, film: sensor.film, integrator, spp: sensor.spp, seed: sensor.seed })

@@ -5,8 +5,8 @@
 
 use super::{err, values};
 use crate::render::camera::{Camera, FovAxis, PerspectiveCamera};
-use crate::render::orthographic::OrthographicCamera;
 use crate::render::film::{CropWindow, Film, ReconstructionFilter};
+use crate::render::orthographic::OrthographicCamera;
 use crate::scene::SceneError;
 use crate::scene::xml::SceneObject;
 use glam::Vec2;
@@ -22,7 +22,9 @@ pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
     match obj.plugin.as_str() {
         "perspective" => build_perspective(obj),
         "orthographic" => build_orthographic(obj),
-        other => Err(err(obj, format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic)"))),
+        other => {
+            Err(err(obj, format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic)")))
+        }
     }
 }
 
@@ -50,11 +52,18 @@ fn build_orthographic(obj: &SceneObject) -> Result<Sensor, SceneError> {
 fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
     let to_world = values::transform(obj, "to_world")?;
     if has_scale(&to_world) {
-        return Err(values::prop_err(obj, "to_world", "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)"));
+        return Err(values::prop_err(
+            obj,
+            "to_world",
+            "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)",
+        ));
     }
     let (fov_deg, axis) = field_of_view(obj)?;
     let (near, far) = clip_range(obj)?;
-    let ppo = Vec2::new(principal_point_offset(obj, "principal_point_offset_x")?, principal_point_offset(obj, "principal_point_offset_y")?);
+    let ppo = Vec2::new(
+        principal_point_offset(obj, "principal_point_offset_x")?,
+        principal_point_offset(obj, "principal_point_offset_y")?,
+    );
     let (film, spp, seed) = film_and_sampler(obj)?;
     obj.check_all_used()?;
     let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
@@ -79,7 +88,13 @@ pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneEr
                 "diagonal" => FovAxis::Diagonal,
                 "smaller" => FovAxis::Smaller,
                 "larger" => FovAxis::Larger,
-                other => return Err(values::prop_err(obj, "fov_axis", format!("must be x, y, diagonal, smaller or larger, got \"{other}\""))),
+                other => {
+                    return Err(values::prop_err(
+                        obj,
+                        "fov_axis",
+                        format!("must be x, y, diagonal, smaller or larger, got \"{other}\""),
+                    ));
+                }
             };
             Ok((f, axis))
         }
@@ -93,7 +108,9 @@ pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneEr
                 .parse()
                 .ok()
                 .filter(|v: &f64| *v > 0.0)
-                .ok_or_else(|| values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
+                .ok_or_else(|| {
+                    values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\""))
+                })?;
             Ok((PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal))
         }
     }
@@ -109,8 +126,12 @@ fn film_and_sampler(obj: &SceneObject) -> Result<(Film, u32, u64), SceneError> {
         let c = &child.object;
         match c.tag.as_str() {
             // Mitsuba: "Only one film/sampler can be specified per sensor" (src/render/sensor.cpp).
-            "film" if film.is_some() => return Err(SceneError::at(&child.pos, "only one film can be specified per sensor")),
-            "sampler" if sampler.is_some() => return Err(SceneError::at(&child.pos, "only one sampler can be specified per sensor")),
+            "film" if film.is_some() => {
+                return Err(SceneError::at(&child.pos, "only one film can be specified per sensor"));
+            }
+            "sampler" if sampler.is_some() => {
+                return Err(SceneError::at(&child.pos, "only one sampler can be specified per sensor"));
+            }
             "film" => film = Some(build_film(c)?),
             "sampler" => sampler = Some(build_sampler(c)?),
             _ => return Err(err(c, format!("a <{}> cannot be nested in a sensor", c.tag))),
@@ -130,7 +151,11 @@ fn film_and_sampler(obj: &SceneObject) -> Result<(Film, u32, u64), SceneError> {
 fn principal_point_offset(obj: &SceneObject, name: &str) -> Result<f32, SceneError> {
     let v = values::float(obj, name, 0.0)?;
     if v.is_nan() || v.abs() > 1e6 {
-        return Err(values::prop_err(obj, name, format!("must be a finite fraction of the film size within ±1e6, got {v}")));
+        return Err(values::prop_err(
+            obj,
+            name,
+            format!("must be a finite fraction of the film size within ±1e6, got {v}"),
+        ));
     }
     Ok(v as f32)
 }
@@ -143,15 +168,16 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     let height = values::integer(obj, "height", 576, 1, 1 << 16)? as u32;
     // Mitsuba (src/render/film.cpp): crop_width/height default to the FULL film size, not to
     // what is left after the offset, so an offset alone is an invalid crop window (§6).
-    let crop = if ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| obj.properties.contains(n)) {
-        let ox = values::integer(obj, "crop_offset_x", 0, 0, u32::MAX as i64)? as u32;
-        let oy = values::integer(obj, "crop_offset_y", 0, 0, u32::MAX as i64)? as u32;
-        let w = values::integer(obj, "crop_width", width as i64, 1, u32::MAX as i64)? as u32;
-        let h = values::integer(obj, "crop_height", height as i64, 1, u32::MAX as i64)? as u32;
-        Some(CropWindow { offset: [ox, oy], size: [w, h] })
-    } else {
-        None
-    };
+    let crop =
+        if ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| obj.properties.contains(n)) {
+            let ox = values::integer(obj, "crop_offset_x", 0, 0, u32::MAX as i64)? as u32;
+            let oy = values::integer(obj, "crop_offset_y", 0, 0, u32::MAX as i64)? as u32;
+            let w = values::integer(obj, "crop_width", width as i64, 1, u32::MAX as i64)? as u32;
+            let h = values::integer(obj, "crop_height", height as i64, 1, u32::MAX as i64)? as u32;
+            Some(CropWindow { offset: [ox, oy], size: [w, h] })
+        } else {
+            None
+        };
     // Output format properties only affect files Mitsuba writes; matte always writes RGB float.
     let pf = values::string(obj, "pixel_format", "rgb")?.to_lowercase();
     if pf != "rgb" && pf != "rgba" {
@@ -194,7 +220,14 @@ const MAX_FILTER_RADIUS: f64 = 1024.0;
 fn filter_size(obj: &SceneObject, name: &str, default: f64, radius_per_unit: f64) -> Result<f32, SceneError> {
     let v = values::positive(obj, name, default)?;
     if v * radius_per_unit > MAX_FILTER_RADIUS {
-        return Err(values::prop_err(obj, name, format!("gives a filter radius of {} pixels; matte allows at most {MAX_FILTER_RADIUS}", v * radius_per_unit)));
+        return Err(values::prop_err(
+            obj,
+            name,
+            format!(
+                "gives a filter radius of {} pixels; matte allows at most {MAX_FILTER_RADIUS}",
+                v * radius_per_unit
+            ),
+        ));
     }
     Ok(v as f32)
 }

@@ -21,12 +21,18 @@ pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
 
 /// One shape, placed by `outer · to_world` (`outer` is an instance's transform). In a
 /// shape group (`in_group`) an area emitter is refused.
-pub(super) fn build_placed(b: &mut Builder, obj: &SceneObject, outer: Affine3A, in_group: bool) -> Result<(), SceneError> {
+pub(super) fn build_placed(
+    b: &mut Builder,
+    obj: &SceneObject,
+    outer: Affine3A,
+    in_group: bool,
+) -> Result<(), SceneError> {
     let to_world = outer * values::transform(obj, "to_world")?;
     let flip_normals = values::boolean(obj, "flip_normals", false)?;
     let geometry = match obj.plugin.as_str() {
         "obj" | "ply" => {
-            let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+            let filename =
+                obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
             let opts = MeshOptions {
                 to_world: Mat4::from(to_world),
                 face_normals: values::boolean(obj, "face_normals", false)?,
@@ -35,7 +41,9 @@ pub(super) fn build_placed(b: &mut Builder, obj: &SceneObject, outer: Affine3A, 
             };
             let path = b.resolve(&filename);
             let loaded = if obj.plugin == "obj" { mesh::load_obj(&path, &opts) } else { mesh::load_ply(&path, &opts) };
-            let m = loaded.map_err(|e| values::prop_err(obj, "filename", format!("cannot load mesh: {}", values::one_line(&e.to_string()))))?;
+            let m = loaded.map_err(|e| {
+                values::prop_err(obj, "filename", format!("cannot load mesh: {}", values::one_line(&e.to_string())))
+            })?;
             Geometry::Triangles(Triangles::new(m, flip_normals))
         }
         "rectangle" | "cube" => {
@@ -68,18 +76,36 @@ pub(super) fn build_placed(b: &mut Builder, obj: &SceneObject, outer: Affine3A, 
             // Mitsuba: to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|).
             let f = Frame::from_normal(axis / length);
             let frame = Affine3A::from_mat3(Mat3::from_cols(f.s, f.t, f.n));
-            let m = to_world * Affine3A::from_translation(p0) * frame * Affine3A::from_scale(Vec3::new(radius, radius, length));
+            let m = to_world
+                * Affine3A::from_translation(p0)
+                * frame
+                * Affine3A::from_scale(Vec3::new(radius, radius, length));
             Geometry::Cylinder(Cylinder::new(m, flip_normals))
         }
-        "shapegroup" | "instance" => return Err(err(obj, "nested instancing is not permitted (a shapegroup cannot contain a shapegroup or an instance)")),
-        other => return Err(err(obj, format!("unsupported shape type \"{other}\" (matte renders: obj, ply, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)"))),
+        "shapegroup" | "instance" => {
+            return Err(err(
+                obj,
+                "nested instancing is not permitted (a shapegroup cannot contain a shapegroup or an instance)",
+            ));
+        }
+        other => {
+            return Err(err(
+                obj,
+                format!(
+                    "unsupported shape type \"{other}\" (matte renders: obj, ply, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)"
+                ),
+            ));
+        }
     };
     if geometry.surface_area().is_nan() {
         return Err(values::prop_err(obj, "to_world", "produces invalid (NaN) geometry"));
     }
     let extent = max_abs_coordinate(&geometry);
     if extent.is_nan() || extent > MAX_COORDINATE {
-        return Err(err(obj, format!("reaches coordinate {extent:e}; matte accepts shapes within ±{MAX_COORDINATE:e}")));
+        return Err(err(
+            obj,
+            format!("reaches coordinate {extent:e}; matte accepts shapes within ±{MAX_COORDINATE:e}"),
+        ));
     }
     let shape_index = b.shapes.len() as u32;
     let mut bsdf_index = None;
@@ -95,7 +121,10 @@ pub(super) fn build_placed(b: &mut Builder, obj: &SceneObject, outer: Affine3A, 
                 bsdf_index = Some(bsdf::get_or_build(b, c)?);
             }
             "emitter" if in_group => {
-                return Err(err(c, "an emitter cannot be attached to a shape inside a shapegroup (instanced emitters are not supported)"));
+                return Err(err(
+                    c,
+                    "an emitter cannot be attached to a shape inside a shapegroup (instanced emitters are not supported)",
+                ));
             }
             "emitter" => {
                 if emitter_index.is_some() {

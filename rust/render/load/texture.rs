@@ -30,7 +30,10 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
         "bitmap" => build_bitmap(b, obj),
         "checkerboard" => checkerboard(b, obj),
         "rawconstant" => rawconstant(obj),
-        other => Err(err(obj, format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant)"))),
+        other => Err(err(
+            obj,
+            format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant)"),
+        )),
     }
 }
 
@@ -59,9 +62,15 @@ fn rawconstant(obj: &SceneObject) -> Result<Texture, SceneError> {
     let value = match obj.properties.iter().find(|p| p.name == "value").map(|p| &p.value) {
         None => return Err(err(obj, "missing required parameter \"value\" (a float or a 3-D vector)")),
         Some(Value::Vector(_) | Value::Point(_)) => obj.properties.vector("value")?.unwrap_or_default().as_vec3(),
-        Some(Value::Float(_) | Value::Integer(_)) => Vec3::splat(obj.properties.float("value")?.unwrap_or_default() as f32),
+        Some(Value::Float(_) | Value::Integer(_)) => {
+            Vec3::splat(obj.properties.float("value")?.unwrap_or_default() as f32)
+        }
         Some(other) => {
-            return Err(values::prop_err(obj, "value", format!("has the wrong type (expected float or vector, found {})", other.type_name())));
+            return Err(values::prop_err(
+                obj,
+                "value",
+                format!("has the wrong type (expected float or vector, found {})", other.type_name()),
+            ));
         }
     };
     if !value.is_finite() {
@@ -77,7 +86,10 @@ fn to_uv(obj: &SceneObject) -> Result<Affine2, SceneError> {
     Ok(match obj.properties.transform("to_uv")? {
         None => Affine2::IDENTITY,
         Some(m) => {
-            let a = Mat2::from_cols(Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32), Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32));
+            let a = Mat2::from_cols(
+                Vec2::new(m.x_axis.x as f32, m.x_axis.y as f32),
+                Vec2::new(m.y_axis.x as f32, m.y_axis.y as f32),
+            );
             Affine2::from_mat2_translation(a, Vec2::new(m.w_axis.x as f32, m.w_axis.y as f32))
         }
     })
@@ -88,13 +100,21 @@ fn build_bitmap(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let filter = match values::string(obj, "filter_type", "bilinear")?.as_str() {
         "bilinear" => BitmapFilter::Bilinear,
         "nearest" => BitmapFilter::Nearest,
-        other => return Err(values::prop_err(obj, "filter_type", format!("must be bilinear or nearest, got \"{other}\""))),
+        other => {
+            return Err(values::prop_err(obj, "filter_type", format!("must be bilinear or nearest, got \"{other}\"")));
+        }
     };
     let wrap = match values::string(obj, "wrap_mode", "repeat")?.as_str() {
         "repeat" => WrapMode::Repeat,
         "mirror" => WrapMode::Mirror,
         "clamp" => WrapMode::Clamp,
-        other => return Err(values::prop_err(obj, "wrap_mode", format!("must be repeat, mirror or clamp, got \"{other}\""))),
+        other => {
+            return Err(values::prop_err(
+                obj,
+                "wrap_mode",
+                format!("must be repeat, mirror or clamp, got \"{other}\""),
+            ));
+        }
     };
     let raw = values::boolean(obj, "raw", false)?;
     let to_uv = to_uv(obj)?;

@@ -70,7 +70,8 @@ pub fn to_affine(m: &DMat4) -> Option<Affine3A> {
     if r != glam::DVec4::new(0.0, 0.0, 0.0, 1.0) || !m.is_finite() {
         return None;
     }
-    let m3 = Mat3::from_cols(m.x_axis.truncate().as_vec3(), m.y_axis.truncate().as_vec3(), m.z_axis.truncate().as_vec3());
+    let m3 =
+        Mat3::from_cols(m.x_axis.truncate().as_vec3(), m.y_axis.truncate().as_vec3(), m.z_axis.truncate().as_vec3());
     Some(Affine3A::from_mat3_translation(m3, m.w_axis.truncate().as_vec3()))
 }
 

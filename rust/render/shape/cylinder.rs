@@ -37,7 +37,8 @@ impl Cylinder {
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
         for i in 0..8 {
-            let c = Vec3::new(if i & 1 == 0 { -1.0 } else { 1.0 }, if i & 2 == 0 { -1.0 } else { 1.0 }, (i >> 2) as f32);
+            let c =
+                Vec3::new(if i & 1 == 0 { -1.0 } else { 1.0 }, if i & 2 == 0 { -1.0 } else { 1.0 }, (i >> 2) as f32);
             let p = self.to_world.transform_point3(c);
             lo = lo.min(p);
             hi = hi.max(p);

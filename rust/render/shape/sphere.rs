@@ -52,7 +52,13 @@ impl Sphere {
         let c = o.length_squared() - (self.radius as f64).powi(2);
         let (t0, t1) = super::area_sampling::solve_quadratic(a, b, c)?;
         let maxt = ray.maxt as f64;
-        let t = if t0 > 0.0 && t0 < maxt { t0 } else if t1 > 0.0 && t1 < maxt { t1 } else { return None };
+        let t = if t0 > 0.0 && t0 < maxt {
+            t0
+        } else if t1 > 0.0 && t1 < maxt {
+            t1
+        } else {
+            return None;
+        };
         Some(t as f32)
     }
 

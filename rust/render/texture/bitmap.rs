@@ -73,7 +73,10 @@ impl BitmapTexture {
     /// generated texture. No sRGB decoding and no padding: `width`, `height` must be ≥ 2.
     pub fn from_linear(width: u32, height: u32, texels: Vec<Vec3>, opts: &BitmapOptions) -> Result<Self, String> {
         if width < 2 || height < 2 || texels.len() != width as usize * height as usize {
-            return Err(format!("invalid texel buffer: {width}x{height} with {} texels (at least 2x2 needed)", texels.len()));
+            return Err(format!(
+                "invalid texel buffer: {width}x{height} with {} texels (at least 2x2 needed)",
+                texels.len()
+            ));
         }
         Ok(Self::from_texels(Texels { width, height, data: texels }, opts))
     }
@@ -81,7 +84,15 @@ impl BitmapTexture {
     fn from_texels(t: Texels, opts: &BitmapOptions) -> Self {
         let sum = t.data.iter().fold(glam::DVec3::ZERO, |s, v| s + v.as_dvec3());
         let mean = (sum / t.data.len() as f64).as_vec3();
-        BitmapTexture { width: t.width, height: t.height, texels: t.data, filter: opts.filter, wrap: opts.wrap, to_uv: opts.to_uv, mean }
+        BitmapTexture {
+            width: t.width,
+            height: t.height,
+            texels: t.data,
+            filter: opts.filter,
+            wrap: opts.wrap,
+            to_uv: opts.to_uv,
+            mean,
+        }
     }
 
     /// Linear RGB at `uv`. Never NaN for finite texels: a non-finite uv is looked up at (0, 0).

@@ -7,4 +7,3 @@ mod bitmap_load;
 
 pub use bitmap::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 pub use bitmap_load::srgb_to_linear;
-

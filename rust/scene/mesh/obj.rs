@@ -155,7 +155,11 @@ impl ObjReader {
                 .ok_or_else(|| format!("invalid {} index {value} in face corner \"{corner}\"", KIND[slot]))?;
         }
         if key[0] as usize > self.positions.len() {
-            return Err(format!("reference to invalid vertex {} (only {} defined above)", key[0], self.positions.len()));
+            return Err(format!(
+                "reference to invalid vertex {} (only {} defined above)",
+                key[0],
+                self.positions.len()
+            ));
         }
         Ok(key)
     }
@@ -172,7 +176,11 @@ impl ObjReader {
                 uvs.push(match k[1] {
                     0 => Vec2::ZERO,
                     t => *self.texcoords.get(t as usize - 1).ok_or_else(|| {
-                        MeshError::at(path, line, format!("reference to invalid texture coordinate {t} (file has {})", self.texcoords.len()))
+                        MeshError::at(
+                            path,
+                            line,
+                            format!("reference to invalid texture coordinate {t} (file has {})", self.texcoords.len()),
+                        )
                     })?,
                 });
             }
@@ -180,7 +188,11 @@ impl ObjReader {
                 normals.push(match k[2] {
                     0 => None,
                     n => Some(*self.normals.get(n as usize - 1).ok_or_else(|| {
-                        MeshError::at(path, line, format!("reference to invalid normal {n} (file has {})", self.normals.len()))
+                        MeshError::at(
+                            path,
+                            line,
+                            format!("reference to invalid normal {n} (file has {})", self.normals.len()),
+                        )
                     })?),
                 });
             }

@@ -60,10 +60,8 @@ const NAMES: [&str; 12] = ["x", "y", "z", "nx", "ny", "nz", "u", "v", "texture_u
 
 impl Layout {
     fn of(path: &Path, header: &Header, opts: &MeshOptions) -> Result<Layout, MeshError> {
-        let vertex = header
-            .elements
-            .get("vertex")
-            .ok_or_else(|| MeshError::new(path, "PLY file has no \"vertex\" element"))?;
+        let vertex =
+            header.elements.get("vertex").ok_or_else(|| MeshError::new(path, "PLY file has no \"vertex\" element"))?;
         let has = |e: &ElementDef, n: &str| e.properties.contains_key(n);
         for n in ["x", "y", "z"] {
             if !has(vertex, n) {
@@ -72,7 +70,10 @@ impl Layout {
         }
         let normals = !opts.face_normals && ["nx", "ny", "nz"].iter().all(|n| has(vertex, n));
         let uv = [(6, 7), (8, 9), (10, 11)].into_iter().find(|&(a, b)| has(vertex, NAMES[a]) && has(vertex, NAMES[b]));
-        let face = header.elements.get("face").ok_or_else(|| MeshError::new(path, "mesh has no triangles (PLY file has no \"face\" element)"))?;
+        let face = header
+            .elements
+            .get("face")
+            .ok_or_else(|| MeshError::new(path, "mesh has no triangles (PLY file has no \"face\" element)"))?;
         let vertex_index = if has(face, "vertex_index") {
             true
         } else if has(face, "vertex_indices") {
@@ -84,7 +85,13 @@ impl Layout {
     }
 }
 
-fn build(path: &Path, layout: &Layout, vertices: &[Record], faces: &[Record], opts: &MeshOptions) -> Result<TriangleMesh, MeshError> {
+fn build(
+    path: &Path,
+    layout: &Layout,
+    vertices: &[Record],
+    faces: &[Record],
+    opts: &MeshOptions,
+) -> Result<TriangleMesh, MeshError> {
     let flip_v = opts.flip_tex_coords.unwrap_or(false);
     let normal_matrix = opts.normal_matrix();
     let mut positions = Vec::with_capacity(vertices.len());
@@ -98,8 +105,9 @@ fn build(path: &Path, layout: &Layout, vertices: &[Record], faces: &[Record], op
         }
         positions.push(p);
         if layout.normals {
-            let n = world_normal(&normal_matrix, Vec3::new(f(3), f(4), f(5)))
-                .ok_or_else(|| MeshError::new(path, format!("vertex {i}: invalid normal data (zero length, NaN or Inf)")))?;
+            let n = world_normal(&normal_matrix, Vec3::new(f(3), f(4), f(5))).ok_or_else(|| {
+                MeshError::new(path, format!("vertex {i}: invalid normal data (zero length, NaN or Inf)"))
+            })?;
             normals.push(Some(n));
         }
         if let Some((a, b)) = layout.uv {
@@ -116,7 +124,10 @@ fn build(path: &Path, layout: &Layout, vertices: &[Record], faces: &[Record], op
         let mut ids = [0u32; 3];
         for (k, &v) in idx.iter().enumerate() {
             let id = u32::try_from(v).ok().filter(|&id| (id as usize) < positions.len()).ok_or_else(|| {
-                MeshError::new(path, format!("face {i}: vertex index {v} out of range (file has {} vertices)", positions.len()))
+                MeshError::new(
+                    path,
+                    format!("face {i}: vertex index {v} out of range (file has {} vertices)", positions.len()),
+                )
             })?;
             match k {
                 0..=2 => ids[k] = id,
