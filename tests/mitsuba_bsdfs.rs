@@ -6,10 +6,12 @@
 //! pdf, and the Dirac lobes' probabilities.
 
 #[path = "mitsuba_bsdfs/bumpmap_reference.rs"]
+#[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod bumpmap_reference;
 mod common;
 #[path = "mitsuba_bsdfs/reference.rs"]
 #[rustfmt::skip] // generated data, one configuration per line
+#[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod reference;
 
 use common::{Pcg32, chi2_sampling_ires, sidak};

@@ -41,8 +41,8 @@ fn sample_weight_is_eval_cos_over_pdf() {
                 bsdf.pdf(wi, s.wo)
             );
             let f = bsdf.eval(wi, s.wo, rho);
-            for k in 0..2 {
-                let want = f[k] * s.wo.z / s.pdf;
+            for (k, fk) in f.iter().enumerate().take(2) {
+                let want = fk * s.wo.z / s.pdf;
                 assert!(
                     (s.weight[k] - want).abs() <= 1e-5 * want.abs() + 1e-12,
                     "{label}: weight {} vs {want}",

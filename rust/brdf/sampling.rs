@@ -61,23 +61,6 @@ pub fn sincos_cephes(x: f32) -> (f32, f32) {
     (f32::from_bits(sv.to_bits() ^ sign_sin), f32::from_bits(cv.to_bits() ^ sign_cos))
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn cephes_sincos_is_accurate() {
-        let mut worst = 0.0f64;
-        for k in -100_000..=100_000 {
-            let x = k as f32 * 1e-4 * std::f32::consts::PI; // [−π, π] and a bit beyond
-            let (s, c) = sincos_cephes(x);
-            let (es, ec) = (x as f64).sin_cos();
-            worst = worst.max((s as f64 - es).abs()).max((c as f64 - ec).abs());
-        }
-        assert!(worst < 2e-7, "max abs error {worst}");
-    }
-}
-
 /// Cosine-weighted direction in the upper hemisphere, in any [`Real`]; density
 /// [`cosine_pdf`].
 #[inline(always)]
@@ -107,4 +90,21 @@ pub fn square_to_cosine_hemisphere(u: Vec2) -> Vec3 {
 #[inline]
 pub fn cosine_hemisphere_pdf(w: Vec3) -> f32 {
     FRAC_1_PI * w.z.max(0.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cephes_sincos_is_accurate() {
+        let mut worst = 0.0f64;
+        for k in -100_000..=100_000 {
+            let x = k as f32 * 1e-4 * std::f32::consts::PI; // [−π, π] and a bit beyond
+            let (s, c) = sincos_cephes(x);
+            let (es, ec) = (x as f64).sin_cos();
+            worst = worst.max((s as f64 - es).abs()).max((c as f64 - ec).abs());
+        }
+        assert!(worst < 2e-7, "max abs error {worst}");
+    }
 }

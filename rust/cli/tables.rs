@@ -14,8 +14,11 @@ pub struct TablesArgs {
     pub error_samples: usize,
 }
 
-/// (label, type, parameters) of the rows, in the notation of `docs/models.md` Tables 1–2.
-const ROWS: &[(&str, &str, &[(&str, &str)])] = &[
+/// A table row: (label, plugin type, parameters as XML name/value pairs).
+type Row = (&'static str, &'static str, &'static [(&'static str, &'static str)]);
+
+/// The rows, in the notation of `docs/models.md` Tables 1–2.
+const ROWS: &[Row] = &[
     ("Lambert", "lambert", &[]),
     ("QON s=0.25", "oren_nayar", &[("sigma", "0.25")]),
     ("QON s=0.3", "oren_nayar", &[("sigma", "0.3")]),

@@ -1,6 +1,8 @@
 //! The `cxx` bridge declarations (C++ side: `cpp/matte_bsdf.h` includes the generated
 //! `rust/ffi/bridge.rs.h`). Implementations live in `super` (`rust/ffi/mod.rs`).
 
+// The C++-facing signatures pass every traced operand separately.
+#[allow(clippy::too_many_arguments)]
 #[cxx::bridge(namespace = "matte::ffi")]
 pub mod ffi {
     /// One `<float>`/`<integer>`/`<string>` property of the `<bsdf>` element.

@@ -58,6 +58,7 @@ pub fn text_width(text: &str, scale: u32) -> u32 {
 }
 
 /// Draws `text` into an RGB8 buffer of width `w` at (x, y) (top-left) in `color`.
+#[allow(clippy::too_many_arguments)] // a buffer, its size, a place, a text and its style
 pub fn draw_text(buf: &mut [u8], w: u32, h: u32, x: u32, y: u32, text: &str, scale: u32, color: [u8; 3]) {
     for (i, c) in text.chars().enumerate() {
         let gx = x + i as u32 * 6 * scale;

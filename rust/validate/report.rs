@@ -152,7 +152,7 @@ the image mean per channel (Bonferroni over channels). A scene passes when no pi
             mb = rgb(c.global.mean_b),
             d = rgb(c.global.diff),
             ci = rgb(c.global.ci99),
-            gp = format!("{:.3} {:.3} {:.3}", c.global.p.x, c.global.p.y, c.global.p.z),
+            gp = format_args!("{:.3} {:.3} {:.3}", c.global.p.x, c.global.p.y, c.global.p.z),
             passes = r.passes,
             spp = r.spp_per_pass,
             ta = r.seconds_matte,

@@ -3,6 +3,8 @@
 //! test runs over, and Mitsuba's chi-square goodness-of-fit test re-implemented
 //! (`src/python/python/chi2.py` and `mitsuba::math::chi2` of v3.9.1).
 #![allow(dead_code)]
+// `!(x > 0.0)` is meant: it also rejects NaN, which `x <= 0.0` would let through.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use glam::{Vec2, Vec3};
 use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};

@@ -6,6 +6,7 @@
 pub mod bump_map;
 pub mod conductor;
 pub mod conductor_ior;
+#[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod conductor_ior_data;
 pub mod dielectric;
 pub mod diffuse;

@@ -77,7 +77,7 @@ pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneEr
     let fov = values::float_opt(obj, "fov")?;
     let focal = obj.properties.string("focal_length")?;
     match (fov, focal) {
-        (Some(_), Some(_)) => return Err(err(obj, "give either fov or focal_length, not both")),
+        (Some(_), Some(_)) => Err(err(obj, "give either fov or focal_length, not both")),
         (Some(f), None) => {
             if !(f > 0.0 && f < 180.0) {
                 return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
