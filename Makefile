@@ -1,6 +1,7 @@
 # The two entry points the README documents. Each installs what it needs by itself:
 #   make main   the main job
-#   make test   every test (Rust, then the Mitsuba plugin's pytest suite); .ci/run calls it
+#   make test   every test (format and lint checks, Rust, then the Mitsuba plugin's pytest suite);
+#               .ci/run calls it
 # and one more for the speed record (not a set-up command; it needs the same things as main):
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
 .PHONY: main test bench venv plugin
@@ -18,6 +19,8 @@ bench: plugin
 	./target/release/matte bench -o bench_out
 
 test: plugin
+	cargo fmt --check
+	cargo clippy --quiet --all-targets -- -D warnings
 	cargo test --quiet
 	$(PY) -m pytest -q tests/plugin tests/renderer
 

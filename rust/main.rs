@@ -21,7 +21,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("matte: error: {e}");
+            eprintln!("matte: error: {}", matte::cli::one_line(&e));
             ExitCode::from(2)
         }
     }

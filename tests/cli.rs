@@ -80,6 +80,22 @@ fn albedo_reports_method() {
 }
 
 #[test]
+fn a_malformed_scene_is_reported_on_one_line() {
+    // The XML parser quotes the character it did not expect, here a line break.
+    let dir = std::env::temp_dir().join(format!("matte-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("broken.xml");
+    std::fs::write(&file, "<scene version=\"3.0.0\">\n  <bsdf type=\"diffuse\" id=\"a\"/\n>\n</scene>\n").unwrap();
+    let out_file = dir.join("out.exr");
+    let (ok, out, err) = matte(&["render", file.to_str().unwrap(), "-o", out_file.to_str().unwrap()]);
+    assert!(!ok, "a malformed scene rendered: {out}");
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line:\n{err}");
+    assert!(err.contains("broken.xml:2:"), "no file:line in {err}");
+    assert!(err.contains("\\n"), "the line break is not shown escaped: {err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn invalid_input_is_one_line_and_non_zero() {
     for args in [
         vec!["brdf", "--bsdf", "phong", "--theta-i", "0", "--theta-o", "0", "--phi", "0"],

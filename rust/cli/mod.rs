@@ -58,6 +58,13 @@ pub fn parse() -> Result<Cli, String> {
     })
 }
 
+/// An error message as the one line `matte` prints: control characters (a line break quoted
+/// from a malformed file, a tab) are written escaped, as `\n` or `\u{1b}`, so the message
+/// never spans lines and never drives the terminal.
+pub fn one_line(message: &str) -> String {
+    message.chars().map(|c| if c.is_control() { c.escape_default().to_string() } else { c.to_string() }).collect()
+}
+
 pub fn run(cli: Cli) -> Result<(), String> {
     match cli.command {
         Command::Brdf(a) => brdf_cmd::run_brdf(&a),
