@@ -9,6 +9,7 @@
 //! * [`validate`]: per-pixel statistical comparison of the Rust renderer with Mitsuba.
 //! * [`study`]: the seed paper's experiment (scenes × models, strips, measured ratios).
 //! * [`bench`]: the speed targets, matte against Mitsuba in one run (`matte bench`).
+//! * [`markup`]: escaping for the HTML reports and derived XML scenes.
 
 // `!(x > 0.0)` is deliberate throughout: it is true for NaN as well, which is what the
 // guards against degenerate samples and bad parameters need.
@@ -18,6 +19,7 @@ pub mod bench;
 pub mod brdf;
 pub mod cli;
 pub mod ffi;
+pub mod markup;
 pub mod render;
 pub mod scene;
 pub mod study;

@@ -8,7 +8,8 @@ use std::process::Command;
 #[test]
 fn mean_ci99_matches_the_t_quantile() {
     // Sample 1, 2, 3, 4: mean 2.5, s² = 5/3, se = sqrt(5/12); t(3) 0.995 quantile = 5.840909.
-    let (m, hw) = mean_ci99(&[1.0, 2.0, 3.0, 4.0]);
+    let r = mean_ci99(&[1.0, 2.0, 3.0, 4.0]);
+    let (m, hw) = (r.value, r.half_width);
     assert!((m - 2.5).abs() < 1e-12);
     assert!((hw - 5.840909 * (5.0f64 / 12.0).sqrt()).abs() < 1e-5, "half-width {hw}");
 }
@@ -89,7 +90,9 @@ fn regions_file_is_read_and_validated() {
 
 // ---- Derived scenes (model variants) -------------------------------------------------------
 
+use matte::study::configuration::Configuration;
 use matte::study::convergence::{self, Point, Series};
+use matte::study::ratio::Ratio;
 use matte::study::variant_scene::{Derivation, Property, derive_text, write_derived};
 use std::path::{Path, PathBuf};
 
@@ -318,8 +321,14 @@ fn crop_box_holds_exactly_the_region_pixels() {
 
 #[test]
 fn convergence_verdicts_follow_interval_overlap() {
-    let pt =
-        |spp, renderer: &str, ratio| Point { spp, renderer: renderer.into(), model: "oren_nayar", ratio, seconds: 0.0 };
+    let on = Configuration::OrenNayarQualitative;
+    let pt = |spp, renderer: &str, (value, half_width)| Point {
+        spp,
+        renderer: renderer.into(),
+        model: on,
+        ratio: Ratio::new(value, half_width),
+        seconds: 0.0,
+    };
     let series = |points| Series {
         scene_name: "s".into(),
         region: "r".into(),
@@ -340,9 +349,9 @@ fn convergence_verdicts_follow_interval_overlap() {
         pt(64, "mitsuba", (0.86, 0.02)),
         pt(256, "mitsuba", (0.851, 0.005)),
     ]);
-    assert_eq!(stable.stable("oren_nayar", "matte"), (3, 3));
-    assert_eq!(stable.agreement("oren_nayar"), (3, 3));
-    assert_eq!(stable.best("oren_nayar", "mitsuba").map(|p| p.spp), Some(256));
+    assert_eq!(stable.stable(on, "matte"), (3, 3));
+    assert_eq!(stable.agreement(on), (3, 3));
+    assert_eq!(stable.best(on, "mitsuba").map(|p| p.spp), Some(256));
     // Drift: 1.10 ± 0.01 at 16 spp misses 0.85 ± 0.005; renderers 0.85 vs 0.95 disagree at 256.
     let drift = series(vec![
         pt(16, "matte", (1.10, 0.01)),
@@ -350,8 +359,8 @@ fn convergence_verdicts_follow_interval_overlap() {
         pt(256, "matte", (0.85, 0.005)),
         pt(256, "mitsuba", (0.95, 0.01)),
     ]);
-    assert_eq!(drift.stable("oren_nayar", "matte"), (2, 3));
-    assert_eq!(drift.agreement("oren_nayar"), (0, 1));
+    assert_eq!(drift.stable(on, "matte"), (2, 3));
+    assert_eq!(drift.agreement(on), (0, 1));
     let answers = matte::study::answers::convergence_answers(&drift, None);
     assert!(answers.iter().any(|a| a.contains("drifts")), "{answers:?}");
     let answers = matte::study::answers::convergence_answers(&stable, None);

@@ -1,12 +1,14 @@
 //! The paper's observations, each answered by a sentence computed from the measurements
 //! (never hand-written numbers), for the report and study.json.
 
+use super::configuration::{Configuration, MAIN_RUN, VARIANTS};
 use super::convergence::Series;
+use super::ratio::{Ratio, Relation};
 use super::variants::VariantStudy;
 use super::{Lighting, SceneStudy, Study};
 
-fn ratio(s: &SceneStudy, bsdf: &str, l: Lighting) -> Option<(f64, f64)> {
-    s.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == l).map(|r| r.ratio)
+fn ratio(s: &SceneStudy, model: Configuration, l: Lighting) -> Option<Ratio> {
+    s.result(model, l).map(|r| r.ratio)
 }
 
 /// Decimals that show a half-width `hw` with one significant digit, at least `min`, at most
@@ -19,26 +21,20 @@ fn decimals(hw: f64, min: usize) -> usize {
 }
 
 /// `ratio ± half-width`.
-fn ci(r: (f64, f64)) -> String {
-    let d = decimals(r.1, 3);
-    format!("{:.*} ± {:.*}", d, r.0, d, r.1)
+fn ci(r: Ratio) -> String {
+    let d = decimals(r.half_width, 3);
+    format!("{:.*} ± {:.*}", d, r.value, d, r.half_width)
 }
 
-/// A ratio's change against 1 (or a difference) in percent: `+x % ± y %`.
-fn pct_ci(delta: f64, hw: f64) -> String {
-    let d = decimals(hw * 100.0, 1);
-    format!("{:+.*} % ± {:.*} %", d, delta * 100.0, d, hw * 100.0)
+/// A difference (or a ratio's change against 1) in percent: `+x % ± y %`.
+fn pct_ci(r: Ratio) -> String {
+    let d = decimals(r.half_width * 100.0, 1);
+    format!("{:+.*} % ± {:.*} %", d, r.value * 100.0, d, r.half_width * 100.0)
 }
 
-/// Relation of a ratio to Lambert (1), decided by its 99 % interval.
-fn relation(r: (f64, f64)) -> &'static str {
-    if r.0 - r.1 > 1.0 {
-        "brighter than"
-    } else if r.0 + r.1 < 1.0 {
-        "darker than"
-    } else {
-        "not distinguishable from"
-    }
+/// A ratio's change against Lambert's 1.
+fn change(r: Ratio) -> Ratio {
+    r.minus(Ratio::exact(1.0))
 }
 
 /// One sentence per observation that the measurements at hand can answer.
@@ -58,12 +54,12 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
     // The paper's question: does the difference to Lambert grow under global illumination?
     let (mut grow, mut total) = (0, 0);
     for s in studies {
-        for m in &super::MODELS[1..] {
-            if let (Some(g), Some(d)) = (ratio(s, m.bsdf, Lighting::Global), ratio(s, m.bsdf, Lighting::Direct))
-                && (g.0 - d.0).abs() > 1e-9
+        for m in &MAIN_RUN[1..] {
+            if let (Some(g), Some(d)) = (ratio(s, *m, Lighting::Global), ratio(s, *m, Lighting::Direct))
+                && (g.value - d.value).abs() > 1e-9
             {
                 total += 1;
-                grow += ((g.0 - 1.0).abs() > (d.0 - 1.0).abs()) as usize;
+                grow += ((g.value - 1.0).abs() > (d.value - 1.0).abs()) as usize;
             }
         }
     }
@@ -75,36 +71,32 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
     for s in studies {
         // A scene whose own max_depth is 2 (the bunny, as the paper's figure 1) renders the same
         // image in both settings (up to the order in which tiles reach the film).
-        let direct_only = match (ratio(s, "wolff", Lighting::Global), ratio(s, "wolff", Lighting::Direct)) {
-            (Some(g), Some(d)) => (g.0 - d.0).abs() <= 1e-9,
+        let wolff = Configuration::WolffPhysical;
+        let direct_only = match (ratio(s, wolff, Lighting::Global), ratio(s, wolff, Lighting::Direct)) {
+            (Some(g), Some(d)) => (g.value - d.value).abs() <= 1e-9,
             _ => false,
         };
-        if let (Some(g), Some(d)) = (ratio(s, "wolff", Lighting::Global), ratio(s, "wolff", Lighting::Direct)) {
+        if let (Some(g), Some(d)) = (ratio(s, wolff, Lighting::Global), ratio(s, wolff, Lighting::Direct)) {
             out.push(if direct_only {
-                format!("{}: Wolff (IOR 1.4) changes the image-mean luminance by {} (the scene is lit directly only).", s.name, pct_ci(d.0 - 1.0, d.1))
+                format!("{}: Wolff (IOR 1.4) changes the image-mean luminance by {} (the scene is lit directly only).", s.name, pct_ci(change(d)))
             } else {
                 format!(
                     "{}: Wolff (IOR 1.4) changes the image-mean luminance by {} under global illumination and {} under direct lighting.",
                     s.name,
-                    pct_ci(g.0 - 1.0, g.1),
-                    pct_ci(d.0 - 1.0, d.1)
+                    pct_ci(change(g)),
+                    pct_ci(change(d))
                 )
             });
         }
         // The paper's "Ginneken darkest": van Ginneken's rank among the models (1 = darkest).
         let mut global: Vec<_> = s.results.iter().filter(|r| r.lighting == Lighting::Global).collect();
-        global.sort_by(|a, b| a.ratio.0.total_cmp(&b.ratio.0));
-        if let (Some(rank), Some(on)) =
-            (global.iter().position(|r| r.model.bsdf == "ginneken"), ratio(s, "oren_nayar", Lighting::Global))
-        {
+        global.sort_by(|a, b| a.ratio.value.total_cmp(&b.ratio.value));
+        if let (Some(rank), Some(on)) = (
+            global.iter().position(|r| r.model == Configuration::Ginneken),
+            ratio(s, Configuration::OrenNayarQualitative, Lighting::Global),
+        ) {
             let vg = global[rank].ratio;
-            let versus = if vg.0 + vg.1 < on.0 - on.1 {
-                "darker than"
-            } else if vg.0 - vg.1 > on.0 + on.1 {
-                "brighter than"
-            } else {
-                "not distinguishable from"
-            };
+            let versus = vg.relation_to(on).brightness();
             out.push(format!(
                 "{}: van Ginneken ranks {} of {} from the darkest ({} against Lambert) and is {versus} Oren–Nayar ({}).",
                 s.name,
@@ -118,29 +110,28 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
             .results
             .iter()
             .filter(|r| r.lighting == Lighting::Global)
-            .min_by(|a, b| a.ratio.0.total_cmp(&b.ratio.0))
-            .map(|r| (r.model.label, r.ratio));
+            .min_by(|a, b| a.ratio.value.total_cmp(&b.ratio.value))
+            .map(|r| (r.model.label(), r.ratio));
         if let Some((label, r)) = darkest {
             let setting = if direct_only { "" } else { " under global illumination" };
             out.push(format!(
                 "{}: the darkest model{setting} is {label} ({} against Lambert).",
                 s.name,
-                pct_ci(r.0 - 1.0, r.1)
+                pct_ci(change(r))
             ));
         }
-        for r in s.results.iter().filter(|r| r.model.bsdf == "oren_nayar" && r.lighting == Lighting::Global) {
-            for (name, m, hw) in &r.regions {
-                let verdict = if m - hw > 1.0 {
-                    "brighter than Lambert (a glow)"
-                } else if m + hw < 1.0 {
-                    "darker than Lambert (no glow)"
-                } else {
-                    "not distinguishable from Lambert"
+        if let Some(r) = s.result(Configuration::OrenNayarQualitative, Lighting::Global) {
+            for region in &r.regions {
+                let verdict = match region.ratio.relation_to_one() {
+                    Relation::Above => "brighter than Lambert (a glow)",
+                    Relation::Below => "darker than Lambert (no glow)",
+                    Relation::Indistinguishable => "not distinguishable from Lambert",
                 };
                 out.push(format!(
-                    "{}, region \"{name}\": Oren–Nayar is {verdict}: ratio {} (99 %).",
+                    "{}, region \"{}\": Oren–Nayar is {verdict}: ratio {} (99 %).",
                     s.name,
-                    ci((*m, *hw))
+                    region.name,
+                    ci(region.ratio)
                 ));
             }
         }
@@ -151,19 +142,20 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
 /// Wolff's normalisation and the Oren–Nayar model: how the ratio to Lambert changes.
 pub fn variant_answers(v: &VariantStudy) -> Vec<String> {
     let mut out = Vec::new();
-    let get = |key: &str, l: Lighting| v.result(key, l).map(|r| r.ratio);
-    let wolff: Vec<_> = super::variants::VARIANTS.iter().filter(|x| x.bsdf == "wolff").collect();
-    let spread = |l: Lighting| -> Option<(f64, f64)> {
-        let rs: Vec<(f64, f64)> = wolff.iter().filter_map(|x| get(x.key, l)).collect();
-        let hi = rs.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0))?;
-        let lo = rs.iter().copied().min_by(|a, b| a.0.total_cmp(&b.0))?;
-        Some((hi.0 - lo.0, (hi.1 * hi.1 + lo.1 * lo.1).sqrt()))
+    let get = |c: Configuration, l: Lighting| v.result(c, l).map(|r| r.ratio);
+    let wolff: Vec<Configuration> = VARIANTS.iter().copied().filter(|x| x.bsdf() == "wolff").collect();
+    let spread = |l: Lighting| -> Option<Ratio> {
+        let rs: Vec<Ratio> = wolff.iter().filter_map(|x| get(*x, l)).collect();
+        let hi = rs.iter().copied().max_by(|a, b| a.value.total_cmp(&b.value))?;
+        let lo = rs.iter().copied().min_by(|a, b| a.value.total_cmp(&b.value))?;
+        Some(hi.minus(lo))
     };
     let parts: Vec<String> = wolff
         .iter()
         .filter_map(|x| {
-            let g = get(x.key, Lighting::Global)?;
-            Some(format!("{} {} ({} Lambert)", x.property.1, ci(g), relation(g)))
+            let g = get(*x, Lighting::Global)?;
+            let (_, value) = x.property()?;
+            Some(format!("{value} {} ({} Lambert)", ci(g), g.relation_to_one().brightness()))
         })
         .collect();
     if !parts.is_empty() {
@@ -174,37 +166,30 @@ pub fn variant_answers(v: &VariantStudy) -> Vec<String> {
         ));
     }
     if let (Some(g), Some(d)) = (spread(Lighting::Global), spread(Lighting::Direct)) {
-        let verdict = if g.0 - g.1 > d.0 + d.1 {
-            "global illumination amplifies the normalisation's effect"
-        } else if g.0 + g.1 < d.0 - d.1 {
-            "global illumination reduces the normalisation's effect"
-        } else {
-            "global and direct lighting are not distinguishable here"
+        let verdict = match g.relation_to(d) {
+            Relation::Above => "global illumination amplifies the normalisation's effect",
+            Relation::Below => "global illumination reduces the normalisation's effect",
+            Relation::Indistinguishable => "global and direct lighting are not distinguishable here",
         };
         out.push(format!(
             "{}: the Wolff normalisations span {} of Lambert's image mean under global illumination and {} under direct lighting, so {verdict}.",
             v.scene_name,
-            pct_ci(g.0, g.1).trim_start_matches('+'),
-            pct_ci(d.0, d.1).trim_start_matches('+')
+            pct_ci(g).trim_start_matches('+'),
+            pct_ci(d).trim_start_matches('+')
         ));
     }
     for l in [Lighting::Global, Lighting::Direct] {
-        if let (Some(q), Some(f)) = (get("oren_nayar_qualitative", l), get("oren_nayar_full", l)) {
-            let d = (f.0 - q.0, (f.1 * f.1 + q.1 * q.1).sqrt());
-            let verdict = if d.0 - d.1 > 0.0 {
-                "brighter than"
-            } else if d.0 + d.1 < 0.0 {
-                "darker than"
-            } else {
-                "not distinguishable from"
-            };
+        if let (Some(q), Some(f)) = (get(Configuration::OrenNayarQualitative, l), get(Configuration::OrenNayarFull, l))
+        {
+            let d = f.minus(q);
+            let verdict = d.relation_to(Ratio::exact(0.0)).brightness();
             out.push(format!(
                 "{}, {} lighting: the full Oren–Nayar model is {verdict} the qualitative one. Its ratio to Lambert is {} against {} (difference {}).",
                 v.scene_name,
                 l.name(),
                 ci(f),
                 ci(q),
-                pct_ci(d.0, d.1)
+                pct_ci(d)
             ));
         }
     }
@@ -218,7 +203,8 @@ pub fn convergence_answers(s: &Series, variants: Option<&VariantStudy>) -> Vec<S
         (Some(a), Some(b)) => (*a, *b),
         _ => return out,
     };
-    for (model, label) in [("oren_nayar", "Oren–Nayar"), ("oren_nayar_full", "Oren–Nayar full")] {
+    for model in [Configuration::OrenNayarQualitative, Configuration::OrenNayarFull] {
+        let label = model.label();
         let per_renderer: Vec<String> = s
             .renderers
             .iter()
@@ -244,13 +230,13 @@ pub fn convergence_answers(s: &Series, variants: Option<&VariantStudy>) -> Vec<S
             n > 0 && k == n
         });
         let (ak, an) = s.agreement(model);
-        let best: Vec<(f64, f64)> = s.renderers.iter().filter_map(|r| s.best(model, r).map(|p| p.ratio)).collect();
-        let rel: Vec<&str> = best.iter().map(|r| relation(*r)).collect();
-        let same_side = rel.windows(2).all(|w| w[0] == w[1]);
-        let brightness = match (same_side, rel.first()) {
-            (true, Some(&"darker than")) => "darker than Lambert there, so there is no glow",
-            (true, Some(&"brighter than")) => "brighter than Lambert there: a glow",
-            (true, Some(_)) => "not distinguishable from Lambert there",
+        let relations: Vec<Relation> =
+            s.renderers.iter().filter_map(|r| s.best(model, r).map(|p| p.ratio.relation_to_one())).collect();
+        let same_side = relations.windows(2).all(|w| w[0] == w[1]);
+        let brightness = match (same_side, relations.first()) {
+            (true, Some(Relation::Below)) => "darker than Lambert there, so there is no glow",
+            (true, Some(Relation::Above)) => "brighter than Lambert there: a glow",
+            (true, Some(Relation::Indistinguishable)) => "not distinguishable from Lambert there",
             _ => "on different sides of Lambert in the two renderers",
         };
         let verdict = if s.renderers.len() < 2 {
@@ -279,15 +265,15 @@ pub fn convergence_answers(s: &Series, variants: Option<&VariantStudy>) -> Vec<S
         ));
     }
     if let Some(r) = variants
-        .and_then(|v| v.result("oren_nayar_full", Lighting::Global))
-        .and_then(|r| r.regions.iter().find(|x| x.0 == s.region))
+        .and_then(|v| v.result(Configuration::OrenNayarFull, Lighting::Global))
+        .and_then(|r| r.regions.iter().find(|x| x.name == s.region))
     {
         out.push(format!(
             "{}, region \"{}\", variant run at the study's full budget: Oren–Nayar full / Lambert = {} ({} Lambert).",
             s.scene_name,
             s.region,
-            ci((r.1, r.2)),
-            relation((r.1, r.2))
+            ci(r.ratio),
+            r.ratio.relation_to_one().brightness()
         ));
     }
     out

@@ -14,32 +14,13 @@
 //! difference at the region's rim. Each level has its own seeds (`seed + 10000·(level + 1) + k`),
 //! so the levels are independent.
 
+use super::configuration::{Configuration, SERIES};
+use super::ratio::Ratio;
 use super::variant_scene::{self, Derivation, Property};
 use super::{Lighting, Options, Region, metrics};
 use crate::render::load;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
 use std::path::{Path, PathBuf};
-
-/// A model of the series: plugin and an optional property in its `<bsdf>`.
-#[derive(Clone, Copy, Debug)]
-pub struct SeriesModel {
-    pub key: &'static str,
-    pub label: &'static str,
-    pub bsdf: &'static str,
-    pub property: Option<(&'static str, &'static str)>,
-}
-
-/// Lambert first (the denominator), then the models whose ratio is tracked.
-pub const SERIES_MODELS: [SeriesModel; 3] = [
-    SeriesModel { key: "lambert", label: "Lambert", bsdf: "lambert", property: None },
-    SeriesModel { key: "oren_nayar", label: "Oren–Nayar (qualitative)", bsdf: "oren_nayar", property: None },
-    SeriesModel {
-        key: "oren_nayar_full",
-        label: "Oren–Nayar full",
-        bsdf: "oren_nayar",
-        property: Some(("model", "full")),
-    },
-];
 
 /// One model's region ratio to Lambert at one level in one renderer.
 #[derive(Clone, Debug)]
@@ -47,9 +28,9 @@ pub struct Point {
     /// Total spp of the level (split over the passes).
     pub spp: u32,
     pub renderer: String,
-    pub model: &'static str,
-    /// Region luminance ratio to Lambert (paired passes) and its 99 % half-width.
-    pub ratio: (f64, f64),
+    pub model: Configuration,
+    /// Region luminance ratio to Lambert (paired passes) with its 99 % interval.
+    pub ratio: Ratio,
     /// Render seconds of the model's passes.
     pub seconds: f64,
 }
@@ -69,38 +50,33 @@ pub struct Series {
     pub notes: Vec<String>,
 }
 
-/// Two estimates agree when their 99 % intervals overlap.
-pub fn overlap(a: (f64, f64), b: (f64, f64)) -> bool {
-    (a.0 - b.0).abs() <= a.1 + b.1
-}
-
 impl Series {
-    pub fn point(&self, model: &str, renderer: &str, spp: u32) -> Option<&Point> {
+    pub fn point(&self, model: Configuration, renderer: &str, spp: u32) -> Option<&Point> {
         self.points.iter().find(|p| p.model == model && p.renderer == renderer && p.spp == spp)
     }
 
     /// The highest level a renderer reached for `model`.
-    pub fn best(&self, model: &str, renderer: &str) -> Option<&Point> {
+    pub fn best(&self, model: Configuration, renderer: &str) -> Option<&Point> {
         self.points.iter().filter(|p| p.model == model && p.renderer == renderer).max_by_key(|p| p.spp)
     }
 
     /// Stability over spp: (levels whose interval overlaps the highest level's, levels).
-    pub fn stable(&self, model: &str, renderer: &str) -> (usize, usize) {
+    pub fn stable(&self, model: Configuration, renderer: &str) -> (usize, usize) {
         let Some(best) = self.best(model, renderer) else { return (0, 0) };
         let pts: Vec<&Point> = self.points.iter().filter(|p| p.model == model && p.renderer == renderer).collect();
-        (pts.iter().filter(|p| overlap(p.ratio, best.ratio)).count(), pts.len())
+        (pts.iter().filter(|p| p.ratio.overlaps(best.ratio)).count(), pts.len())
     }
 
     /// Agreement between the first two renderers: (levels whose intervals overlap, levels
     /// both rendered).
-    pub fn agreement(&self, model: &str) -> (usize, usize) {
+    pub fn agreement(&self, model: Configuration) -> (usize, usize) {
         let [a, b] = match self.renderers.as_slice() {
             [a, b, ..] => [a, b],
             _ => return (0, 0),
         };
         let pairs: Vec<(&Point, &Point)> =
             self.levels.iter().filter_map(|&s| Some((self.point(model, a, s)?, self.point(model, b, s)?))).collect();
-        (pairs.iter().filter(|(p, q)| overlap(p.ratio, q.ratio)).count(), pairs.len())
+        (pairs.iter().filter(|(p, q)| p.ratio.overlaps(q.ratio)).count(), pairs.len())
     }
 }
 
@@ -128,7 +104,7 @@ pub fn mitsuba_available() -> bool {
 /// Passes a series renders (for the progress bar).
 pub fn pass_count(opts: &Options) -> u64 {
     let renderers = 1 + mitsuba_available() as usize;
-    (opts.convergence_spp.len() * SERIES_MODELS.len() * renderers) as u64 * opts.passes as u64
+    (opts.convergence_spp.len() * SERIES.len() * renderers) as u64 * opts.passes as u64
 }
 
 fn slug(s: &str) -> String {
@@ -159,13 +135,13 @@ pub fn run(
         Property::integer("crop_height", (y1 - y0) as i64),
     ];
     let mut files = Vec::new();
-    for m in SERIES_MODELS {
-        let file = opts.out.join(&rel_dir).join(format!("{}_{}.xml", slug(&region.name), m.key));
-        let bsdf_properties = m.property.map(|(k, v)| vec![Property::string(k, v)]).unwrap_or_default();
+    for m in SERIES {
+        let file = opts.out.join(&rel_dir).join(format!("{}_{}.xml", slug(&region.name), m.key()));
+        let bsdf_properties = m.property().map(|(k, v)| vec![Property::string(k, v)]).unwrap_or_default();
         variant_scene::write_derived(
             scene,
             &file,
-            &Derivation { bsdf: Some(m.bsdf.into()), bsdf_properties, film_properties: crop.clone() },
+            &Derivation { bsdf: Some(m.bsdf().into()), bsdf_properties, film_properties: crop.clone() },
         )?;
         files.push(file);
     }
@@ -193,9 +169,9 @@ pub fn run(
         };
         for renderer in active.clone() {
             let mut sides: Vec<Side> = Vec::new();
-            for (m, file) in SERIES_MODELS.iter().zip(&files) {
-                let plan = PassPlan { defines: super::image_defines(opts, m.bsdf, Lighting::Global), ..plan.clone() };
-                let what = format!("{name} convergence {spp} spp {renderer} {}", m.label);
+            for (m, file) in SERIES.iter().zip(&files) {
+                let plan = PassPlan { defines: super::image_defines(opts, m.bsdf(), Lighting::Global), ..plan.clone() };
+                let what = format!("{name} convergence {spp} spp {renderer} {}", m.label());
                 let side = if renderer == "matte" {
                     passes::rust_side(file, &plan, &|k| progress(&what, k))
                 } else {
@@ -209,7 +185,7 @@ pub fn run(
                         eprintln!("matte study: warning: the convergence series' Mitsuba side failed: {e}");
                         notes.push(format!(
                             "Mitsuba failed at {spp} spp ({}): {e}. Its later levels were skipped.",
-                            m.label
+                            m.label()
                         ));
                         active.retain(|r| *r != renderer);
                         break;
@@ -218,10 +194,10 @@ pub fn run(
                 }
             }
             let Some((lambert, others)) = sides.split_first() else { continue };
-            for (m, side) in SERIES_MODELS[1..].iter().zip(others) {
+            for (m, side) in SERIES[1..].iter().zip(others) {
                 // The crop is the region: its image mean is the region mean.
                 let ratio = metrics::luminance_ratio(&side.moments, &lambert.moments);
-                points.push(Point { spp, renderer: renderer.clone(), model: m.key, ratio, seconds: side.seconds });
+                points.push(Point { spp, renderer: renderer.clone(), model: *m, ratio, seconds: side.seconds });
             }
         }
     }

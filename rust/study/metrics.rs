@@ -6,6 +6,7 @@
 //! pass k of Lambert share their random numbers: the per-pass ratios are paired, which
 //! removes most of the common noise from the ratio's interval.
 
+use super::ratio::Ratio;
 use crate::render::film::Image;
 use crate::validate::stats::Moments;
 use glam::{DVec3, Vec3};
@@ -22,24 +23,24 @@ fn luminance_d(c: DVec3) -> f64 {
 }
 
 /// Mean and 99 % half-width (Student t) of a sample.
-pub fn mean_ci99(xs: &[f64]) -> (f64, f64) {
+pub fn mean_ci99(xs: &[f64]) -> Ratio {
     let k = xs.len() as f64;
     let m = xs.iter().sum::<f64>() / k;
     if xs.len() < 2 {
-        return (m, f64::NAN);
+        return Ratio::new(m, f64::NAN);
     }
     let v = xs.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (k - 1.0);
     let q = StudentsT::new(0.0, 1.0, k - 1.0).expect("t").inverse_cdf(0.995);
-    (m, q * (v / k).sqrt())
+    Ratio::new(m, q * (v / k).sqrt())
 }
 
-/// Ratio of image-mean luminance, model / Lambert, from paired passes: (mean, 99 % half-width).
-pub fn luminance_ratio(model: &Moments, lambert: &Moments) -> (f64, f64) {
+/// Ratio of image-mean luminance, model / Lambert, from paired passes, with its 99 % interval.
+pub fn luminance_ratio(model: &Moments, lambert: &Moments) -> Ratio {
     paired_luminance_ratio(&model.pass_means, &lambert.pass_means)
 }
 
-/// Mean and 99 % half-width of the per-pass luminance ratios of paired pass means.
-pub fn paired_luminance_ratio(model: &[DVec3], lambert: &[DVec3]) -> (f64, f64) {
+/// Mean and 99 % interval of the per-pass luminance ratios of paired pass means.
+pub fn paired_luminance_ratio(model: &[DVec3], lambert: &[DVec3]) -> Ratio {
     let ratios: Vec<f64> =
         model.iter().zip(lambert).map(|(m, l)| luminance_d(*m) / luminance_d(*l).max(1e-12)).collect();
     mean_ci99(&ratios)

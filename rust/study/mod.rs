@@ -13,11 +13,12 @@
 //! "glow" real or a bias?).
 
 pub mod answers;
+pub mod configuration;
 pub mod convergence;
 pub mod font;
 pub mod metrics;
+pub mod ratio;
 pub mod report;
-pub mod report_extra;
 pub mod strip;
 pub mod variant_scene;
 pub mod variants;
@@ -26,23 +27,9 @@ use crate::render::film::Image;
 use crate::render::image_io;
 use crate::validate::Reference;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
+use configuration::{Configuration, MAIN_RUN};
+use ratio::{Ratio, RegionRatio};
 use std::path::{Path, PathBuf};
-
-/// A model column: plugin name and label.
-#[derive(Clone, Copy, Debug)]
-pub struct Model {
-    pub bsdf: &'static str,
-    pub label: &'static str,
-}
-
-/// The paper's four models (its column order) and EON as a fifth.
-pub const MODELS: [Model; 5] = [
-    Model { bsdf: "lambert", label: "Lambert" },
-    Model { bsdf: "wolff", label: "Wolff" },
-    Model { bsdf: "oren_nayar", label: "Oren-Nayar" },
-    Model { bsdf: "ginneken", label: "Ginneken" },
-    Model { bsdf: "eon", label: "EON" },
-];
 
 /// Global illumination (scene's max_depth) or direct lighting (max_depth 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,17 +76,17 @@ impl Options {
 
 /// One model in one lighting setting.
 pub struct ModelResult {
-    pub model: Model,
+    pub model: Configuration,
     pub lighting: Lighting,
     pub mean: Image,
-    /// Luminance ratio to Lambert (same lighting) and its 99 % half-width.
-    pub ratio: (f64, f64),
+    /// Luminance ratio to Lambert (same lighting) with its 99 % interval.
+    pub ratio: Ratio,
     /// Mean |relative difference| to Lambert on edge pixels and on flat pixels.
     pub edge_flat: (f64, f64),
     pub seconds: f64,
     pub exr: PathBuf,
-    /// Per named region of the scene: luminance ratio to Lambert and its 99 % half-width.
-    pub regions: Vec<(String, f64, f64)>,
+    /// Per named region of the scene: luminance ratio to Lambert.
+    pub regions: Vec<RegionRatio>,
 }
 
 /// A named image region of a study scene (`<scene>.regions.json` beside the XML), where a
@@ -115,34 +102,44 @@ pub struct Region {
 
 /// The scene's regions, if it has a `.regions.json`.
 pub fn load_regions(scene: &Path) -> Result<Vec<Region>, String> {
+    /// `<scene>.regions.json` as written.
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct File {
+        regions: Vec<Entry>,
+    }
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Entry {
+        name: String,
+        rect: [f32; 4],
+        #[serde(default)]
+        convergence: bool,
+        /// What the region shows, for readers of the file.
+        #[serde(default, rename = "why")]
+        _why: Option<String>,
+    }
     let path = scene.with_extension("regions.json");
     let Ok(text) = std::fs::read_to_string(&path) else { return Ok(Vec::new()) };
-    let v: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?;
-    let bad = || format!("{}: each region needs \"name\" and \"rect\": [x0, y0, x1, y1] in [0, 1]", path.display());
-    v["regions"]
-        .as_array()
-        .ok_or_else(bad)?
-        .iter()
+    let file: File = serde_json::from_str(&text).map_err(|e| {
+        format!(
+            "{}: {e} (expected {{\"regions\": [{{\"name\", \"rect\", \"convergence\", \"why\"}}]}})",
+            path.display()
+        )
+    })?;
+    file.regions
+        .into_iter()
         .map(|r| {
-            let name = r["name"].as_str().ok_or_else(bad)?.to_string();
-            let c: Vec<f32> =
-                r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64().map(|x| x as f32)).collect();
-            match c.as_slice() {
-                [x0, y0, x1, y1]
-                    if (0.0..=1.0).contains(x0)
-                        && x0 < x1
-                        && *x1 <= 1.0
-                        && (0.0..=1.0).contains(y0)
-                        && y0 < y1
-                        && *y1 <= 1.0 =>
-                {
-                    Ok(Region {
-                        name,
-                        rect: [*x0, *y0, *x1, *y1],
-                        convergence: r["convergence"].as_bool().unwrap_or(false),
-                    })
-                }
-                _ => Err(bad()),
+            let [x0, y0, x1, y1] = r.rect;
+            if (0.0..=1.0).contains(&x0) && x0 < x1 && x1 <= 1.0 && (0.0..=1.0).contains(&y0) && y0 < y1 && y1 <= 1.0 {
+                Ok(Region { name: r.name, rect: r.rect, convergence: r.convergence })
+            } else {
+                Err(format!(
+                    "{}: region \"{}\": rect must be [x0, y0, x1, y1] with 0 ≤ x0 < x1 ≤ 1 and 0 ≤ y0 < y1 ≤ 1, got {:?}",
+                    path.display(),
+                    r.name,
+                    r.rect
+                ))
             }
         })
         .collect()
@@ -161,8 +158,8 @@ pub struct SceneStudy {
 }
 
 impl SceneStudy {
-    pub fn result(&self, bsdf: &str, lighting: Lighting) -> Option<&ModelResult> {
-        self.results.iter().find(|r| r.model.bsdf == bsdf && r.lighting == lighting)
+    pub fn result(&self, model: Configuration, lighting: Lighting) -> Option<&ModelResult> {
+        self.results.iter().find(|r| r.model == model && r.lighting == lighting)
     }
     pub fn lambert(&self, lighting: Lighting) -> Option<&Side> {
         self.lambert.iter().find(|(l, _)| *l == lighting).map(|(_, s)| s)
@@ -227,10 +224,10 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
     let mut lamberts = Vec::new();
     let regions = load_regions(scene)?;
     for lighting in [Lighting::Global, Lighting::Direct] {
-        let mut sides: Vec<(Model, Side)> = Vec::new();
-        for model in MODELS {
-            let defines = image_defines(opts, model.bsdf, lighting);
-            let what = format!("{name} {} {}", lighting.name(), model.label);
+        let mut sides: Vec<(Configuration, Side)> = Vec::new();
+        for model in MAIN_RUN {
+            let defines = image_defines(opts, model.bsdf(), lighting);
+            let what = format!("{name} {} {}", lighting.name(), model.label());
             let side = render_side(scene, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
             sides.push((model, side));
         }
@@ -244,10 +241,10 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         let mut tiles = Vec::new();
         let mut diff_tiles = Vec::new();
         for (((model, side), mean), rel) in sides.iter().zip(means).zip(&rels) {
-            let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.bsdf));
+            let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.bsdf()));
             image_io::write_exr(&opts.out.join(&exr), &mean)?;
-            tiles.push(strip::Tile::from_image(model.label, &mean));
-            diff_tiles.push(strip::Tile::from_difference(model.label, mean.width, mean.height, rel, range));
+            tiles.push(strip::Tile::from_image(model.tile(), &mean));
+            diff_tiles.push(strip::Tile::from_difference(model.tile(), mean.width, mean.height, rel, range));
             results.push(ModelResult {
                 model: *model,
                 lighting,
@@ -256,15 +253,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
                 seconds: side.seconds,
                 mean,
                 exr,
-                regions: regions
-                    .iter()
-                    .enumerate()
-                    .map(|(i, r)| {
-                        let (m, hw) =
-                            metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]);
-                        (r.name.clone(), m, hw)
-                    })
-                    .collect(),
+                regions: region_ratios(&regions, side, lambert),
             });
         }
         let strip_path = PathBuf::from(&name).join(format!("strip_{}.png", lighting.name()));
@@ -277,6 +266,18 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         }
     }
     Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_ranges: ranges, lambert: lamberts })
+}
+
+/// Each region's luminance ratio of `side` to Lambert's passes (paired by pass).
+pub(crate) fn region_ratios(regions: &[Region], side: &Side, lambert: &Side) -> Vec<RegionRatio> {
+    regions
+        .iter()
+        .enumerate()
+        .map(|(i, r)| RegionRatio {
+            name: r.name.clone(),
+            ratio: metrics::paired_luminance_ratio(&side.region_pass_means[i], &lambert.region_pass_means[i]),
+        })
+        .collect()
 }
 
 /// The study scenes: every `*.xml` in `mitsuba_scenes/study/`.

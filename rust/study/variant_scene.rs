@@ -53,11 +53,6 @@ pub struct Derivation {
     pub film_properties: Vec<Property>,
 }
 
-/// `&`, `<`, `>`, `"` and `'` as entities, for attribute values.
-fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;").replace('\'', "&apos;")
-}
-
 struct Editor<'a> {
     text: &'a str,
     doc: &'a roxmltree::Document<'a>,
@@ -103,7 +98,7 @@ impl Editor<'_> {
             .attributes()
             .find(|a| a.name() == attr)
             .ok_or_else(|| self.err(node.range().start, format!("<{}> has no {attr}=", node.tag_name().name())))?;
-        self.edits.push((a.range_value(), escape(value)));
+        self.edits.push((a.range_value(), crate::markup::escape(value)));
         Ok(())
     }
 
@@ -139,8 +134,8 @@ impl Editor<'_> {
             children.push_str(&format!(
                 "\n{indent}    <{} name=\"{}\" value=\"{}\"/>",
                 p.tag,
-                escape(&p.name),
-                escape(&p.value)
+                crate::markup::escape(&p.name),
+                crate::markup::escape(&p.value)
             ));
         }
         let (gt, self_closing) = self.start_tag_end(node)?;

@@ -1,0 +1,189 @@
+//! Every model configuration the study renders, in one table: the plugin, the one property
+//! that distinguishes a variant, and the names the report, the strips and study.json use.
+//! The main run ([`MAIN_RUN`]), the model variants ([`VARIANTS`]) and the convergence series
+//! ([`SERIES`]) are lists of these configurations.
+//!
+//! What the variants mean: `docs/models.md#oren-nayar-qualitative`, `#oren-nayar-full` and
+//! `#wolff-normalisations` (Wolff's constant K).
+
+/// One model with its parameters as the study sets them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Configuration {
+    Lambert,
+    WolffPhysical,
+    WolffNormal,
+    WolffRaw,
+    OrenNayarQualitative,
+    OrenNayarFull,
+    Ginneken,
+    Eon,
+}
+
+/// The paper's four models (its column order) and EON as a fifth, each with the plugin's
+/// defaults; Lambert first, as every ratio's denominator.
+pub const MAIN_RUN: [Configuration; 5] = [
+    Configuration::Lambert,
+    Configuration::WolffPhysical,
+    Configuration::OrenNayarQualitative,
+    Configuration::Ginneken,
+    Configuration::Eon,
+];
+
+/// Wolff's normalisations and the two Oren–Nayar models.
+pub const VARIANTS: [Configuration; 5] = [
+    Configuration::WolffPhysical,
+    Configuration::WolffNormal,
+    Configuration::WolffRaw,
+    Configuration::OrenNayarQualitative,
+    Configuration::OrenNayarFull,
+];
+
+/// The convergence series: Lambert (the denominator), then the models whose region ratio is
+/// tracked over spp.
+pub const SERIES: [Configuration; 3] =
+    [Configuration::Lambert, Configuration::OrenNayarQualitative, Configuration::OrenNayarFull];
+
+struct Entry {
+    key: &'static str,
+    bsdf: &'static str,
+    label: &'static str,
+    tile: &'static str,
+    property: Option<(&'static str, &'static str)>,
+    meaning: &'static str,
+}
+
+impl Configuration {
+    fn entry(self) -> Entry {
+        use Configuration::*;
+        match self {
+            Lambert => Entry {
+                key: "lambert",
+                bsdf: "lambert",
+                label: "Lambert",
+                tile: "Lambert",
+                property: None,
+                meaning: "f = ρ/π.",
+            },
+            WolffPhysical => Entry {
+                key: "wolff_physical",
+                bsdf: "wolff",
+                label: "Wolff (physical)",
+                tile: "Wolff",
+                property: Some(("normalization", "physical")),
+                meaning: "K = ρ / (π n² (1 − ρ F_dr,int)): isotropic radiance inside the body, internally reflected light scattered again (Mitsuba 0.6 plastic's diffuse lobe). ρ is the internal albedo; the albedo at normal incidence is (1 − F(0)) ρ (1 − F_dr,int) / (1 − ρ F_dr,int), below ρ for ρ < 1.",
+            },
+            WolffNormal => Entry {
+                key: "wolff_normal",
+                bsdf: "wolff",
+                label: "Wolff (normal)",
+                tile: "Wolff normal",
+                property: Some(("normalization", "normal")),
+                meaning: "K = ρ / (π (1 − F(0)) (1 − F_dr,ext)): scaled so that the albedo at normal incidence is ρ, as for Lambert (an equal-albedo comparison). Only the angular shape differs from Lambert, which is Fresnel dimming towards grazing.",
+            },
+            WolffRaw => Entry {
+                key: "wolff_raw",
+                bsdf: "wolff",
+                label: "Wolff (raw)",
+                tile: "Wolff raw",
+                property: Some(("normalization", "raw")),
+                meaning: "K = ρ / π: Lambert's constant times the two Fresnel transmissions, with no energy normalisation. The albedo at normal incidence is ρ (1 − F(0)) (1 − F_dr,ext).",
+            },
+            OrenNayarQualitative => Entry {
+                key: "oren_nayar_qualitative",
+                bsdf: "oren_nayar",
+                label: "Oren–Nayar (qualitative)",
+                tile: "Oren-Nayar",
+                property: Some(("model", "qualitative")),
+                meaning: "The 1994 qualitative model (ρ/π)(A + B max(0, cos Δφ) sin α tan β), as in the seed paper. It loses energy at normal incidence (E(0) = A) and is retro-reflective.",
+            },
+            OrenNayarFull => Entry {
+                key: "oren_nayar_full",
+                bsdf: "oren_nayar",
+                label: "Oren–Nayar (full)",
+                tile: "O-N full",
+                property: Some(("model", "full")),
+                meaning: "The full 1994 model: the C1–C3 terms, which darken forward scattering, plus the interreflection term f2 = 0.17 (ρ²/π) σ²/(σ² + 0.13) (1 − cos Δφ (2β/π)²). f2 grows with ρ², so bright surfaces gain the most.",
+            },
+            Ginneken => Entry {
+                key: "ginneken",
+                bsdf: "ginneken",
+                label: "van Ginneken",
+                tile: "Ginneken",
+                property: None,
+                meaning: "Lambertian facets on a Gaussian random surface, with shadowing and masking.",
+            },
+            Eon => Entry {
+                key: "eon",
+                bsdf: "eon",
+                label: "EON",
+                tile: "EON",
+                property: None,
+                meaning: "Energy-preserving Oren–Nayar (Portsmouth et al. 2025).",
+            },
+        }
+    }
+
+    /// File-name and study.json key, e.g. `wolff_raw`.
+    pub fn key(self) -> &'static str {
+        self.entry().key
+    }
+
+    /// The plugin name (`<bsdf type="…">`).
+    pub fn bsdf(self) -> &'static str {
+        self.entry().bsdf
+    }
+
+    /// The name in tables and sentences.
+    pub fn label(self) -> &'static str {
+        self.entry().label
+    }
+
+    /// The short name in the strips (5×7 pixel font, ASCII).
+    pub fn tile(self) -> &'static str {
+        self.entry().tile
+    }
+
+    /// The `<bsdf>` property (name, value) that selects this configuration, if any.
+    pub fn property(self) -> Option<(&'static str, &'static str)> {
+        self.entry().property
+    }
+
+    /// What the configuration means, for the report.
+    pub fn meaning(self) -> &'static str {
+        self.entry().meaning
+    }
+
+    /// Whether the plugin's defaults give this configuration, so the main run already
+    /// rendered it (no derived scene needed).
+    pub fn is_main_run(self) -> bool {
+        MAIN_RUN.contains(&self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn main_run_configurations_are_the_plugin_defaults() {
+        // The main run renders `<bsdf type="…"/>` with no property: a configuration with a
+        // property is in it only when that property is the plugin's default.
+        for c in MAIN_RUN {
+            if let Some((name, value)) = c.property() {
+                let bsdf = crate::brdf::Bsdf::from_params(c.bsdf(), crate::brdf::Params::default()).unwrap();
+                let default = bsdf.parameters().into_iter().find(|(n, _)| *n == name).map(|(_, v)| v);
+                assert_eq!(default, Some(crate::brdf::ParamValue::Text(value.into())), "{c:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn keys_are_unique() {
+        let all = [MAIN_RUN.as_slice(), &VARIANTS, &SERIES].concat();
+        for a in &all {
+            for b in &all {
+                assert!(a == b || a.key() != b.key(), "{a:?} and {b:?} share a key");
+            }
+        }
+    }
+}

@@ -1,0 +1,137 @@
+//! `study.json` and `report.html`. The page has one section per kind of result, each in its
+//! own file with both its JSON and its HTML: the main run per scene ([`scenes`]: strips,
+//! heatmaps, ratios to Lambert under global and direct lighting), the model variants
+//! ([`variants`]) and the convergence series ([`convergence`], with its plot in [`plot`]).
+
+pub mod convergence;
+pub mod plot;
+pub mod scenes;
+pub mod variants;
+
+use super::{Lighting, Study};
+use crate::markup::escape;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// study.json.
+#[derive(Serialize)]
+pub struct StudyJson {
+    /// "matte" or "mitsuba <variant>".
+    pub renderer: String,
+    pub passes: u32,
+    pub spp: u32,
+    pub answers: Vec<String>,
+    pub scenes: Vec<scenes::SceneJson>,
+    pub variants: Vec<variants::VariantsJson>,
+    pub convergence: Vec<convergence::SeriesJson>,
+}
+
+/// A region's ratio to Lambert in both lightings.
+#[derive(Serialize)]
+pub struct RegionJson {
+    pub name: String,
+    pub ratio_global: f64,
+    pub ratio_global_ci99: f64,
+    pub ratio_direct: f64,
+    pub ratio_direct_ci99: f64,
+}
+
+impl RegionJson {
+    /// Pairs the regions of one image under global and direct lighting.
+    pub fn pair(global: &[super::ratio::RegionRatio], direct: &[super::ratio::RegionRatio]) -> Vec<RegionJson> {
+        global
+            .iter()
+            .zip(direct)
+            .map(|(g, d)| RegionJson {
+                name: g.name.clone(),
+                ratio_global: g.ratio.value,
+                ratio_global_ci99: g.ratio.half_width,
+                ratio_direct: d.ratio.value,
+                ratio_direct_ci99: d.ratio.half_width,
+            })
+            .collect()
+    }
+}
+
+/// A strip image and its heatmap strip for one lighting.
+#[derive(Serialize)]
+pub struct StripJson {
+    pub lighting: &'static str,
+    pub strip: std::path::PathBuf,
+    pub difference: std::path::PathBuf,
+    /// Colour-scale half-range of the heatmap (relative difference).
+    pub difference_range: f32,
+}
+
+pub fn json(study: &Study) -> StudyJson {
+    StudyJson {
+        renderer: study.renderer.clone(),
+        passes: study.passes,
+        spp: study.spp,
+        answers: super::answers::answers(study),
+        scenes: study.scenes.iter().map(scenes::json).collect(),
+        variants: study.variants.iter().map(variants::json).collect(),
+        convergence: study.convergence.iter().map(convergence::json).collect(),
+    }
+}
+
+/// One lighting's strip and heatmap strip with the heatmap's colour scale (`what` − Lambert).
+pub(super) fn strips_html(l: Lighting, strip: &Path, diff: &Path, range: f32, what: &str) -> String {
+    format!(
+        r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: ({what} − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
+        l.name(),
+        escape(&strip.display().to_string()),
+        escape(&diff.display().to_string()),
+        range * 100.0,
+        range * 100.0
+    )
+}
+
+/// `value ± half-width` in a table cell.
+pub(super) fn ratio_cell(r: super::ratio::Ratio) -> String {
+    format!("<td>{:.4} ± {:.4}</td>", r.value, r.half_width)
+}
+
+pub fn html(study: &Study) -> String {
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        r#"<!doctype html><html><head><meta charset="utf-8"><title>matte study</title><style>
+body{{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}} img{{max-width:100%;border:1px solid #ddd}}
+table{{border-collapse:collapse;font-size:14px;margin:8px 0}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}} td{{white-space:nowrap}}
+th:first-child,td:first-child{{text-align:left}} .scene{{border-top:1px solid #ccc;padding-top:12px;margin-top:16px}}
+.note{{background:#fff4d6;border-left:4px solid #e0a800;padding:6px 10px}} td.l{{text-align:left}} .small{{font-size:13px;color:#555}}
+</style></head><body><h1>matte study: diffuse models under global illumination</h1>
+<p>Renderer: {renderer}; {passes} passes, {spp} spp per image in total; every model uses the same seeds (paired passes).
+Ratio = image-mean luminance of the model / Lambert, ± 99 % confidence interval from the paired per-pass ratios.
+"Global" is the scene's path depth, "direct" is max_depth 2. Δ = |ratio<sub>global</sub> − 1| − |ratio<sub>direct</sub> − 1|:
+positive = the difference to Lambert grows under global illumination. Edge/flat = mean |relative luminance difference| to
+Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs on the others.</p>"#,
+        renderer = escape(&study.renderer),
+        passes = study.passes,
+        spp = study.spp,
+    );
+    h.push_str("<h2>Answers, computed from the measurements below</h2><ul>");
+    for a in super::answers::answers(study) {
+        let _ = write!(h, "<li>{}</li>", escape(&a));
+    }
+    h.push_str("</ul>");
+    for s in &study.scenes {
+        h.push_str(&scenes::html(s));
+    }
+    for v in &study.variants {
+        h.push_str(&variants::html(v));
+    }
+    for s in &study.convergence {
+        h.push_str(&convergence::html(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
+    }
+    h.push_str("</body></html>\n");
+    h
+}
+
+pub fn write(out: &Path, study: &Study) -> Result<(), String> {
+    let j = serde_json::to_string_pretty(&json(study)).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("study.json"), j).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("report.html"), html(study)).map_err(|e| e.to_string())
+}

@@ -1,0 +1,140 @@
+//! The main run's section per scene: the strips and heatmaps of every model, and per model
+//! the luminance ratio to Lambert (99 % CI) under global and direct lighting, the change
+//! between them (the paper's question), the edge/flat concentration of the difference, and
+//! the named regions' ratios.
+
+use super::{RegionJson, StripJson, ratio_cell, strips_html};
+use crate::markup::escape;
+use crate::study::configuration::MAIN_RUN;
+use crate::study::{Lighting, ModelResult, SceneStudy};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+#[derive(Serialize)]
+pub struct SceneJson {
+    pub scene: PathBuf,
+    pub strips: Vec<StripJson>,
+    pub models: Vec<ModelJson>,
+}
+
+/// One model in both lightings.
+#[derive(Serialize)]
+pub struct ModelJson {
+    /// The plugin name.
+    pub model: &'static str,
+    pub label: &'static str,
+    pub ratio_global: f64,
+    pub ratio_global_ci99: f64,
+    pub ratio_direct: f64,
+    pub ratio_direct_ci99: f64,
+    /// |ratio_global − 1| − |ratio_direct − 1|: positive when the difference to Lambert grows
+    /// under global illumination.
+    pub abs_difference_global_minus_direct: f64,
+    pub edge_mean_abs_rel_diff_global: f64,
+    pub flat_mean_abs_rel_diff_global: f64,
+    pub edge_mean_abs_rel_diff_direct: f64,
+    pub flat_mean_abs_rel_diff_direct: f64,
+    pub seconds_global: f64,
+    pub seconds_direct: f64,
+    pub exr_global: PathBuf,
+    pub exr_direct: PathBuf,
+    pub regions: Vec<RegionJson>,
+}
+
+/// Each main-run model with its global and direct results, in the table's order.
+fn both_lightings(s: &SceneStudy) -> impl Iterator<Item = (&ModelResult, &ModelResult)> {
+    MAIN_RUN.into_iter().filter_map(|m| Some((s.result(m, Lighting::Global)?, s.result(m, Lighting::Direct)?)))
+}
+
+/// The paper's question for one model: does the difference to Lambert grow with global
+/// illumination?
+fn growth(g: &ModelResult, d: &ModelResult) -> f64 {
+    (g.ratio.value - 1.0).abs() - (d.ratio.value - 1.0).abs()
+}
+
+fn range_of(s: &SceneStudy, l: Lighting) -> f32 {
+    s.difference_ranges.iter().find(|(x, _)| *x == l).map_or(f32::NAN, |r| r.1)
+}
+
+pub fn json(s: &SceneStudy) -> SceneJson {
+    SceneJson {
+        scene: s.scene.clone(),
+        strips: s
+            .strips
+            .iter()
+            .map(|(l, strip, diff)| StripJson {
+                lighting: l.name(),
+                strip: strip.clone(),
+                difference: diff.clone(),
+                difference_range: range_of(s, *l),
+            })
+            .collect(),
+        models: both_lightings(s)
+            .map(|(g, d)| ModelJson {
+                model: g.model.bsdf(),
+                label: g.model.label(),
+                ratio_global: g.ratio.value,
+                ratio_global_ci99: g.ratio.half_width,
+                ratio_direct: d.ratio.value,
+                ratio_direct_ci99: d.ratio.half_width,
+                abs_difference_global_minus_direct: growth(g, d),
+                edge_mean_abs_rel_diff_global: g.edge_flat.0,
+                flat_mean_abs_rel_diff_global: g.edge_flat.1,
+                edge_mean_abs_rel_diff_direct: d.edge_flat.0,
+                flat_mean_abs_rel_diff_direct: d.edge_flat.1,
+                seconds_global: g.seconds,
+                seconds_direct: d.seconds,
+                exr_global: g.exr.clone(),
+                exr_direct: d.exr.clone(),
+                regions: RegionJson::pair(&g.regions, &d.regions),
+            })
+            .collect(),
+    }
+}
+
+pub fn html(s: &SceneStudy) -> String {
+    let mut h = String::new();
+    let _ = write!(h, r#"<div class="scene"><h2>{}</h2>"#, escape(&s.name));
+    for (l, strip, diff) in &s.strips {
+        h.push_str(&strips_html(*l, strip, diff, range_of(s, *l), "model"));
+    }
+    h.push_str("<table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>edge / flat, global</th><th>edge / flat, direct</th></tr>");
+    for (g, d) in both_lightings(s) {
+        let _ = write!(
+            h,
+            "<tr><td>{}</td>{}{}<td>{:+.4}</td><td>{:.3} / {:.3}</td><td>{:.3} / {:.3}</td></tr>",
+            escape(g.model.label()),
+            ratio_cell(g.ratio),
+            ratio_cell(d.ratio),
+            growth(g, d),
+            g.edge_flat.0,
+            g.edge_flat.1,
+            d.edge_flat.0,
+            d.edge_flat.1
+        );
+    }
+    h.push_str("</table>");
+    let names: Vec<String> =
+        s.results.first().map(|r| r.regions.iter().map(|x| x.name.clone()).collect()).unwrap_or_default();
+    for (i, name) in names.iter().enumerate() {
+        let _ = write!(
+            h,
+            "<h4>Region: {}</h4><table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th></tr>",
+            escape(name)
+        );
+        for (g, d) in both_lightings(s) {
+            let (Some(gr), Some(dr)) = (g.regions.get(i), d.regions.get(i)) else { continue };
+            let _ = write!(
+                h,
+                "<tr><td>{}</td>{}{}</tr>",
+                escape(g.model.label()),
+                ratio_cell(gr.ratio),
+                ratio_cell(dr.ratio)
+            );
+        }
+        h.push_str("</table>");
+    }
+    h.push_str("</div>");
+    h
+}
