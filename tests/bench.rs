@@ -28,7 +28,7 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
     assert!(t.iter().any(|t| t.what.starts_with("bunny: BVH build")));
     assert_eq!(t.iter().filter(|t| t.what.starts_with("kernel ")).count(), matte::brdf::BSDF_TYPES.len() - 1);
     let json = matte::bench::report::json(&m);
-    assert_eq!(json["renders"].as_array().unwrap().len(), 3);
+    assert_eq!(json.renders.len(), 3);
 }
 
 #[test]

@@ -4,8 +4,40 @@
 
 use super::render::RenderJob;
 use crate::validate::passes::repo_root;
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::{Command, Stdio};
+
+/// One entry of the job list `bench_mitsuba.py --jobs` reads.
+#[derive(Serialize)]
+struct JobJson<'a> {
+    name: &'a str,
+    scene: &'a Path,
+    defines: BTreeMap<&'a str, &'a str>,
+    spp: u32,
+}
+
+/// What `bench_mitsuba.py` prints.
+#[derive(Deserialize)]
+struct TimesJson {
+    renders: Vec<RenderTimeJson>,
+    #[serde(default)]
+    plugin: Option<PluginTimesJson>,
+}
+
+#[derive(Deserialize)]
+struct RenderTimeJson {
+    name: String,
+    variant: String,
+    seconds: f64,
+}
+
+#[derive(Deserialize)]
+struct PluginTimesJson {
+    /// Best seconds per plugin type (`diffuse` and matte's).
+    seconds: BTreeMap<String, f64>,
+}
 
 #[derive(Clone, Debug, Default)]
 pub struct MitsubaTimes {
@@ -44,17 +76,19 @@ pub fn time_mitsuba(
     if !python.exists() {
         return Err(format!("{} not found: run `make venv` (or `make main`) first", python.display()));
     }
-    let list: Vec<serde_json::Value> = jobs
+    let list: Vec<JobJson> = jobs
         .iter()
-        .map(|j| {
-            let defines: serde_json::Map<String, serde_json::Value> = j.defines.iter().map(|(k, v)| (k.clone(), v.clone().into())).collect();
-            serde_json::json!({"name": j.name, "scene": j.scene.display().to_string(), "defines": defines, "spp": j.spp})
+        .map(|j| JobJson {
+            name: &j.name,
+            scene: &j.scene,
+            defines: j.defines.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect(),
+            spp: j.spp,
         })
         .collect();
     std::fs::create_dir_all(work).map_err(|e| format!("{}: {e}", work.display()))?;
     let jobs_file = work.join("mitsuba_jobs.json");
-    std::fs::write(&jobs_file, serde_json::to_string_pretty(&list).expect("json"))
-        .map_err(|e| format!("{}: {e}", jobs_file.display()))?;
+    let text = serde_json::to_string_pretty(&list).map_err(|e| format!("{}: {e}", jobs_file.display()))?;
+    std::fs::write(&jobs_file, text).map_err(|e| format!("{}: {e}", jobs_file.display()))?;
     let mut cmd = Command::new(&python);
     cmd.arg(root.join("validation/bench_mitsuba.py"))
         .arg("--jobs")
@@ -70,21 +104,9 @@ pub fn time_mitsuba(
     if !out.status.success() {
         return Err(format!("bench_mitsuba.py failed ({})", out.status));
     }
-    let v: serde_json::Value =
-        serde_json::from_slice(&out.stdout).map_err(|e| format!("bench_mitsuba.py printed invalid JSON: {e}"))?;
-    let renders = v["renders"]
-        .as_array()
-        .ok_or("bench_mitsuba.py: no \"renders\"")?
-        .iter()
-        .map(|r| {
-            let s =
-                |k: &str| r[k].as_str().map(str::to_string).ok_or(format!("bench_mitsuba.py: render without \"{k}\""));
-            Ok((s("name")?, s("variant")?, r["seconds"].as_f64().ok_or("bench_mitsuba.py: render without seconds")?))
-        })
-        .collect::<Result<Vec<_>, String>>()?;
-    let plugin = v["plugin"]["seconds"]
-        .as_object()
-        .map(|m| m.iter().filter_map(|(k, s)| Some((k.clone(), s.as_f64()?))).collect())
-        .unwrap_or_default();
+    let times: TimesJson =
+        serde_json::from_slice(&out.stdout).map_err(|e| format!("bench_mitsuba.py printed unexpected JSON: {e}"))?;
+    let renders = times.renders.into_iter().map(|r| (r.name, r.variant, r.seconds)).collect();
+    let plugin = times.plugin.map(|p| p.seconds.into_iter().collect()).unwrap_or_default();
     Ok(MitsubaTimes { renders, plugin })
 }

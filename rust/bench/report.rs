@@ -1,7 +1,9 @@
 //! The bench's table, its targets (README "Speed") with pass/fail, and the JSON record.
 
 use super::Measurements;
-use serde_json::json;
+use serde::Serialize;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 /// One target: what, the measured value, the limit (measured ≤ limit passes, except where
 /// `at_least`), and whether it holds.
@@ -141,24 +143,89 @@ pub fn table(m: &Measurements) -> String {
     s
 }
 
-pub fn json(m: &Measurements) -> serde_json::Value {
-    json!({
-        "machine": machine(),
-        "renders": m.jobs.iter().map(|(job, mt)| json!({
-            "name": job.name,
-            "scene": job.scene.display().to_string(),
-            "defines": job.defines.iter().map(|(k, v)| format!("{k}={v}")).collect::<Vec<_>>(),
-            "spp": job.spp,
-            "matte_seconds": mt.seconds,
-            "matte_rays_per_second": mt.rays as f64 / mt.seconds,
-            "matte_samples_per_second": mt.samples as f64 / mt.seconds,
-            "accel_build_seconds": mt.accel_build_seconds,
-            "threads": mt.threads,
-            "mitsuba_seconds": super::MITSUBA_VARIANTS.iter().map(|v| (v.to_string(), json!(m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v))))).collect::<serde_json::Map<_, _>>(),
-        })).collect::<Vec<_>>(),
-        "spp_scaling": m.scaling.iter().map(|(n, r)| json!({"spp": n, "samples_per_second": r})).collect::<Vec<_>>(),
-        "kernels": m.kernels.iter().map(|k| json!({"model": k.model, "ns_per_eval": k.ns_per_eval})).collect::<Vec<_>>(),
-        "plugin_seconds_llvm_ad_rgb": m.mitsuba.as_ref().map(|mi| mi.plugin.iter().map(|(k, s)| (k.clone(), json!(s))).collect::<serde_json::Map<_, _>>()),
-        "targets": targets(m).iter().map(|t| json!({"what": t.what, "measured": t.measured, "limit": t.limit, "at_least": t.at_least, "met": t.met()})).collect::<Vec<_>>(),
-    })
+/// bench.json.
+#[derive(Serialize)]
+pub struct BenchJson {
+    pub machine: String,
+    pub renders: Vec<RenderJson>,
+    pub spp_scaling: Vec<ScalingJson>,
+    pub kernels: Vec<KernelJson>,
+    /// Best seconds per plugin type (`diffuse` and matte's), Cornell box, llvm_ad_rgb.
+    pub plugin_seconds_llvm_ad_rgb: Option<BTreeMap<String, f64>>,
+    pub targets: Vec<TargetJson>,
+}
+
+#[derive(Serialize)]
+pub struct RenderJson {
+    pub name: String,
+    pub scene: PathBuf,
+    /// `name=value` per `-D` parameter.
+    pub defines: Vec<String>,
+    pub spp: u32,
+    pub matte_seconds: f64,
+    pub matte_rays_per_second: f64,
+    pub matte_samples_per_second: f64,
+    pub accel_build_seconds: f64,
+    pub threads: usize,
+    /// Best seconds per Mitsuba variant (none when Mitsuba did not run).
+    pub mitsuba_seconds: BTreeMap<&'static str, Option<f64>>,
+}
+
+#[derive(Serialize)]
+pub struct ScalingJson {
+    pub spp: u32,
+    pub samples_per_second: f64,
+}
+
+#[derive(Serialize)]
+pub struct KernelJson {
+    pub model: &'static str,
+    pub ns_per_eval: f64,
+}
+
+#[derive(Serialize)]
+pub struct TargetJson {
+    pub what: String,
+    pub measured: f64,
+    pub limit: f64,
+    pub at_least: bool,
+    pub met: bool,
+}
+
+pub fn json(m: &Measurements) -> BenchJson {
+    BenchJson {
+        machine: machine(),
+        renders: m
+            .jobs
+            .iter()
+            .map(|(job, mt)| RenderJson {
+                name: job.name.clone(),
+                scene: job.scene.clone(),
+                defines: job.defines.iter().map(|(k, v)| format!("{k}={v}")).collect(),
+                spp: job.spp,
+                matte_seconds: mt.seconds,
+                matte_rays_per_second: mt.rays as f64 / mt.seconds,
+                matte_samples_per_second: mt.samples as f64 / mt.seconds,
+                accel_build_seconds: mt.accel_build_seconds,
+                threads: mt.threads,
+                mitsuba_seconds: super::MITSUBA_VARIANTS
+                    .iter()
+                    .map(|v| (*v, m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v))))
+                    .collect(),
+            })
+            .collect(),
+        spp_scaling: m.scaling.iter().map(|(n, r)| ScalingJson { spp: *n, samples_per_second: *r }).collect(),
+        kernels: m.kernels.iter().map(|k| KernelJson { model: k.model, ns_per_eval: k.ns_per_eval }).collect(),
+        plugin_seconds_llvm_ad_rgb: m.mitsuba.as_ref().map(|mi| mi.plugin.iter().cloned().collect()),
+        targets: targets(m)
+            .into_iter()
+            .map(|t| TargetJson {
+                met: t.met(),
+                what: t.what,
+                measured: t.measured,
+                limit: t.limit,
+                at_least: t.at_least,
+            })
+            .collect(),
+    }
 }

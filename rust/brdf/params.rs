@@ -5,8 +5,9 @@
 use std::fmt;
 
 /// A parameter value as the front ends deliver it: a number or a word
-/// (`model=full`, `int_ior=bk7`).
-#[derive(Clone, Debug, PartialEq)]
+/// (`model=full`, `int_ior=bk7`). In JSON it is the number or the string itself.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+#[serde(untagged)]
 pub enum ParamValue {
     Number(f64),
     Text(String),

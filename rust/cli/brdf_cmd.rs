@@ -3,11 +3,12 @@
 
 use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params, frame::spherical_direction};
 use clap::Args;
-use serde_json::{Map, Value, json};
+use serde::Serialize;
+use std::collections::BTreeMap;
 
 #[derive(Args, Debug)]
 pub struct BsdfSpec {
-    /// Plugin name: lambert, oren_nayar, eon, wolff, ginneken.
+    /// Plugin name (`matte types` lists them).
     #[arg(long = "bsdf", value_name = "TYPE")]
     pub kind: String,
     /// Model parameter NAME=VALUE (repeatable), e.g. sigma=0.3, model=full, int_ior=bk7.
@@ -75,22 +76,58 @@ fn check_angle(name: &str, deg: f64, max: f64) -> Result<f64, String> {
     }
 }
 
-fn header(bsdf: &Bsdf, reflectance: f64) -> Map<String, Value> {
-    let mut params = Map::new();
-    for (name, value) in bsdf.parameters() {
-        params.insert(
-            name.into(),
-            match value {
-                ParamValue::Number(x) => json!(x),
-                ParamValue::Text(s) => json!(s),
-            },
-        );
-    }
-    let mut out = Map::new();
-    out.insert("bsdf".into(), json!(bsdf.kind()));
-    out.insert("params".into(), Value::Object(params));
-    out.insert("reflectance".into(), json!(reflectance));
-    out
+/// The model as the JSON output names it: plugin, effective parameters, reflectance.
+#[derive(Serialize)]
+struct Header {
+    bsdf: &'static str,
+    params: BTreeMap<&'static str, ParamValue>,
+    reflectance: f64,
+}
+
+fn header(bsdf: &Bsdf, reflectance: f64) -> Header {
+    Header { bsdf: bsdf.kind(), params: bsdf.parameters().into_iter().collect(), reflectance }
+}
+
+/// `matte brdf` output: the header and one of three forms of values.
+#[derive(Serialize)]
+struct BrdfOutput {
+    #[serde(flatten)]
+    header: Header,
+    #[serde(flatten)]
+    values: BrdfValues,
+}
+
+#[derive(Serialize)]
+#[serde(untagged)]
+enum BrdfValues {
+    /// `--pairs`: f and pdf per direction pair.
+    Pairs { f: Vec<f32>, pdf: Vec<f32> },
+    /// `--grid N`: f and pdf indexed [θi][θo][φ].
+    Grid {
+        grid: usize,
+        theta_i: Vec<f64>,
+        theta_o: Vec<f64>,
+        phi: Vec<f64>,
+        f: Vec<Vec<Vec<f32>>>,
+        pdf: Vec<Vec<Vec<f32>>>,
+    },
+    /// One direction pair given by its angles (degrees).
+    Point { theta_i: f64, theta_o: f64, phi: f64, f: f32, f_cos: f32, pdf: f32 },
+}
+
+/// `matte albedo` output.
+#[derive(Serialize)]
+struct AlbedoOutput {
+    #[serde(flatten)]
+    header: Header,
+    theta_i: f64,
+    albedo: f64,
+    method: &'static str,
+}
+
+fn print_json(value: &impl Serialize) -> Result<(), String> {
+    println!("{}", serde_json::to_string(value).map_err(|e| format!("JSON output: {e}"))?);
+    Ok(())
 }
 
 /// wi at azimuth 0, wo at azimuth φ (degrees in, local-frame directions out).
@@ -104,13 +141,11 @@ fn directions(theta_i: f64, theta_o: f64, phi: f64) -> (glam::Vec3, glam::Vec3) 
 pub fn run_brdf(a: &BrdfArgs) -> Result<(), String> {
     let bsdf = a.spec.build()?;
     let rho = check_reflectance(a.reflectance)?;
-    let mut out = header(&bsdf, a.reflectance);
-    if let Some(path) = &a.pairs {
+    let values = if let Some(path) = &a.pairs {
         let (wi, wo) = read_pairs(path)?;
         let f: Vec<f32> = wi.iter().zip(&wo).map(|(a, b)| bsdf.eval(*a, *b, [rho])[0]).collect();
         let pdf: Vec<f32> = wi.iter().zip(&wo).map(|(a, b)| bsdf.pdf(*a, *b)).collect();
-        out.insert("f".into(), json!(f));
-        out.insert("pdf".into(), json!(pdf));
+        BrdfValues::Pairs { f, pdf }
     } else if let Some(n) = a.grid {
         if !(1..=256).contains(&n) {
             return Err(format!("--grid must lie in [1, 256] (got {n})"));
@@ -134,12 +169,7 @@ pub fn run_brdf(a: &BrdfArgs) -> Result<(), String> {
             f.push(f_i);
             pdf.push(p_i);
         }
-        out.insert("grid".into(), json!(n));
-        out.insert("theta_i".into(), json!(thetas));
-        out.insert("theta_o".into(), json!(thetas));
-        out.insert("phi".into(), json!(phis));
-        out.insert("f".into(), json!(f));
-        out.insert("pdf".into(), json!(pdf));
+        BrdfValues::Grid { grid: n, theta_i: thetas.clone(), theta_o: thetas, phi: phis, f, pdf }
     } else {
         let (ti, to, ph) = (a.theta_i.unwrap_or(0.0), a.theta_o.unwrap_or(0.0), a.phi.unwrap_or(0.0));
         let ti = check_angle("theta-i", ti, 180.0)?;
@@ -149,15 +179,9 @@ pub fn run_brdf(a: &BrdfArgs) -> Result<(), String> {
         }
         let (wi, wo) = directions(ti, to, ph);
         let f = bsdf.eval(wi, wo, [rho])[0];
-        out.insert("theta_i".into(), json!(ti));
-        out.insert("theta_o".into(), json!(to));
-        out.insert("phi".into(), json!(ph));
-        out.insert("f".into(), json!(f));
-        out.insert("f_cos".into(), json!(f * wo.z.max(0.0)));
-        out.insert("pdf".into(), json!(bsdf.pdf(wi, wo)));
-    }
-    println!("{}", Value::Object(out));
-    Ok(())
+        BrdfValues::Point { theta_i: ti, theta_o: to, phi: ph, f, f_cos: f * wo.z.max(0.0), pdf: bsdf.pdf(wi, wo) }
+    };
+    print_json(&BrdfOutput { header: header(&bsdf, a.reflectance), values })
 }
 
 /// Reads `wi.x wi.y wi.z wo.x wo.y wo.z` lines; errors name the line.
@@ -190,10 +214,10 @@ pub fn run_albedo(a: &AlbedoArgs) -> Result<(), String> {
     let rho = check_reflectance(a.reflectance)?;
     let ti = check_angle("theta-i", a.theta_i, 180.0)?;
     let albedo = bsdf.albedo(ti.to_radians().cos(), rho);
-    let mut out = header(&bsdf, a.reflectance);
-    out.insert("theta_i".into(), json!(ti));
-    out.insert("albedo".into(), json!(albedo.value));
-    out.insert("method".into(), json!(albedo.method.as_str()));
-    println!("{}", Value::Object(out));
-    Ok(())
+    print_json(&AlbedoOutput {
+        header: header(&bsdf, a.reflectance),
+        theta_i: ti,
+        albedo: albedo.value,
+        method: albedo.method.as_str(),
+    })
 }

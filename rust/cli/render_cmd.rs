@@ -7,8 +7,9 @@ use crate::render::load;
 use crate::render::renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use serde::Serialize;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Args, Debug)]
 pub struct RenderArgs {
@@ -45,6 +46,27 @@ pub fn parse_defines(defs: &[String]) -> Result<Vec<(String, String)>, String> {
             _ => Err(format!("-D expects NAME=VALUE, got \"{d}\"")),
         })
         .collect()
+}
+
+/// What `matte render` prints (JSON) after writing the image.
+#[derive(Serialize)]
+struct RenderReport<'a> {
+    scene: &'a Path,
+    output: &'a Path,
+    png: Option<&'a Path>,
+    width: u32,
+    height: u32,
+    spp: u32,
+    seed: u64,
+    threads: usize,
+    primitives: usize,
+    load_seconds: f64,
+    render_seconds: f64,
+    samples: u64,
+    rays: u64,
+    samples_per_second: f64,
+    rays_per_second: f64,
+    invalid_samples: u64,
 }
 
 pub fn run(a: &RenderArgs) -> Result<(), String> {
@@ -88,24 +110,24 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
     if let Some(p) = &png {
         image_io::write_png(p, &image).map_err(|e| format!("{}: {e}", p.display()))?;
     }
-    let report = serde_json::json!({
-        "scene": a.scene.display().to_string(),
-        "output": output.display().to_string(),
-        "png": png.map(|p| p.display().to_string()),
-        "width": image.width,
-        "height": image.height,
-        "spp": spp,
-        "seed": seed,
-        "threads": rayon::current_num_threads(),
-        "primitives": loaded.scene.primitive_count(),
-        "load_seconds": load_seconds,
-        "render_seconds": stats.seconds,
-        "samples": stats.samples,
-        "rays": stats.rays,
-        "samples_per_second": stats.samples as f64 / stats.seconds,
-        "rays_per_second": stats.rays as f64 / stats.seconds,
-        "invalid_samples": stats.invalid_samples,
-    });
-    println!("{}", serde_json::to_string_pretty(&report).expect("json"));
+    let report = RenderReport {
+        scene: &a.scene,
+        output: &output,
+        png: png.as_deref(),
+        width: image.width,
+        height: image.height,
+        spp,
+        seed,
+        threads: rayon::current_num_threads(),
+        primitives: loaded.scene.primitive_count(),
+        load_seconds,
+        render_seconds: stats.seconds,
+        samples: stats.samples,
+        rays: stats.rays,
+        samples_per_second: stats.samples as f64 / stats.seconds,
+        rays_per_second: stats.rays as f64 / stats.seconds,
+        invalid_samples: stats.invalid_samples,
+    };
+    println!("{}", serde_json::to_string_pretty(&report).map_err(|e| format!("JSON output: {e}"))?);
     Ok(())
 }
