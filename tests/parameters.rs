@@ -64,3 +64,21 @@ fn boundary_values_are_accepted() {
         Bsdf::from_params(kind, Params::new().with(name, N(v))).unwrap_or_else(|e| panic!("{kind} {name}={v}: {e}"));
     }
 }
+
+#[test]
+fn magnitudes_beyond_the_limit_are_rejected_by_every_model() {
+    // One limit for every front end (CLI, renderer, plugin): `matte::brdf::params::MAX_MAGNITUDE`.
+    for (kind, name) in [
+        ("oren_nayar", "sigma"),
+        ("wolff", "int_ior"),
+        ("wolff", "ext_ior"),
+        ("ginneken", "roughness"),
+        ("roughdiffuse", "alpha"),
+    ] {
+        let mut p = Params::new();
+        p.push(name, N(1e7));
+        let e = Bsdf::from_params(kind, p).expect_err(kind);
+        assert_eq!(e.param, name);
+        assert!(e.to_string().contains("up to 1e6"), "{kind}: {e}");
+    }
+}

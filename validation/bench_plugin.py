@@ -13,7 +13,7 @@ import subprocess
 import sys
 import time
 
-TYPES = ["lambert", "oren_nayar", "eon", "wolff", "ginneken"]
+from matte_mitsuba import BSDF_TYPES as TYPES  # the plugin names, as the build wrote them
 
 
 def scene(mi, kind, res):

@@ -4,6 +4,28 @@
 
 use std::fmt;
 
+/// Largest magnitude matte accepts for any number a model, IOR or BSDF parameter is built
+/// from, in every front end (CLI, the renderer's loader, the Mitsuba plugin). The f32 kernels
+/// overflow into NaN around 1e15–1e19 (e.g. η⁴ in a Fresnel term), long after values stopped
+/// meaning anything physically; Mitsuba itself takes any float.
+pub const MAX_MAGNITUDE: f64 = 1e6;
+
+/// The error text for a number beyond [`MAX_MAGNITUDE`].
+pub fn too_large(v: f64) -> String {
+    format!("is {v}; matte accepts magnitudes up to {MAX_MAGNITUDE:e}")
+}
+
+/// A finite number within [`MAX_MAGNITUDE`], or the reason it is not.
+fn bounded(name: &str, x: f64) -> Result<f64, ParamError> {
+    if !x.is_finite() {
+        Err(ParamError::new(name, format!("must be a finite number (got {x})")))
+    } else if x.abs() > MAX_MAGNITUDE {
+        Err(ParamError::new(name, too_large(x)))
+    } else {
+        Ok(x)
+    }
+}
+
 /// A parameter value as the front ends deliver it: a number or a word
 /// (`model=full`, `int_ior=bk7`). In JSON it is the number or the string itself.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -88,12 +110,11 @@ impl Params {
         Ok(found)
     }
 
-    /// A finite number, `default` if absent.
+    /// A finite number of magnitude at most [`MAX_MAGNITUDE`], `default` if absent.
     pub fn number(&mut self, name: &str, default: f64) -> Result<f64, ParamError> {
         match self.take(name)? {
             None => Ok(default),
-            Some(ParamValue::Number(x)) if x.is_finite() => Ok(x),
-            Some(ParamValue::Number(x)) => Err(ParamError::new(name, format!("must be a finite number (got {x})"))),
+            Some(ParamValue::Number(x)) => bounded(name, x),
             Some(ParamValue::Text(s)) => Err(ParamError::new(name, format!("must be a number (got \"{s}\")"))),
         }
     }
@@ -118,12 +139,12 @@ impl Params {
         Ok(self.choice(name, &["true", "false"], if default { "true" } else { "false" })? == "true")
     }
 
-    /// An index of refraction: a number or one of Mitsuba's named materials.
+    /// An index of refraction: a number (within [`MAX_MAGNITUDE`]) or one of Mitsuba's named
+    /// materials.
     pub fn ior(&mut self, name: &str, default: f64) -> Result<f64, ParamError> {
         match self.take(name)? {
             None => Ok(default),
-            Some(ParamValue::Number(x)) if x.is_finite() => Ok(x),
-            Some(ParamValue::Number(x)) => Err(ParamError::new(name, format!("must be a finite number (got {x})"))),
+            Some(ParamValue::Number(x)) => bounded(name, x),
             Some(ParamValue::Text(s)) => lookup_ior(&s).ok_or_else(|| {
                 let names: Vec<&str> = NAMED_IORS.iter().map(|(n, _)| *n).collect();
                 ParamError::new(name, format!("unknown material \"{s}\"; valid names: {}", names.join(", ")))

@@ -17,6 +17,9 @@ BAD = [
     ({"type": "ginneken", "shadowing": "smith"}, "shadowing"),
     ({"type": "lambert", "sigma": 0.3}, "sigma"),
     ({"type": "oren_nayar", "roughness": 0.3}, "roughness"),
+    # matte's one magnitude limit (1e6), the same in the renderer and the CLI.
+    ({"type": "oren_nayar", "sigma": 1e7}, "sigma"),
+    ({"type": "roughdiffuse", "alpha": 1e7}, "alpha"),
 ]
 
 

@@ -8,15 +8,7 @@ use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
-/// Largest magnitude matte accepts for a BSDF number (IORs, η/k, roughness, the matte
-/// kernels' parameters). Mitsuba takes any float, but the f32 kernels overflow into NaN
-/// around 1e15–1e19 (e.g. η⁴ in the conductor Fresnel term), long after values stopped
-/// meaning anything physically.
-pub const MAX_MAGNITUDE: f64 = 1e6;
-
-pub fn too_large(v: f64) -> String {
-    format!("is {v}; matte accepts magnitudes up to {MAX_MAGNITUDE:e}")
-}
+pub use crate::brdf::params::{MAX_MAGNITUDE, too_large};
 
 /// A float or a named IOR (Mitsuba's table, shared with the kernels).
 pub fn ior(obj: &SceneObject, name: &str, default: f64) -> Result<f32, SceneError> {
