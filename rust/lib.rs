@@ -10,6 +10,7 @@
 //! * [`study`]: the seed paper's experiment (scenes × models, strips, measured ratios).
 //! * [`bench`]: the speed targets, matte against Mitsuba in one run (`matte bench`).
 //! * [`markup`]: escaping for the HTML reports and derived XML scenes.
+//! * [`microgeometry`]: the virtual gonioreflectometer (ground truth for the rough models).
 
 // `!(x > 0.0)` is deliberate throughout: it is true for NaN as well, which is what the
 // guards against degenerate samples and bad parameters need.
@@ -20,6 +21,7 @@ pub mod brdf;
 pub mod cli;
 pub mod ffi;
 pub mod markup;
+pub mod microgeometry;
 pub mod render;
 pub mod scene;
 pub mod study;

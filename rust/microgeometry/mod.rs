@@ -1,0 +1,20 @@
+//! Ground truth for the rough diffuse models: a virtual gonioreflectometer that traces light
+//! through the explicit microgeometry a model claims to describe, and measures its BRDF with
+//! confidence intervals (`docs/microgeometry.md`).
+//!
+//! * [`surface`]: what a simulated surface provides (random patches, ray intersection).
+//! * [`v_cavity`]: Oren–Nayar's surface, long symmetric V-cavities with Lambertian facets and a
+//!   Gaussian slope-angle distribution.
+//! * [`gonioreflectometer`]: photons from a distant source, next-event estimates of f toward
+//!   every sensor direction, all bounces or the first only, and the directional albedo.
+//! * [`estimate`]: running means with 99 % intervals.
+
+pub mod estimate;
+pub mod gonioreflectometer;
+pub mod surface;
+pub mod v_cavity;
+
+pub use estimate::{Estimate, RunningMean};
+pub use gonioreflectometer::{Bounces, Measurement, Setup, measure};
+pub use surface::{Hit, MicroSurface};
+pub use v_cavity::VCavities;

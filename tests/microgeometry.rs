@@ -1,0 +1,78 @@
+//! The virtual gonioreflectometer against closed forms and against itself: a flat Lambertian
+//! surface gives ρ/π everywhere and albedo ρ; the furnace (ρ = 1, all bounces) loses nothing;
+//! the next-event BRDF estimate integrates to the independently measured albedo; and the
+//! measured BRDF is reciprocal.
+
+use glam::DVec3;
+use matte::microgeometry::{Bounces, Setup, VCavities, measure};
+use std::f64::consts::{FRAC_1_PI, PI};
+
+fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
+    let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+    DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+}
+
+fn setup(reflectance: f64, wi: DVec3, wo: Vec<DVec3>, photons: u64, bounces: Bounces) -> Setup {
+    Setup { reflectance, wi, wo, photons, seed: 7, bounces, max_bounces: 1000 }
+}
+
+#[test]
+fn a_flat_surface_is_lambertian() {
+    let flat = VCavities::new(0.0).unwrap();
+    let wo: Vec<DVec3> = [(0.0, 0.0), (30.0, 90.0), (60.0, 180.0), (85.0, 45.0)].map(|(t, p)| direction(t, p)).into();
+    for bounces in [Bounces::All, Bounces::First] {
+        let m = measure(&flat, &setup(0.7, direction(40.0, 0.0), wo.clone(), 10_000, bounces)).unwrap();
+        for e in &m.f {
+            assert!((e.mean - 0.7 * FRAC_1_PI).abs() < 1e-12 && e.half_width < 1e-12, "{e:?}");
+        }
+        assert!((m.albedo.mean - 0.7).abs() < 1e-12, "{:?}", m.albedo);
+    }
+}
+
+#[test]
+fn the_furnace_loses_nothing() {
+    let rough = VCavities::new(0.6).unwrap();
+    let m = measure(&rough, &setup(1.0, direction(60.0, 0.0), vec![DVec3::Z], 20_000, Bounces::All)).unwrap();
+    assert_eq!(m.truncated, 0.0);
+    assert!((m.albedo.mean - 1.0).abs() < 1e-12, "{:?}", m.albedo);
+}
+
+/// ∫ f cos θo dωo over the hemisphere (midpoint rule in cos θo and φo) against the albedo the
+/// escaping photons measure: two estimators of the same number.
+#[test]
+fn the_brdf_integrates_to_the_measured_albedo() {
+    let rough = VCavities::new(0.5).unwrap();
+    let (nu, nphi) = (24, 24);
+    let mut wo = Vec::new();
+    for i in 0..nu {
+        let mu: f64 = (i as f64 + 0.5) / nu as f64;
+        for j in 0..nphi {
+            let phi = 2.0 * PI * (j as f64 + 0.5) / nphi as f64;
+            wo.push(DVec3::new((1.0 - mu * mu).sqrt() * phi.cos(), (1.0 - mu * mu).sqrt() * phi.sin(), mu));
+        }
+    }
+    for (rho, bounces) in [(0.8, Bounces::All), (0.8, Bounces::First)] {
+        let m = measure(&rough, &setup(rho, direction(50.0, 0.0), wo.clone(), 100_000, bounces)).unwrap();
+        let weight = 2.0 * PI / (nu * nphi) as f64; // dω cos θo = dμ dφ
+        let integral: f64 = m.f.iter().zip(&wo).map(|(e, w)| e.mean * w.z * weight).sum();
+        // Quadrature error of the midpoint rule plus both estimates' noise.
+        assert!(
+            (integral - m.albedo.mean).abs() < 0.01 + m.albedo.half_width,
+            "{bounces:?}: ∫ f cos = {integral}, albedo {:?}",
+            m.albedo
+        );
+    }
+}
+
+#[test]
+fn the_measured_brdf_is_reciprocal() {
+    let rough = VCavities::new(0.6).unwrap();
+    let (a, b) = (direction(20.0, 0.0), direction(70.0, 130.0));
+    for bounces in [Bounces::All, Bounces::First] {
+        let ab = measure(&rough, &setup(0.8, a, vec![b], 400_000, bounces)).unwrap().f[0];
+        let ba = measure(&rough, &Setup { seed: 99, ..setup(0.8, b, vec![a], 400_000, bounces) }).unwrap().f[0];
+        let hw = ab.half_width.hypot(ba.half_width);
+        assert!((ab.mean - ba.mean).abs() <= hw, "{bounces:?}: f(a,b) = {ab:?}, f(b,a) = {ba:?}");
+        assert!(ab.half_width < 0.02 * ab.mean, "not enough photons to tell: {ab:?}");
+    }
+}
