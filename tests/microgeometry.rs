@@ -76,3 +76,16 @@ fn the_measured_brdf_is_reciprocal() {
         assert!(ab.half_width < 0.02 * ab.mean, "not enough photons to tell: {ab:?}");
     }
 }
+
+#[test]
+fn the_comparison_of_a_flat_surface_finds_no_error() {
+    // σ = 0: the surface is a Lambertian plane and every model reduces to ρ/π.
+    let c = matte::microgeometry::comparison::compare_v_cavities(0.0, 0.6, 2_000, 1).unwrap();
+    assert_eq!(c.points.len(), 4 * 9 * 3);
+    for p in &c.points {
+        assert!((p.simulated.mean - 0.6 * FRAC_1_PI).abs() < 1e-12, "{:?}", p.simulated);
+    }
+    for m in &c.summary {
+        assert!(m.max_abs_relative_error < 1e-5 && m.max_abs_albedo_relative_error < 1e-3, "{}", m.model);
+    }
+}

@@ -3,6 +3,7 @@
 
 pub mod bench_cmd;
 mod brdf_cmd;
+pub mod microgeometry_cmd;
 pub mod render_cmd;
 pub mod study_cmd;
 mod tables;
@@ -36,6 +37,8 @@ pub enum Command {
     Validate(validate_cmd::ValidateArgs),
     /// The seed paper's study: its scenes with every diffuse model, strips and measured ratios.
     Study(study_cmd::StudyArgs),
+    /// Simulate Oren–Nayar's V-cavity surface and compare the rough models with it (JSON).
+    Microgeometry(microgeometry_cmd::MicrogeometryArgs),
     /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (README "Speed").
     Bench(bench_cmd::BenchArgs),
     /// The BSDF plugin names matte provides, one per line (the plugin build reads them).
@@ -74,6 +77,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Validate(a) => validate_cmd::run(&a),
         Command::Study(a) => study_cmd::run(&a),
         Command::Bench(a) => bench_cmd::run(&a),
+        Command::Microgeometry(a) => microgeometry_cmd::run(&a),
         Command::Types => {
             crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
             Ok(())

@@ -7,8 +7,10 @@
 //!   Gaussian slope-angle distribution.
 //! * [`gonioreflectometer`]: photons from a distant source, next-event estimates of f toward
 //!   every sensor direction, all bounces or the first only, and the directional albedo.
+//! * [`comparison`]: the Oren–Nayar-family kernels against their simulated surface.
 //! * [`estimate`]: running means with 99 % intervals.
 
+pub mod comparison;
 pub mod estimate;
 pub mod gonioreflectometer;
 pub mod surface;
