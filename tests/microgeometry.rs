@@ -89,3 +89,75 @@ fn the_comparison_of_a_flat_surface_finds_no_error() {
         assert!(m.max_abs_relative_error < 1e-5 && m.max_abs_albedo_relative_error < 1e-3, "{}", m.model);
     }
 }
+
+mod height_field {
+    use super::*;
+    use matte::microgeometry::HeightField;
+
+    #[test]
+    fn a_flat_field_is_lambertian() {
+        let flat = HeightField::gaussian(0.0, 32, 1).unwrap();
+        let wo: Vec<DVec3> = [(0.0, 0.0), (45.0, 90.0), (80.0, 200.0)].map(|(t, p)| direction(t, p)).into();
+        let m = measure(&flat, &setup(0.5, direction(30.0, 10.0), wo, 5_000, Bounces::All)).unwrap();
+        for e in &m.f {
+            assert!((e.mean - 0.5 * FRAC_1_PI).abs() < 1e-12, "{e:?}");
+        }
+        assert!((m.albedo.mean - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn heights_and_slopes_have_the_gaussian_surface_statistics() {
+        // Continuous surface: m = √2 σ_h / T. The grid (8 cells per T) keeps slopes within a
+        // few per cent of the continuum, so σ_h is close to m/√2.
+        let f = HeightField::gaussian(0.5, 256, 3).unwrap();
+        assert!((f.rms_slope() - 0.5).abs() < 1e-9);
+        let ratio = f.height_deviation() / (0.5 / 2f64.sqrt());
+        assert!((0.9..1.15).contains(&ratio), "σ_h / (m/√2) = {ratio}");
+    }
+
+    #[test]
+    fn furnace_integral_and_reciprocity() {
+        let rough = HeightField::gaussian(0.5, 128, 5).unwrap();
+        let m = measure(&rough, &setup(1.0, direction(60.0, 0.0), vec![DVec3::Z], 20_000, Bounces::All)).unwrap();
+        assert_eq!(m.truncated, 0.0);
+        assert!((m.albedo.mean - 1.0).abs() < 1e-12, "{:?}", m.albedo);
+
+        let (nu, nphi) = (16, 16);
+        let mut wo = Vec::new();
+        for i in 0..nu {
+            let mu: f64 = (i as f64 + 0.5) / nu as f64;
+            for j in 0..nphi {
+                let phi = 2.0 * PI * (j as f64 + 0.5) / nphi as f64;
+                wo.push(DVec3::new((1.0 - mu * mu).sqrt() * phi.cos(), (1.0 - mu * mu).sqrt() * phi.sin(), mu));
+            }
+        }
+        let m = measure(&rough, &setup(0.8, direction(40.0, 0.0), wo.clone(), 20_000, Bounces::All)).unwrap();
+        let integral: f64 = m.f.iter().zip(&wo).map(|(e, w)| e.mean * w.z * 2.0 * PI / (nu * nphi) as f64).sum();
+        assert!((integral - m.albedo.mean).abs() < 0.015 + m.albedo.half_width, "{integral} vs {:?}", m.albedo);
+
+        let (a, b) = (direction(25.0, 0.0), direction(65.0, 140.0));
+        let ab = measure(&rough, &setup(0.8, a, vec![b], 200_000, Bounces::All)).unwrap().f[0];
+        let ba = measure(&rough, &Setup { seed: 99, ..setup(0.8, b, vec![a], 200_000, Bounces::All) }).unwrap().f[0];
+        assert!((ab.mean - ba.mean).abs() <= ab.half_width.hypot(ba.half_width), "{ab:?} vs {ba:?}");
+    }
+}
+
+/// van Ginneken's model is the single-scattering BRDF of a Lambertian Gaussian surface with
+/// Smith-type shadowing: away from grazing angles it must match the simulated surface with its
+/// interreflections cut, an oracle that shares no code with the kernel.
+#[test]
+fn van_ginneken_is_the_single_bounce_brdf_of_its_gaussian_surface() {
+    use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+    let m = 0.4;
+    let surface = matte::microgeometry::HeightField::gaussian(m, 128, 11).unwrap();
+    let model = Bsdf::from_params("ginneken", Params::new().with("roughness", ParamValue::Number(m))).unwrap();
+    let wi = direction(30.0, 0.0);
+    let wo: Vec<DVec3> = [(0.0, 0.0), (20.0, 0.0), (40.0, 0.0), (20.0, 180.0), (40.0, 180.0), (45.0, 90.0)]
+        .map(|(t, p)| direction(t, p))
+        .into();
+    let single = measure(&surface, &setup(0.8, wi, wo.clone(), 60_000, Bounces::First)).unwrap();
+    for (e, w) in single.f.iter().zip(&wo) {
+        let f = model.eval(wi.as_vec3(), w.as_vec3(), [0.8])[0] as f64;
+        assert!((e.mean - f).abs() <= e.half_width + 0.01 * f, "wo {w}: simulated {e:?}, van Ginneken {f}");
+    }
+}

@@ -1,14 +1,28 @@
 //! `matte microgeometry`: simulate a rough model's own microsurface and compare the analytic
 //! models with it (`docs/microgeometry.md`). Prints the comparison as JSON.
 
-use crate::microgeometry::comparison::compare_v_cavities;
-use clap::Args;
+use crate::microgeometry::comparison::{compare_height_field, compare_v_cavities};
+use clap::{Args, ValueEnum};
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum SurfaceKind {
+    /// Oren–Nayar's V-cavities (against Oren–Nayar and EON).
+    VCavities,
+    /// A Gaussian random height field (against van Ginneken).
+    HeightField,
+}
 
 #[derive(Args, Debug)]
 pub struct MicrogeometryArgs {
-    /// Slope-angle standard deviation σ of the V-cavities (radians).
+    #[arg(long, value_enum, default_value_t = SurfaceKind::VCavities)]
+    pub surface: SurfaceKind,
+    /// σ of the V-cavities (slope-angle standard deviation, radians) or m of the height field
+    /// (per-axis rms slope).
     #[arg(long, default_value_t = 0.3)]
-    pub sigma: f64,
+    pub roughness: f64,
+    /// Height field: grid cells per side (8 per correlation length).
+    #[arg(long, default_value_t = 256)]
+    pub cells: usize,
     /// Facet albedo ρ.
     #[arg(long, default_value_t = 0.8)]
     pub reflectance: f64,
@@ -26,7 +40,10 @@ pub fn run(a: &MicrogeometryArgs) -> Result<(), String> {
     if a.photons < 2 {
         return Err(format!("--photons must be at least 2 (got {})", a.photons));
     }
-    let c = compare_v_cavities(a.sigma, a.reflectance, a.photons, a.seed)?;
+    let c = match a.surface {
+        SurfaceKind::VCavities => compare_v_cavities(a.roughness, a.reflectance, a.photons, a.seed)?,
+        SurfaceKind::HeightField => compare_height_field(a.roughness, a.cells, a.reflectance, a.photons, a.seed)?,
+    };
     println!("{}", serde_json::to_string_pretty(&c).map_err(|e| format!("JSON output: {e}"))?);
     Ok(())
 }

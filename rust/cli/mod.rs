@@ -37,7 +37,8 @@ pub enum Command {
     Validate(validate_cmd::ValidateArgs),
     /// The seed paper's study: its scenes with every diffuse model, strips and measured ratios.
     Study(study_cmd::StudyArgs),
-    /// Simulate Oren–Nayar's V-cavity surface and compare the rough models with it (JSON).
+    /// Simulate a rough model's own microsurface (V-cavities, Gaussian height field) and compare
+    /// the models with it (JSON).
     Microgeometry(microgeometry_cmd::MicrogeometryArgs),
     /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (README "Speed").
     Bench(bench_cmd::BenchArgs),

@@ -1,10 +1,12 @@
-//! Each analytic Oren–Nayar-family model against a simulation of the surface it describes
-//! (`docs/microgeometry.md#comparison`): the V-cavity BRDF measured on a (θi, θo, Δφ) grid with
-//! all bounces and with the first only, beside the kernels' values, and the directional
-//! albedo per θi.
+//! Each analytic model against a simulation of the surface it describes
+//! (`docs/microgeometry.md#comparison`): the surface's BRDF measured on a (θi, θo, Δφ) grid
+//! with all bounces and with the first only, beside the kernels' values, and the directional
+//! albedo per θi. V-cavities face the Oren–Nayar family, Gaussian height fields van Ginneken.
 
 use super::estimate::Estimate;
 use super::gonioreflectometer::{Bounces, Setup, measure};
+use super::height_field::HeightField;
+use super::surface::MicroSurface;
 use super::v_cavity::VCavities;
 use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
 use glam::DVec3;
@@ -20,7 +22,10 @@ pub const DELTA_PHI: [f64; 3] = [0.0, 90.0, 180.0];
 
 #[derive(Serialize)]
 pub struct Comparison {
-    pub sigma: f64,
+    /// "v_cavities" or "gaussian_height_field".
+    pub surface: &'static str,
+    /// σ (V-cavities, radians) or m (height field, per-axis rms slope).
+    pub roughness: f64,
     pub reflectance: f64,
     pub photons: u64,
     pub models: Vec<String>,
@@ -61,6 +66,12 @@ pub struct ModelError {
     pub max_abs_albedo_relative_error: f64,
 }
 
+fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<Bsdf, String> {
+    let mut p = Params::new();
+    params.iter().for_each(|(n, v)| p.push(n, v.clone()));
+    Bsdf::from_params(kind, p).map_err(|e| e.to_string())
+}
+
 fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
     let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
     DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
@@ -68,15 +79,10 @@ fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
 
 /// The kernels compared with V-cavities of slope deviation `sigma`: Oren–Nayar qualitative and
 /// full at σ, and EON at r = B/A of the qualitative model (its ratio of the two terms).
-pub fn models(sigma: f64) -> Result<Vec<(String, Bsdf)>, String> {
+pub fn v_cavity_models(sigma: f64) -> Result<Vec<(String, Bsdf)>, String> {
     let s2 = sigma * sigma;
     let (a, b) = (1.0 - 0.5 * s2 / (s2 + 0.33), 0.45 * s2 / (s2 + 0.09));
     let r = (b / a).min(1.0);
-    let build = |kind: &str, params: &[(&str, ParamValue)]| {
-        let mut p = Params::new();
-        params.iter().for_each(|(n, v)| p.push(n, v.clone()));
-        Bsdf::from_params(kind, p).map_err(|e| e.to_string())
-    };
     use ParamValue::{Number as N, Text as T};
     Ok(vec![
         ("Oren–Nayar qualitative".into(), build("oren_nayar", &[("sigma", N(sigma))])?),
@@ -85,9 +91,50 @@ pub fn models(sigma: f64) -> Result<Vec<(String, Bsdf)>, String> {
     ])
 }
 
+/// The kernels compared with a Gaussian height field of per-axis rms slope `m`: van Ginneken
+/// with both shadowing options.
+pub fn height_field_models(m: f64) -> Result<Vec<(String, Bsdf)>, String> {
+    use ParamValue::{Number as N, Text as T};
+    Ok(vec![
+        ("van Ginneken (vginneken)".into(), build("ginneken", &[("roughness", N(m))])?),
+        (
+            "van Ginneken (height_correlated)".into(),
+            build("ginneken", &[("roughness", N(m)), ("shadowing", T("height_correlated".into()))])?,
+        ),
+    ])
+}
+
+/// V-cavities of slope deviation `sigma` against the Oren–Nayar family.
 pub fn compare_v_cavities(sigma: f64, reflectance: f64, photons: u64, seed: u64) -> Result<Comparison, String> {
     let surface = VCavities::new(sigma)?;
-    let models = models(sigma)?;
+    compare(&surface, "v_cavities", sigma, v_cavity_models(sigma)?, reflectance, photons, seed)
+}
+
+/// One `cells`² realisation of the Gaussian height field with rms slope `m` against van
+/// Ginneken.
+pub fn compare_height_field(
+    m: f64,
+    cells: usize,
+    reflectance: f64,
+    photons: u64,
+    seed: u64,
+) -> Result<Comparison, String> {
+    if m == 0.0 {
+        return Err("van Ginneken needs a roughness above 0".into());
+    }
+    let surface = HeightField::gaussian(m, cells, seed)?;
+    compare(&surface, "gaussian_height_field", m, height_field_models(m)?, reflectance, photons, seed)
+}
+
+fn compare<S: MicroSurface>(
+    surface: &S,
+    name: &'static str,
+    roughness: f64,
+    models: Vec<(String, Bsdf)>,
+    reflectance: f64,
+    photons: u64,
+    seed: u64,
+) -> Result<Comparison, String> {
     let rho = [reflectance as f32];
     let wo: Vec<DVec3> = THETA_O.iter().flat_map(|&t| DELTA_PHI.map(|p| direction(t, p))).collect();
     let mut points = Vec::new();
@@ -103,8 +150,8 @@ pub fn compare_v_cavities(sigma: f64, reflectance: f64, photons: u64, seed: u64)
             bounces,
             max_bounces: 1000,
         };
-        let all = measure(&surface, &setup(Bounces::All))?;
-        let first = measure(&surface, &setup(Bounces::First))?;
+        let all = measure(surface, &setup(Bounces::All))?;
+        let first = measure(surface, &setup(Bounces::First))?;
         for (j, w) in wo.iter().enumerate() {
             points.push(GridPoint {
                 theta_i: ti,
@@ -144,7 +191,8 @@ pub fn compare_v_cavities(sigma: f64, reflectance: f64, photons: u64, seed: u64)
         })
         .collect();
     Ok(Comparison {
-        sigma,
+        surface: name,
+        roughness,
         reflectance,
         photons,
         models: models.into_iter().map(|(l, _)| l).collect(),

@@ -5,6 +5,8 @@
 //! * [`surface`]: what a simulated surface provides (random patches, ray intersection).
 //! * [`v_cavity`]: Oren–Nayar's surface, long symmetric V-cavities with Lambertian facets and a
 //!   Gaussian slope-angle distribution.
+//! * [`height_field`]: van Ginneken's surface, a periodic Gaussian random height field of
+//!   Lambertian triangles with per-axis rms slope m.
 //! * [`gonioreflectometer`]: photons from a distant source, next-event estimates of f toward
 //!   every sensor direction, all bounces or the first only, and the directional albedo.
 //! * [`comparison`]: the Oren–Nayar-family kernels against their simulated surface.
@@ -13,10 +15,12 @@
 pub mod comparison;
 pub mod estimate;
 pub mod gonioreflectometer;
+pub mod height_field;
 pub mod surface;
 pub mod v_cavity;
 
 pub use estimate::{Estimate, RunningMean};
 pub use gonioreflectometer::{Bounces, Measurement, Setup, measure};
+pub use height_field::HeightField;
 pub use surface::{Hit, MicroSurface};
 pub use v_cavity::VCavities;
