@@ -108,7 +108,7 @@ pub struct ModelResult {
 pub struct Region {
     pub name: String,
     /// [x0, y0, x1, y1] as fractions of the image.
-    pub rect: [f32; 4],
+    pub rect: [f64; 4],
     /// `"convergence": true`: the study renders a convergence series for this region.
     pub convergence: bool,
 }
@@ -125,8 +125,7 @@ pub fn load_regions(scene: &Path) -> Result<Vec<Region>, String> {
         .iter()
         .map(|r| {
             let name = r["name"].as_str().ok_or_else(bad)?.to_string();
-            let c: Vec<f32> =
-                r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64().map(|x| x as f32)).collect();
+            let c: Vec<f64> = r["rect"].as_array().ok_or_else(bad)?.iter().filter_map(|x| x.as_f64()).collect();
             match c.as_slice() {
                 [x0, y0, x1, y1]
                     if (0.0..=1.0).contains(x0)

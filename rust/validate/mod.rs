@@ -3,6 +3,7 @@
 //! images agree ([`stats`]); writes both images, heatmaps ([`heatmap`]), `summary.json` and
 //! `report.html` ([`report`]).
 
+pub mod crop;
 pub mod heatmap;
 pub mod passes;
 pub mod report;
