@@ -29,10 +29,12 @@ pub const TARGET_POWER: f64 = 0.8;
 pub const PATCH: u32 = 16;
 
 /// Rejections out of pairs.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Rate {
     pub rejected: usize,
     pub pairs: usize,
+    /// Pairs rejected by each scale (a pair may count at several scales).
+    pub by_scale: Vec<(String, usize)>,
 }
 
 impl Rate {
@@ -121,9 +123,21 @@ fn any_rejects(ms: &MultiScale, a: &[BlockMoments], b: &[BlockMoments]) -> bool 
     ms.test_moments(a, b).iter().any(|r| r.rejected > 0)
 }
 
+fn rate<'a>(ms: &MultiScale, pairs: impl Iterator<Item = (&'a [BlockMoments], &'a [BlockMoments])>) -> Rate {
+    let mut out = Rate { by_scale: ms.scales.iter().map(|(s, _)| (s.key(), 0)).collect(), ..Default::default() };
+    for (a, b) in pairs {
+        let r = ms.test_moments(a, b);
+        out.pairs += 1;
+        out.rejected += r.iter().any(|s| s.rejected > 0) as usize;
+        for (count, s) in out.by_scale.iter_mut().zip(&r) {
+            count.1 += (s.rejected > 0) as usize;
+        }
+    }
+    out
+}
+
 fn identical_rate(ms: &MultiScale, moments: &[Vec<BlockMoments>]) -> Rate {
-    let pairs: Vec<_> = moments.chunks_exact(2).collect();
-    Rate { rejected: pairs.iter().filter(|p| any_rejects(ms, &p[0], &p[1])).count(), pairs: pairs.len() }
+    rate(ms, moments.chunks_exact(2).map(|p| (p[0].as_slice(), p[1].as_slice())))
 }
 
 fn power_curve(
@@ -170,8 +184,7 @@ pub fn calibrate(
     let ms = MultiScale::new(first.width, first.height, alpha);
     let am: Vec<_> = a.iter().map(|r| ms.moments(r)).collect();
     let bm: Vec<_> = b.iter().map(|r| ms.moments(r)).collect();
-    let unchanged =
-        Rate { rejected: am.iter().zip(&bm).filter(|(x, y)| any_rejects(&ms, x, y)).count(), pairs: a.len() };
+    let unchanged = rate(&ms, am.iter().zip(&bm).map(|(x, y)| (x.as_slice(), y.as_slice())));
     let identical_matte = identical_rate(&ms, &am);
     let identical_reference = identical_rate(&ms, &bm);
     // The reference's mean image over all replicates places the patch.

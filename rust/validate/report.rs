@@ -5,7 +5,7 @@
 use super::crop::PixelBox;
 use super::heatmap;
 use super::passes::Side;
-use super::power::{Calibration, PowerCurve};
+use super::power::{Calibration, PowerCurve, Rate};
 use super::scales::Rejection;
 use super::stats::Comparison;
 use super::{SceneResult, write_mean};
@@ -140,12 +140,16 @@ fn curve_json(c: &PowerCurve) -> serde_json::Value {
     json!({"detected_80": c.detected, "curve": c.curve.iter().map(|(d, p)| json!([d, p])).collect::<Vec<_>>()})
 }
 
+fn rate_json(r: &Rate) -> serde_json::Value {
+    json!({"rejected": r.rejected, "pairs": r.pairs, "by_scale": r.by_scale.iter().map(|(k, n)| json!([k, n])).collect::<Vec<_>>()})
+}
+
 fn power_json(p: &Calibration) -> serde_json::Value {
     json!({
         "replicates": p.replicates,
-        "unchanged_rejected": [p.unchanged.rejected, p.unchanged.pairs],
-        "identical_matte_rejected": [p.identical_matte.rejected, p.identical_matte.pairs],
-        "identical_reference_rejected": [p.identical_reference.rejected, p.identical_reference.pairs],
+        "unchanged": rate_json(&p.unchanged),
+        "identical_matte": rate_json(&p.identical_matte),
+        "identical_reference": rate_json(&p.identical_reference),
         "uniform": curve_json(&p.uniform),
         "patch": curve_json(&p.patch),
         "patch_place": place_json(&p.patch_place),
