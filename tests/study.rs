@@ -89,7 +89,7 @@ fn regions_file_is_read_and_validated() {
 
 // ---- Derived scenes (model variants) -------------------------------------------------------
 
-use matte::study::convergence::{self, Point, Series};
+use matte::study::convergence::{Point, Series};
 use matte::study::variant_scene::{Derivation, Property, derive_text, write_derived};
 use std::path::{Path, PathBuf};
 

@@ -24,8 +24,9 @@ pub struct ValidateArgs {
     /// test's false-positive rate.
     #[arg(long)]
     pub self_check: bool,
-    /// Independent passes per renderer (the per-pixel variance comes from them).
-    #[arg(long, default_value_t = 16)]
+    /// Independent passes per renderer (the variances come from them). 32 by measured power
+    /// (docs/validation.md#choosing-the-passes).
+    #[arg(long, default_value_t = 32)]
     pub passes: u32,
     /// Total samples per pixel per renderer, split over the passes (default: 4× the scene's
     /// sample_count, for power against small differences).
