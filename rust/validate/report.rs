@@ -41,7 +41,7 @@ pub struct Crop {
     pub difference_png: PathBuf,
 }
 
-/// Rejected blocks shown with crops, most significant first.
+/// Rejected places shown with crops, most significant first.
 pub const CROPS: usize = 8;
 
 /// The pixels shown around a block: at least 24 × 24, centred on it, inside the image.
@@ -76,8 +76,19 @@ fn write_crops(
     c: &Comparison,
     range: f32,
 ) -> Result<Vec<Crop>, String> {
-    let mut out = Vec::new();
-    for (i, r) in c.ranked_rejections().into_iter().take(CROPS).enumerate() {
+    let mut out: Vec<Crop> = Vec::new();
+    // One crop per place: a rejection whose block centre is already shown is skipped (the
+    // same feature is usually rejected at several scales and on overlapping grids).
+    let inside = |b: &PixelBox, x: u32, y: u32| x >= b.x0 && x < b.x1 && y >= b.y0 && y < b.y1;
+    for r in c.ranked_rejections() {
+        if out.len() == CROPS {
+            break;
+        }
+        let (cx, cy) = ((r.place.x0 + r.place.x1) / 2, (r.place.y0 + r.place.y1) / 2);
+        if out.iter().any(|k| inside(&k.shown, cx, cy)) {
+            continue;
+        }
+        let i = out.len();
         let shown = context(&r.place, c.width, c.height);
         let stem = format!("rejected_{i:02}");
         let img = |src: &Image| {
