@@ -4,8 +4,10 @@
 
 use matte::validate::crop::{PixelBox, pixel_box};
 
-/// The film widths of the rounding check (64..512).
-const WIDTHS: [u32; 9] = [64, 96, 128, 160, 192, 256, 320, 384, 512];
+/// The film widths of the rounding check (64..512): powers of two and widths where k·w/1000
+/// is often a whole number, the cases binary fractions round the wrong way (0.3 · 100 =
+/// 30.000000000000004 in f64).
+const WIDTHS: [u32; 9] = [64, 100, 128, 200, 250, 256, 300, 400, 512];
 
 /// The oracle: region edges k/1000 in exact integer arithmetic (first pixel ⌊k·w/1000⌋, one
 /// past the last ⌈k·w/1000⌉), at least one pixel, inside the film.
