@@ -294,10 +294,17 @@ fn power_html(p: Option<&Calibration>) -> String {
         return "Power not calibrated (run with <code>--power</code> to measure what this budget detects).".into();
     };
     let d = |x: Option<f64>| x.map(|d| format!("{:.2} %", d * 100.0)).unwrap_or_else(|| "more than 30 %".into());
+    // Injection measures power on top of the existing difference: meaningless when that
+    // difference alone is already rejected in most replicates.
+    let note = if p.unchanged.fraction() > 0.5 {
+        " (The unchanged comparison already fails in most replicates, so these numbers say nothing about power.)"
+    } else {
+        ""
+    };
     format!(
         "This budget detects, with 80 % power (measured by injection over {} replicate pairs): a uniform relative change \
          of <b>{}</b>, or a change of <b>{}</b> confined to the 16×16 patch at ({}, {}). Identical inputs rejected in \
-         {}/{} matte and {}/{} reference replicate pairs; the unchanged comparison in {}/{} replicates.",
+         {}/{} matte and {}/{} reference replicate pairs; the unchanged comparison in {}/{} replicates.{}",
         p.replicates,
         d(p.uniform.detected),
         d(p.patch.detected),
@@ -308,7 +315,8 @@ fn power_html(p: Option<&Calibration>) -> String {
         p.identical_reference.rejected,
         p.identical_reference.pairs,
         p.unchanged.rejected,
-        p.unchanged.pairs
+        p.unchanged.pairs,
+        note
     )
 }
 
