@@ -91,7 +91,7 @@ fn regions_file_is_read_and_validated() {
 // ---- Derived scenes (model variants) -------------------------------------------------------
 
 use matte::study::configuration::Configuration;
-use matte::study::convergence::{self, Point, Series};
+use matte::study::convergence::{Point, Series};
 use matte::study::ratio::Ratio;
 use matte::study::variant_scene::{Derivation, Property, derive_text, write_derived};
 use std::path::{Path, PathBuf};
@@ -255,7 +255,7 @@ fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() 
     let white = [0.885809f64, 0.698859, 0.666422];
     let dir = temp_dir("wolff");
     let cornell = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/study/cornell.xml");
-    let back_wall = [0.35f32, 0.25, 0.65, 0.45];
+    let back_wall = [0.35f64, 0.25, 0.65, 0.45];
     let render = |normalization: &str| {
         let file = dir.join(format!("{normalization}.xml"));
         let d = Derivation {
@@ -297,7 +297,7 @@ fn crop_box_holds_exactly_the_region_pixels() {
     // Pixel value = its index: the mean over the crop box equals region_mean for odd sizes and
     // fractions that fall between pixels.
     for (w, h, r) in
-        [(256u32, 256u32, [0.5f32, 0.9, 0.8, 0.97]), (17, 9, [0.1, 0.33, 0.71, 0.5]), (8, 8, [0.99, 0.99, 1.0, 1.0])]
+        [(256u32, 256u32, [0.5f64, 0.9, 0.8, 0.97]), (17, 9, [0.1, 0.33, 0.71, 0.5]), (8, 8, [0.99, 0.99, 1.0, 1.0])]
     {
         let mut img = Image::new(w, h);
         for y in 0..h {
@@ -305,7 +305,7 @@ fn crop_box_holds_exactly_the_region_pixels() {
                 img.set(x, y, Vec3::splat((y * w + x) as f32));
             }
         }
-        let [x0, y0, x1, y1] = convergence::region_pixels(w, h, r);
+        let matte::validate::crop::PixelBox { x0, y0, x1, y1 } = matte::validate::crop::pixel_box(w, h, r);
         assert!(x0 < x1 && x1 <= w && y0 < y1 && y1 <= h);
         let mut sum = 0.0;
         for y in y0..y1 {

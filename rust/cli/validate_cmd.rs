@@ -24,8 +24,9 @@ pub struct ValidateArgs {
     /// test's false-positive rate.
     #[arg(long)]
     pub self_check: bool,
-    /// Independent passes per renderer (the per-pixel variance comes from them).
-    #[arg(long, default_value_t = 16)]
+    /// Independent passes per renderer (the variances come from them). 32 by measured power
+    /// (docs/validation.md#choosing-the-passes).
+    #[arg(long, default_value_t = 32)]
     pub passes: u32,
     /// Total samples per pixel per renderer, split over the passes (default: 4× the scene's
     /// sample_count, for power against small differences).
@@ -51,6 +52,18 @@ pub struct ValidateArgs {
     /// Scene parameter for the reference renderer only.
     #[arg(long, value_name = "NAME=VALUE")]
     pub reference_define: Vec<String>,
+    /// The Rust renderer renders this scene file instead (a modified scene: measures what the
+    /// test detects, e.g. one reflectance changed).
+    #[arg(long, value_name = "FILE")]
+    pub matte_scene: Option<PathBuf>,
+    /// Power calibration: render R replicates of each side (R × the budget) and state the
+    /// smallest uniform and 16×16-patch relative change detected with 80 % power, and the
+    /// rejection rate on identical inputs (docs/validation.md#power).
+    #[arg(long)]
+    pub power: bool,
+    /// Replicates per side for --power.
+    #[arg(long, default_value_t = 10, value_name = "R")]
+    pub replicates: u32,
     #[arg(short, long)]
     pub quiet: bool,
     /// Also print the JSON summary on stdout (it is always written to summary.json).
@@ -78,8 +91,23 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     if !(a.alpha > 0.0 && a.alpha < 1.0) {
         return Err("--alpha must be in (0, 1)".into());
     }
-    let opts =
-        Options { passes, spp, seed: a.seed, alpha: a.alpha, out: a.out.clone(), matte_defines, reference_defines };
+    if a.power && a.replicates < 2 {
+        return Err("--replicates must be at least 2".into());
+    }
+    if a.matte_scene.is_some() && scenes.len() != 1 {
+        return Err("--matte-scene needs exactly one scene".into());
+    }
+    let opts = Options {
+        passes,
+        spp,
+        seed: a.seed,
+        alpha: a.alpha,
+        out: a.out.clone(),
+        matte_defines,
+        reference_defines,
+        matte_scene: a.matte_scene.clone(),
+        power_replicates: a.power.then_some(a.replicates),
+    };
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
     let references: Vec<Reference> = if a.self_check {
         vec![Reference::Matte]
@@ -91,7 +119,8 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     let mut errors = Vec::new();
     for scene in &scenes {
         for reference in &references {
-            let bar = if show { ProgressBar::new(passes as u64) } else { ProgressBar::hidden() };
+            let total = passes as u64 * if a.power { a.replicates as u64 } else { 1 };
+            let bar = if show { ProgressBar::new(total) } else { ProgressBar::hidden() };
             bar.set_style(
                 ProgressStyle::with_template("{msg:50} [{bar:30}] {pos}/{len} passes {elapsed}")
                     .expect("template")
@@ -106,20 +135,7 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
                 Ok(r) => {
                     bar.finish_and_clear();
                     if !a.quiet {
-                        let c = &r.comparison;
-                        eprintln!(
-                            "{} {name} vs {}: {} rejected pixels ({:.4}%), mean diff {:.5} {:.5} {:.5} ± {:.5} {:.5} {:.5}",
-                            if c.passed() { "PASS" } else { "FAIL" },
-                            r.reference,
-                            c.rejected_pixels,
-                            c.rejected_fraction() * 100.0,
-                            c.global.diff.x,
-                            c.global.diff.y,
-                            c.global.diff.z,
-                            c.global.ci99.x,
-                            c.global.ci99.y,
-                            c.global.ci99.z
-                        );
+                        eprintln!("{}", one_line(&name, &r));
                     }
                     results.push(r);
                 }
@@ -157,4 +173,36 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
         println!("all {} comparison(s) passed; report: {}", results.len(), a.out.join("report.html").display());
     }
     Ok(())
+}
+
+/// The verdict of one scene on one line: per scale the rejected blocks, the image-mean
+/// difference, and with --power what the budget detects.
+fn one_line(name: &str, r: &SceneResult) -> String {
+    let c = &r.comparison;
+    let scales: Vec<String> = c.scales.iter().map(|s| format!("{} {}", s.scale.key(), s.rejected)).collect();
+    let mut line = format!(
+        "{} {name} vs {}: rejected [{}], mean diff {:.5} {:.5} {:.5} ± {:.5} {:.5} {:.5}",
+        if c.passed() { "PASS" } else { "FAIL" },
+        r.reference,
+        scales.join(", "),
+        c.global.diff.x,
+        c.global.diff.y,
+        c.global.diff.z,
+        c.global.ci99.x,
+        c.global.ci99.y,
+        c.global.ci99.z
+    );
+    if let Some(p) = &r.power {
+        let d = |x: Option<f64>| x.map(|d| format!("{:.2}%", d * 100.0)).unwrap_or_else(|| "> 30%".into());
+        line += &format!(
+            "; 80% power at {} uniform, {} in a 16×16 patch; identical inputs rejected {}/{} (matte), {}/{} (reference)",
+            d(p.uniform.detected),
+            d(p.patch.detected),
+            p.identical_matte.rejected,
+            p.identical_matte.pairs,
+            p.identical_reference.rejected,
+            p.identical_reference.pairs
+        );
+    }
+    line
 }

@@ -19,6 +19,7 @@ use super::ratio::Ratio;
 use super::variant_scene::{self, Derivation, Property};
 use super::{Lighting, Options, Region, metrics};
 use crate::render::load;
+use crate::validate::crop::{PixelBox, pixel_box};
 use crate::validate::passes::{self, Budget, PassPlan, Side};
 use std::path::{Path, PathBuf};
 
@@ -80,17 +81,6 @@ impl Series {
     }
 }
 
-/// Pixel box `[x0, y0, x1, y1)` of a region: the rounding of
-/// [`crate::validate::passes::region_mean`], so the crop holds exactly the region's pixels.
-pub fn region_pixels(width: u32, height: u32, r: [f32; 4]) -> [u32; 4] {
-    let (w, h) = (width as f32, height as f32);
-    let x0 = ((r[0] * w) as u32).min(width - 1);
-    let y0 = ((r[1] * h) as u32).min(height - 1);
-    let x1 = ((r[2] * w).ceil() as u32).clamp(x0 + 1, width);
-    let y1 = ((r[3] * h).ceil() as u32).clamp(y0 + 1, height);
-    [x0, y0, x1, y1]
-}
-
 /// The project's venv Python, which runs the Mitsuba side.
 fn venv_python() -> PathBuf {
     passes::repo_root().join(".venv/bin/python")
@@ -127,7 +117,8 @@ pub fn run(
         .map_err(|e| e.to_string())?
         .film;
     let (w, h) = (film.width(), film.height());
-    let [x0, y0, x1, y1] = region_pixels(w, h, region.rect);
+    // The one rounding of a region to pixels, shared with the region means (crop.rs).
+    let PixelBox { x0, y0, x1, y1 } = pixel_box(w, h, region.rect);
     let crop = vec![
         Property::integer("crop_offset_x", x0 as i64),
         Property::integer("crop_offset_y", y0 as i64),

@@ -95,7 +95,7 @@ pub struct ModelResult {
 pub struct Region {
     pub name: String,
     /// [x0, y0, x1, y1] as fractions of the image.
-    pub rect: [f32; 4],
+    pub rect: [f64; 4],
     /// `"convergence": true`: the study renders a convergence series for this region.
     pub convergence: bool,
 }
@@ -112,7 +112,7 @@ pub fn load_regions(scene: &Path) -> Result<Vec<Region>, String> {
     #[serde(deny_unknown_fields)]
     struct Entry {
         name: String,
-        rect: [f32; 4],
+        rect: [f64; 4],
         #[serde(default)]
         convergence: bool,
         /// What the region shows, for readers of the file.

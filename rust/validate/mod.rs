@@ -3,9 +3,12 @@
 //! images agree ([`stats`]); writes both images, heatmaps ([`heatmap`]), `summary.json` and
 //! `report.html` ([`report`]).
 
+pub mod crop;
 pub mod heatmap;
 pub mod passes;
+pub mod power;
 pub mod report;
+pub mod scales;
 pub mod stats;
 
 use crate::render::image_io;
@@ -33,6 +36,11 @@ pub struct Options {
     pub out: PathBuf,
     pub matte_defines: Vec<(String, String)>,
     pub reference_defines: Vec<(String, String)>,
+    /// The Rust renderer renders this file instead of the scene (a modified scene, to
+    /// measure what the test detects).
+    pub matte_scene: Option<PathBuf>,
+    /// `--power`: replicates of each side for the power calibration ([`power`]).
+    pub power_replicates: Option<u32>,
 }
 
 /// One scene × reference.
@@ -46,6 +54,8 @@ pub struct SceneResult {
     pub seconds_reference: f64,
     pub passes: u32,
     pub spp_per_pass: u32,
+    /// `--power`: what this budget detects.
+    pub power: Option<power::Calibration>,
     /// Files, relative to the output folder.
     pub files: report::Files,
 }
@@ -68,32 +78,41 @@ pub fn validate_scene(
         Some(total) => Budget::PerPass((total / opts.passes).max(1)),
         None => Budget::SceneMultiple(4),
     };
-    let plan = |defines: &Vec<(String, String)>, seed: u64| PassPlan {
-        passes: opts.passes,
-        spp: budget,
-        seed,
-        defines: defines.clone(),
-        regions: Vec::new(),
-    };
     let k = opts.passes;
-    let a: Side = passes::rust_side(scene, &plan(&opts.matte_defines, opts.seed), &|i| progress("matte", i, k))?;
+    let reps = opts.power_replicates.unwrap_or(1).max(1);
+    let matte_scene = opts.matte_scene.as_deref().unwrap_or(scene);
+    // Replicate r renders passes r·K … (r + 1)·K − 1 (seeds seed + r·K + k): replicate 0 is the
+    // run without --power. The spp per pass is fixed from the K-pass budget first.
+    let plan = |file: &Path, defines: &Vec<(String, String)>, seed: u64| -> Result<PassPlan, String> {
+        let one = PassPlan { passes: k, spp: budget, seed, defines: defines.clone(), regions: Vec::new() };
+        let spp = if reps > 1 { Budget::PerPass(passes::spp_per_pass(file, &one)?) } else { budget };
+        Ok(PassPlan { passes: k * reps, spp, ..one })
+    };
+    let n = k * reps;
+    let a: Side = passes::rust_side(matte_scene, &plan(matte_scene, &opts.matte_defines, opts.seed)?, &|i| {
+        progress("matte", i, n)
+    })?;
+    let ref_plan = plan(scene, &opts.reference_defines, opts.seed + 1_000_003)?;
     let b: Side = match reference {
-        Reference::Mitsuba(variant) => passes::mitsuba_side_in_venv(
-            scene,
-            variant,
-            &plan(&opts.reference_defines, opts.seed + 1_000_003),
-            &dir.join("mitsuba_work"),
-            &|i| progress(variant, i, k),
-        )?,
+        Reference::Mitsuba(variant) => {
+            passes::mitsuba_side_in_venv(scene, variant, &ref_plan, &dir.join("mitsuba_work"), &|i| {
+                progress(variant, i, n)
+            })?
+        }
         Reference::Matte => {
-            let mut s = passes::rust_side(scene, &plan(&opts.reference_defines, opts.seed + 1_000_003), &|i| {
-                progress("matte (reference)", i, k)
-            })?;
+            let mut s = passes::rust_side(scene, &ref_plan, &|i| progress("matte (reference)", i, n))?;
             s.label = "matte (other seeds)".into();
             s
         }
     };
-    let comparison = stats::compare(&a.moments, &b.moments, opts.alpha)?;
+    let (a, a_reps) = replicates(a, k)?;
+    let (b, b_reps) = replicates(b, k)?;
+    let comparison = stats::compare(&a.images, &a.moments, &b.images, &b.moments, opts.alpha)?;
+    let power = if reps > 1 {
+        Some(power::calibrate(&a_reps, &b_reps, opts.alpha, &|m| progress(&format!("power: {m}"), n, n))?)
+    } else {
+        None
+    };
     let files = report::write_scene_files(&opts.out, &rel_dir, &a, &b, &comparison)?;
     Ok(SceneResult {
         scene: scene.to_path_buf(),
@@ -104,8 +123,20 @@ pub fn validate_scene(
         seconds_reference: b.seconds,
         passes: opts.passes,
         spp_per_pass: a.spp,
+        power,
         files,
     })
+}
+
+/// Splits a side rendered with R × K passes into R replicates of K passes; returns
+/// replicate 0 as a side (render time per replicate) and all replicates' images.
+fn replicates(side: Side, k: u32) -> Result<(Side, Vec<Vec<crate::render::film::Image>>), String> {
+    let reps = side.images.len() / k.max(1) as usize;
+    let seconds = side.seconds / reps.max(1) as f64;
+    let all: Vec<Vec<_>> = side.images.chunks_exact(k as usize).map(|c| c.to_vec()).collect();
+    let first = all.first().cloned().ok_or("no passes")?;
+    let s = passes::side_from_images(first, &[], seconds, side.spp, side.label)?;
+    Ok((s, if reps > 1 { all } else { Vec::new() }))
 }
 
 /// Every `*.xml` directly in `dir`, sorted.

@@ -1,8 +1,11 @@
 //! The two sides of a validation run: K independent passes of the Rust renderer (in
 //! process) and of Mitsuba 3.9.1 (through `validation/mitsuba_passes.py` in the project's
-//! `.venv`), each reduced to per-pixel moments.
+//! `.venv`, which only renders and writes each pass image). Everything computed from the
+//! passes (moments, region means, the spp budget) is computed here, once, for both sides.
 
+use super::crop::pixel_box;
 use super::stats::Moments;
+use crate::render::film::Image;
 use crate::render::image_io;
 use crate::render::load;
 use crate::render::renderer;
@@ -39,29 +42,27 @@ pub struct PassPlan {
     pub seed: u64,
     /// `-D` parameters for this side.
     pub defines: Vec<(String, String)>,
-    /// Image regions `[x0, y0, x1, y1]` (fractions of width and height) whose mean is
-    /// recorded per pass.
-    pub regions: Vec<[f32; 4]>,
+    /// Image regions `[x0, y0, x1, y1]` (fractions of width and height, rounded to pixels by
+    /// [`super::crop::pixel_box`]) whose mean is recorded per pass.
+    pub regions: Vec<[f64; 4]>,
 }
 
-/// Mean RGB of `img` over the region `r` (fractions; at least one pixel).
-pub fn region_mean(img: &crate::render::film::Image, r: [f32; 4]) -> DVec3 {
-    let (w, h) = (img.width as f32, img.height as f32);
-    let x0 = ((r[0] * w) as u32).min(img.width - 1);
-    let y0 = ((r[1] * h) as u32).min(img.height - 1);
-    let x1 = ((r[2] * w).ceil() as u32).clamp(x0 + 1, img.width);
-    let y1 = ((r[3] * h).ceil() as u32).clamp(y0 + 1, img.height);
+/// Mean RGB of `img` over the region `r` (fractions, rounded by [`pixel_box`]).
+pub fn region_mean(img: &Image, r: [f64; 4]) -> DVec3 {
+    let b = pixel_box(img.width, img.height, r);
     let mut sum = DVec3::ZERO;
-    for y in y0..y1 {
-        for x in x0..x1 {
-            sum += img.pixels[(y * img.width + x) as usize].as_dvec3();
+    for y in b.y0..b.y1 {
+        for x in b.x0..b.x1 {
+            sum += img.get(x, y).as_dvec3();
         }
     }
-    sum / ((x1 - x0) * (y1 - y0)) as f64
+    sum / b.area() as f64
 }
 
-/// Moments plus what it cost.
+/// The pass images, their moments and what they cost.
 pub struct Side {
+    /// The K pass images, in seed order.
+    pub images: Vec<Image>,
     pub moments: Moments,
     pub seconds: f64,
     pub spp: u32,
@@ -70,14 +71,42 @@ pub struct Side {
     pub region_pass_means: Vec<Vec<DVec3>>,
 }
 
+/// Builds a side from its pass images: moments and region means.
+pub fn side_from_images(
+    images: Vec<Image>,
+    regions: &[[f64; 4]],
+    seconds: f64,
+    spp: u32,
+    label: String,
+) -> Result<Side, String> {
+    let first = images.first().ok_or("no passes")?;
+    let mut moments = Moments::new(first.width, first.height);
+    for img in &images {
+        moments.add(img)?;
+    }
+    let region_pass_means = regions.iter().map(|r| images.iter().map(|img| region_mean(img, *r)).collect()).collect();
+    Ok(Side { images, moments, seconds, spp, label, region_pass_means })
+}
+
+/// Samples per pixel of each pass of `scene` under `plan` (the scene's `sample_count` is
+/// read only when the budget is a multiple of it).
+pub fn spp_per_pass(scene: &Path, plan: &PassPlan) -> Result<u32, String> {
+    match plan.spp {
+        Budget::PerPass(n) => Ok(n.max(1)),
+        Budget::SceneMultiple(_) => {
+            let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
+            Ok(plan.spp.per_pass(loaded.spp, plan.passes))
+        }
+    }
+}
+
 /// K passes of the Rust renderer. `progress(k)` after each pass.
 pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Result<Side, String> {
-    let mut moments: Option<Moments> = None;
     let mut seconds = 0.0;
     // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
     let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
     let spp_used = plan.spp.per_pass(loaded.spp, plan.passes);
-    let mut region_pass_means = vec![Vec::new(); plan.regions.len()];
+    let mut images = Vec::with_capacity(plan.passes as usize);
     for k in 0..plan.passes {
         let t = Instant::now();
         let (img, stats) = renderer::render(
@@ -93,14 +122,10 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
         if stats.invalid_samples > 0 {
             eprintln!("matte: warning: {} non-finite samples set to zero in pass {k}", stats.invalid_samples);
         }
-        for (acc, r) in region_pass_means.iter_mut().zip(&plan.regions) {
-            acc.push(region_mean(&img, *r));
-        }
-        let m = moments.get_or_insert_with(|| Moments::new(img.width, img.height));
-        m.add(&img)?;
+        images.push(img);
         progress(k + 1);
     }
-    Ok(Side { moments: moments.ok_or("no passes")?, seconds, spp: spp_used, label: "matte".into(), region_pass_means })
+    side_from_images(images, &plan.regions, seconds, spp_used, "matte".into())
 }
 
 /// K passes of Mitsuba in `variant`, run by the Python driver; `work` receives its files.
@@ -113,18 +138,13 @@ pub fn mitsuba_side(
     work: &Path,
     progress: &dyn Fn(u32),
 ) -> Result<Side, String> {
+    let spp = spp_per_pass(scene, plan)?;
     let mut cmd = Command::new(python);
     cmd.arg(driver).arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
     cmd.arg("--passes").arg(plan.passes.to_string()).arg("--seed").arg(plan.seed.to_string());
-    match plan.spp {
-        Budget::PerPass(n) => cmd.arg("--spp").arg(n.to_string()),
-        Budget::SceneMultiple(f) => cmd.arg("--scene-multiple").arg(f.to_string()),
-    };
+    cmd.arg("--spp").arg(spp.to_string());
     for (k, v) in &plan.defines {
         cmd.arg("-D").arg(format!("{k}={v}"));
-    }
-    for r in &plan.regions {
-        cmd.arg("--region").arg(format!("{},{},{},{}", r[0], r[1], r[2], r[3]));
     }
     let mut child = cmd
         .stdout(Stdio::piped())
@@ -147,41 +167,24 @@ pub fn mitsuba_side(
         let line = err.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("failed without a message");
         return Err(format!("Mitsuba ({variant}): {line}"));
     }
-    let mean = image_io::read_exr(&work.join("mean.exr"))?;
-    let var = image_io::read_exr(&work.join("var.exr"))?;
+    let images = (0..plan.passes)
+        .map(|k| image_io::read_exr(&work.join(pass_file_name(k))))
+        .collect::<Result<Vec<_>, String>>()?;
     let info: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(work.join("passes.json")).map_err(|e| e.to_string())?)
             .map_err(|e| e.to_string())?;
-    let pass_means = info["pass_means"]
-        .as_array()
-        .ok_or("passes.json: no pass_means")?
-        .iter()
-        .map(|v| {
-            let c = |i: usize| v[i].as_f64().unwrap_or(f64::NAN);
-            DVec3::new(c(0), c(1), c(2))
-        })
-        .collect();
-    let moments = Moments::from_mean_var(&mean, &var, plan.passes, pass_means)?;
-    let triple = |v: &serde_json::Value| {
-        DVec3::new(
-            v[0].as_f64().unwrap_or(f64::NAN),
-            v[1].as_f64().unwrap_or(f64::NAN),
-            v[2].as_f64().unwrap_or(f64::NAN),
-        )
-    };
-    let region_pass_means = info["region_pass_means"]
-        .as_array()
-        .map(|rs| {
-            rs.iter().map(|r| r.as_array().map(|ps| ps.iter().map(triple).collect()).unwrap_or_default()).collect()
-        })
-        .unwrap_or_default();
-    Ok(Side {
-        moments,
-        seconds: info["render_seconds"].as_f64().unwrap_or(f64::NAN),
-        spp: info["spp"].as_u64().unwrap_or(0) as u32,
-        label: format!("mitsuba {variant}"),
-        region_pass_means,
-    })
+    side_from_images(
+        images,
+        &plan.regions,
+        info["render_seconds"].as_f64().unwrap_or(f64::NAN),
+        spp,
+        format!("mitsuba {variant}"),
+    )
+}
+
+/// The file the Mitsuba driver writes pass `k` to (`validation/mitsuba_passes.py`).
+pub fn pass_file_name(k: u32) -> String {
+    format!("pass_{k:04}.exr")
 }
 
 /// [`mitsuba_side`] with the project's `.venv` and driver; `work` is removed afterwards.

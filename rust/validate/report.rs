@@ -2,10 +2,16 @@
 //! `summary.json` (machine-readable) and `report.html` (one page, renders side by side with
 //! the maps and the numbers; it links only files the run wrote).
 
+use super::crop::PixelBox;
 use super::heatmap;
 use super::passes::Side;
+use super::power::{Calibration, PowerCurve, Rate};
+use super::scales::Rejection;
 use super::stats::Comparison;
 use super::{SceneResult, write_mean};
+use crate::markup::escape;
+use crate::render::film::Image;
+use crate::render::image_io;
 use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -21,6 +27,88 @@ pub struct Files {
     pub pvalues_png: PathBuf,
     /// Range of the difference colormap (± this relative difference).
     pub difference_range: f32,
+    /// The ranked rejected blocks with their crops (`docs/validation.md#where-it-differs`).
+    pub crops: Vec<Crop>,
+}
+
+/// Crops of one rejected block: both renderings and the difference map, enlarged.
+#[derive(Clone, Debug)]
+pub struct Crop {
+    pub rejection: Rejection,
+    /// The pixels shown (the block with some context).
+    pub shown: PixelBox,
+    pub matte_png: PathBuf,
+    pub reference_png: PathBuf,
+    pub difference_png: PathBuf,
+}
+
+/// Rejected places shown with crops, most significant first.
+pub const CROPS: usize = 8;
+
+/// The pixels shown around a block: at least 24 × 24, centred on it, inside the image.
+fn context(b: &PixelBox, w: u32, h: u32) -> PixelBox {
+    let grow = |lo: u32, hi: u32, n: u32| {
+        let size = (hi - lo + 8).max(24).min(n);
+        let centre = (lo + hi) / 2;
+        let start = centre.saturating_sub(size / 2).min(n - size);
+        (start, start + size)
+    };
+    let (x0, x1) = grow(b.x0, b.x1, w);
+    let (y0, y1) = grow(b.y0, b.y1, h);
+    PixelBox { x0, y0, x1, y1 }
+}
+
+/// `img` restricted to `b`, enlarged by an integer factor to about 160 pixels.
+fn enlarge<T: Copy>(pixels: &[T], w: u32, b: &PixelBox) -> (u32, u32, Vec<T>) {
+    let f = (160 / b.width().max(b.height())).max(1);
+    let (cw, ch) = (b.width() * f, b.height() * f);
+    let v = (0..ch)
+        .flat_map(|y| (0..cw).map(move |x| (b.x0 + x / f, b.y0 + y / f)))
+        .map(|(x, y)| pixels[(y * w + x) as usize])
+        .collect();
+    (cw, ch, v)
+}
+
+fn write_crops(
+    dir: &Path,
+    rel_dir: &Path,
+    a: &Image,
+    b: &Image,
+    c: &Comparison,
+    range: f32,
+) -> Result<Vec<Crop>, String> {
+    let mut out: Vec<Crop> = Vec::new();
+    // One crop per place: a rejection whose block centre is already shown is skipped (the
+    // same feature is usually rejected at several scales and on overlapping grids).
+    let inside = |b: &PixelBox, x: u32, y: u32| x >= b.x0 && x < b.x1 && y >= b.y0 && y < b.y1;
+    for r in c.ranked_rejections() {
+        if out.len() == CROPS {
+            break;
+        }
+        let (cx, cy) = ((r.place.x0 + r.place.x1) / 2, (r.place.y0 + r.place.y1) / 2);
+        if out.iter().any(|k| inside(&k.shown, cx, cy)) {
+            continue;
+        }
+        let i = out.len();
+        let shown = context(&r.place, c.width, c.height);
+        let stem = format!("rejected_{i:02}");
+        let img = |src: &Image| {
+            let (w, h, pixels) = enlarge(&src.pixels, src.width, &shown);
+            Image { width: w, height: h, pixels }
+        };
+        image_io::write_png(&dir.join(format!("{stem}_matte.png")), &img(a))?;
+        image_io::write_png(&dir.join(format!("{stem}_reference.png")), &img(b))?;
+        let (w, h, rel) = enlarge(&c.rel_diff, c.width, &shown);
+        heatmap::write_difference(&dir.join(format!("{stem}_difference.png")), w, h, &rel, range)?;
+        out.push(Crop {
+            rejection: r.clone(),
+            shown,
+            matte_png: rel_dir.join(format!("{stem}_matte.png")),
+            reference_png: rel_dir.join(format!("{stem}_reference.png")),
+            difference_png: rel_dir.join(format!("{stem}_difference.png")),
+        });
+    }
+    Ok(out)
 }
 
 pub fn write_scene_files(out: &Path, rel_dir: &Path, a: &Side, b: &Side, c: &Comparison) -> Result<Files, String> {
@@ -35,7 +123,9 @@ pub fn write_scene_files(out: &Path, rel_dir: &Path, a: &Side, b: &Side, c: &Com
     heatmap::write_difference(&dir.join("difference.png"), c.width, c.height, &c.rel_diff, range)?;
     let p_min: Vec<f32> = c.p.iter().map(|p| p.min_element()).collect();
     heatmap::write_pvalues(&dir.join("pvalues.png"), c.width, c.height, &p_min, c.alpha_pixel)?;
+    let crops = write_crops(&dir, rel_dir, &a.moments.mean_image(), &b.moments.mean_image(), c, range)?;
     Ok(Files {
+        crops,
         matte_exr: rel_dir.join("matte.exr"),
         matte_png: rel_dir.join("matte.png"),
         reference_exr: rel_dir.join("reference.exr"),
@@ -48,6 +138,34 @@ pub fn write_scene_files(out: &Path, rel_dir: &Path, a: &Side, b: &Side, c: &Com
 
 fn v3(v: glam::DVec3) -> serde_json::Value {
     json!([v.x, v.y, v.z])
+}
+
+fn place_json(b: &PixelBox) -> serde_json::Value {
+    json!({"x0": b.x0, "y0": b.y0, "x1": b.x1, "y1": b.y1})
+}
+
+fn rejection_json(r: &Rejection) -> serde_json::Value {
+    json!({"scale": r.scale.key(), "place": place_json(&r.place), "p": r.p, "t": v3(r.t), "rel_diff": r.rel_diff})
+}
+
+fn curve_json(c: &PowerCurve) -> serde_json::Value {
+    json!({"detected_80": c.detected, "curve": c.curve.iter().map(|(d, p)| json!([d, p])).collect::<Vec<_>>()})
+}
+
+fn rate_json(r: &Rate) -> serde_json::Value {
+    json!({"rejected": r.rejected, "pairs": r.pairs, "by_scale": r.by_scale.iter().map(|(k, n)| json!([k, n])).collect::<Vec<_>>()})
+}
+
+fn power_json(p: &Calibration) -> serde_json::Value {
+    json!({
+        "replicates": p.replicates,
+        "unchanged": rate_json(&p.unchanged),
+        "identical_matte": rate_json(&p.identical_matte),
+        "identical_reference": rate_json(&p.identical_reference),
+        "uniform": curve_json(&p.uniform),
+        "patch": curve_json(&p.patch),
+        "patch_place": place_json(&p.patch_place),
+    })
 }
 
 pub fn summary_json(results: &[SceneResult]) -> serde_json::Value {
@@ -65,6 +183,12 @@ pub fn summary_json(results: &[SceneResult]) -> serde_json::Value {
                 "rejected_pixels": c.rejected_pixels,
                 "rejected_fraction": c.rejected_fraction(),
                 "uncorrected_rejection_rate": c.uncorrected_rejection_rate,
+                "scales": c.scales.iter().map(|s| json!({
+                    "scale": s.scale.key(), "blocks": s.blocks, "alpha_test": s.alpha_test,
+                    "rejected": s.rejected, "min_p": s.min_p,
+                    "worst": s.worst.iter().map(rejection_json).collect::<Vec<_>>(),
+                })).collect::<Vec<_>>(),
+                "power": r.power.as_ref().map(power_json),
                 "global": {
                     "mean_matte": v3(c.global.mean_a), "mean_reference": v3(c.global.mean_b),
                     "difference": v3(c.global.diff), "ci99_half_width": v3(c.global.ci99),
@@ -83,10 +207,6 @@ pub fn summary_json(results: &[SceneResult]) -> serde_json::Value {
     json!({ "passed": results.iter().all(|r| r.comparison.passed()), "scenes": scenes })
 }
 
-fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
-}
-
 fn rgb(v: glam::DVec3) -> String {
     format!("{:.5} {:.5} {:.5}", v.x, v.y, v.z)
 }
@@ -102,9 +222,10 @@ body{{font-family:system-ui,sans-serif;margin:24px;color:#222}} h1{{margin-botto
 figure{{margin:0}} figcaption{{font-size:13px;color:#555}} img.r{{width:256px;image-rendering:pixelated;border:1px solid #ddd}}
 table{{border-collapse:collapse;font-size:13px;margin-top:8px}} td,th{{padding:2px 10px;text-align:left;border-bottom:1px solid #eee}}
 .pass{{color:#17803d;font-weight:bold}} .fail{{color:#c0262d;font-weight:bold}} .bar{{width:256px;height:12px;display:block}}
-</style></head><body><h1>matte validate</h1><p>Overall: <span class="{}">{}</span> — {} scene(s). Per pixel and channel:
-Welch t-test between the two renderers' pass means, Šidák-corrected over all pixels and channels; globally: Welch test of
-the image mean per channel (Bonferroni over channels). A scene passes when no pixel and no channel mean is rejected.</p>"#,
+</style></head><body><h1>matte validate</h1><p>Overall: <span class="{}">{}</span> — {} scene(s). Welch t-tests between the two renderers' per-pass means
+at several scales: pixels, blocks of 4², 16² and 64² pixels (four half-offset grids each) and the whole image, per channel;
+Šidák-corrected within a scale, Bonferroni over the scales, so the whole family is held at α. A scene passes when no
+scale rejects anything (docs/validation.md).</p>"#,
         if all { "pass" } else { "fail" },
         if all { "PASS" } else { "FAIL" },
         results.len()
@@ -112,10 +233,10 @@ the image mean per channel (Bonferroni over channels). A scene passes when no pi
     for r in results {
         let c = &r.comparison;
         let f = &r.files;
-        let p = |p: &PathBuf| esc(&p.display().to_string());
+        let p = |p: &PathBuf| escape(&p.display().to_string());
         let _ = write!(
             h,
-            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2>
+            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{power}</p>
 <div class="imgs">
 <figure><img class="r" src="{mp}"><figcaption>matte (<a href="{me}">EXR</a>)</figcaption></figure>
 <figure><img class="r" src="{rp}"><figcaption>{reference} (<a href="{re}">EXR</a>)</figcaption></figure>
@@ -128,9 +249,11 @@ the image mean per channel (Bonferroni over channels). A scene passes when no pi
 <tr><th>difference ± 99% CI</th><td>{d} ± {ci}</td></tr><tr><th>global p (R G B)</th><td>{gp}</td></tr>
 <tr><th>passes × spp</th><td>{passes} × {spp} per renderer</td></tr>
 <tr><th>render time</th><td>matte {ta:.2} s, {reference} {tb:.2} s</td></tr>
-</table></div>"#,
-            name = esc(&r.name),
-            reference = esc(&r.reference),
+</table>{extra}</div>"#,
+            power = power_html(r.power.as_ref()),
+            extra = scales_html(r) + &crops_html(r),
+            name = escape(&r.name),
+            reference = escape(&r.reference),
             cls = if c.passed() { "pass" } else { "fail" },
             verdict = if c.passed() { "PASS" } else { "FAIL" },
             mp = p(&f.matte_png),
@@ -160,6 +283,91 @@ the image mean per channel (Bonferroni over channels). A scene passes when no pi
         );
     }
     h.push_str("</body></html>\n");
+    h
+}
+
+fn power_html(p: Option<&Calibration>) -> String {
+    let Some(p) = p else {
+        return "Power not calibrated (run with <code>--power</code> to measure what this budget detects).".into();
+    };
+    let d = |x: Option<f64>| x.map(|d| format!("{:.2} %", d * 100.0)).unwrap_or_else(|| "more than 30 %".into());
+    // Injection measures power on top of the existing difference: meaningless when that
+    // difference alone is already rejected in most replicates.
+    let note = if p.unchanged.fraction() > 0.5 {
+        " (The unchanged comparison already fails in most replicates, so these numbers say nothing about power.)"
+    } else {
+        ""
+    };
+    format!(
+        "This budget detects, with 80 % power (measured by injection over {} replicate pairs): a uniform relative change \
+         of <b>{}</b>, or a change of <b>{}</b> confined to the 16×16 patch at ({}, {}). Identical inputs rejected in \
+         {}/{} matte and {}/{} reference replicate pairs; the unchanged comparison in {}/{} replicates.{}",
+        p.replicates,
+        d(p.uniform.detected),
+        d(p.patch.detected),
+        p.patch_place.x0,
+        p.patch_place.y0,
+        p.identical_matte.rejected,
+        p.identical_matte.pairs,
+        p.identical_reference.rejected,
+        p.identical_reference.pairs,
+        p.unchanged.rejected,
+        p.unchanged.pairs,
+        note
+    )
+}
+
+fn scales_html(r: &SceneResult) -> String {
+    let mut h = String::from(
+        "<table><tr><th>scale</th><th>blocks</th><th>level per test</th><th>rejected</th><th>smallest p</th></tr>",
+    );
+    for s in &r.comparison.scales {
+        let _ = write!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{:.2e}</td><td class=\"{}\">{}</td><td>{:.2e}</td></tr>",
+            s.scale.label(),
+            s.blocks,
+            s.alpha_test,
+            if s.rejected > 0 { "fail" } else { "pass" },
+            s.rejected,
+            s.min_p
+        );
+    }
+    h + "</table>"
+}
+
+fn crops_html(r: &SceneResult) -> String {
+    if r.files.crops.is_empty() {
+        return String::new();
+    }
+    let mut h = String::from("<h3>Where it differs (rejected blocks, most significant first)</h3>");
+    for (i, c) in r.files.crops.iter().enumerate() {
+        let q = &c.rejection;
+        let p = |p: &PathBuf| escape(&p.display().to_string());
+        let _ = write!(
+            h,
+            r#"<p>{n}. {scale} at x {x0}–{x1}, y {y0}–{y1}: p = {pv:.2e}, relative difference {rel:+.2} % (crops show x {sx0}–{sx1}, y {sy0}–{sy1})</p>
+<div class="imgs"><figure><img src="{m}"><figcaption>matte</figcaption></figure><figure><img src="{rf}"><figcaption>{reference}</figcaption></figure>
+<figure><img src="{d}"><figcaption>(matte − ref) / ref, ±{range:.1} %</figcaption></figure></div>"#,
+            n = i + 1,
+            scale = q.scale.label(),
+            x0 = q.place.x0,
+            x1 = q.place.x1 - 1,
+            y0 = q.place.y0,
+            y1 = q.place.y1 - 1,
+            pv = q.p,
+            rel = q.rel_diff * 100.0,
+            sx0 = c.shown.x0,
+            sx1 = c.shown.x1 - 1,
+            sy0 = c.shown.y0,
+            sy1 = c.shown.y1 - 1,
+            m = p(&c.matte_png),
+            rf = p(&c.reference_png),
+            d = p(&c.difference_png),
+            reference = escape(&r.reference),
+            range = r.files.difference_range * 100.0,
+        );
+    }
     h
 }
 

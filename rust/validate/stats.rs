@@ -5,8 +5,10 @@
 //! (`α_pixel = 1 − (1−α)^(1/N)`), as Mitsuba's own render tests do
 //! (`docs/validation.md#multiple-testing`). A second, global test compares the image mean per
 //! channel using the K per-pass image means, which is immune to the filter's correlation
-//! between neighbouring pixels and has power against small uniform shifts.
+//! between neighbouring pixels and has power against small uniform shifts. Both are scales
+//! of the multi-scale family ([`super::scales`]), which also tests blocks of pixels.
 
+use super::scales::{MultiScale, Rejection, Scale, ScaleResult};
 use crate::render::film::Image;
 use glam::{DVec3, Vec3};
 use statrs::distribution::{ContinuousCDF, StudentsT};
@@ -108,6 +110,8 @@ pub struct Comparison {
     /// Fraction of channel tests with p < α (uncorrected): ≈ α when the renderers agree.
     pub uncorrected_rejection_rate: f64,
     pub global: GlobalTest,
+    /// Every scale's outcome (pixels, blocks, whole image; `docs/validation.md#tests-across-scales`).
+    pub scales: Vec<ScaleResult>,
 }
 
 /// The image-mean comparison per channel.
@@ -119,13 +123,20 @@ pub struct GlobalTest {
     pub diff: DVec3,
     pub ci99: DVec3,
     pub p: DVec3,
-    /// Rejected at α/3 (Bonferroni over the channels).
+    /// Rejected by the whole-image scale of the multi-scale family.
     pub rejected: bool,
 }
 
 impl Comparison {
     pub fn passed(&self) -> bool {
-        self.rejected_pixels == 0 && !self.global.rejected
+        self.scales.iter().all(|s| s.rejected == 0)
+    }
+
+    /// All kept rejections over the scales, most significant first.
+    pub fn ranked_rejections(&self) -> Vec<&Rejection> {
+        let mut v: Vec<&Rejection> = self.scales.iter().flat_map(|s| &s.worst).collect();
+        v.sort_by(|x, y| x.p.total_cmp(&y.p));
+        v
     }
 
     pub fn rejected_fraction(&self) -> f64 {
@@ -157,8 +168,15 @@ pub fn sidak(alpha: f64, n: usize) -> f64 {
     1.0 - (1.0 - alpha).powf(1.0 / n.max(1) as f64)
 }
 
-/// Compares renderer `a` with renderer `b` at family level `alpha`.
-pub fn compare(a: &Moments, b: &Moments, alpha: f64) -> Result<Comparison, String> {
+/// Compares renderer `a` with renderer `b` (their pass images and moments) at family level
+/// `alpha` over all scales.
+pub fn compare(
+    a_images: &[Image],
+    a: &Moments,
+    b_images: &[Image],
+    b: &Moments,
+    alpha: f64,
+) -> Result<Comparison, String> {
     if a.width != b.width || a.height != b.height {
         return Err(format!("image sizes differ: {}x{} vs {}x{}", a.width, a.height, b.width, b.height));
     }
@@ -166,30 +184,30 @@ pub fn compare(a: &Moments, b: &Moments, alpha: f64) -> Result<Comparison, Strin
         return Err("each renderer needs at least 2 passes to estimate its variance".into());
     }
     let n = (a.width * a.height) as usize;
-    let alpha_pixel = sidak(alpha, 3 * n);
+    let scales = MultiScale::new(a.width, a.height, alpha).test(a_images, b_images);
+    let alpha_pixel = scales.iter().find(|s| s.scale == Scale::Pixel).map(|s| s.alpha_test).unwrap_or(0.0);
     let mut t = Vec::with_capacity(n);
     let mut p = Vec::with_capacity(n);
     let mut rel = Vec::with_capacity(n);
-    let (mut rejected, mut uncorrected) = (0usize, 0usize);
+    let mut uncorrected = 0usize;
     for i in 0..n {
         let (ma, mb, va, vb) = (a.mean(i), b.mean(i), a.var_of_mean(i), b.var_of_mean(i));
         let mut tv = Vec3::ZERO;
         let mut pv = Vec3::ZERO;
-        let mut rej = false;
         for c in 0..3 {
             let (tc, pc) = welch(ma[c], va[c], a.passes, mb[c], vb[c], b.passes);
             tv[c] = tc as f32;
             pv[c] = pc as f32;
-            rej |= pc < alpha_pixel;
             uncorrected += (pc < alpha) as usize;
         }
-        rejected += rej as usize;
         t.push(tv);
         p.push(pv);
         let floor = 1e-3;
         rel.push((((ma - mb) / mb.abs().max(DVec3::splat(floor))).element_sum() / 3.0) as f32);
     }
-    let global = global_test(&a.pass_means, &b.pass_means, alpha);
+    let mut global = global_test(&a.pass_means, &b.pass_means);
+    global.rejected = scales.iter().any(|s| s.scale == Scale::Image && s.rejected > 0);
+    let rejected = scales.iter().find(|s| s.scale == Scale::Pixel).map(|s| s.rejected).unwrap_or(0);
     Ok(Comparison {
         width: a.width,
         height: a.height,
@@ -201,6 +219,7 @@ pub fn compare(a: &Moments, b: &Moments, alpha: f64) -> Result<Comparison, Strin
         rejected_pixels: rejected,
         uncorrected_rejection_rate: uncorrected as f64 / (3 * n) as f64,
         global,
+        scales,
     })
 }
 
@@ -211,7 +230,7 @@ fn mean_var(xs: &[DVec3]) -> (DVec3, DVec3) {
     (m, v)
 }
 
-fn global_test(a: &[DVec3], b: &[DVec3], alpha: f64) -> GlobalTest {
+fn global_test(a: &[DVec3], b: &[DVec3]) -> GlobalTest {
     let (ma, va) = mean_var(a);
     let (mb, vb) = mean_var(b);
     let (ka, kb) = (a.len() as u32, b.len() as u32);
@@ -226,7 +245,7 @@ fn global_test(a: &[DVec3], b: &[DVec3], alpha: f64) -> GlobalTest {
         let q = StudentsT::new(0.0, 1.0, df).expect("t").inverse_cdf(0.995);
         ci[c] = q * se2.sqrt();
     }
-    GlobalTest { mean_a: ma, mean_b: mb, diff: ma - mb, ci99: ci, p, rejected: p.min_element() < alpha / 3.0 }
+    GlobalTest { mean_a: ma, mean_b: mb, diff: ma - mb, ci99: ci, p, rejected: false }
 }
 
 #[cfg(test)]

@@ -41,15 +41,27 @@ def test_two_percent_reflectance_change_fails(tmp_path):
     assert proc.returncode != 0
     assert "FAILED" in proc.stderr and "sphere_lambert.xml" in proc.stderr
     s = summary["scenes"][0]
-    assert not s["passed"] and s["global"]["rejected"]
+    assert not s["passed"]
+    # Rejected at the scales of a uniform change (the image, large blocks), not per pixel.
+    rejected = {x["scale"] for x in s["scales"] if x["rejected"]}
+    assert rejected and rejected <= {"image", "block16", "block4"}, rejected
     assert all(d < 0 for d in s["global"]["difference"]), "matte is the darker one"
 
 
 def test_one_pixel_camera_shift_fails(tmp_path):
     # principal_point_offset_x is a fraction of the film width: 1/RES shifts the image 1 pixel.
-    proc, summary, _ = validate(tmp_path, SPHERE, "--spp", "512", "--matte-define", f"ppx={1 / RES}")
+    proc, summary, out = validate(tmp_path, SPHERE, "--spp", "512", "--matte-define", f"ppx={1 / RES}")
     assert proc.returncode != 0
-    assert summary["scenes"][0]["rejected_pixels"] > 0
+    s = summary["scenes"][0]
+    assert s["rejected_pixels"] > 0
+    # Each rejection names its scale and place; the report ranks them with crops.
+    worst = [w for x in s["scales"] for w in x["worst"]]
+    assert worst and all({"scale", "place", "p"} <= set(w) for w in worst)
+    html = (out / "report.html").read_text()
+    assert "Where it differs" in html
+    for ref in re.findall(r'src="([^"]*rejected_\d+_\w+\.png)"', html):
+        assert (out / ref).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert len(re.findall(r'rejected_\d+_difference\.png', html)) >= 1
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
@@ -96,3 +108,26 @@ def test_quiet_output_one_line_per_scene_and_json_on_request(tmp_path):
     assert json.loads((out / "summary.json").read_text())["passed"]
     proc = subprocess.run(cmd + ["--json"], capture_output=True, text=True)
     assert json.loads(proc.stdout)["passed"]
+
+
+def test_power_calibration_states_what_the_budget_detects(tmp_path):
+    # --power at 16²: 6 replicates per side; the report states the 80 %-power changes and the
+    # rejection rate on identical inputs, and the verdict is that of replicate 0 (the same
+    # seeds as a run without --power).
+    out = tmp_path / "out"
+    base = [MATTE, "validate", SPHERE, "-q", "-D", "res=16", "--passes", "8", "--spp", "64"]
+    proc = subprocess.run(base + ["-o", str(out), "--power", "--replicates", "6"], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    s = json.loads((out / "summary.json").read_text())["scenes"][0]
+    p = s["power"]
+    assert p["replicates"] == 6 and p["identical_matte"]["pairs"] == 3 and p["identical_reference"]["pairs"] == 3
+    for kind in ("uniform", "patch"):
+        d = p[kind]["detected_80"]
+        assert d is None or 0 < d <= 0.3
+        assert all(0 <= q <= 1 for _, q in p[kind]["curve"])
+    assert "80 % power" in (out / "report.html").read_text()
+    plain = tmp_path / "plain"
+    subprocess.run(base + ["-o", str(plain)], capture_output=True, text=True)
+    t = json.loads((plain / "summary.json").read_text())["scenes"][0]
+    assert t["global"]["mean_matte"] == s["global"]["mean_matte"]
+    assert t["global"]["mean_reference"] == s["global"]["mean_reference"]
