@@ -167,6 +167,67 @@ fn checkerboard_texture() {
     assert_err_at(load(&textured), Path::new(FILE), 4, "\"color0\" must be a colour");
 }
 
+/// `src/textures/checkerboard.cpp`, `eval_1` (scalar parameters: roughness, opacity, …): the
+/// opposite test of `eval`, color0 where frac(u') and frac(v') are on different sides of 1/2;
+/// each colour's `eval_1` is its channel mean (`src/spectra/srgb.cpp`), and `mean()` is the
+/// average of both. (Mitsuba 3.9.1 gives 0.3 at uv (0.25, 0.25) and 0.4 at (0.75, 0.25) for
+/// color0 = (0.9, 0.1, 0.2), color1 = 0.3.)
+#[test]
+fn checkerboard_eval_1_swaps_the_colours() {
+    let xml = scene(&format!(
+        "{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"mask\"><texture type=\"checkerboard\" name=\"opacity\"><rgb name=\"color0\" value=\"0.9, 0.1, 0.2\"/><float name=\"color1\" value=\"0.3\"/></texture><bsdf type=\"diffuse\"/></bsdf></shape>"
+    ));
+    let s = load(&xml).unwrap();
+    let si = s.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+    let Bsdf::Mask(m) = s.scene.bsdf(&si) else { panic!("expected a mask") };
+    let c0_mean = (0.9 + 0.1 + 0.2) / 3.0;
+    for (uv, eval, eval_1) in [
+        (Vec2::new(0.25, 0.25), Vec3::new(0.9, 0.1, 0.2), 0.3),
+        (Vec2::new(0.75, 0.25), Vec3::splat(0.3), c0_mean),
+        (Vec2::new(0.75, 0.75), Vec3::new(0.9, 0.1, 0.2), 0.3),
+        (Vec2::new(1.25, 0.75), Vec3::splat(0.3), c0_mean),
+    ] {
+        assert!((m.opacity.eval(uv) - eval).length() < 1e-6, "eval at {uv}");
+        assert!((m.opacity.eval_1(uv) - eval_1).abs() < 1e-6, "eval_1 at {uv}: {}", m.opacity.eval_1(uv));
+    }
+    assert!((m.opacity.mean() - 0.5 * (c0_mean + 0.3)).abs() < 1e-6);
+}
+
+/// `src/bsdfs/mask.cpp`: `opacity` defaults to 0.5 (a float or a texture), exactly one nested
+/// BSDF; a `twosided` around a mask is an error (its null component is a transmission,
+/// `src/bsdfs/twosided.cpp`); unknown properties are errors.
+#[test]
+fn mask_defaults_and_errors() {
+    let xml = |bsdf: &str| scene(&format!("{SENSOR}\n<shape type=\"rectangle\">\n{bsdf}\n</shape>"));
+    let s = load(&xml(r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#)).unwrap();
+    let si = s.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+    let Bsdf::Mask(m) = s.scene.bsdf(&si) else { panic!("expected a mask") };
+    assert_eq!(m.opacity(si.uv), 0.5);
+    assert!(matches!(*m.nested, Bsdf::Diffuse { .. }));
+    let clipped = load(&xml(r#"<bsdf type="mask"><float name="opacity" value="0.25"/><bsdf type="diffuse"/></bsdf>"#));
+    let Bsdf::Mask(m) = clipped.as_ref().unwrap().scene.bsdf(&si) else { panic!() };
+    assert_eq!(m.opacity(si.uv), 0.25);
+    assert_err_at(load(&xml("<bsdf type=\"mask\"/>")), Path::new(FILE), 4, "found 0");
+    assert_err_at(
+        load(&xml("<bsdf type=\"mask\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf>")),
+        Path::new(FILE),
+        4,
+        "found 2",
+    );
+    assert_err_at(
+        load(&xml("<bsdf type=\"twosided\"><bsdf type=\"mask\"><bsdf type=\"diffuse\"/></bsdf></bsdf>")),
+        Path::new(FILE),
+        4,
+        "allow_transmission",
+    );
+    assert_err_at(
+        load(&xml("<bsdf type=\"mask\"><float name=\"opacty\" value=\"0.5\"/><bsdf type=\"diffuse\"/></bsdf>")),
+        Path::new(FILE),
+        4,
+        "opacty",
+    );
+}
+
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
 fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
     let mut img = matte::render::film::Image::new(w, h);

@@ -1,5 +1,5 @@
 //! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`,
-//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, `principledthin`, and the matte
+//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `mask`, `principled`, `principledthin`, and the matte
 //! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
@@ -11,6 +11,7 @@ mod conductor_ior_data;
 pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
+pub mod mask;
 pub mod matte;
 pub mod microfacet;
 pub mod microfacet_albedo;
@@ -33,6 +34,7 @@ pub use conductor::Conductor;
 pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
 pub use fresnel::fresnel_conductor;
+pub use mask::Mask;
 pub use microfacet::MicrofacetDistribution;
 pub use normal_map::NormalMap;
 pub use plastic::Plastic;
@@ -73,6 +75,8 @@ pub enum Bsdf {
     RoughPlastic(Box<RoughPlastic>),
     /// Mitsuba's `normalmap` wrapper around a nested BSDF.
     NormalMap(NormalMap),
+    /// Mitsuba's `mask`: the nested BSDF with probability `opacity`, else pass-through.
+    Mask(Mask),
     Principled(Box<Principled>),
     PrincipledThin(Box<PrincipledThin>),
     /// `roughconductor`/`roughdielectric` whose roughness is a texture.
@@ -99,6 +103,7 @@ impl Bsdf {
             Bsdf::Plastic(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::RoughPlastic(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::NormalMap(n) => n.eval_pdf(uv, wi, wo),
+            Bsdf::Mask(m) => m.eval_pdf(uv, wi, wo),
             Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::PrincipledThin(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::TexturedRoughness(t) => t.eval_pdf(uv, wi, wo),
@@ -128,6 +133,7 @@ impl Bsdf {
             Bsdf::Plastic(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::RoughPlastic(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::NormalMap(n) => n.sample(uv, wi, u_lobe, u),
+            Bsdf::Mask(m) => m.sample(uv, wi, u_lobe, u),
             Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::PrincipledThin(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::TexturedRoughness(t) => t.sample(uv, wi, u_lobe, u),
@@ -150,6 +156,7 @@ impl Bsdf {
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),
+            Bsdf::Mask(m) => m.nested.has_smooth(),
         }
     }
 }

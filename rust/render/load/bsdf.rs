@@ -1,5 +1,5 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
-//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`,
+//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `mask`, `principled`,
 //! `principledthin` and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
 //! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
 //! plugin uses).
@@ -8,8 +8,8 @@ use super::bsdf_params::{MAX_MAGNITUDE, constant, ior, microfacet, optional_cons
 use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
-    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic, Texture,
-    TexturedRoughness, ThinDielectric, conductor_material,
+    Bsdf, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic,
+    Texture, TexturedRoughness, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
@@ -87,7 +87,9 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                     Bsdf::Dielectric(_)
                     | Bsdf::RoughDielectric(_)
                     | Bsdf::ThinDielectric(_)
-                    | Bsdf::PrincipledThin(_) => true,
+                    | Bsdf::PrincipledThin(_)
+                    // mask's null component is a transmission (`BSDFFlags::Null`).
+                    | Bsdf::Mask(_) => true,
                     Bsdf::Principled(p) => p.spec_trans.is_some(),
                     Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
                     _ => false,
@@ -167,6 +169,14 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 use_shadowing_function,
             })
         }
+        "mask" => {
+            let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
+            let [inner] = nested.as_slice() else {
+                return Err(err(obj, format!("needs exactly one nested BSDF, found {}", nested.len())));
+            };
+            let opacity = texture::get(b, obj, "opacity", ColorUse::Bounded, Vec3::splat(0.5))?;
+            Bsdf::Mask(Mask { opacity, nested: Box::new(build(b, inner)?) })
+        }
         "principled" => Bsdf::Principled(Box::new(bsdf_principled::principled(b, obj)?)),
         "principledthin" => Bsdf::PrincipledThin(Box::new(bsdf_principled::principled_thin(b, obj)?)),
         "plastic" => {
@@ -192,7 +202,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 obj,
                 format!(
                     "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
-                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, principledthin, {})",
+                     conductor, roughconductor, plastic, roughplastic, normalmap, mask, principled, principledthin, {})",
                     BSDF_TYPES.join(", ")
                 ),
             ));

@@ -3,7 +3,7 @@
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
-use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
+use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, Checkerboard, WrapMode};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::{Affine2, Mat2, Vec2, Vec3};
@@ -37,11 +37,9 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     }
 }
 
-/// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): with uv' = to_uv·uv, `color0`
-/// where the fractional parts of u' and v' are both above or both at most ½, else `color1`
-/// (defaults 0.4 and 0.2). That is a 2×2 texture [color0 color1; color1 color0] with
-/// nearest lookup and repeat wrapping (uv' = (0.5, ·) exactly, a set of measure zero, falls
-/// on the other side), so it is built as one. Textured colours are not supported.
+/// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): `color0` and `color1` (colours,
+/// defaults 0.4 and 0.2) and `to_uv`; the lookup is [`Checkerboard`]'s. Textured colours are
+/// not supported.
 fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let colour = |name: &str, default: f32| -> Result<Vec3, SceneError> {
         match get(b, obj, name, ColorUse::Bounded, Vec3::splat(default))? {
@@ -49,11 +47,10 @@ fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
             _ => Err(err(obj, format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)"))),
         }
     };
-    let (c0, c1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
-    let opts = BitmapOptions { filter: BitmapFilter::Nearest, wrap: WrapMode::Repeat, raw: true, to_uv: to_uv(obj)? };
+    let (color0, color1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
+    let to_uv = to_uv(obj)?;
     obj.check_all_used()?;
-    let tex = BitmapTexture::from_linear(2, 2, vec![c0, c1, c1, c0], &opts).map_err(|e| err(obj, e))?;
-    Ok(Texture::Bitmap(Arc::new(tex)))
+    Ok(Texture::Checkerboard(Checkerboard { color0, color1, to_uv }))
 }
 
 /// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three
