@@ -28,6 +28,7 @@ fn square(s: f32, h: f32) -> Triangles {
         normals: vec![],
         uvs: vec![],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
+        attributes: vec![],
     };
     Triangles::new(mesh, false)
 }
@@ -278,7 +279,7 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
             }
         }
     }
-    let mesh = TriangleMesh { positions: pos, normals: vec![], uvs: vec![], triangles: tris };
+    let mesh = TriangleMesh { positions: pos, normals: vec![], uvs: vec![], triangles: tris, attributes: vec![] };
     let scene = Scene::new(
         vec![shape(Geometry::Triangles(Triangles::new(mesh, false)), 0, Some(0))],
         vec![diffuse(0.5)],

@@ -15,6 +15,7 @@
 use super::Bsdf;
 use super::sample::BsdfSample;
 use super::texture::Texture;
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]
@@ -27,8 +28,8 @@ impl Mask {
     /// α at `uv`, clipped to [0, 1] (NaN becomes 0: a texel that is not a number lets
     /// everything through rather than poisoning the path).
     #[inline]
-    pub fn opacity(&self, uv: Vec2) -> f32 {
-        let a = self.opacity.eval_1(uv);
+    pub fn opacity(&self, si: &SurfaceInteraction) -> f32 {
+        let a = self.opacity.eval_1(si);
         if a >= 1.0 {
             1.0
         } else if a > 0.0 {
@@ -39,17 +40,17 @@ impl Mask {
     }
 
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        let a = self.opacity(uv);
-        let (f, pdf) = self.nested.eval_pdf(uv, wi, wo);
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        let a = self.opacity(si);
+        let (f, pdf) = self.nested.eval_pdf(si, wi, wo);
         (f * a, pdf * a)
     }
 
     #[inline]
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        let a = self.opacity(uv);
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let a = self.opacity(si);
         if u_lobe < a {
-            let mut s = self.nested.sample(uv, wi, (u_lobe / a).min(ONE_MINUS_EPSILON), u)?;
+            let mut s = self.nested.sample(si, wi, (u_lobe / a).min(ONE_MINUS_EPSILON), u)?;
             s.pdf *= a;
             Some(s)
         } else {

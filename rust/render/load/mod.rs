@@ -62,6 +62,22 @@ pub(crate) struct Builder {
     pub shapes: Vec<crate::render::shape::Shape>,
     pub emitters: Vec<Emitter>,
     pub sampling_weights: Vec<f32>,
+    /// The shape whose BSDF is being built (`None` at the top level).
+    pub shape: Option<ShapeContext>,
+    /// Set while building when something read [`Self::shape`] (a `mesh_attribute` texture, a
+    /// `bumpmap`): that BSDF is then built again for every shape instead of being shared.
+    pub shape_dependent: std::cell::Cell<bool>,
+    /// BSDF objects that depend on their shape (see [`Self::shape_dependent`]).
+    pub shape_dependent_bsdfs: std::collections::HashSet<*const SceneObject>,
+}
+
+/// What a BSDF may need to know of the shape it is built for.
+pub(crate) struct ShapeContext {
+    /// A triangle mesh (`obj`, `ply`, `rectangle`, `cube`), which has ∂p/∂u, ∂p/∂v and
+    /// attributes in matte; the analytic shapes have neither.
+    pub is_mesh: bool,
+    pub attributes: Vec<std::sync::Arc<crate::scene::mesh::MeshAttribute>>,
+    pub triangles: std::sync::Arc<Vec<[u32; 3]>>,
 }
 
 impl Builder {
@@ -86,6 +102,9 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         shapes: Vec::new(),
         emitters: Vec::new(),
         sampling_weights: Vec::new(),
+        shape: None,
+        shape_dependent: std::cell::Cell::new(false),
+        shape_dependent_bsdfs: std::collections::HashSet::new(),
     };
     let mut integrator = None;
     let mut sensor = None;

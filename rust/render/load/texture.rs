@@ -3,7 +3,7 @@
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
-use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, Checkerboard, WrapMode};
+use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::{Affine2, Mat2, Vec2, Vec3};
@@ -30,9 +30,12 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
         "bitmap" => build_bitmap(b, obj),
         "checkerboard" => checkerboard(b, obj),
         "rawconstant" => rawconstant(obj),
+        "mesh_attribute" => mesh_attribute(b, obj),
         other => Err(err(
             obj,
-            format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant)"),
+            format!(
+                "unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant, mesh_attribute)"
+            ),
         )),
     }
 }
@@ -51,6 +54,51 @@ fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let to_uv = to_uv(obj)?;
     obj.check_all_used()?;
     Ok(Texture::Checkerboard(Checkerboard { color0, color1, to_uv }))
+}
+
+/// Mitsuba's `mesh_attribute` (`src/textures/mesh_attribute.cpp`): `name` (must contain
+/// `vertex_` or `face_`) and `scale` (default 1), bound to the attribute of that name of the
+/// shape being built. A definition outside any shape (a top-level `<texture id>`) is only
+/// checked here; every shape that uses it binds its own copy.
+fn mesh_attribute(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
+    let name = obj.properties.string("name")?.ok_or_else(|| err(obj, "missing property \"name\""))?;
+    if !name.contains("vertex_") && !name.contains("face_") {
+        return Err(values::prop_err(
+            obj,
+            "name",
+            format!("must start with either \"vertex_\" or \"face_\" but was \"{name}\""),
+        ));
+    }
+    let scale = values::float(obj, "scale", 1.0)? as f32;
+    obj.check_all_used()?;
+    b.shape_dependent.set(true);
+    let Some(shape) = &b.shape else { return Ok(Texture::Constant(Vec3::ZERO)) };
+    if !shape.is_mesh {
+        return Err(err(obj, "a mesh attribute needs a mesh shape (obj, ply, rectangle, cube)"));
+    }
+    let Some(attribute) = shape.attributes.iter().find(|a| a.name == name) else {
+        let names: Vec<&str> = shape.attributes.iter().map(|a| a.name.as_str()).collect();
+        return Err(values::prop_err(
+            obj,
+            "name",
+            format!(
+                "the shape has no attribute \"{name}\" (it has: {})",
+                if names.is_empty() { "none".to_string() } else { names.join(", ") }
+            ),
+        ));
+    };
+    if attribute.dim != 1 && attribute.dim != 3 {
+        return Err(values::prop_err(
+            obj,
+            "name",
+            format!("attribute \"{name}\" has {} channels; only 1 or 3 can be evaluated", attribute.dim),
+        ));
+    }
+    Ok(Texture::MeshAttribute(BoundAttribute {
+        attribute: attribute.clone(),
+        triangles: shape.triangles.clone(),
+        scale,
+    }))
 }
 
 /// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three
