@@ -1,5 +1,5 @@
 //! `plastic`, `roughplastic`, `roughdielectric`, `thindielectric`, `normalmap`, `principled`,
-//! `principledthin` and named conductor materials against the real Mitsuba 3.9.1: each configuration is one XML `<bsdf>` loaded by matte's scene loader and
+//! `principledthin`, `mask`, `blendbsdf` and named conductor materials against the real Mitsuba 3.9.1: each configuration is one XML `<bsdf>` loaded by matte's scene loader and
 //! by Mitsuba (`mitsuba_bsdfs/generate_reference.py` wrote the expected eval/pdf/sample
 //! values once; see `mitsuba_bsdfs/reference.rs`). Plus the sampling checks that need no
 //! oracle: sample weight = eval/pdf, Mitsuba's χ² test of the sampled directions against the

@@ -202,11 +202,11 @@ fn mask_defaults_and_errors() {
     let s = load(&xml(r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#)).unwrap();
     let si = s.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
     let Bsdf::Mask(m) = s.scene.bsdf(&si) else { panic!("expected a mask") };
-    assert_eq!(m.opacity(si.uv), 0.5);
+    assert_eq!(m.opacity(&si), 0.5);
     assert!(matches!(*m.nested, Bsdf::Diffuse { .. }));
     let clipped = load(&xml(r#"<bsdf type="mask"><float name="opacity" value="0.25"/><bsdf type="diffuse"/></bsdf>"#));
     let Bsdf::Mask(m) = clipped.as_ref().unwrap().scene.bsdf(&si) else { panic!() };
-    assert_eq!(m.opacity(si.uv), 0.25);
+    assert_eq!(m.opacity(&si), 0.25);
     assert_err_at(load(&xml("<bsdf type=\"mask\"/>")), Path::new(FILE), 4, "found 0");
     assert_err_at(
         load(&xml("<bsdf type=\"mask\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf>")),
@@ -226,6 +226,54 @@ fn mask_defaults_and_errors() {
         4,
         "opacty",
     );
+}
+
+/// `src/bsdfs/blendbsdf.cpp`: exactly two nested BSDFs and a `weight` (no default);
+/// `src/bsdfs/bumpmap.cpp`: one nested BSDF and one texture child of any name, `scale` 1,
+/// `flip_invalid_normals` and `use_shadowing_function` true. matte needs a bitmap height map
+/// (Mitsuba's other textures have no gradient) and a mesh (its analytic shapes have no
+/// ∂p/∂u, ∂p/∂v).
+#[test]
+fn blendbsdf_and_bumpmap_defaults_and_errors() {
+    let xml = |shape: &str, bsdf: &str| scene(&format!("{SENSOR}\n<shape type=\"{shape}\">\n{bsdf}\n</shape>"));
+    let blend = load(&xml(
+        "rectangle",
+        r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#,
+    ))
+    .unwrap();
+    let si = blend.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+    let Bsdf::Blend(b) = blend.scene.bsdf(&si) else { panic!("expected a blend") };
+    assert!((b.weight(&si) - 0.3).abs() < 1e-7);
+    assert!(matches!((&*b.first, &*b.second), (Bsdf::Diffuse { .. }, Bsdf::Conductor(_))));
+    let no_weight =
+        xml("rectangle", "<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf>");
+    assert_err_at(load(&no_weight), Path::new(FILE), 4, "weight");
+    let one = xml(
+        "rectangle",
+        "<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/><bsdf type=\"diffuse\"/></bsdf>",
+    );
+    assert_err_at(load(&one), Path::new(FILE), 4, "found 1");
+
+    let dir = temp_dir("bumpmap");
+    let height = dir.join("h.exr");
+    write_exr(&height, 4, 4, |i, j| Vec3::splat((i + 2 * j) as f32 / 10.0));
+    let bump =
+        |shape: &str, tex: &str| xml(shape, &format!("<bsdf type=\"bumpmap\">{tex}<bsdf type=\"diffuse\"/></bsdf>",));
+    let bitmap = format!(
+        "<texture type=\"bitmap\" name=\"any_name\"><string name=\"filename\" value=\"{}\"/></texture>",
+        height.display()
+    );
+    let s = load(&bump("rectangle", &bitmap)).unwrap();
+    let Bsdf::BumpMap(m) = s.scene.bsdf(&si) else { panic!("expected a bumpmap") };
+    assert_eq!((m.scale, m.flip_invalid_normals, m.use_shadowing_function), (1.0, true, true));
+    assert_err_at(load(&bump("sphere", &bitmap)), Path::new(FILE), 4, "meshes only");
+    assert_err_at(
+        load(&bump("rectangle", "<texture type=\"checkerboard\" name=\"h\"/>")),
+        Path::new(FILE),
+        4,
+        "bitmap height texture",
+    );
+    assert_err_at(load(&bump("rectangle", "")), Path::new(FILE), 4, "found 0");
 }
 
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
