@@ -113,6 +113,14 @@ impl Triangles {
     /// `1/A` turned into solid angle at `ref_p` with the shading normal (docs/renderer-semantics.md §8).
     #[inline]
     pub fn sample_direction(&self, ref_p: Vec3, u: Vec2) -> Option<DirectionSample> {
+        let (p, sh_n, uv) = self.sample_position(u)?;
+        area_sampling::direction_sample(ref_p, p, sh_n, uv, self.area)
+    }
+
+    /// A uniform point on the surface (triangle ∝ area, then uniform inside it): position,
+    /// shading normal (after `flip_normals`) and uv; the area density is `1/area`.
+    #[inline]
+    pub fn sample_position(&self, u: Vec2) -> Option<(Vec3, Vec3, Vec2)> {
         if self.area <= 0.0 {
             return None;
         }
@@ -123,7 +131,7 @@ impl Triangles {
         let ux = if width > 0.0 { ((target - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
         let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
         let (p, _, sh_n, uv) = self.surface_point(tri as u32, b);
-        area_sampling::direction_sample(ref_p, p, sh_n, uv, self.area)
+        Some((p, sh_n, uv))
     }
 
     /// Solid-angle density of [`Self::sample_direction`] for the hit `si` seen from `ref_p`.
