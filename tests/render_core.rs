@@ -283,7 +283,7 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
     let scene = Scene::new(
         vec![shape(Geometry::Triangles(Triangles::new(mesh, false)), 0, Some(0))],
         vec![diffuse(0.5)],
-        vec![Emitter::Area { shape: 0, radiance: Vec3::ONE }],
+        vec![Emitter::Area { shape: 0, radiance: Texture::Constant(Vec3::ONE) }],
         vec![1.0],
     );
     let ray = Ray::new(Vec3::new(0.1, 0.2, 0.0), Vec3::new(0.3, -0.2, 1.0).normalize(), f32::INFINITY);

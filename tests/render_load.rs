@@ -790,8 +790,9 @@ fn area_emitter_colours() {
     ];
     for (prop, want) in cases {
         let s = ok(&with_sensor(&format!("<shape type=\"rectangle\"><emitter type=\"area\">{prop}</emitter></shape>")));
-        let Emitter::Area { shape, radiance } = s.scene.emitters[0] else { panic!("not area") };
-        assert_eq!(shape, 0);
+        let Emitter::Area { shape, radiance } = &s.scene.emitters[0] else { panic!("not area") };
+        assert_eq!(*shape, 0);
+        let radiance = radiance.eval(Vec2::ZERO);
         assert!(close3(radiance, want, 1e-4), "{prop}: {radiance} vs {want}");
     }
 }

@@ -276,6 +276,34 @@ fn blendbsdf_and_bumpmap_defaults_and_errors() {
     assert_err_at(load(&bump("rectangle", "")), Path::new(FILE), 4, "found 0");
 }
 
+/// `src/emitters/area.cpp`: `radiance` may be a texture, looked up at the hit's uv (here a
+/// 2×2 EXR on a rectangle, uv = ((x+1)/2, (y+1)/2), nearest lookup); a mesh attribute as
+/// radiance is refused by matte.
+#[test]
+fn area_emitter_radiance_texture() {
+    let dir = temp_dir("area_texture");
+    let tex = dir.join("r.exr");
+    write_exr(&tex, 2, 2, |i, j| Vec3::new(1.0 + i as f32, 3.0 + j as f32, 0.5));
+    let xml = scene(&format!(
+        "{SENSOR}\n<shape type=\"rectangle\"><emitter type=\"area\"><texture type=\"bitmap\" name=\"radiance\"><string name=\"filename\" value=\"{}\"/><string name=\"filter_type\" value=\"nearest\"/></texture></emitter></shape>",
+        tex.display()
+    ));
+    let s = load(&xml).unwrap();
+    for (x, y, want) in [
+        (-0.5, -0.5, Vec3::new(1.0, 3.0, 0.5)),
+        (0.5, -0.5, Vec3::new(2.0, 3.0, 0.5)),
+        (0.5, 0.5, Vec3::new(2.0, 4.0, 0.5)),
+    ] {
+        let si = s.scene.intersect(&Ray::new(Vec3::new(x, y, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+        let got = s.scene.emitters[0].eval_surface(&si);
+        assert!((got - want).abs().max_element() < 1e-6, "({x}, {y}): {got} vs {want}");
+    }
+    let attr = scene(&format!(
+        "{SENSOR}\n<shape type=\"rectangle\"><emitter type=\"area\">\n<texture type=\"mesh_attribute\" name=\"radiance\"><string name=\"name\" value=\"vertex_color\"/></texture></emitter></shape>"
+    ));
+    assert!(load(&attr).is_err());
+}
+
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
 fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
     let mut img = matte::render::film::Image::new(w, h);
