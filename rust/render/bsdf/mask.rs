@@ -25,7 +25,7 @@ pub struct Mask {
 }
 
 impl Mask {
-    /// α at `uv`, clipped to [0, 1] (NaN becomes 0: a texel that is not a number lets
+    /// α at the hit, clipped to [0, 1] (NaN becomes 0: a texel that is not a number lets
     /// everything through rather than poisoning the path).
     #[inline]
     pub fn opacity(&self, si: &SurfaceInteraction) -> f32 {

@@ -25,7 +25,7 @@ pub struct TexturedRoughness {
 }
 
 impl TexturedRoughness {
-    /// The lobe with the roughness at `uv`.
+    /// The lobe with the roughness at the hit.
     #[inline]
     fn at(&self, si: &SurfaceInteraction) -> RoughLobe {
         let (au, av) = (self.alpha_u.eval_1(si), self.alpha_v.eval_1(si));
