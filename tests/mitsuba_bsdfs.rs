@@ -151,7 +151,12 @@ fn sample_weight_is_eval_over_pdf() {
             }
         }
         let pure_delta = c.name.starts_with("thin") || c.name.starts_with("conductor_");
-        let has_delta = pure_delta || c.name.starts_with("plastic") || c.name.starts_with("normalmap_plastic");
+        // A mask's pass-through and a plastic's specular lobe (also inside a blend) are Dirac.
+        let has_delta = pure_delta
+            || c.name.starts_with("plastic")
+            || c.name.starts_with("normalmap_plastic")
+            || c.name.starts_with("mask_")
+            || c.name == "blend_diffuse_plastic";
         assert_eq!(delta > 0, has_delta, "{}: {delta} Dirac samples", c.name);
         assert_eq!(smooth > 0, !pure_delta, "{}: {smooth} smooth samples", c.name);
     }
