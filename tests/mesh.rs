@@ -338,6 +338,7 @@ fn expected_ply() -> TriangleMesh {
         normals: PLY_VERTS.iter().map(|v| Vec3::new(v[3], v[4], v[5])).collect(),
         uvs: PLY_VERTS.iter().map(|v| Vec2::new(v[6], v[7])).collect(),
         triangles: vec![[0, 1, 2], [0, 2, 3], [3, 2, 4]],
+        attributes: vec![],
     }
 }
 

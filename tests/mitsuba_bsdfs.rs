@@ -1,5 +1,5 @@
 //! `plastic`, `roughplastic`, `roughdielectric`, `thindielectric`, `normalmap`, `principled`,
-//! `principledthin` and named conductor materials against the real Mitsuba 3.9.1: each configuration is one XML `<bsdf>` loaded by matte's scene loader and
+//! `principledthin`, `mask`, `blendbsdf` and named conductor materials against the real Mitsuba 3.9.1: each configuration is one XML `<bsdf>` loaded by matte's scene loader and
 //! by Mitsuba (`mitsuba_bsdfs/generate_reference.py` wrote the expected eval/pdf/sample
 //! values once; see `mitsuba_bsdfs/reference.rs`). Plus the sampling checks that need no
 //! oracle: sample weight = eval/pdf, Mitsuba's χ² test of the sampled directions against the
@@ -19,6 +19,7 @@ use glam::{Vec2, Vec3};
 use matte::brdf::{BsdfSample as HelperSample, DiffuseBrdf};
 use matte::render::bsdf::Bsdf;
 use matte::render::load::load_str;
+use matte::render::shape::SurfaceInteraction;
 use reference::CONFIGS;
 use std::cell::RefCell;
 use std::path::Path;
@@ -46,7 +47,7 @@ fn eval_and_pdf_match_mitsuba() {
         let (mut max_f, mut max_p) = (0.0f32, 0.0f32);
         for &(wi, wo, f_ref, p_ref) in c.eval {
             let (wi, wo, f_ref) = (Vec3::from(wi), Vec3::from(wo), Vec3::from(f_ref));
-            let (f, p) = bsdf.eval_pdf(Vec2::ZERO, wi, wo);
+            let (f, p) = bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, wo);
             let scale = f_ref.max_element();
             let ef = (0..3).map(|k| rel_err(f[k], f_ref[k], scale)).fold(0.0, f32::max);
             let ep = rel_err(p, p_ref, 0.0);
@@ -71,7 +72,7 @@ fn samples_match_mitsuba() {
         let mut max_err = 0.0f32;
         for &(wi, s1, s2, wo_ref, w_ref, p_ref) in c.sample {
             let (wi, wo_ref, w_ref) = (Vec3::from(wi), Vec3::from(wo_ref), Vec3::from(w_ref));
-            let Some(s) = bsdf.sample(Vec2::ZERO, wi, s1, Vec2::from(s2)) else {
+            let Some(s) = bsdf.sample(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, s1, Vec2::from(s2)) else {
                 assert!(w_ref == Vec3::ZERO, "{}: no sample for wi {wi}, Mitsuba weight {w_ref}", c.name);
                 continue;
             };
@@ -119,7 +120,10 @@ fn sample_weight_is_eval_over_pdf() {
             if !two_sided(c) {
                 wi.z = wi.z.abs();
             }
-            let Some(s) = bsdf.sample(Vec2::ZERO, wi, rng.next_f32(), rng.next_vec2()) else { continue };
+            let Some(s) = bsdf.sample(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, rng.next_f32(), rng.next_vec2())
+            else {
+                continue;
+            };
             assert!(s.weight.is_finite() && s.weight.min_element() >= 0.0 && s.pdf > 0.0, "{}: {s:?}", c.name);
             assert!((s.wo.length() - 1.0).abs() < 1e-4, "{}: {s:?}", c.name);
             if s.delta {
@@ -127,7 +131,7 @@ fn sample_weight_is_eval_over_pdf() {
                 continue;
             }
             smooth += 1;
-            let (f, p) = bsdf.eval_pdf(Vec2::ZERO, wi, s.wo);
+            let (f, p) = bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, s.wo);
             assert!((p - s.pdf).abs() <= 1e-3 * p.max(s.pdf), "{}: wi {wi} wo {}: pdf {} vs {p}", c.name, s.wo, s.pdf);
             // Mitsuba's roughdielectric without visible normals samples Walter's widened lobe
             // but weights the sample as if drawn from the unwidened D (its pdf is the widened
@@ -147,7 +151,12 @@ fn sample_weight_is_eval_over_pdf() {
             }
         }
         let pure_delta = c.name.starts_with("thin") || c.name.starts_with("conductor_");
-        let has_delta = pure_delta || c.name.starts_with("plastic") || c.name.starts_with("normalmap_plastic");
+        // A mask's pass-through and a plastic's specular lobe (also inside a blend) are Dirac.
+        let has_delta = pure_delta
+            || c.name.starts_with("plastic")
+            || c.name.starts_with("normalmap_plastic")
+            || c.name.starts_with("mask_")
+            || c.name == "blend_diffuse_plastic";
         assert_eq!(delta > 0, has_delta, "{}: {delta} Dirac samples", c.name);
         assert_eq!(smooth > 0, !pure_delta, "{}: {smooth} smooth samples", c.name);
     }
@@ -172,14 +181,14 @@ fn to_helper(l: Vec3) -> Vec3 {
 
 impl DiffuseBrdf for Adapter {
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, _r: [f32; N]) -> [f32; N] {
-        [self.bsdf.eval_pdf(Vec2::ZERO, to_shading(wi), to_shading(wo)).0.x; N]
+        [self.bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), to_shading(wi), to_shading(wo)).0.x; N]
     }
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        self.bsdf.eval_pdf(Vec2::ZERO, to_shading(wi), to_shading(wo)).1
+        self.bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), to_shading(wi), to_shading(wo)).1
     }
     fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, _r: [f32; N]) -> Option<HelperSample<N>> {
         let u_lobe = self.rng.borrow_mut().next_f32();
-        let s = self.bsdf.sample(Vec2::ZERO, to_shading(wi), u_lobe, u)?;
+        let s = self.bsdf.sample(&SurfaceInteraction::at_uv(Vec2::ZERO), to_shading(wi), u_lobe, u)?;
         if s.delta {
             return None;
         }
@@ -250,8 +259,11 @@ fn thin_dielectric_lobe_probabilities() {
         let r_pane = 2.0 * r / (1.0 + r);
         for side in [1.0f32, -1.0] {
             let wi = Vec3::new((1.0 - cos_i * cos_i).sqrt() as f32, 0.0, side * cos_i as f32);
-            let refl = bsdf.sample(Vec2::ZERO, wi, (r_pane * 0.999) as f32, Vec2::ZERO).unwrap();
-            let pass = bsdf.sample(Vec2::ZERO, wi, (r_pane * 1.001).min(0.9999) as f32, Vec2::ZERO).unwrap();
+            let refl =
+                bsdf.sample(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, (r_pane * 0.999) as f32, Vec2::ZERO).unwrap();
+            let pass = bsdf
+                .sample(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, (r_pane * 1.001).min(0.9999) as f32, Vec2::ZERO)
+                .unwrap();
             assert!((refl.pdf as f64 - r_pane).abs() < 1e-5, "cos {cos_i}: {} vs {r_pane}", refl.pdf);
             assert_eq!(refl.wo, Vec3::new(-wi.x, -wi.y, wi.z));
             assert_eq!(pass.wo, -wi);
@@ -396,7 +408,7 @@ fn odd_values_never_panic_and_render_finite() {
     assert!(accepted > TEMPLATES.len() * 3, "{accepted}");
 }
 
-/// `bumpmap` at the BSDF level (the renderer does not supply ∂p/∂u yet): a generated 5×4 height
+/// `bumpmap` at the BSDF level: a generated 5×4 height
 /// map, hits with explicit ∂p/∂u, ∂p/∂v, normals and shading frame, against Mitsuba 3.9.1
 /// (`generate_bumpmap_reference.py`).
 #[test]
@@ -429,7 +441,8 @@ fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
             n: Vec3::from(n),
             sh_frame: Frame { s: Vec3::from(s), t: Vec3::from(t), n: Vec3::from(sn) },
         };
-        let (f, p) = maps[k].eval_pdf_at(Vec2::from(uv), &g, Vec3::from(wi), Vec3::from(wo));
+        let (f, p) =
+            maps[k].eval_pdf_at(&SurfaceInteraction::at_uv(Vec2::from(uv)), &g, Vec3::from(wi), Vec3::from(wo));
         let f_ref = Vec3::from(f_ref);
         let ef = (0..3).map(|c| rel_err(f[c], f_ref[c], f_ref.max_element())).fold(0.0, f32::max);
         let ep = rel_err(p, p_ref, 0.0);

@@ -28,6 +28,7 @@ fn square(s: f32, h: f32) -> Triangles {
         normals: vec![],
         uvs: vec![],
         triangles: vec![[0, 1, 2], [0, 2, 3]],
+        attributes: vec![],
     };
     Triangles::new(mesh, false)
 }
@@ -278,11 +279,11 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
             }
         }
     }
-    let mesh = TriangleMesh { positions: pos, normals: vec![], uvs: vec![], triangles: tris };
+    let mesh = TriangleMesh { positions: pos, normals: vec![], uvs: vec![], triangles: tris, attributes: vec![] };
     let scene = Scene::new(
         vec![shape(Geometry::Triangles(Triangles::new(mesh, false)), 0, Some(0))],
         vec![diffuse(0.5)],
-        vec![Emitter::Area { shape: 0, radiance: Vec3::ONE }],
+        vec![Emitter::Area { shape: 0, radiance: Texture::Constant(Vec3::ONE) }],
         vec![1.0],
     );
     let ray = Ray::new(Vec3::new(0.1, 0.2, 0.0), Vec3::new(0.3, -0.2, 1.0).normalize(), f32::INFINITY);
@@ -295,4 +296,42 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
             se.x
         );
     }
+}
+
+/// Mitsuba's `mask` (`src/bsdfs/mask.cpp`, docs/renderer-semantics.md §10) over a diffuse
+/// ρ = 0.5 with opacity α = 0.3, as a plane in a constant environment of 1: the pixel is
+/// α·ρ + (1 − α) = 0.85 unbounded and with max_depth 2, but 0 with max_depth 1, because the
+/// pass-through counts as a path segment (`src/integrators/path.cpp`; Mitsuba 3.9.1 renders
+/// 0.8511, 0, 0.8511). Shadow rays do not see through a mask: a diffuse floor under a mask
+/// plane lit only by a point light above both gets nothing (Mitsuba: 0; a see-through
+/// shadow ray would give (1 − α)·ρ/π·I/d²).
+#[test]
+fn mask_passes_rays_through_as_a_bounce_but_blocks_shadow_rays() {
+    let mask = Bsdf::Mask(matte::render::bsdf::Mask {
+        opacity: Texture::Constant(Vec3::splat(0.3)),
+        nested: Box::new(diffuse(0.5)),
+    });
+    let env = Scene::new(
+        vec![shape(Geometry::Triangles(square(50.0, 0.0)), 0, None)],
+        vec![mask.clone()],
+        vec![Emitter::Constant { radiance: Vec3::ONE }],
+        vec![1.0],
+    );
+    let down = Ray::new(Vec3::new(0.1, 0.2, 5.0), Vec3::NEG_Z, f32::INFINITY);
+    for (depth, expected) in [(u32::MAX, 0.85f32), (2, 0.85), (1, 0.0)] {
+        let (mean, se) = estimate(&env, &path(depth), down, 40_000, 11);
+        assert!((mean.x - expected).abs() < 4.0 * se.x + 1e-5, "max_depth {depth}: {mean} ± {se}, expected {expected}");
+    }
+    let shadowed = Scene::new(
+        vec![
+            shape(Geometry::Triangles(square(50.0, 0.0)), 0, None),
+            shape(Geometry::Triangles(square(50.0, -1.0)), 1, None),
+        ],
+        vec![mask, diffuse(0.5)],
+        vec![Emitter::Point { position: Vec3::new(0.0, 0.0, 2.0), intensity: Vec3::splat(10.0) }],
+        vec![1.0],
+    );
+    let between = Ray::new(Vec3::new(0.0, 0.0, -0.5), Vec3::NEG_Z, f32::INFINITY);
+    let (mean, _) = estimate(&shadowed, &path(u32::MAX), between, 4_000, 12);
+    assert_eq!(mean, Vec3::ZERO, "the point light reached the floor through the mask");
 }

@@ -790,8 +790,9 @@ fn area_emitter_colours() {
     ];
     for (prop, want) in cases {
         let s = ok(&with_sensor(&format!("<shape type=\"rectangle\"><emitter type=\"area\">{prop}</emitter></shape>")));
-        let Emitter::Area { shape, radiance } = s.scene.emitters[0] else { panic!("not area") };
-        assert_eq!(shape, 0);
+        let Emitter::Area { shape, radiance } = &s.scene.emitters[0] else { panic!("not area") };
+        assert_eq!(*shape, 0);
+        let radiance = radiance.eval(Vec2::ZERO);
         assert!(close3(radiance, want, 1e-4), "{prop}: {radiance} vs {want}");
     }
 }
@@ -1167,7 +1168,7 @@ fn bitmap_reflectance_nested_and_referenced() {
 
 #[test]
 fn bsdf_errors() {
-    assert_body_err("<bsdf type=\"bumpmap\"/>", 1, "unsupported bsdf type \"bumpmap\"");
+    assert_body_err("<bsdf type=\"hair\"/>", 1, "unsupported bsdf type \"hair\"");
     assert_body_err(
         "<bsdf type=\"diffuse\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>",
         2,
@@ -1309,9 +1310,9 @@ fn texture_errors() {
     );
     // Unknown texture type, both nested and at the top level.
     assert_body_err(
-        "<bsdf type=\"diffuse\">\n<texture type=\"mesh_attribute\" name=\"reflectance\"/>\n</bsdf>",
+        "<bsdf type=\"diffuse\">\n<texture type=\"volume\" name=\"reflectance\"/>\n</bsdf>",
         2,
-        "unsupported texture type \"mesh_attribute\"",
+        "unsupported texture type \"volume\"",
     );
     assert_body_err("<texture type=\"volume\"/>", 1, "unsupported texture type");
     // Given twice: as a property and as a texture (the parser rejects the duplicate name).

@@ -167,6 +167,143 @@ fn checkerboard_texture() {
     assert_err_at(load(&textured), Path::new(FILE), 4, "\"color0\" must be a colour");
 }
 
+/// `src/textures/checkerboard.cpp`, `eval_1` (scalar parameters: roughness, opacity, …): the
+/// opposite test of `eval`, color0 where frac(u') and frac(v') are on different sides of 1/2;
+/// each colour's `eval_1` is its channel mean (`src/spectra/srgb.cpp`), and `mean()` is the
+/// average of both. (Mitsuba 3.9.1 gives 0.3 at uv (0.25, 0.25) and 0.4 at (0.75, 0.25) for
+/// color0 = (0.9, 0.1, 0.2), color1 = 0.3.)
+#[test]
+fn checkerboard_eval_1_swaps_the_colours() {
+    let xml = scene(&format!(
+        "{SENSOR}\n<shape type=\"rectangle\"><bsdf type=\"mask\"><texture type=\"checkerboard\" name=\"opacity\"><rgb name=\"color0\" value=\"0.9, 0.1, 0.2\"/><float name=\"color1\" value=\"0.3\"/></texture><bsdf type=\"diffuse\"/></bsdf></shape>"
+    ));
+    let s = load(&xml).unwrap();
+    let si = s.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+    let Bsdf::Mask(m) = s.scene.bsdf(&si) else { panic!("expected a mask") };
+    let c0_mean = (0.9 + 0.1 + 0.2) / 3.0;
+    for (uv, eval, eval_1) in [
+        (Vec2::new(0.25, 0.25), Vec3::new(0.9, 0.1, 0.2), 0.3),
+        (Vec2::new(0.75, 0.25), Vec3::splat(0.3), c0_mean),
+        (Vec2::new(0.75, 0.75), Vec3::new(0.9, 0.1, 0.2), 0.3),
+        (Vec2::new(1.25, 0.75), Vec3::splat(0.3), c0_mean),
+    ] {
+        assert!((m.opacity.eval(uv) - eval).length() < 1e-6, "eval at {uv}");
+        assert!((m.opacity.eval_1(uv) - eval_1).abs() < 1e-6, "eval_1 at {uv}: {}", m.opacity.eval_1(uv));
+    }
+    assert!((m.opacity.mean() - 0.5 * (c0_mean + 0.3)).abs() < 1e-6);
+}
+
+/// `src/bsdfs/mask.cpp`: `opacity` defaults to 0.5 (a float or a texture), exactly one nested
+/// BSDF; a `twosided` around a mask is an error (its null component is a transmission,
+/// `src/bsdfs/twosided.cpp`); unknown properties are errors.
+#[test]
+fn mask_defaults_and_errors() {
+    let xml = |bsdf: &str| scene(&format!("{SENSOR}\n<shape type=\"rectangle\">\n{bsdf}\n</shape>"));
+    let s = load(&xml(r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#)).unwrap();
+    let si = s.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+    let Bsdf::Mask(m) = s.scene.bsdf(&si) else { panic!("expected a mask") };
+    assert_eq!(m.opacity(&si), 0.5);
+    assert!(matches!(*m.nested, Bsdf::Diffuse { .. }));
+    let clipped = load(&xml(r#"<bsdf type="mask"><float name="opacity" value="0.25"/><bsdf type="diffuse"/></bsdf>"#));
+    let Bsdf::Mask(m) = clipped.as_ref().unwrap().scene.bsdf(&si) else { panic!() };
+    assert_eq!(m.opacity(&si), 0.25);
+    assert_err_at(load(&xml("<bsdf type=\"mask\"/>")), Path::new(FILE), 4, "found 0");
+    assert_err_at(
+        load(&xml("<bsdf type=\"mask\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf>")),
+        Path::new(FILE),
+        4,
+        "found 2",
+    );
+    assert_err_at(
+        load(&xml("<bsdf type=\"twosided\"><bsdf type=\"mask\"><bsdf type=\"diffuse\"/></bsdf></bsdf>")),
+        Path::new(FILE),
+        4,
+        "allow_transmission",
+    );
+    assert_err_at(
+        load(&xml("<bsdf type=\"mask\"><float name=\"opacty\" value=\"0.5\"/><bsdf type=\"diffuse\"/></bsdf>")),
+        Path::new(FILE),
+        4,
+        "opacty",
+    );
+}
+
+/// `src/bsdfs/blendbsdf.cpp`: exactly two nested BSDFs and a `weight` (no default);
+/// `src/bsdfs/bumpmap.cpp`: one nested BSDF and one texture child of any name, `scale` 1,
+/// `flip_invalid_normals` and `use_shadowing_function` true. matte needs a bitmap height map
+/// (Mitsuba's other textures have no gradient) and a mesh (its analytic shapes have no
+/// ∂p/∂u, ∂p/∂v).
+#[test]
+fn blendbsdf_and_bumpmap_defaults_and_errors() {
+    let xml = |shape: &str, bsdf: &str| scene(&format!("{SENSOR}\n<shape type=\"{shape}\">\n{bsdf}\n</shape>"));
+    let blend = load(&xml(
+        "rectangle",
+        r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#,
+    ))
+    .unwrap();
+    let si = blend.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+    let Bsdf::Blend(b) = blend.scene.bsdf(&si) else { panic!("expected a blend") };
+    assert!((b.weight(&si) - 0.3).abs() < 1e-7);
+    assert!(matches!((&*b.first, &*b.second), (Bsdf::Diffuse { .. }, Bsdf::Conductor(_))));
+    let no_weight =
+        xml("rectangle", "<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf>");
+    assert_err_at(load(&no_weight), Path::new(FILE), 4, "weight");
+    let one = xml(
+        "rectangle",
+        "<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/><bsdf type=\"diffuse\"/></bsdf>",
+    );
+    assert_err_at(load(&one), Path::new(FILE), 4, "found 1");
+
+    let dir = temp_dir("bumpmap");
+    let height = dir.join("h.exr");
+    write_exr(&height, 4, 4, |i, j| Vec3::splat((i + 2 * j) as f32 / 10.0));
+    let bump =
+        |shape: &str, tex: &str| xml(shape, &format!("<bsdf type=\"bumpmap\">{tex}<bsdf type=\"diffuse\"/></bsdf>",));
+    let bitmap = format!(
+        "<texture type=\"bitmap\" name=\"any_name\"><string name=\"filename\" value=\"{}\"/></texture>",
+        height.display()
+    );
+    let s = load(&bump("rectangle", &bitmap)).unwrap();
+    let Bsdf::BumpMap(m) = s.scene.bsdf(&si) else { panic!("expected a bumpmap") };
+    assert_eq!((m.scale, m.flip_invalid_normals, m.use_shadowing_function), (1.0, true, true));
+    assert_err_at(load(&bump("sphere", &bitmap)), Path::new(FILE), 4, "meshes only");
+    assert_err_at(
+        load(&bump("rectangle", "<texture type=\"checkerboard\" name=\"h\"/>")),
+        Path::new(FILE),
+        4,
+        "bitmap height texture",
+    );
+    assert_err_at(load(&bump("rectangle", "")), Path::new(FILE), 4, "found 0");
+}
+
+/// `src/emitters/area.cpp`: `radiance` may be a texture, looked up at the hit's uv (here a
+/// 2×2 EXR on a rectangle, uv = ((x+1)/2, (y+1)/2), nearest lookup); a mesh attribute as
+/// radiance is refused by matte.
+#[test]
+fn area_emitter_radiance_texture() {
+    let dir = temp_dir("area_texture");
+    let tex = dir.join("r.exr");
+    write_exr(&tex, 2, 2, |i, j| Vec3::new(1.0 + i as f32, 3.0 + j as f32, 0.5));
+    let xml = scene(&format!(
+        "{SENSOR}\n<shape type=\"rectangle\"><emitter type=\"area\"><texture type=\"bitmap\" name=\"radiance\"><string name=\"filename\" value=\"{}\"/><string name=\"filter_type\" value=\"nearest\"/></texture></emitter></shape>",
+        tex.display()
+    ));
+    let s = load(&xml).unwrap();
+    for (x, y, want) in [
+        (-0.5, -0.5, Vec3::new(1.0, 3.0, 0.5)),
+        (0.5, -0.5, Vec3::new(2.0, 3.0, 0.5)),
+        (0.5, 0.5, Vec3::new(2.0, 4.0, 0.5)),
+    ] {
+        let si = s.scene.intersect(&Ray::new(Vec3::new(x, y, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
+        let got = s.scene.emitters[0].eval_surface(&si);
+        assert!((got - want).abs().max_element() < 1e-6, "({x}, {y}): {got} vs {want}");
+    }
+    let attr = scene(&format!(
+        "{SENSOR}\n<shape type=\"rectangle\"><emitter type=\"area\">\n<texture type=\"mesh_attribute\" name=\"radiance\"><string name=\"name\" value=\"vertex_color\"/></texture></emitter></shape>"
+    ));
+    assert!(load(&attr).is_err());
+}
+
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
 fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
     let mut img = matte::render::film::Image::new(w, h);

@@ -31,6 +31,7 @@ fn triangle(uvs: Vec<Vec2>) -> Geometry {
         normals: vec![],
         uvs,
         triangles: vec![[0, 1, 2]],
+        attributes: vec![],
     };
     Geometry::Triangles(Triangles::new(mesh, false))
 }

@@ -23,9 +23,21 @@ impl Camera {
     }
 }
 
+/// A connection from a scene point to the camera (Mitsuba's sensor `DirectionSample3f`).
+#[derive(Clone, Copy, Debug)]
+pub struct SensorSample {
+    /// Full-film pixel position the point projects to.
+    pub film_pos: Vec2,
+    /// The camera's position.
+    pub p: Vec3,
+    /// Importance over squared distance.
+    pub weight: f32,
+}
+
 #[derive(Clone, Debug)]
 pub struct PerspectiveCamera {
     to_world: Affine3A,
+    to_local: Affine3A,
     /// tan(x_fov / 2).
     tan_half: f32,
     aspect: f32,
@@ -85,6 +97,7 @@ impl PerspectiveCamera {
         let x_half = x_half_tan(fov_deg, axis, aspect);
         PerspectiveCamera {
             to_world,
+            to_local: to_world.inverse(),
             tan_half: x_half as f32,
             aspect: aspect as f32,
             film_size: Vec2::new(film.0 as f32, film.1 as f32),
@@ -97,6 +110,35 @@ impl PerspectiveCamera {
     /// The x fov in degrees for a `focal_length` in mm (on the 36×24 frame, diagonal).
     pub fn focal_length_to_diagonal_fov(mm: f64) -> f64 {
         2.0 * ((36.0f64 * 36.0 + 24.0 * 24.0).sqrt() / (2.0 * mm)).atan().to_degrees()
+    }
+
+    /// Mitsuba's `PerspectiveCamera::sample_direction` (`src/sensors/perspective.cpp`): the
+    /// connection from world point `p` to the camera, for the particle tracer. `None` outside
+    /// the clip range or the film. Returns the full-film pixel position, the camera position
+    /// and the importance `W(d)/dist²`, W = 1/(A·cos³θ) with A the image rectangle's area at
+    /// unit distance.
+    #[inline]
+    pub fn sample_direction(&self, p: Vec3) -> Option<SensorSample> {
+        let local = self.to_local.transform_point3(p);
+        if !(local.z >= self.near_clip && local.z <= self.far_clip) {
+            return None;
+        }
+        let s = Vec2::new(
+            0.5 * (1.0 - local.x / (local.z * self.tan_half)),
+            0.5 * (1.0 - local.y * self.aspect / (local.z * self.tan_half)),
+        ) - self.principal_offset;
+        if !(s.cmpge(Vec2::ZERO).all() && s.cmple(Vec2::ONE).all()) {
+            return None;
+        }
+        let dist2 = local.length_squared();
+        let cos = local.z / dist2.sqrt();
+        let area = 4.0 * self.tan_half * self.tan_half / self.aspect;
+        let importance = 1.0 / (area * cos * cos * cos);
+        Some(SensorSample {
+            film_pos: s * self.film_size,
+            p: self.to_world.transform_point3(Vec3::ZERO),
+            weight: importance / dist2,
+        })
     }
 
     /// The primary ray through full-film pixel position `film_pos` (pixels, origin top-left).

@@ -40,6 +40,17 @@ pub fn render(
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> (Image, RenderStats) {
     let start = Instant::now();
+    if let Integrator::ParticleTracer(pt) = integrator {
+        crate::render::accel::take_ray_count();
+        let (image, invalid_samples) = pt.render(scene, camera, &film, spp, seed);
+        let stats = RenderStats {
+            samples: film.width() as u64 * film.height() as u64 * spp as u64,
+            rays: 0,
+            seconds: start.elapsed().as_secs_f64(),
+            invalid_samples,
+        };
+        return (image, stats);
+    }
     let tiles = film.tiles(TILE);
     let total = tiles.len() as u64;
     let done = AtomicU64::new(0);

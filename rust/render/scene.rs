@@ -83,20 +83,27 @@ impl Scene {
     /// (`Scene::sample_emitter_direction(.., test_visibility=true)`); the estimate is the same.
     #[inline]
     pub fn sample_emitter_direction(&self, si: &SurfaceInteraction, u: Vec2) -> Option<EmitterSample> {
+        let (idx, pmf, ux) = self.sample_emitter(u.x)?;
+        let mut es = self.emitters[idx].sample_direction(si.p, Vec2::new(ux, u.y), &self.shapes)?;
+        es.pdf *= pmf;
+        es.weight /= pmf;
+        Some(es)
+    }
+
+    /// Picks an emitter with `u` ∈ [0,1) by the selection pmf (Mitsuba `Scene::sample_emitter`):
+    /// its index, its pmf and `u` rescaled to [0, 1) for reuse.
+    #[inline]
+    pub fn sample_emitter(&self, u: f32) -> Option<(usize, f32, f32)> {
         if self.emitters.is_empty() {
             return None;
         }
-        let idx = self.emitter_cdf.partition_point(|&c| c <= u.x).min(self.emitters.len() - 1);
+        let idx = self.emitter_cdf.partition_point(|&c| c <= u).min(self.emitters.len() - 1);
         let pmf = self.emitter_pmf[idx];
         if pmf <= 0.0 {
             return None;
         }
         let lo = if idx == 0 { 0.0 } else { self.emitter_cdf[idx - 1] };
-        let ux = ((u.x - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
-        let mut es = self.emitters[idx].sample_direction(si.p, Vec2::new(ux, u.y), &self.shapes)?;
-        es.pdf *= pmf;
-        es.weight /= pmf;
-        Some(es)
+        Some((idx, pmf, ((u - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0)))
     }
 
     /// Whether nothing blocks the segment from `si` to the emitter sample `es` (a shadow ray

@@ -87,6 +87,17 @@ CONFIGS = [
      '<float name="specular_reflectance_sampling_rate" value="2"/><float name="specular_transmittance_sampling_rate" value="0.5"/>'
      '<float name="diffuse_transmittance_sampling_rate" value="3"/><float name="diffuse_reflectance_sampling_rate" value="0.7"/>'
      '<float name="roughness" value="0.7"/></bsdf>', "sphere", False),
+    # mask: nested BSDF times the opacity; sampling picks the pass-through with 1 - opacity.
+    ("mask_diffuse", '<bsdf type="mask"><float name="opacity" value="0.3"/>'
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf></bsdf>', "upper", True),
+    ("mask_default_roughplastic", '<bsdf type="mask"><bsdf type="roughplastic"><string name="distribution" value="ggx"/>'
+     '<float name="alpha" value="0.2"/></bsdf></bsdf>', "upper", False),
+    # blendbsdf: blended eval/pdf; the sample is the one-sample MIS blend of both.
+    ("blend_diffuse_plastic", '<bsdf type="blendbsdf"><float name="weight" value="0.3"/>'
+     '<bsdf type="diffuse"><rgb name="reflectance" value="0.2, 0.5, 0.8"/></bsdf><bsdf type="plastic"/></bsdf>', "upper", True),
+    ("blend_roughconductor_diffuse", '<bsdf type="blendbsdf"><float name="weight" value="0.65"/>'
+     '<bsdf type="roughconductor"><string name="material" value="Au"/><float name="alpha" value="0.25"/></bsdf>'
+     '<bsdf type="diffuse"/></bsdf>', "upper", False),
 ]
 
 rng = np.random.default_rng(20261201)

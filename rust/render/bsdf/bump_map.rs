@@ -10,16 +10,17 @@
 //! world-space ∂p/∂u here, and matte does the same so that images agree. Values and weights
 //! get the shadow-terminator term of `normalmap` (`use_shadowing_function`, default true).
 //!
-//! **Not yet wired into the renderer**: the integrator passes only the hit's uv to a BSDF,
-//! and matte's shapes do not compute ∂p/∂u, ∂p/∂v (nor orient the shading frame along ∂p/∂u
-//! as Mitsuba does). The loader therefore still rejects `bumpmap`; [`BumpMap::eval_pdf_at`]
-//! and [`BumpMap::sample_at`] take the hit geometry explicitly and are tested against Mitsuba.
+//! The hit geometry comes from the [`SurfaceInteraction`]; matte's meshes compute ∂p/∂u and
+//! ∂p/∂v as Mitsuba's do, its analytic shapes do not, so the loader accepts `bumpmap` on
+//! meshes only. [`BumpMap::eval_pdf_at`] and [`BumpMap::sample_at`] take the geometry
+//! explicitly (tested against Mitsuba at given geometry).
 
 use super::Bsdf;
 use super::normal_map::shadow_terminator;
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::render::geometry::Frame;
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// What `bumpmap` reads from Mitsuba's `SurfaceInteraction3f`, in world space.
@@ -41,10 +42,29 @@ pub struct BumpMap {
     pub use_shadowing_function: bool,
 }
 
+impl HitGeometry {
+    #[inline]
+    pub fn of(si: &SurfaceInteraction) -> Self {
+        HitGeometry { dp_du: si.dp_du, dp_dv: si.dp_dv, n: si.n, sh_frame: si.sh_frame }
+    }
+}
+
 impl BumpMap {
+    /// `(f·|cos θo|, pdf)` at the hit `si`.
+    #[inline]
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        self.eval_pdf_at(si, &HitGeometry::of(si), wi, wo)
+    }
+
+    /// Samples the nested BSDF in the perturbed frame at the hit `si`.
+    #[inline]
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.sample_at(si, &HitGeometry::of(si), wi, u_lobe, u)
+    }
+
     /// Mitsuba's `BumpMap::frame`, relative to the shading frame (`wi` local).
-    pub fn frame(&self, uv: Vec2, wi: Vec3, g: &HitGeometry) -> Frame {
-        let grad = self.height.eval_1_grad(uv) * self.scale;
+    pub fn frame(&self, si: &SurfaceInteraction, wi: Vec3, g: &HitGeometry) -> Frame {
+        let grad = self.height.eval_1_grad(si) * self.scale;
         let ns = g.sh_frame.n;
         let dp_du = g.dp_du + ns * (grad.x - ns.dot(g.dp_du));
         let dp_dv = g.dp_dv + ns * (grad.y - ns.dot(g.dp_dv));
@@ -61,8 +81,8 @@ impl BumpMap {
     }
 
     /// `(f·|cos θo|, pdf)` at a hit with geometry `g`.
-    pub fn eval_pdf_at(&self, uv: Vec2, g: &HitGeometry, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        let frame = self.frame(uv, wi, g);
+    pub fn eval_pdf_at(&self, si: &SurfaceInteraction, g: &HitGeometry, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        let frame = self.frame(si, wi, g);
         if !(frame.s.is_finite() && frame.t.is_finite() && frame.n.is_finite()) {
             return (Vec3::ZERO, 0.0);
         }
@@ -70,7 +90,7 @@ impl BumpMap {
         if !(wo.z * pwo.z > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
-        let (mut f, pdf) = self.nested.eval_pdf(uv, pwi, pwo);
+        let (mut f, pdf) = self.nested.eval_pdf(si, pwi, pwo);
         if self.use_shadowing_function {
             f *= shadow_terminator(frame.n, wo);
         }
@@ -78,12 +98,19 @@ impl BumpMap {
     }
 
     /// Samples the nested BSDF in the perturbed frame.
-    pub fn sample_at(&self, uv: Vec2, g: &HitGeometry, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        let frame = self.frame(uv, wi, g);
+    pub fn sample_at(
+        &self,
+        si: &SurfaceInteraction,
+        g: &HitGeometry,
+        wi: Vec3,
+        u_lobe: f32,
+        u: Vec2,
+    ) -> Option<BsdfSample> {
+        let frame = self.frame(si, wi, g);
         if !(frame.s.is_finite() && frame.t.is_finite() && frame.n.is_finite()) {
             return None;
         }
-        let mut s = self.nested.sample(uv, frame.to_local(wi), u_lobe, u)?;
+        let mut s = self.nested.sample(si, frame.to_local(wi), u_lobe, u)?;
         let wo = frame.to_world(s.wo);
         if !(s.wo.z * wo.z > 0.0) || s.weight == Vec3::ZERO {
             return None;

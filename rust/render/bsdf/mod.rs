@@ -1,8 +1,9 @@
 //! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`,
-//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`, `principledthin`, and the matte
+//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`, `principledthin`, and the matte
 //! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
+pub mod blend;
 pub mod bump_map;
 pub mod conductor;
 pub mod conductor_ior;
@@ -11,6 +12,7 @@ mod conductor_ior_data;
 pub mod dielectric;
 pub mod diffuse;
 pub mod fresnel;
+pub mod mask;
 pub mod matte;
 pub mod microfacet;
 pub mod microfacet_albedo;
@@ -29,10 +31,13 @@ pub mod thin_dielectric;
 mod validate;
 pub mod vndf;
 
+pub use blend::Blend;
+pub use bump_map::BumpMap;
 pub use conductor::Conductor;
 pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
 pub use fresnel::fresnel_conductor;
+pub use mask::Mask;
 pub use microfacet::MicrofacetDistribution;
 pub use normal_map::NormalMap;
 pub use plastic::Plastic;
@@ -46,6 +51,7 @@ pub use texture::Texture;
 pub use textured_roughness::{RoughLobe, TexturedRoughness};
 pub use thin_dielectric::ThinDielectric;
 
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// One BSDF of the scene.
@@ -73,6 +79,12 @@ pub enum Bsdf {
     RoughPlastic(Box<RoughPlastic>),
     /// Mitsuba's `normalmap` wrapper around a nested BSDF.
     NormalMap(NormalMap),
+    /// Mitsuba's `mask`: the nested BSDF with probability `opacity`, else pass-through.
+    Mask(Mask),
+    /// Mitsuba's `bumpmap` wrapper around a nested BSDF.
+    BumpMap(Box<BumpMap>),
+    /// Mitsuba's `blendbsdf`: `(1 − weight)·first + weight·second`.
+    Blend(Box<Blend>),
     Principled(Box<Principled>),
     PrincipledThin(Box<PrincipledThin>),
     /// `roughconductor`/`roughdielectric` whose roughness is a texture.
@@ -82,40 +94,43 @@ pub enum Bsdf {
 impl Bsdf {
     /// `(f·cos θo, pdf)` for the smooth part (delta lobes contribute nothing here).
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         match self {
-            Bsdf::Diffuse { reflectance } => diffuse::eval_pdf(reflectance.eval(uv), wi, wo),
-            Bsdf::Matte { model, reflectance } => matte::eval_pdf(model, reflectance.eval(uv), wi, wo),
+            Bsdf::Diffuse { reflectance } => diffuse::eval_pdf(reflectance.eval(si), wi, wo),
+            Bsdf::Matte { model, reflectance } => matte::eval_pdf(model, reflectance.eval(si), wi, wo),
             Bsdf::TwoSided { front, back } => {
                 if wi.z > 0.0 {
-                    front.eval_pdf(uv, wi, wo)
+                    front.eval_pdf(si, wi, wo)
                 } else {
-                    back.eval_pdf(uv, flip(wi), flip(wo))
+                    back.eval_pdf(si, flip(wi), flip(wo))
                 }
             }
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => (Vec3::ZERO, 0.0),
             Bsdf::RoughConductor(r) => (r.eval(wi, wo), r.pdf(wi, wo)),
             Bsdf::RoughDielectric(r) => r.eval_pdf(wi, wo),
-            Bsdf::Plastic(p) => p.eval_pdf(uv, wi, wo),
-            Bsdf::RoughPlastic(p) => p.eval_pdf(uv, wi, wo),
-            Bsdf::NormalMap(n) => n.eval_pdf(uv, wi, wo),
-            Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
-            Bsdf::PrincipledThin(p) => p.eval_pdf(uv, wi, wo),
-            Bsdf::TexturedRoughness(t) => t.eval_pdf(uv, wi, wo),
+            Bsdf::Plastic(p) => p.eval_pdf(si, wi, wo),
+            Bsdf::RoughPlastic(p) => p.eval_pdf(si, wi, wo),
+            Bsdf::NormalMap(n) => n.eval_pdf(si, wi, wo),
+            Bsdf::Mask(m) => m.eval_pdf(si, wi, wo),
+            Bsdf::Blend(b) => b.eval_pdf(si, wi, wo),
+            Bsdf::BumpMap(b) => b.eval_pdf(si, wi, wo),
+            Bsdf::Principled(p) => p.eval_pdf(si, wi, wo),
+            Bsdf::PrincipledThin(p) => p.eval_pdf(si, wi, wo),
+            Bsdf::TexturedRoughness(t) => t.eval_pdf(si, wi, wo),
         }
     }
 
     /// Samples `wo` from one number for the lobe choice and two for the direction.
     #[inline]
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         match self {
-            Bsdf::Diffuse { reflectance } => diffuse::sample(reflectance.eval(uv), wi, u),
-            Bsdf::Matte { model, reflectance } => matte::sample(model, reflectance.eval(uv), wi, u),
+            Bsdf::Diffuse { reflectance } => diffuse::sample(reflectance.eval(si), wi, u),
+            Bsdf::Matte { model, reflectance } => matte::sample(model, reflectance.eval(si), wi, u),
             Bsdf::TwoSided { front, back } => {
                 if wi.z > 0.0 {
-                    front.sample(uv, wi, u_lobe, u)
+                    front.sample(si, wi, u_lobe, u)
                 } else {
-                    let mut s = back.sample(uv, flip(wi), u_lobe, u)?;
+                    let mut s = back.sample(si, flip(wi), u_lobe, u)?;
                     s.wo = flip(s.wo);
                     Some(s)
                 }
@@ -125,12 +140,15 @@ impl Bsdf {
             Bsdf::RoughConductor(r) => r.sample(wi, u_lobe, u),
             Bsdf::ThinDielectric(t) => t.sample(wi, u_lobe, u),
             Bsdf::RoughDielectric(r) => r.sample(wi, u_lobe, u),
-            Bsdf::Plastic(p) => p.sample(uv, wi, u_lobe, u),
-            Bsdf::RoughPlastic(p) => p.sample(uv, wi, u_lobe, u),
-            Bsdf::NormalMap(n) => n.sample(uv, wi, u_lobe, u),
-            Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
-            Bsdf::PrincipledThin(p) => p.sample(uv, wi, u_lobe, u),
-            Bsdf::TexturedRoughness(t) => t.sample(uv, wi, u_lobe, u),
+            Bsdf::Plastic(p) => p.sample(si, wi, u_lobe, u),
+            Bsdf::RoughPlastic(p) => p.sample(si, wi, u_lobe, u),
+            Bsdf::NormalMap(n) => n.sample(si, wi, u_lobe, u),
+            Bsdf::Mask(m) => m.sample(si, wi, u_lobe, u),
+            Bsdf::Blend(b) => b.sample(si, wi, u_lobe, u),
+            Bsdf::BumpMap(b) => b.sample(si, wi, u_lobe, u),
+            Bsdf::Principled(p) => p.sample(si, wi, u_lobe, u),
+            Bsdf::PrincipledThin(p) => p.sample(si, wi, u_lobe, u),
+            Bsdf::TexturedRoughness(t) => t.sample(si, wi, u_lobe, u),
         }
     }
 
@@ -150,6 +168,9 @@ impl Bsdf {
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),
+            Bsdf::Mask(m) => m.nested.has_smooth(),
+            Bsdf::Blend(b) => b.first.has_smooth() || b.second.has_smooth(),
+            Bsdf::BumpMap(b) => b.nested.has_smooth(),
         }
     }
 }

@@ -18,6 +18,7 @@ use super::Bsdf;
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::render::geometry::Frame;
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]
@@ -44,8 +45,8 @@ fn tan_theta_2(v: Vec3) -> f32 {
 impl NormalMap {
     /// The perturbed frame in the coordinates of the unperturbed shading frame.
     #[inline]
-    pub fn frame(&self, uv: Vec2, wi: Vec3) -> Frame {
-        let mut n = self.normals.eval(uv) * 2.0 - Vec3::ONE;
+    pub fn frame(&self, si: &SurfaceInteraction, wi: Vec3) -> Frame {
+        let mut n = self.normals.eval(si) * 2.0 - Vec3::ONE;
         if self.flip_invalid_normals && wi.z * wi.dot(n) <= 0.0 {
             n = Vec3::new(-n.x, -n.y, n.z);
         }
@@ -55,8 +56,8 @@ impl NormalMap {
     }
 
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        let frame = self.frame(uv, wi);
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        let frame = self.frame(si, wi);
         // A texel that maps to a zero or purely tangential (1, 0, 0) normal has no frame
         // (Mitsuba would produce NaN): no contribution.
         if !frame_is_finite(&frame) {
@@ -67,7 +68,7 @@ impl NormalMap {
         if !(wo.z * pwo.z > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
-        let (mut f, pdf) = self.nested.eval_pdf(uv, pwi, pwo);
+        let (mut f, pdf) = self.nested.eval_pdf(si, pwi, pwo);
         if self.use_shadowing_function {
             f *= shadow_terminator(frame.n, wo);
         }
@@ -75,12 +76,12 @@ impl NormalMap {
     }
 
     #[inline]
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        let frame = self.frame(uv, wi);
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let frame = self.frame(si, wi);
         if !frame_is_finite(&frame) {
             return None;
         }
-        let mut s = self.nested.sample(uv, frame.to_local(wi), u_lobe, u)?;
+        let mut s = self.nested.sample(si, frame.to_local(wi), u_lobe, u)?;
         let wo = frame.to_world(s.wo);
         if !(s.wo.z * wo.z > 0.0) || s.weight == Vec3::ZERO {
             return None;

@@ -19,6 +19,7 @@ use super::fresnel::fresnel_dielectric;
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// Smooth plastic.
@@ -78,8 +79,8 @@ impl Plastic {
 
     /// ρ/(1 − F_dr) or ρ/(1 − ρ F_dr).
     #[inline]
-    fn diffuse_albedo(&self, uv: Vec2) -> Vec3 {
-        let d = self.diffuse.eval(uv);
+    fn diffuse_albedo(&self, si: &SurfaceInteraction) -> Vec3 {
+        let d = self.diffuse.eval(si);
         if self.nonlinear { d / (Vec3::ONE - d * self.fdr_int) } else { d / (1.0 - self.fdr_int) }
     }
 
@@ -92,14 +93,14 @@ impl Plastic {
 
     /// `(f·cos θo, pdf)` of the diffuse lobe (the mirror has no density).
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
         let f_i = fresnel_dielectric(wi.z, self.eta).r;
         let f_o = fresnel_dielectric(wo.z, self.eta).r;
         let hemi = cosine_hemisphere_pdf(wo);
-        let f = self.diffuse_albedo(uv) * (hemi * self.inv_eta_2 * (1.0 - f_i) * (1.0 - f_o));
+        let f = self.diffuse_albedo(si) * (hemi * self.inv_eta_2 * (1.0 - f_i) * (1.0 - f_o));
         let (ps, pd) = self.lobe_weights(f_i);
         (f, hemi * (pd / (ps + pd)))
     }
@@ -107,7 +108,7 @@ impl Plastic {
     /// Mirror if `u_lobe < p_s` (weight R/p_s·specular, pdf p_s, Dirac), else a cosine-weighted
     /// direction from `u`.
     #[inline]
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
@@ -132,7 +133,7 @@ impl Plastic {
             return None;
         }
         let f_o = fresnel_dielectric(wo.z, self.eta).r;
-        let weight = self.diffuse_albedo(uv) * (self.inv_eta_2 * (1.0 - f_i) * (1.0 - f_o) / prob_diffuse);
+        let weight = self.diffuse_albedo(si) * (self.inv_eta_2 * (1.0 - f_i) * (1.0 - f_o) / prob_diffuse);
         Some(BsdfSample { wo, weight, pdf, delta: false, eta: 1.0 })
     }
 }

@@ -17,6 +17,7 @@ use super::principled_helpers::{
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -53,8 +54,8 @@ struct Local {
 }
 
 #[inline]
-fn opt(t: &Option<Texture>, uv: Vec2) -> f32 {
-    t.as_ref().map_or(0.0, |t| t.eval_1(uv))
+fn opt(t: &Option<Texture>, si: &SurfaceInteraction) -> f32 {
+    t.as_ref().map_or(0.0, |t| t.eval_1(si))
 }
 
 impl Principled {
@@ -80,15 +81,15 @@ impl Principled {
     }
 
     #[inline]
-    fn local(&self, uv: Vec2) -> Local {
-        let anisotropic = opt(&self.anisotropic, uv);
-        let roughness = self.roughness.eval_1(uv);
-        let spec_trans = opt(&self.spec_trans, uv);
-        let metallic = opt(&self.metallic, uv);
-        let clearcoat = opt(&self.clearcoat, uv);
+    fn local(&self, si: &SurfaceInteraction) -> Local {
+        let anisotropic = opt(&self.anisotropic, si);
+        let roughness = self.roughness.eval_1(si);
+        let spec_trans = opt(&self.spec_trans, si);
+        let metallic = opt(&self.metallic, si);
+        let clearcoat = opt(&self.clearcoat, si);
         let (ax, ay) = dist_params(anisotropic, roughness, self.anisotropic.is_some());
         Local {
-            base: self.base_color.eval(uv),
+            base: self.base_color.eval(si),
             roughness,
             metallic,
             clearcoat,
@@ -125,14 +126,14 @@ impl Principled {
     }
 
     /// Mitsuba's `eval`: f·|cos θo|.
-    pub fn eval(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> Vec3 {
+    pub fn eval(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> Vec3 {
         let cos_i = wi.z;
         if cos_i == 0.0 || !wi.is_finite() || !wo.is_finite() {
             return Vec3::ZERO;
         }
-        let p = self.local(uv);
-        let flatness = opt(&self.flatness, uv);
-        let sheen = opt(&self.sheen, uv);
+        let p = self.local(si);
+        let flatness = opt(&self.flatness, si);
+        let sheen = opt(&self.sheen, si);
         let cos_o = wo.z;
         let front = cos_i > 0.0;
         let (wh, eta_path, reflect, refract) = self.half(wi, wo);
@@ -147,7 +148,7 @@ impl Principled {
 
         if reflect && refl_ok && f_diel > 0.0 {
             let lum = if self.spec_tint.is_some() { luminance(p.base) } else { 1.0 };
-            let spec_tint = opt(&self.spec_tint, uv);
+            let spec_tint = opt(&self.spec_tint, si);
             let f = self.principled_fresnel(f_diel, p.metallic, spec_tint, p.base, lum, wi.dot(wh), front, p.bsdf);
             value += f * (d * g / (4.0 * cos_i.abs()));
         }
@@ -159,7 +160,7 @@ impl Principled {
             value += p.base.map(f32::sqrt) * (p.bsdf * t.abs());
         }
         if self.clearcoat.is_some() && p.clearcoat > 0.0 && reflect && refl_ok && front {
-            let gloss = self.clearcoat_gloss.eval_1(uv);
+            let gloss = self.clearcoat_gloss.eval_1(si);
             let fcc = calc_schlick(Vec3::splat(0.04), wi.dot(wh), self.eta).x;
             let dcc = Gtr1 { alpha: 0.1 + (0.001 - 0.1) * gloss }.eval(wh);
             let gcc = smith_ggx1(wi, wh, 0.25) * smith_ggx1(wo, wh, 0.25);
@@ -185,7 +186,7 @@ impl Principled {
             if self.sheen.is_some() && sheen > 0.0 && 1.0 - p.metallic > 0.0 {
                 let fd = schlick_weight(cos_d.abs());
                 let tint = if self.sheen_tint.is_some() {
-                    let st = opt(&self.sheen_tint, uv);
+                    let st = opt(&self.sheen_tint, si);
                     let lum = luminance(p.base);
                     let c_tint = if lum > 0.0 { p.base / lum } else { Vec3::ONE };
                     Vec3::ONE + (c_tint - Vec3::ONE) * st
@@ -231,12 +232,12 @@ impl Principled {
     }
 
     /// Mitsuba's `pdf`.
-    pub fn pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> f32 {
+    pub fn pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> f32 {
         let cos_i = wi.z;
         if cos_i == 0.0 || !wi.is_finite() || !wo.is_finite() {
             return 0.0;
         }
-        let p = self.local(uv);
+        let p = self.local(si);
         let front = cos_i > 0.0;
         let (wh, eta_path, reflect, refract) = self.half(wi, wo);
         let f = fresnel_dielectric(wi.dot(wh), self.eta).r;
@@ -262,7 +263,7 @@ impl Principled {
             pdf += pt * spec_pdf();
         }
         if self.clearcoat.is_some() && refl_ok {
-            let gloss = self.clearcoat_gloss.eval_1(uv);
+            let gloss = self.clearcoat_gloss.eval_1(si);
             pdf += pc * Gtr1 { alpha: 0.1 + (0.001 - 0.1) * gloss }.pdf(wh) * dwh_dwo;
         }
         if pdf.is_finite() { pdf } else { 0.0 }
@@ -270,18 +271,18 @@ impl Principled {
 
     /// `(f·|cos θo|, pdf)`.
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        (self.eval(uv, wi, wo), self.pdf(uv, wi, wo))
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        (self.eval(si, wi, wo), self.pdf(si, wi, wo))
     }
 
     /// Mitsuba's `sample`: picks a lobe by `u_lobe`, draws its direction from `u`, weight =
     /// eval/pdf of the mixture. `None` where Mitsuba returns zero.
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let cos_i = wi.z;
         if cos_i == 0.0 || !wi.is_finite() {
             return None;
         }
-        let p = self.local(uv);
+        let p = self.local(si);
         let front = cos_i > 0.0;
         if !(front || p.bsdf > 0.0) {
             return None;
@@ -298,7 +299,7 @@ impl Principled {
             }
             wo
         } else if self.clearcoat.is_some() && u_lobe < pd + pc {
-            let gloss = self.clearcoat_gloss.eval_1(uv);
+            let gloss = self.clearcoat_gloss.eval_1(si);
             let m = Gtr1 { alpha: 0.1 + (0.001 - 0.1) * gloss }.sample(u);
             let wo = 2.0 * wi.dot(m) * m - wi;
             if !(mac_mic_compatibility(m, wi, wo, cos_i, true) && cos_i * wo.z > 0.0) {
@@ -319,11 +320,11 @@ impl Principled {
             }
             wo
         };
-        let pdf = self.pdf(uv, wi, wo);
+        let pdf = self.pdf(si, wi, wo);
         if !(pdf > 0.0) || !wo.is_finite() {
             return None;
         }
-        let weight = self.eval(uv, wi, wo) / pdf;
+        let weight = self.eval(si, wi, wo) / pdf;
         if !weight.is_finite() {
             return None;
         }

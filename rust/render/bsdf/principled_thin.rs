@@ -15,6 +15,7 @@ use super::principled_helpers::{
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -38,8 +39,8 @@ pub struct PrincipledThin {
 }
 
 #[inline]
-fn opt(t: &Option<Texture>, uv: Vec2) -> f32 {
-    t.as_ref().map_or(0.0, |t| t.eval_1(uv))
+fn opt(t: &Option<Texture>, si: &SurfaceInteraction) -> f32 {
+    t.as_ref().map_or(0.0, |t| t.eval_1(si))
 }
 
 #[inline]
@@ -62,9 +63,9 @@ impl PrincipledThin {
 
     /// The two GGX distributions: reflection, and transmission with the scaled roughness.
     #[inline]
-    fn distributions(&self, uv: Vec2, eta_t: f32) -> (Microfacet, Microfacet) {
-        let anisotropic = opt(&self.anisotropic, uv);
-        let roughness = self.roughness.eval_1(uv);
+    fn distributions(&self, si: &SurfaceInteraction, eta_t: f32) -> (Microfacet, Microfacet) {
+        let anisotropic = opt(&self.anisotropic, si);
+        let roughness = self.roughness.eval_1(si);
         let has_aniso = self.anisotropic.is_some();
         let (ax, ay) = dist_params(anisotropic, roughness, has_aniso);
         let (sx, sy) = dist_params(anisotropic, (0.65 * eta_t - 0.35) * roughness, has_aniso);
@@ -72,17 +73,17 @@ impl PrincipledThin {
     }
 
     /// Mitsuba's `eval`: f·|cos θo|.
-    pub fn eval(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> Vec3 {
+    pub fn eval(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> Vec3 {
         let cos_i = wi.z;
         if cos_i == 0.0 || !wi.is_finite() || !wo.is_finite() {
             return Vec3::ZERO;
         }
-        let roughness = self.roughness.eval_1(uv);
-        let flatness = opt(&self.flatness, uv);
-        let spec_trans = opt(&self.spec_trans, uv);
-        let eta_t = self.eta.eval_1(uv);
-        let diff_trans = opt(&self.diff_trans, uv) / 2.0;
-        let base = self.base_color.eval(uv);
+        let roughness = self.roughness.eval_1(si);
+        let flatness = opt(&self.flatness, si);
+        let spec_trans = opt(&self.spec_trans, si);
+        let eta_t = self.eta.eval_1(si);
+        let diff_trans = opt(&self.diff_trans, si) / 2.0;
+        let base = self.base_color.eval(si);
         let wi = mulsign(wi, cos_i);
         let wo_t = mulsign(wo, cos_i);
         let cos_i = cos_i.abs();
@@ -93,9 +94,9 @@ impl PrincipledThin {
         let mut value = Vec3::ZERO;
         if self.spec_trans.is_some() {
             let f_diel = fresnel_dielectric(wi.dot(wh), eta_t).r;
-            let (refl_distr, trans_distr) = self.distributions(uv, eta_t);
+            let (refl_distr, trans_distr) = self.distributions(si, eta_t);
             if spec_trans > 0.0 && reflect && mac_mic_compatibility(wh, wi, wo_t, wi.z, true) {
-                let spec_tint = opt(&self.spec_tint, uv);
+                let spec_tint = opt(&self.spec_tint, si);
                 let mut f_schlick = Vec3::ZERO;
                 if self.spec_tint.is_some() {
                     let lum = luminance(base);
@@ -130,11 +131,11 @@ impl PrincipledThin {
                 f_diff + f_retro
             };
             value += base * ((1.0 - spec_trans) * cos_o * FRAC_1_PI * (1.0 - diff_trans) * lobe);
-            let sheen = opt(&self.sheen, uv);
+            let sheen = opt(&self.sheen, si);
             if self.sheen.is_some() && sheen > 0.0 {
                 let fd = schlick_weight(cos_d.abs());
                 let tint = if self.sheen_tint.is_some() {
-                    let st = opt(&self.sheen_tint, uv);
+                    let st = opt(&self.sheen_tint, si);
                     let lum = luminance(base);
                     let c_tint = if lum > 0.0 { base / lum } else { Vec3::ONE };
                     Vec3::ONE + (c_tint - Vec3::ONE) * st
@@ -153,14 +154,14 @@ impl PrincipledThin {
     }
 
     /// Mitsuba's `pdf`.
-    pub fn pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> f32 {
+    pub fn pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> f32 {
         let cos_i = wi.z;
         if cos_i == 0.0 || !wi.is_finite() || !wo.is_finite() {
             return 0.0;
         }
-        let spec_trans = opt(&self.spec_trans, uv);
-        let eta_t = self.eta.eval_1(uv);
-        let diff_trans = opt(&self.diff_trans, uv) / 2.0;
+        let spec_trans = opt(&self.spec_trans, si);
+        let eta_t = self.eta.eval_1(si);
+        let diff_trans = opt(&self.diff_trans, si) / 2.0;
         let wi = mulsign(wi, cos_i);
         let wo_t = mulsign(wo, cos_i);
         let cos_o = wo_t.z;
@@ -171,7 +172,7 @@ impl PrincipledThin {
             let wo_r = Vec3::new(wo_t.x, wo_t.y, wo_t.z.abs());
             let wh = (wi + wo_r).normalize();
             let dwh_dwo = (1.0 / (4.0 * wo_r.dot(wh))).abs();
-            let (refl_distr, trans_distr) = self.distributions(uv, eta_t);
+            let (refl_distr, trans_distr) = self.distributions(si, eta_t);
             if mac_mic_compatibility(wh, wi, wo_t, wi.z, true) && reflect {
                 pdf += psr * refl_distr.normal_pdf(wi, wh, true) * dwh_dwo;
             }
@@ -189,23 +190,23 @@ impl PrincipledThin {
     }
 
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        (self.eval(uv, wi, wo), self.pdf(uv, wi, wo))
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        (self.eval(si, wi, wo), self.pdf(si, wi, wo))
     }
 
     /// Mitsuba's `sample` (lobe by `u_lobe`, direction by `u`; weight = eval/pdf).
-    pub fn sample(&self, uv: Vec2, wi_in: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, si: &SurfaceInteraction, wi_in: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let cos_i = wi_in.z;
         if cos_i == 0.0 || !wi_in.is_finite() {
             return None;
         }
-        let spec_trans = opt(&self.spec_trans, uv);
-        let diff_trans = opt(&self.diff_trans, uv) / 2.0;
+        let spec_trans = opt(&self.spec_trans, si);
+        let diff_trans = opt(&self.diff_trans, si) / 2.0;
         let wi = mulsign(wi_in, cos_i);
         let [psr, pst, pcr, _] = self.probs(spec_trans, diff_trans);
         let has_st = self.spec_trans.is_some();
         let wo = if has_st && u_lobe < psr {
-            let (refl_distr, _) = self.distributions(uv, self.eta.eval_1(uv));
+            let (refl_distr, _) = self.distributions(si, self.eta.eval_1(si));
             let m = refl_distr.sample(wi, u, true);
             let wo = 2.0 * wi.dot(m) * m - wi;
             if !(mac_mic_compatibility(m, wi, wo, wi.z, true) && wo.z > 0.0) {
@@ -213,7 +214,7 @@ impl PrincipledThin {
             }
             wo
         } else if has_st && u_lobe >= psr && u_lobe < psr + pst {
-            let (_, trans_distr) = self.distributions(uv, self.eta.eval_1(uv));
+            let (_, trans_distr) = self.distributions(si, self.eta.eval_1(si));
             let m = trans_distr.sample(wi, u, true);
             let r = 2.0 * wi.dot(m) * m - wi;
             let wo = Vec3::new(r.x, r.y, -r.z);
@@ -229,11 +230,11 @@ impl PrincipledThin {
             return None;
         };
         let wo = mulsign(wo, cos_i);
-        let pdf = self.pdf(uv, wi_in, wo);
+        let pdf = self.pdf(si, wi_in, wo);
         if !(pdf > 0.0) || !wo.is_finite() {
             return None;
         }
-        let weight = self.eval(uv, wi_in, wo) / pdf;
+        let weight = self.eval(si, wi_in, wo) / pdf;
         if !weight.is_finite() {
             return None;
         }

@@ -20,6 +20,7 @@ use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_refle
 use super::sample::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -97,7 +98,7 @@ impl RoughPlastic {
 
     /// `(f·cos θo, pdf)`; zero unless both directions are above the surface.
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
@@ -118,7 +119,7 @@ impl RoughPlastic {
         let g = self.distr.smith_g1(wo, h) * g1_wi;
         let spec = self.specular.unwrap_or(Vec3::ONE) * (f * d * g / (4.0 * wi.z));
         let t_o = lerp_table(&self.external_transmittance, wo.z);
-        let rho = self.diffuse.eval(uv);
+        let rho = self.diffuse.eval(si);
         let rho = if self.nonlinear {
             rho / (Vec3::ONE - rho * self.internal_reflectance)
         } else {
@@ -131,7 +132,7 @@ impl RoughPlastic {
     /// Lobe by `u_lobe`, direction by `u` (microfacet reflection or cosine-weighted); weight =
     /// eval/pdf of the full mixture. `None` where Mitsuba's weight is zero (pdf 0).
     #[inline]
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
@@ -142,7 +143,7 @@ impl RoughPlastic {
         } else {
             square_to_cosine_hemisphere(u)
         };
-        let (f, pdf) = self.eval_pdf(uv, wi, wo);
+        let (f, pdf) = self.eval_pdf(si, wi, wo);
         if !(pdf > 0.0) || !pdf.is_finite() || !wo.is_finite() {
             return None;
         }

@@ -1,7 +1,9 @@
-//! A BSDF parameter that is either a constant RGB or a `bitmap` texture looked up at the
-//! hit's uv (Mitsuba `get_texture`).
+//! A BSDF parameter that is either a constant RGB, a `bitmap` texture looked up at the
+//! hit's uv, a `checkerboard`, or a mesh's attribute (`mesh_attribute`) at the hit (Mitsuba
+//! `get_texture`).
 
-use crate::render::texture::BitmapTexture;
+use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::{BitmapTexture, BoundAttribute, Checkerboard};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
@@ -9,35 +11,70 @@ use std::sync::Arc;
 pub enum Texture {
     Constant(Vec3),
     Bitmap(Arc<BitmapTexture>),
+    Checkerboard(Checkerboard),
+    /// `mesh_attribute`, bound to the attribute of the shape it belongs to.
+    MeshAttribute(BoundAttribute),
+}
+
+/// Where a texture is looked up: the uv, and for mesh attributes the hit triangle and its
+/// barycentrics. Built from a [`SurfaceInteraction`], or from a bare uv (emitters, tests:
+/// triangle 0 at barycentrics (0, 0)).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TexPoint {
+    pub uv: Vec2,
+    pub prim: u32,
+    pub bary: Vec2,
+}
+
+impl From<Vec2> for TexPoint {
+    #[inline]
+    fn from(uv: Vec2) -> Self {
+        TexPoint { uv, prim: 0, bary: Vec2::ZERO }
+    }
+}
+
+impl From<&SurfaceInteraction> for TexPoint {
+    #[inline]
+    fn from(si: &SurfaceInteraction) -> Self {
+        TexPoint { uv: si.uv, prim: si.prim, bary: si.bary }
+    }
 }
 
 impl Texture {
     #[inline]
-    pub fn eval(&self, uv: Vec2) -> Vec3 {
+    pub fn eval(&self, at: impl Into<TexPoint>) -> Vec3 {
+        let at = at.into();
         match self {
             Texture::Constant(c) => *c,
-            Texture::Bitmap(b) => b.eval(uv),
+            Texture::Bitmap(b) => b.eval(at.uv),
+            Texture::Checkerboard(c) => c.eval(at.uv),
+            Texture::MeshAttribute(a) => a.eval(at.prim, at.bary),
         }
     }
 
     /// Mitsuba's `Texture::eval_1` in RGB mode (a scalar parameter such as a roughness): the
     /// channel mean of a constant (`srgb`'s `eval_1` returns its `mean()`; a `<float>` is the
-    /// same value in all channels), the luminance of a bitmap's RGB.
+    /// same value in all channels), the luminance of a bitmap's RGB, and the checkerboard's
+    /// own `eval_1` (which swaps the two colours' places, see [`Checkerboard`]).
     #[inline]
-    pub fn eval_1(&self, uv: Vec2) -> f32 {
+    pub fn eval_1(&self, at: impl Into<TexPoint>) -> f32 {
+        let at = at.into();
         match self {
             Texture::Constant(c) => (c.x + c.y + c.z) / 3.0,
-            Texture::Bitmap(b) => b.eval(uv).dot(Vec3::new(0.212_671, 0.715_160, 0.072_169)),
+            Texture::Bitmap(b) => b.eval(at.uv).dot(Vec3::new(0.212_671, 0.715_160, 0.072_169)),
+            Texture::Checkerboard(c) => c.eval_1(at.uv),
+            Texture::MeshAttribute(a) => a.eval_1(at.prim, at.bary),
         }
     }
 
     /// Mitsuba's `Texture::eval_1_grad`: zero for a constant, the bilinear luminance gradient
-    /// for a bitmap.
+    /// for a bitmap, zero for a checkerboard (piecewise constant) and a mesh attribute (the
+    /// loader refuses it where a gradient is needed).
     #[inline]
-    pub fn eval_1_grad(&self, uv: Vec2) -> Vec2 {
+    pub fn eval_1_grad(&self, at: impl Into<TexPoint>) -> Vec2 {
         match self {
-            Texture::Constant(_) => Vec2::ZERO,
-            Texture::Bitmap(b) => b.eval_1_grad(uv),
+            Texture::Constant(_) | Texture::Checkerboard(_) | Texture::MeshAttribute(_) => Vec2::ZERO,
+            Texture::Bitmap(b) => b.eval_1_grad(at.into().uv),
         }
     }
 
@@ -48,6 +85,8 @@ impl Texture {
         match self {
             Texture::Constant(c) => (c.x + c.y + c.z) / 3.0,
             Texture::Bitmap(b) => b.mean_luminance(),
+            Texture::Checkerboard(c) => c.mean(),
+            Texture::MeshAttribute(a) => a.mean(),
         }
     }
 }

@@ -8,6 +8,7 @@ use super::rough_conductor::RoughConductor;
 use super::rough_dielectric::RoughDielectric;
 use super::sample::BsdfSample;
 use super::texture::Texture;
+use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]
@@ -24,10 +25,10 @@ pub struct TexturedRoughness {
 }
 
 impl TexturedRoughness {
-    /// The lobe with the roughness at `uv`.
+    /// The lobe with the roughness at the hit.
     #[inline]
-    fn at(&self, uv: Vec2) -> RoughLobe {
-        let (au, av) = (self.alpha_u.eval_1(uv), self.alpha_v.eval_1(uv));
+    fn at(&self, si: &SurfaceInteraction) -> RoughLobe {
+        let (au, av) = (self.alpha_u.eval_1(si), self.alpha_v.eval_1(si));
         match &self.lobe {
             RoughLobe::Conductor(c) => RoughLobe::Conductor(c.with_alpha(au, av)),
             RoughLobe::Dielectric(d) => RoughLobe::Dielectric(d.with_alpha(au, av)),
@@ -35,16 +36,16 @@ impl TexturedRoughness {
     }
 
     #[inline]
-    pub fn eval_pdf(&self, uv: Vec2, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        match self.at(uv) {
+    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        match self.at(si) {
             RoughLobe::Conductor(c) => (c.eval(wi, wo), c.pdf(wi, wo)),
             RoughLobe::Dielectric(d) => d.eval_pdf(wi, wo),
         }
     }
 
     #[inline]
-    pub fn sample(&self, uv: Vec2, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        match self.at(uv) {
+    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match self.at(si) {
             RoughLobe::Conductor(c) => c.sample(wi, u_lobe, u),
             RoughLobe::Dielectric(d) => d.sample(wi, u_lobe, u),
         }

@@ -4,6 +4,7 @@
 
 pub mod envmap;
 pub mod sample;
+pub mod sample_ray;
 
 pub use envmap::EnvMap;
 pub use sample::EmitterSample;
@@ -17,7 +18,8 @@ use std::f32::consts::PI;
 #[derive(Clone, Debug)]
 pub enum Emitter {
     /// Emits `radiance` from the side its shape's shading normal points to.
-    Area { shape: u32, radiance: Vec3 },
+    /// `radiance`: a colour or a uv texture (not a mesh attribute).
+    Area { shape: u32, radiance: Texture },
     /// Isotropic point light: `intensity / d²`.
     Point { position: Vec3, intensity: Vec3 },
     /// Spot light along local +z of `to_world`; falloff linear in the angle between
@@ -74,7 +76,7 @@ impl Emitter {
                     dist: ds.dist,
                     pdf: ds.pdf,
                     delta: false,
-                    weight: *radiance / ds.pdf,
+                    weight: radiance.eval(ds.uv) / ds.pdf,
                     p: ds.p,
                     n: ds.n,
                 })
@@ -203,7 +205,7 @@ impl Emitter {
     #[inline]
     pub fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
         match self {
-            Emitter::Area { radiance, .. } if si.wi.z > 0.0 => *radiance,
+            Emitter::Area { radiance, .. } if si.wi.z > 0.0 => radiance.eval(si),
             _ => Vec3::ZERO,
         }
     }

@@ -42,7 +42,7 @@ impl DirectIntegrator {
         if bsdf.has_smooth() {
             for _ in 0..self.emitter_samples {
                 let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d()) else { continue };
-                let (f, pdf_b) = bsdf.eval_pdf(si.uv, si.wi, si.to_local(es.d));
+                let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
                 if f != Vec3::ZERO && scene.emitter_visible(&si, &es) {
                     let w = if es.delta { 1.0 } else { power_heuristic(es.pdf * frac_lum, pdf_b * frac_bsdf) / ne };
                     l += f * es.weight * w;
@@ -52,7 +52,7 @@ impl DirectIntegrator {
 
         for _ in 0..self.bsdf_samples {
             let u_lobe = sampler.next_1d();
-            let Some(bs) = bsdf.sample(si.uv, si.wi, u_lobe, sampler.next_2d()) else { continue };
+            let Some(bs) = bsdf.sample(&si, si.wi, u_lobe, sampler.next_2d()) else { continue };
             let wo = si.to_world(bs.wo);
             let le_pdf = match scene.intersect(&ray::spawn_ray(si.p, si.n, wo)) {
                 Some(hit) => scene.surface_emitter(&hit).map(|em| {

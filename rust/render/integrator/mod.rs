@@ -4,9 +4,11 @@
 pub mod direct;
 pub mod mis;
 pub mod path;
+pub mod ptracer;
 
 pub use direct::DirectIntegrator;
 pub use path::PathIntegrator;
+pub use ptracer::ParticleTracer;
 
 use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
@@ -17,6 +19,9 @@ use glam::Vec3;
 pub enum Integrator {
     Path(PathIntegrator),
     Direct(DirectIntegrator),
+    /// Mitsuba's `ptracer`: light paths splatted to the film; rendered by
+    /// [`ParticleTracer::render`], not pixel by pixel.
+    ParticleTracer(ParticleTracer),
 }
 
 impl Integrator {
@@ -26,6 +31,8 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.li(scene, sampler, ray),
             Integrator::Direct(d) => d.li(scene, sampler, ray),
+            // The renderer sends ptracer to its own loop (renderer::render).
+            Integrator::ParticleTracer(_) => Vec3::ZERO,
         }
     }
 }

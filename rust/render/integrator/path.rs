@@ -61,7 +61,7 @@ impl PathIntegrator {
             if bsdf.has_smooth()
                 && let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d())
             {
-                let (f, pdf_b) = bsdf.eval_pdf(si.uv, si.wi, si.to_local(es.d));
+                let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
                 if f != Vec3::ZERO && scene.emitter_visible(&si, &es) {
                     let w = if es.delta { 1.0 } else { power_heuristic(es.pdf, pdf_b) };
                     l += beta * f * es.weight * w;
@@ -69,7 +69,7 @@ impl PathIntegrator {
             }
             let u_lobe = sampler.next_1d();
             let u = sampler.next_2d();
-            let Some(bs) = bsdf.sample(si.uv, si.wi, u_lobe, u) else { break };
+            let Some(bs) = bsdf.sample(&si, si.wi, u_lobe, u) else { break };
             beta *= bs.weight;
             eta *= bs.eta;
             prev_p = si.p;

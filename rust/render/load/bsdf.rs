@@ -1,5 +1,5 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
-//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `principled`,
+//! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`,
 //! `principledthin` and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
 //! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
 //! plugin uses).
@@ -8,23 +8,32 @@ use super::bsdf_params::{MAX_MAGNITUDE, constant, ior, microfacet, optional_cons
 use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
-    Bsdf, Conductor, Dielectric, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe, RoughPlastic, Texture,
-    TexturedRoughness, ThinDielectric, conductor_material,
+    Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
+    RoughPlastic, Texture, TexturedRoughness, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
 /// The BSDF index for this XML object, building it the first time it is seen.
+/// A BSDF that depends on its shape (a `mesh_attribute` texture, a `bumpmap`) is built again
+/// for every shape.
 pub fn get_or_build(b: &mut Builder, obj: &SceneObject) -> Result<u32, SceneError> {
     let key = obj as *const SceneObject;
     if let Some(&i) = b.bsdf_index.get(&key) {
         return Ok(i);
     }
-    let bsdf = build(b, obj)?;
+    let outer = b.shape_dependent.replace(false);
+    let bsdf = build(b, obj);
+    let dependent = b.shape_dependent.replace(outer);
+    let bsdf = bsdf?;
     b.bsdfs.push(bsdf);
     let i = (b.bsdfs.len() - 1) as u32;
-    b.bsdf_index.insert(key, i);
+    if dependent {
+        b.shape_dependent_bsdfs.insert(key);
+    } else {
+        b.bsdf_index.insert(key, i);
+    }
     Ok(i)
 }
 
@@ -77,16 +86,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             // Mitsuba's `allow_transmission` (default false) lifts the check below.
             let allow_transmission = values::boolean(obj, "allow_transmission", false)?;
             for side in [&front, &back] {
-                let transmissive = match side {
-                    // principledthin always declares a diffuse transmission component.
-                    Bsdf::Dielectric(_)
-                    | Bsdf::RoughDielectric(_)
-                    | Bsdf::ThinDielectric(_)
-                    | Bsdf::PrincipledThin(_) => true,
-                    Bsdf::Principled(p) => p.spec_trans.is_some(),
-                    Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
-                    _ => false,
-                };
+                let transmissive = is_transmissive(side);
                 if transmissive && !allow_transmission {
                     return Err(err(
                         obj,
@@ -162,6 +162,67 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 use_shadowing_function,
             })
         }
+        "mask" => {
+            let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
+            let [inner] = nested.as_slice() else {
+                return Err(err(obj, format!("needs exactly one nested BSDF, found {}", nested.len())));
+            };
+            let opacity = texture::get(b, obj, "opacity", ColorUse::Bounded, Vec3::splat(0.5))?;
+            Bsdf::Mask(Mask { opacity, nested: Box::new(build(b, inner)?) })
+        }
+        "bumpmap" => {
+            let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
+            let [inner] = nested.as_slice() else {
+                return Err(err(obj, format!("needs exactly one nested BSDF, found {}", nested.len())));
+            };
+            let textures: Vec<_> = obj.children_with_tag("texture").map(|c| c.object.clone()).collect();
+            let [height] = textures.as_slice() else {
+                return Err(err(
+                    obj,
+                    format!("needs exactly one nested texture (the height map), found {}", textures.len()),
+                ));
+            };
+            // The texture may have any name (Mitsuba takes the one texture child).
+            if height.plugin != "bitmap" {
+                return Err(err(
+                    height,
+                    "a bumpmap needs a bitmap height texture (Mitsuba's other textures have no gradient)",
+                ));
+            }
+            let height = texture::build(b, height)?;
+            b.shape_dependent.set(true);
+            if b.shape.as_ref().is_some_and(|s| !s.is_mesh) {
+                return Err(err(
+                    obj,
+                    "bumpmap is supported on meshes only (obj, ply, rectangle, cube): matte's analytic shapes have no ∂p/∂u, ∂p/∂v",
+                ));
+            }
+            let scale = values::float(obj, "scale", 1.0)? as f32;
+            let flip_invalid_normals = values::boolean(obj, "flip_invalid_normals", true)?;
+            let use_shadowing_function = values::boolean(obj, "use_shadowing_function", true)?;
+            Bsdf::BumpMap(Box::new(BumpMap {
+                height,
+                nested: Box::new(build(b, inner)?),
+                scale,
+                flip_invalid_normals,
+                use_shadowing_function,
+            }))
+        }
+        "blendbsdf" => {
+            let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
+            let [first, second] = nested.as_slice() else {
+                return Err(err(obj, format!("needs exactly two nested BSDFs, found {}", nested.len())));
+            };
+            if obj.child("weight").is_none() && !obj.properties.contains("weight") {
+                return Err(err(obj, "missing the blend \"weight\" (a float or a texture)"));
+            }
+            let weight = texture::get(b, obj, "weight", ColorUse::Bounded, Vec3::ZERO)?;
+            Bsdf::Blend(Box::new(Blend {
+                weight,
+                first: Box::new(build(b, first)?),
+                second: Box::new(build(b, second)?),
+            }))
+        }
         "principled" => Bsdf::Principled(Box::new(bsdf_principled::principled(b, obj)?)),
         "principledthin" => Bsdf::PrincipledThin(Box::new(bsdf_principled::principled_thin(b, obj)?)),
         "plastic" => {
@@ -187,7 +248,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 obj,
                 format!(
                     "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
-                     conductor, roughconductor, plastic, roughplastic, normalmap, principled, principledthin, {})",
+                     conductor, roughconductor, plastic, roughplastic, normalmap, bumpmap, mask, blendbsdf, principled, principledthin, {})",
                     BSDF_TYPES.join(", ")
                 ),
             ));
@@ -195,6 +256,22 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
     };
     obj.check_all_used()?;
     Ok(bsdf)
+}
+
+/// Whether Mitsuba's flags of the BSDF include a transmission (`twosided` refuses those).
+fn is_transmissive(bsdf: &Bsdf) -> bool {
+    match bsdf {
+        // principledthin always declares a diffuse transmission component.
+        Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::PrincipledThin(_) => true,
+        // mask's null component is a transmission (`BSDFFlags::Null`).
+        Bsdf::Mask(_) => true,
+        Bsdf::Principled(p) => p.spec_trans.is_some(),
+        Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
+        Bsdf::Blend(b) => is_transmissive(&b.first) || is_transmissive(&b.second),
+        Bsdf::NormalMap(n) => is_transmissive(&n.nested),
+        Bsdf::BumpMap(m) => is_transmissive(&m.nested),
+        _ => false,
+    }
 }
 
 /// `material` (default "none": a perfect mirror) or explicit `eta` and `k`. As in Mitsuba

@@ -45,7 +45,19 @@ pub fn build_area(b: &mut Builder, obj: &SceneObject, shape: u32) -> Result<u32,
     if obj.properties.contains("to_world") {
         return Err(values::prop_err(obj, "to_world", "is not allowed on an area emitter (it follows its shape)"));
     }
-    let radiance = emissive(obj, "radiance")?;
+    let radiance = match obj.child("radiance") {
+        Some(c) if c.object.tag == "texture" => {
+            let t = super::texture::build(b, &c.object)?;
+            if matches!(t, Texture::MeshAttribute(_)) {
+                return Err(err(
+                    &c.object,
+                    "a mesh attribute as an emitter's radiance is not supported by matte render",
+                ));
+            }
+            t
+        }
+        _ => Texture::Constant(emissive(obj, "radiance")?),
+    };
     let w = weight(obj)?;
     obj.check_all_used()?;
     Ok(push(b, Emitter::Area { shape, radiance }, w))

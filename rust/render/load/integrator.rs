@@ -1,11 +1,12 @@
 //! `<integrator>`: Mitsuba's `path` (max_depth −1, rr_depth 5, hide_emitters false) and
-//! `direct` (emitter_samples = bsdf_samples = shading_samples = 1), and `moment`
+//! `direct` (emitter_samples = bsdf_samples = shading_samples = 1), `ptracer` (max_depth −1,
+//! rr_depth 5, hide_emitters false, samples_per_pass read and ignored), and `moment`
 //! (`src/integrators/moment.cpp`): its image is the first nested integrator's, sample by
 //! sample; the second-moment AOVs it adds are not produced. Every nested integrator is still
 //! built, so an invalid one is reported.
 
 use super::{err, values};
-use crate::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
+use crate::render::integrator::{DirectIntegrator, Integrator, ParticleTracer, PathIntegrator};
 use crate::scene::SceneError;
 use crate::scene::xml::SceneObject;
 
@@ -46,6 +47,16 @@ pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
                 hide_emitters: values::boolean(obj, "hide_emitters", false)?,
             })
         }
+        "ptracer" => {
+            let max_depth = values::integer(obj, "max_depth", -1, -1, u32::MAX as i64)?;
+            let rr_depth = values::integer(obj, "rr_depth", 5, 1, u32::MAX as i64)?;
+            let _ = values::integer(obj, "samples_per_pass", -1, -1, u32::MAX as i64)?;
+            Integrator::ParticleTracer(ParticleTracer {
+                max_depth: if max_depth < 0 { u32::MAX } else { max_depth as u32 },
+                rr_depth: rr_depth as u32,
+                hide_emitters: values::boolean(obj, "hide_emitters", false)?,
+            })
+        }
         "moment" => {
             let mut first = None;
             for child in obj.children_with_tag("integrator") {
@@ -57,7 +68,7 @@ pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
         other => {
             return Err(err(
                 obj,
-                format!("unsupported integrator type \"{other}\" (matte renders: path, direct, moment)"),
+                format!("unsupported integrator type \"{other}\" (matte renders: path, direct, ptracer, moment)"),
             ));
         }
     };

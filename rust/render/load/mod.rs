@@ -62,6 +62,22 @@ pub(crate) struct Builder {
     pub shapes: Vec<crate::render::shape::Shape>,
     pub emitters: Vec<Emitter>,
     pub sampling_weights: Vec<f32>,
+    /// The shape whose BSDF is being built (`None` at the top level).
+    pub shape: Option<ShapeContext>,
+    /// Set while building when something read [`Self::shape`] (a `mesh_attribute` texture, a
+    /// `bumpmap`): that BSDF is then built again for every shape instead of being shared.
+    pub shape_dependent: std::cell::Cell<bool>,
+    /// BSDF objects that depend on their shape (see [`Self::shape_dependent`]).
+    pub shape_dependent_bsdfs: std::collections::HashSet<*const SceneObject>,
+}
+
+/// What a BSDF may need to know of the shape it is built for.
+pub(crate) struct ShapeContext {
+    /// A triangle mesh (`obj`, `ply`, `rectangle`, `cube`), which has ∂p/∂u, ∂p/∂v and
+    /// attributes in matte; the analytic shapes have neither.
+    pub is_mesh: bool,
+    pub attributes: Vec<std::sync::Arc<crate::scene::mesh::MeshAttribute>>,
+    pub triangles: std::sync::Arc<Vec<[u32; 3]>>,
 }
 
 impl Builder {
@@ -86,8 +102,12 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         shapes: Vec::new(),
         emitters: Vec::new(),
         sampling_weights: Vec::new(),
+        shape: None,
+        shape_dependent: std::cell::Cell::new(false),
+        shape_dependent_bsdfs: std::collections::HashSet::new(),
     };
     let mut integrator = None;
+    let mut integrator_obj = None;
     let mut sensor = None;
     for child in &root.children {
         child.mark_used();
@@ -98,6 +118,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
                     return Err(SceneError::at(&obj.pos, "more than one <integrator>"));
                 }
                 integrator = Some(integrator::build(obj)?);
+                integrator_obj = Some(obj.clone());
             }
             "sensor" => {
                 if sensor.is_some() {
@@ -139,8 +160,45 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             hide_emitters: false,
         }),
     };
+    if let (Integrator::ParticleTracer(_), Some(obj)) = (&integrator, &integrator_obj) {
+        particle_tracer_limits(&b, &sensor, obj)?;
+    }
     let scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
     Ok(LoadedScene { scene, camera: sensor.camera, film: sensor.film, integrator, spp: sensor.spp, seed: sensor.seed })
+}
+
+/// What matte's `ptracer` does not support, as load errors at the integrator: other sensors
+/// than `perspective`, other filters than `box`, emitters without `sample_ray` (environment,
+/// directional, area lights on analytic shapes), BSDFs that refract (matte evaluates BSDFs
+/// for radiance only; importance transport differs by η² there).
+fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObject) -> Result<(), SceneError> {
+    use crate::render::bsdf::Bsdf;
+    if !matches!(sensor.camera, Camera::Perspective(_)) {
+        return Err(err(obj, "matte's ptracer needs a perspective sensor"));
+    }
+    if !matches!(sensor.film.filter(), crate::render::film::ReconstructionFilter::Box) {
+        return Err(err(obj, "matte's ptracer needs the box reconstruction filter (rfilter type=\"box\")"));
+    }
+    if b.emitters.iter().any(|e| !e.can_sample_ray(&b.shapes)) {
+        return Err(err(obj, "matte's ptracer supports area (on meshes), point, spot and projector emitters only"));
+    }
+    fn refracts(bsdf: &Bsdf) -> bool {
+        match bsdf {
+            Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) => true,
+            Bsdf::TexturedRoughness(t) => matches!(t.lobe, crate::render::bsdf::RoughLobe::Dielectric(_)),
+            Bsdf::Principled(p) => p.spec_trans.is_some(),
+            Bsdf::TwoSided { front, back } => refracts(front) || refracts(back),
+            Bsdf::NormalMap(n) => refracts(&n.nested),
+            Bsdf::BumpMap(m) => refracts(&m.nested),
+            Bsdf::Mask(m) => refracts(&m.nested),
+            Bsdf::Blend(bl) => refracts(&bl.first) || refracts(&bl.second),
+            _ => false,
+        }
+    }
+    if b.bsdfs.iter().any(refracts) {
+        return Err(err(obj, "matte's ptracer does not support refracting BSDFs (dielectrics, principled spec_trans)"));
+    }
+    Ok(())
 }
 
 /// Error helper: `what` at the object's position.

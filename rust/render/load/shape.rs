@@ -3,13 +3,14 @@
 //! optional nested `area` emitter (docs/renderer-semantics.md §8). A shape without a BSDF gets diffuse 0.5,
 //! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
 
-use super::{Builder, bsdf, emitter, err, values};
+use super::{Builder, ShapeContext, bsdf, emitter, err, values};
 use crate::render::geometry::Frame;
 use crate::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
 use crate::scene::SceneError;
 use crate::scene::mesh::{self, MeshOptions};
 use crate::scene::xml::SceneObject;
 use glam::{Affine3A, Mat3, Mat4, Vec3};
+use std::sync::Arc;
 
 pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
     match obj.plugin.as_str() {
@@ -110,6 +111,35 @@ pub(super) fn build_placed(
     let shape_index = b.shapes.len() as u32;
     let mut bsdf_index = None;
     let mut emitter_index = None;
+    b.shape = Some(match &geometry {
+        Geometry::Triangles(t) => ShapeContext {
+            is_mesh: true,
+            attributes: t.mesh.attributes.iter().cloned().map(Arc::new).collect(),
+            triangles: Arc::new(if t.mesh.attributes.is_empty() { Vec::new() } else { t.mesh.triangles.clone() }),
+        },
+        _ => ShapeContext { is_mesh: false, attributes: Vec::new(), triangles: Arc::new(Vec::new()) },
+    });
+    let children = attach_children(b, obj, shape_index, in_group, &mut bsdf_index, &mut emitter_index);
+    b.shape = None;
+    children?;
+    let bsdf_index = match bsdf_index {
+        Some(i) => i,
+        None => bsdf::default_diffuse(b, if emitter_index.is_some() { 0.0 } else { 0.5 }),
+    };
+    obj.check_all_used()?;
+    b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
+    Ok(())
+}
+
+/// The shape's nested or referenced `<bsdf>` and `<emitter>`.
+fn attach_children(
+    b: &mut Builder,
+    obj: &SceneObject,
+    shape_index: u32,
+    in_group: bool,
+    bsdf_index: &mut Option<u32>,
+    emitter_index: &mut Option<u32>,
+) -> Result<(), SceneError> {
     for child in obj.children.iter() {
         child.mark_used();
         let c = &child.object;
@@ -118,7 +148,7 @@ pub(super) fn build_placed(
                 if bsdf_index.is_some() {
                     return Err(err(obj, "has more than one BSDF"));
                 }
-                bsdf_index = Some(bsdf::get_or_build(b, c)?);
+                *bsdf_index = Some(bsdf::get_or_build(b, c)?);
             }
             "emitter" if in_group => {
                 return Err(err(
@@ -130,17 +160,11 @@ pub(super) fn build_placed(
                 if emitter_index.is_some() {
                     return Err(err(obj, "has more than one emitter"));
                 }
-                emitter_index = Some(emitter::build_area(b, c, shape_index)?);
+                *emitter_index = Some(emitter::build_area(b, c, shape_index)?);
             }
             other => return Err(err(c, format!("a <{other}> cannot be nested in a shape"))),
         }
     }
-    let bsdf_index = match bsdf_index {
-        Some(i) => i,
-        None => bsdf::default_diffuse(b, if emitter_index.is_some() { 0.0 } else { 0.5 }),
-    };
-    obj.check_all_used()?;
-    b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
     Ok(())
 }
 

@@ -3,7 +3,7 @@
 
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
-use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
+use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
 use glam::{Affine2, Mat2, Vec2, Vec3};
@@ -30,18 +30,19 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
         "bitmap" => build_bitmap(b, obj),
         "checkerboard" => checkerboard(b, obj),
         "rawconstant" => rawconstant(obj),
+        "mesh_attribute" => mesh_attribute(b, obj),
         other => Err(err(
             obj,
-            format!("unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant)"),
+            format!(
+                "unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant, mesh_attribute)"
+            ),
         )),
     }
 }
 
-/// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): with uv' = to_uv·uv, `color0`
-/// where the fractional parts of u' and v' are both above or both at most ½, else `color1`
-/// (defaults 0.4 and 0.2). That is a 2×2 texture [color0 color1; color1 color0] with
-/// nearest lookup and repeat wrapping (uv' = (0.5, ·) exactly, a set of measure zero, falls
-/// on the other side), so it is built as one. Textured colours are not supported.
+/// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): `color0` and `color1` (colours,
+/// defaults 0.4 and 0.2) and `to_uv`; the lookup is [`Checkerboard`]'s. Textured colours are
+/// not supported.
 fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let colour = |name: &str, default: f32| -> Result<Vec3, SceneError> {
         match get(b, obj, name, ColorUse::Bounded, Vec3::splat(default))? {
@@ -49,11 +50,55 @@ fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
             _ => Err(err(obj, format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)"))),
         }
     };
-    let (c0, c1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
-    let opts = BitmapOptions { filter: BitmapFilter::Nearest, wrap: WrapMode::Repeat, raw: true, to_uv: to_uv(obj)? };
+    let (color0, color1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
+    let to_uv = to_uv(obj)?;
     obj.check_all_used()?;
-    let tex = BitmapTexture::from_linear(2, 2, vec![c0, c1, c1, c0], &opts).map_err(|e| err(obj, e))?;
-    Ok(Texture::Bitmap(Arc::new(tex)))
+    Ok(Texture::Checkerboard(Checkerboard { color0, color1, to_uv }))
+}
+
+/// Mitsuba's `mesh_attribute` (`src/textures/mesh_attribute.cpp`): `name` (must contain
+/// `vertex_` or `face_`) and `scale` (default 1), bound to the attribute of that name of the
+/// shape being built. A definition outside any shape (a top-level `<texture id>`) is only
+/// checked here; every shape that uses it binds its own copy.
+fn mesh_attribute(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
+    let name = obj.properties.string("name")?.ok_or_else(|| err(obj, "missing property \"name\""))?;
+    if !name.contains("vertex_") && !name.contains("face_") {
+        return Err(values::prop_err(
+            obj,
+            "name",
+            format!("must start with either \"vertex_\" or \"face_\" but was \"{name}\""),
+        ));
+    }
+    let scale = values::float(obj, "scale", 1.0)? as f32;
+    obj.check_all_used()?;
+    b.shape_dependent.set(true);
+    let Some(shape) = &b.shape else { return Ok(Texture::Constant(Vec3::ZERO)) };
+    if !shape.is_mesh {
+        return Err(err(obj, "a mesh attribute needs a mesh shape (obj, ply, rectangle, cube)"));
+    }
+    let Some(attribute) = shape.attributes.iter().find(|a| a.name == name) else {
+        let names: Vec<&str> = shape.attributes.iter().map(|a| a.name.as_str()).collect();
+        return Err(values::prop_err(
+            obj,
+            "name",
+            format!(
+                "the shape has no attribute \"{name}\" (it has: {})",
+                if names.is_empty() { "none".to_string() } else { names.join(", ") }
+            ),
+        ));
+    };
+    if attribute.dim != 1 && attribute.dim != 3 {
+        return Err(values::prop_err(
+            obj,
+            "name",
+            format!("attribute \"{name}\" has {} channels; only 1 or 3 can be evaluated", attribute.dim),
+        ));
+    }
+    Ok(Texture::MeshAttribute(BoundAttribute {
+        attribute: attribute.clone(),
+        triangles: shape.triangles.clone(),
+        scale,
+    }))
 }
 
 /// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three

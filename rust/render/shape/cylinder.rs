@@ -73,7 +73,19 @@ impl Cylinder {
         // Mitsuba: dp_du = to_world·2π(−y, x, 0) of the local point.
         let dp_du = self.to_world.transform_vector3(Vec3::new(-l.y, l.x, 0.0));
         let sh_frame = Frame::from_normal_dpdu(n, dp_du);
-        SurfaceInteraction { t, p, n, sh_frame, uv, shape, wi: sh_frame.to_local(-ray.d) }
+        SurfaceInteraction {
+            t,
+            p,
+            n,
+            sh_frame,
+            uv,
+            shape,
+            wi: sh_frame.to_local(-ray.d),
+            prim: 0,
+            bary: Vec2::ZERO,
+            dp_du: Vec3::ZERO,
+            dp_dv: Vec3::ZERO,
+        }
     }
 
     /// Point, normal and uv on the wall at object-space azimuth direction `c` and height `z`.

@@ -66,7 +66,19 @@ impl Disk {
         let radial = local.normalize_or_zero();
         let dp_du = self.to_world.transform_vector3(Vec3::new(radial.x, radial.y, 0.0));
         let sh_frame = Frame::from_normal_dpdu(self.n, dp_du);
-        SurfaceInteraction { t, p, n: self.n, sh_frame, uv: Self::uv(local), shape, wi: sh_frame.to_local(-ray.d) }
+        SurfaceInteraction {
+            t,
+            p,
+            n: self.n,
+            sh_frame,
+            uv: Self::uv(local),
+            shape,
+            wi: sh_frame.to_local(-ray.d),
+            prim: 0,
+            bary: Vec2::ZERO,
+            dp_du: Vec3::ZERO,
+            dp_dv: Vec3::ZERO,
+        }
     }
 
     #[inline]

@@ -16,9 +16,36 @@ pub struct SurfaceInteraction {
     pub shape: u32,
     /// Direction towards the ray origin, in the shading frame.
     pub wi: Vec3,
+    /// Triangle index and barycentrics `(b1, b2)` of the hit on a mesh (0 and zero on the
+    /// analytic shapes): what `mesh_attribute` textures interpolate with.
+    pub prim: u32,
+    pub bary: Vec2,
+    /// World-space ∂p/∂u and ∂p/∂v (Mitsuba `si.dp_du`, `si.dp_dv`; `bumpmap` reads them).
+    /// Computed for meshes only (zero on the analytic shapes, where `bumpmap` is refused).
+    pub dp_du: Vec3,
+    pub dp_dv: Vec3,
 }
 
 impl SurfaceInteraction {
+    /// A hit at the origin with the identity shading frame and the given uv, for looking up
+    /// textures and BSDFs outside a scene (tests, pointwise comparisons).
+    pub fn at_uv(uv: Vec2) -> Self {
+        let sh_frame = Frame { s: Vec3::X, t: Vec3::Y, n: Vec3::Z };
+        SurfaceInteraction {
+            t: 0.0,
+            p: Vec3::ZERO,
+            n: Vec3::Z,
+            sh_frame,
+            uv,
+            shape: 0,
+            wi: Vec3::Z,
+            prim: 0,
+            bary: Vec2::ZERO,
+            dp_du: Vec3::X,
+            dp_dv: Vec3::Y,
+        }
+    }
+
     #[inline]
     pub fn to_world(&self, v: Vec3) -> Vec3 {
         self.sh_frame.to_world(v)

@@ -51,29 +51,32 @@ impl Triangles {
     #[inline]
     pub fn interaction(&self, tri: u32, b: Vec2, t: f32, d: Vec3, shape: u32) -> SurfaceInteraction {
         let (p, n, sh_n, uv) = self.surface_point(tri, b);
-        let sh_frame = Frame::from_normal_dpdu(sh_n, self.dp_du(tri, n));
-        SurfaceInteraction { t, p, n, sh_frame, uv, shape, wi: sh_frame.to_local(-d) }
+        let (dp_du, dp_dv) = self.dp_duv(tri, n);
+        let sh_frame = Frame::from_normal_dpdu(sh_n, dp_du);
+        SurfaceInteraction { t, p, n, sh_frame, uv, shape, wi: sh_frame.to_local(-d), prim: tri, bary: b, dp_du, dp_dv }
     }
 
-    /// Mitsuba's `dp_du` (`src/render/mesh.cpp`): p1 − p0 without texture coordinates; with
-    /// them, the uv-parameterisation derivative (dp0·Δv1 − dp1·Δv0)/det, or the first
-    /// [`coordinate_system`](crate::render::geometry::frame::coordinate_system) tangent of
-    /// the face normal when the uv triangle is degenerate.
+    /// Mitsuba's `dp_du`, `dp_dv` (`src/render/mesh.cpp`): p1 − p0 and p2 − p0 without
+    /// texture coordinates; with them, the uv-parameterisation derivatives
+    /// ((dp0·Δv1 − dp1·Δv0)/det, (dp1·Δu0 − dp0·Δu1)/det), or the
+    /// [`coordinate_system`](crate::render::geometry::frame::coordinate_system) of the face
+    /// normal when the uv triangle is degenerate.
     #[inline]
-    fn dp_du(&self, tri: u32, n: Vec3) -> Vec3 {
+    fn dp_duv(&self, tri: u32, n: Vec3) -> (Vec3, Vec3) {
         let idx = self.mesh.triangles[tri as usize];
         let [p0, p1, p2] = idx.map(|i| self.mesh.positions[i as usize]);
         let (dp0, dp1) = (p1 - p0, p2 - p0);
         if self.mesh.uvs.is_empty() {
-            return dp0;
+            return (dp0, dp1);
         }
         let [uv0, uv1, uv2] = idx.map(|i| self.mesh.uvs[i as usize]);
         let (duv0, duv1) = (uv1 - uv0, uv2 - uv0);
         let det = duv0.x * duv1.y - duv0.y * duv1.x;
         if det == 0.0 {
-            return crate::render::geometry::frame::coordinate_system(n).0;
+            return crate::render::geometry::frame::coordinate_system(n);
         }
-        (dp0 * duv1.y - dp1 * duv0.y) / det
+        let inv_det = 1.0 / det;
+        ((dp0 * duv1.y - dp1 * duv0.y) * inv_det, (dp1 * duv0.x - dp0 * duv1.x) * inv_det)
     }
 
     /// Position, geometric normal, shading normal and uv at barycentrics `(b1, b2)`.
@@ -110,6 +113,14 @@ impl Triangles {
     /// `1/A` turned into solid angle at `ref_p` with the shading normal (docs/renderer-semantics.md §8).
     #[inline]
     pub fn sample_direction(&self, ref_p: Vec3, u: Vec2) -> Option<DirectionSample> {
+        let (p, sh_n, uv) = self.sample_position(u)?;
+        area_sampling::direction_sample(ref_p, p, sh_n, uv, self.area)
+    }
+
+    /// A uniform point on the surface (triangle ∝ area, then uniform inside it): position,
+    /// shading normal (after `flip_normals`) and uv; the area density is `1/area`.
+    #[inline]
+    pub fn sample_position(&self, u: Vec2) -> Option<(Vec3, Vec3, Vec2)> {
         if self.area <= 0.0 {
             return None;
         }
@@ -120,7 +131,7 @@ impl Triangles {
         let ux = if width > 0.0 { ((target - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
         let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
         let (p, _, sh_n, uv) = self.surface_point(tri as u32, b);
-        area_sampling::direction_sample(ref_p, p, sh_n, uv, self.area)
+        Some((p, sh_n, uv))
     }
 
     /// Solid-angle density of [`Self::sample_direction`] for the hit `si` seen from `ref_p`.

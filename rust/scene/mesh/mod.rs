@@ -27,15 +27,18 @@
 //!   produce a NaN normal (a vertex touched only by such triangles gets `(1, 0, 0)`, Mitsuba's
 //!   placeholder).
 
+mod attribute;
 mod normals;
 mod obj;
 mod ply;
+mod ply_attributes;
 mod primitives;
 
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
+pub use attribute::MeshAttribute;
 pub use normals::smooth_vertex_normals;
 pub use obj::load_obj;
 pub use ply::load_ply;
@@ -51,6 +54,8 @@ pub struct TriangleMesh {
     pub uvs: Vec<Vec2>,
     /// Vertex indices, counter-clockwise = front.
     pub triangles: Vec<[u32; 3]>,
+    /// Named vertex/face attributes (PLY only); face attributes have one entry per triangle.
+    pub attributes: Vec<MeshAttribute>,
 }
 
 impl TriangleMesh {
@@ -146,6 +151,7 @@ pub(crate) struct LoadedMesh {
     pub normals: Vec<Option<Vec3>>,
     pub uvs: Vec<Vec2>,
     pub triangles: Vec<[u32; 3]>,
+    pub attributes: Vec<MeshAttribute>,
 }
 
 /// Applies Mitsuba's normal policy and the checks every loader shares.
@@ -171,7 +177,7 @@ pub(crate) fn finish(path: &Path, m: LoadedMesh, opts: &MeshOptions) -> Result<T
             m.normals.into_iter().zip(smooth).map(|(n, s)| n.unwrap_or(s)).collect()
         }
     };
-    Ok(TriangleMesh { positions: m.positions, normals, uvs: m.uvs, triangles: m.triangles })
+    Ok(TriangleMesh { positions: m.positions, normals, uvs: m.uvs, triangles: m.triangles, attributes: m.attributes })
 }
 
 /// `normalize(M · n)` or an error message if the result is not a finite unit vector

@@ -197,7 +197,7 @@ impl ObjReader {
                 });
             }
         }
-        finish(path, LoadedMesh { positions, normals, uvs, triangles: self.triangles }, opts)
+        finish(path, LoadedMesh { positions, normals, uvs, triangles: self.triangles, attributes: Vec::new() }, opts)
     }
 }
 

@@ -5,7 +5,12 @@
 //!   `face_normals = false`), texture coordinates from the first complete pair of `u v`,
 //!   `texture_u texture_v`, `s t`; `flip_tex_coords` default **false**.
 //! * face list `vertex_index` (preferred when both exist) or `vertex_indices`.
-//! * other elements and properties are skipped.
+//! * other scalar vertex and face properties become mesh attributes by Mitsuba's naming
+//!   rules ([`super::ply_attributes`]), e.g. `color_0 color_1 color_2` → `vertex_color`;
+//!   integer-typed ones are normalised to [0, 1] by their type's maximum (Mitsuba warns
+//!   that colours should be in [0, 1]). A face attribute is repeated for every triangle of
+//!   a fan-triangulated polygon.
+//! * other elements are skipped.
 //!
 //! Deviations, all on files Mitsuba 3.9.1 cannot load correctly: polygons are
 //! fan-triangulated (Mitsuba accepts only triangles); face indices are range-checked (Mitsuba
@@ -13,11 +18,13 @@
 //! to [0, 1] like colours, which is never what a mesh means); zero-length normals are
 //! rejected (Mitsuba would produce NaN).
 
-use super::{LoadedMesh, MeshError, MeshOptions, finish, world_normal};
+use super::ply_attributes::{AttributeFields, find_attributes};
+use super::{LoadedMesh, MeshAttribute, MeshError, MeshOptions, finish, world_normal};
 use crate::scene::mesh::TriangleMesh;
 use glam::{Vec2, Vec3};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult};
+use std::cell::RefCell;
 use std::io::{BufReader, Read};
 use std::path::Path;
 
@@ -34,16 +41,35 @@ pub fn load_ply(path: &Path, opts: &MeshOptions) -> Result<TriangleMesh, MeshErr
     };
     let header = parser.read_header(&mut reader).map_err(fail)?;
     let layout = Layout::of(path, &header, opts)?;
-    let payload = parser.read_payload(&mut reader, &header).map_err(fail)?;
+    let (mut vertices, mut faces) = (Vec::new(), Vec::new());
+    for (name, def) in header.elements.iter() {
+        let extra = match name.as_str() {
+            "vertex" => &layout.vertex_attributes,
+            "face" => &layout.face_attributes,
+            _ => &Vec::new(),
+        };
+        EXTRA_FIELDS.with(|f| *f.borrow_mut() = extra.iter().flat_map(|a| a.fields.iter().cloned()).collect());
+        let records = parser.read_payload_for_element(&mut reader, def, &header).map_err(fail);
+        EXTRA_FIELDS.with(|f| f.borrow_mut().clear());
+        match name.as_str() {
+            "vertex" => vertices = records?,
+            "face" => faces = records?,
+            _ => drop(records?),
+        }
+    }
     if header.encoding != Encoding::Ascii {
         let mut rest = [0u8; 1];
         if reader.get_mut().read(&mut rest).map_err(|e| MeshError::new(path, e.to_string()))? != 0 {
             return Err(MeshError::new(path, "invalid PLY file: trailing content after the last element"));
         }
     }
-    let vertices = payload.get("vertex").map(Vec::as_slice).unwrap_or(&[]);
-    let faces = payload.get("face").map(Vec::as_slice).unwrap_or(&[]);
-    build(path, &layout, vertices, faces, opts)
+    build(path, &layout, &vertices, &faces, opts)
+}
+
+thread_local! {
+    /// The attribute properties of the element being read, in [`Record::extra`] order
+    /// (`PropertyAccess::new` has no way to receive them).
+    static EXTRA_FIELDS: RefCell<Vec<String>> = const { RefCell::new(Vec::new()) };
 }
 
 /// Which properties of the header are used (decided once, from the header).
@@ -53,6 +79,14 @@ struct Layout {
     uv: Option<(usize, usize)>,
     /// Use `vertex_index` (true) or `vertex_indices` (false).
     vertex_index: bool,
+    vertex_attributes: Vec<AttributeFields>,
+    face_attributes: Vec<AttributeFields>,
+}
+
+/// Scalar property names of an element, in file order.
+fn scalar_properties(e: &ElementDef) -> Vec<String> {
+    use ply_rs_bw::ply::PropertyType;
+    e.properties.values().filter(|p| matches!(p.data_type, PropertyType::Scalar(_))).map(|p| p.name.clone()).collect()
 }
 
 /// Names of the scalar vertex properties read, in [`Record::values`] order.
@@ -81,7 +115,10 @@ impl Layout {
         } else {
             return Err(MeshError::new(path, "PLY face element has no \"vertex_index\"/\"vertex_indices\" property"));
         };
-        Ok(Layout { normals, uv, vertex_index })
+        let vertex_attributes =
+            find_attributes("vertex", &scalar_properties(vertex), &["x", "y", "z", "nx", "ny", "nz", "u", "v"]);
+        let face_attributes = find_attributes("face", &scalar_properties(face), &["vertex_index", "vertex_indices"]);
+        Ok(Layout { normals, uv, vertex_index, vertex_attributes, face_attributes })
     }
 }
 
@@ -119,6 +156,8 @@ fn build(
         }
     }
     let mut triangles = Vec::with_capacity(faces.len());
+    // The face each triangle comes from (for face attributes).
+    let mut source_face = Vec::with_capacity(faces.len());
     for (i, r) in faces.iter().enumerate() {
         let idx = if layout.vertex_index { &r.vertex_index } else { &r.vertex_indices };
         let mut ids = [0u32; 3];
@@ -135,10 +174,35 @@ fn build(
             }
             if k >= 2 {
                 triangles.push(ids);
+                source_face.push(i);
             }
         }
     }
-    finish(path, LoadedMesh { positions, normals, uvs, triangles }, opts)
+    let mut attributes = Vec::new();
+    for (list, records, per_face) in
+        [(&layout.vertex_attributes, vertices, false), (&layout.face_attributes, faces, true)]
+    {
+        let mut offset = 0;
+        for a in list {
+            let dim = a.fields.len();
+            let entry = |r: &Record, out: &mut Vec<f32>| out.extend((0..dim).map(|k| r.extra[offset + k] as f32));
+            let mut values = Vec::new();
+            if per_face {
+                values.reserve(triangles.len() * dim);
+                for &f in &source_face {
+                    entry(&faces[f], &mut values);
+                }
+            } else {
+                values.reserve(records.len() * dim);
+                for r in records {
+                    entry(r, &mut values);
+                }
+            }
+            attributes.push(MeshAttribute { name: a.name.clone(), dim, per_face, values });
+            offset += dim;
+        }
+    }
+    finish(path, LoadedMesh { positions, normals, uvs, triangles, attributes }, opts)
 }
 
 /// One PLY element as read: the known scalar vertex properties (as f64) and the face lists.
@@ -148,6 +212,8 @@ struct Record {
     values: [f64; 12],
     vertex_index: Vec<i64>,
     vertex_indices: Vec<i64>,
+    /// Attribute properties, in the order of [`EXTRA_FIELDS`].
+    extra: Vec<f64>,
 }
 
 impl Record {
@@ -159,6 +225,16 @@ impl Record {
         match Self::slot(name) {
             Some(k) => {
                 self.values[k] = value;
+                PropertyAccessResult::Set
+            }
+            None => self.set_extra(name, value),
+        }
+    }
+
+    fn set_extra(&mut self, name: &str, value: f64) -> PropertyAccessResult {
+        match EXTRA_FIELDS.with(|f| f.borrow().iter().position(|n| n == name)) {
+            Some(k) => {
+                self.extra[k] = value;
                 PropertyAccessResult::Set
             }
             None => PropertyAccessResult::Ignored,
@@ -179,7 +255,8 @@ impl Record {
 
 impl PropertyAccess for Record {
     fn new() -> Self {
-        Record::default()
+        let n = EXTRA_FIELDS.with(|f| f.borrow().len());
+        Record { extra: vec![0.0; n], ..Record::default() }
     }
 
     fn set_float(&mut self, name: &str, value: f32) -> PropertyAccessResult {
@@ -190,13 +267,22 @@ impl PropertyAccess for Record {
         self.set_real(name, value)
     }
 
-    /// Integer scalars and float lists end here: an error for the properties we read.
-    fn set_property(&mut self, name: &str, _value: Property) -> PropertyAccessResult {
+    /// Integer scalars and float lists end here: an error for the geometry properties we
+    /// read, normalised by the type's maximum for attributes.
+    fn set_property(&mut self, name: &str, value: Property) -> PropertyAccessResult {
         if Self::slot(name).is_some() || matches!(name, "vertex_index" | "vertex_indices") {
-            PropertyAccessResult::UnsupportedType
-        } else {
-            PropertyAccessResult::Ignored
+            return PropertyAccessResult::UnsupportedType;
         }
+        let normalised = match value {
+            Property::Char(v) => v as f64 / i8::MAX as f64,
+            Property::UChar(v) => v as f64 / u8::MAX as f64,
+            Property::Short(v) => v as f64 / i16::MAX as f64,
+            Property::UShort(v) => v as f64 / u16::MAX as f64,
+            Property::Int(v) => v as f64 / i32::MAX as f64,
+            Property::UInt(v) => v as f64 / u32::MAX as f64,
+            _ => return PropertyAccessResult::Ignored,
+        };
+        self.set_extra(name, normalised)
     }
 
     fn set_list_char(&mut self, name: &str, value: Vec<i8>) -> PropertyAccessResult {

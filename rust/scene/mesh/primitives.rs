@@ -19,7 +19,7 @@ pub fn rectangle(opts: &MeshOptions) -> TriangleMesh {
     let uvs: Vec<Vec2> = (0..4).map(|i| Vec2::new((i & 1) as f32, ((i >> 1) & 1) as f32)).collect();
     let positions = uvs.iter().map(|uv| opts.point((2.0 * *uv - 1.0).extend(0.0))).collect();
     let triangles = vec![[1, 2, 0], [1, 3, 2]];
-    let mut mesh = TriangleMesh { positions, normals: Vec::new(), uvs, triangles };
+    let mut mesh = TriangleMesh { positions, normals: Vec::new(), uvs, triangles, attributes: Vec::new() };
     mesh.normals = vec![unit_normal(&nm, Vec3::Z, &mesh, 0); 4];
     mesh
 }
