@@ -81,6 +81,29 @@ pub mod ffi {
             weight: &mut Channels,
         ) -> f32;
 
+        /// Whether the numeric parameters may be textures (per-lane values).
+        fn supports_lane_parameters(self: &Model) -> bool;
+        /// `eval_pdf` with the numeric parameters' values for this call (textures).
+        fn eval_pdf_lane(
+            self: &Model,
+            params: &[f32],
+            wi: &Vec3f,
+            wo: &Vec3f,
+            reflectance: &Channels,
+            f: &mut Channels,
+        ) -> f32;
+        /// `sample` with the numeric parameters' values for this call (textures).
+        fn sample_lane(
+            self: &Model,
+            params: &[f32],
+            wi: &Vec3f,
+            u1: f32,
+            u2: f32,
+            reflectance: &Channels,
+            wo: &mut Vec3f,
+            weight: &mut Channels,
+        ) -> f32;
+
         // ---- traced (JIT variants): arguments and results are arena indices ----
         /// How many tables the traced kernel gathers from (van Ginneken: 4), and their
         /// contents (uploaded once per parameter value).
@@ -90,6 +113,9 @@ pub mod ffi {
         /// `numeric_parameters`). `differentiable`: a parameter carries a gradient (van
         /// Ginneken then adds its roughness-derivative tables to the kernel).
         fn traced_coefficients(self: &Model, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32>;
+        /// The kernel's coefficients from per-lane (textured) parameter values, traced, in the
+        /// layout `traced_eval_pdf`/`traced_sample` take; empty if unsupported.
+        fn traced_lane_coefficients(self: &Model, arena: &Arena, params: &[u32]) -> Vec<u32>;
         /// f·cos θo per channel into `value`; returns the pdf.
         fn traced_eval_pdf(
             self: &Model,

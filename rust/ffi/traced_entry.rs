@@ -13,38 +13,15 @@ use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
 use crate::brdf::eon::EonKernel;
 use crate::brdf::ginneken::GinnekenKernel;
-use crate::brdf::kernel::{self, Kernel};
+use crate::brdf::kernel;
+use crate::brdf::lane::LaneKernel;
 use crate::brdf::oren_nayar::OrenNayarKernel;
 use crate::brdf::real::V3;
 use crate::brdf::wolff::WolffKernel;
-use crate::brdf::{Bsdf, Lambert, RoughDiffuse};
+use crate::brdf::{Bsdf, RoughDiffuse};
 
 /// One model's kernel with traced constants.
-enum TracedKernel<'a> {
-    Lambert(Lambert),
-    OrenNayar(OrenNayarKernel<Traced<'a>>),
-    Eon(EonKernel<Traced<'a>>),
-    Wolff(WolffKernel<Traced<'a>>),
-    Ginneken(GinnekenKernel<'a, Traced<'a>>),
-}
-
-impl<'a> Kernel<Traced<'a>> for TracedKernel<'a> {
-    #[inline]
-    fn reduced_f<const N: usize>(
-        &self,
-        wi: V3<Traced<'a>>,
-        wo: V3<Traced<'a>>,
-        rho: [Traced<'a>; N],
-    ) -> [Traced<'a>; N] {
-        match self {
-            TracedKernel::Lambert(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::OrenNayar(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Eon(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Wolff(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Ginneken(k) => k.reduced_f(wi, wo, rho),
-        }
-    }
-}
+type TracedKernel<'a> = LaneKernel<'a, Traced<'a>>;
 
 /// The first `N` indices of `ids` as traced values, or `None` if there are fewer.
 fn nodes<'a, const N: usize>(arena: &'a Arena, ids: &[u32]) -> Option<[Traced<'a>; N]> {
@@ -124,32 +101,37 @@ impl Model {
         }
     }
 
+    /// The kernel constants for per-lane (textured) parameters, traced: `params` holds every
+    /// numeric parameter's value per lane (a texture's `eval_1`, or the constant), in the order
+    /// of `numeric_parameters`; the result is in [`Self::traced_coefficients`]' layout, so
+    /// [`Self::traced_eval_pdf`] / [`Self::traced_sample`] take it unchanged
+    /// (`crate::brdf::lane`). Empty if the model has no per-lane form or `params` is short.
+    pub(super) fn traced_lane_coefficients(&self, arena: &Arena, params: &[u32]) -> Vec<u32> {
+        let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
+        match self.bsdf.lane_coefficients(&values) {
+            Some(c) => c.iter().map(|v| v.id(arena)).collect(),
+            None => vec![],
+        }
+    }
+
     /// The kernel with the constants `coefficients` (from [`Self::traced_coefficients`]).
     fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32]) -> Option<TracedKernel<'a>> {
-        Some(match &self.bsdf {
-            Bsdf::Lambert(k) => TracedKernel::Lambert(*k),
-            Bsdf::OrenNayar(b) => {
-                TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.model()))
-            }
-            Bsdf::Eon(_) => TracedKernel::Eon(EonKernel::from_coefficients(nodes(arena, coefficients)?)),
-            Bsdf::RoughDiffuse(b) => TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(
-                nodes(arena, coefficients)?,
-                b.oren_nayar().model(),
-            )),
-            Bsdf::Wolff(b) => {
-                TracedKernel::Wolff(WolffKernel::from_coefficients(nodes(arena, coefficients)?, b.normalization()))
-            }
+        match &self.bsdf {
             Bsdf::Ginneken(b) => {
                 let table = |id| TracedTable { arena, id };
                 let roughness_derivative = nodes::<1>(arena, coefficients).map(|[dm]| (table(1), table(3), dm));
-                TracedKernel::Ginneken(GinnekenKernel {
+                Some(LaneKernel::Ginneken(GinnekenKernel {
                     slope: table(0),
                     mu_lambda: table(2),
                     roughness_derivative,
                     shadowing: b.shadowing(),
-                })
+                }))
             }
-        })
+            _ => {
+                let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
+                self.bsdf.kernel_from_coefficients(&c)
+            }
+        }
     }
 
     pub(super) fn traced_eval_pdf(

@@ -33,6 +33,7 @@ pub use conductor::Conductor;
 pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
 pub use fresnel::fresnel_conductor;
+pub use matte::TexturedMatte;
 pub use microfacet::MicrofacetDistribution;
 pub use normal_map::NormalMap;
 pub use plastic::Plastic;
@@ -77,6 +78,8 @@ pub enum Bsdf {
     PrincipledThin(Box<PrincipledThin>),
     /// `roughconductor`/`roughdielectric` whose roughness is a texture.
     TexturedRoughness(Box<TexturedRoughness>),
+    /// A matte model with textured numeric parameters.
+    TexturedMatte(Box<TexturedMatte>),
 }
 
 impl Bsdf {
@@ -102,6 +105,7 @@ impl Bsdf {
             Bsdf::Principled(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::PrincipledThin(p) => p.eval_pdf(uv, wi, wo),
             Bsdf::TexturedRoughness(t) => t.eval_pdf(uv, wi, wo),
+            Bsdf::TexturedMatte(t) => t.eval_pdf(uv, wi, wo),
         }
     }
 
@@ -131,6 +135,7 @@ impl Bsdf {
             Bsdf::Principled(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::PrincipledThin(p) => p.sample(uv, wi, u_lobe, u),
             Bsdf::TexturedRoughness(t) => t.sample(uv, wi, u_lobe, u),
+            Bsdf::TexturedMatte(t) => t.sample(uv, wi, u),
         }
     }
 
@@ -146,7 +151,8 @@ impl Bsdf {
             | Bsdf::RoughPlastic(_)
             | Bsdf::Principled(_)
             | Bsdf::PrincipledThin(_)
-            | Bsdf::TexturedRoughness(_) => true,
+            | Bsdf::TexturedRoughness(_)
+            | Bsdf::TexturedMatte(_) => true,
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),

@@ -43,13 +43,37 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
 /// nearest lookup and repeat wrapping (uv' = (0.5, ·) exactly, a set of measure zero, falls
 /// on the other side), so it is built as one. Textured colours are not supported.
 fn checkerboard(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
+    checkerboard_with(b, obj, false)
+}
+
+/// The parameter `name` of `obj` as a texture read with Mitsuba's `eval_1` (a scalar BSDF
+/// parameter such as matte's σ): as [`get`], except that a `checkerboard` has its colours
+/// swapped, because Mitsuba 3.9.1's `Checkerboard::eval_1` picks `color0` where the two
+/// fractional parts fall on *different* sides of ½ (`mask.x() != mask.y()`), the opposite
+/// of its `eval` (`src/textures/checkerboard.cpp`).
+pub fn get_scalar(b: &Builder, obj: &SceneObject, name: &str, default: Vec3) -> Result<Texture, SceneError> {
+    match obj.child(name) {
+        Some(child) if child.object.tag == "texture" && child.object.plugin == "checkerboard" => {
+            if obj.properties.contains(name) {
+                return Err(err(obj, format!("\"{name}\" is given both as a property and as a texture")));
+            }
+            checkerboard_with(b, &child.object, true)
+        }
+        _ => get(b, obj, name, ColorUse::Unbounded, default),
+    }
+}
+
+fn checkerboard_with(b: &Builder, obj: &SceneObject, swapped: bool) -> Result<Texture, SceneError> {
     let colour = |name: &str, default: f32| -> Result<Vec3, SceneError> {
         match get(b, obj, name, ColorUse::Bounded, Vec3::splat(default))? {
             Texture::Constant(c) => Ok(c),
             _ => Err(err(obj, format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)"))),
         }
     };
-    let (c0, c1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
+    let (mut c0, mut c1) = (colour("color0", 0.4)?, colour("color1", 0.2)?);
+    if swapped {
+        std::mem::swap(&mut c0, &mut c1);
+    }
     let opts = BitmapOptions { filter: BitmapFilter::Nearest, wrap: WrapMode::Repeat, raw: true, to_uv: to_uv(obj)? };
     obj.check_all_used()?;
     let tex = BitmapTexture::from_linear(2, 2, vec![c0, c1, c1, c0], &opts).map_err(|e| err(obj, e))?;
