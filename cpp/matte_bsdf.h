@@ -67,6 +67,10 @@ public:
                     // A texture for a numeric parameter (sigma, roughness, alpha, int_ior, ...):
                     // evaluated per lane (docs/models.md#spatially-varying-parameters).
                     // The model itself is built with the texture's mean (validated as a number).
+                    if (!matte::ffi::is_numeric_parameter(rust::Str(m_kind.data(), m_kind.size()),
+                                                         rust::Str(name.data(), name.size())))
+                        Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this "
+                              "model, so it cannot be a texture", m_kind, name);
                     m_textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
                     m_params.push_back(number_param(name, scalar_value(m_textured.back().second->mean())));
                     break;
@@ -96,13 +100,11 @@ public:
             size_t k = 0;
             while (k < m_names.size() && m_names[k] != name)
                 ++k;
-            if (k == m_names.size())
-                Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this model, so "
-                      "it cannot be a texture", m_kind, name);
             if (!(*m_model)->supports_lane_parameters())
                 Throw("bsdf \"%s\": parameter \"%s\": must be a number (a textured roughness needs "
                       "a table over m, which the van Ginneken fast path does not have)", m_kind, name);
-            m_textures[k] = texture;
+            if (k < m_textures.size())
+                m_textures[k] = texture;
         }
         m_any_textured = !m_textured.empty();
         m_texture_0 = m_textures.size() > 0 ? m_textures[0] : nullptr;

@@ -45,6 +45,18 @@ impl<'t, T: Real> Kernel<T> for LaneKernel<'t, T> {
     }
 }
 
+/// The numeric parameters of the model `kind` (a plugin name), in the order per-lane values
+/// are given: the parameters a texture may give. Empty for unknown kinds.
+pub fn numeric_parameter_names(kind: &str) -> &'static [&'static str] {
+    match kind {
+        "oren_nayar" => &["sigma"],
+        "eon" | "ginneken" => &["roughness"],
+        "wolff" => &["int_ior", "ext_ior"],
+        "roughdiffuse" => &["alpha"],
+        _ => &[],
+    }
+}
+
 impl Bsdf {
     /// The number of numeric parameters ([`Self::lane_coefficients`]' input length).
     pub fn numeric_parameter_count(&self) -> usize {

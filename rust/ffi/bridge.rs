@@ -66,6 +66,8 @@ pub mod ffi {
         /// message naming the bad parameter.
         fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>>;
         fn describe_parameters(self: &Model) -> Vec<Param>;
+        /// Whether `name` is a numeric parameter of the model `kind` (a texture may give it).
+        fn is_numeric_parameter(kind: &str, name: &str) -> bool;
         fn numeric_parameters(self: &Model) -> Vec<Param>;
         /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`.
         fn eval_pdf(self: &Model, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32;
@@ -141,4 +143,4 @@ pub mod ffi {
     }
 }
 
-use super::{Model, model_new};
+use super::{Model, is_numeric_parameter, model_new};

@@ -52,6 +52,10 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
     }
 }
 
+fn is_numeric_parameter(kind: &str, name: &str) -> bool {
+    crate::brdf::lane::numeric_parameter_names(kind).contains(&name)
+}
+
 /// The used channels of a [`Channels`].
 #[inline]
 fn used(c: &Channels) -> &[f32] {

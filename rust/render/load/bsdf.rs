@@ -70,6 +70,13 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let mut textured: Vec<(String, Texture)> = Vec::new();
             for child in obj.children.iter().filter(|c| c.name.as_deref().is_some_and(|n| n != "reflectance")) {
                 let name = child.name.clone().unwrap_or_default();
+                if !numeric_parameter(kind, &name) {
+                    return Err(values::prop_err(
+                        obj,
+                        &name,
+                        "is not a numeric parameter of this model, so it cannot be a texture",
+                    ));
+                }
                 let tex = texture::get_scalar(b, obj, &name, Vec3::ZERO)?;
                 params.push(&name, ParamValue::Number(tex.mean() as f64));
                 textured.push((name, tex));
@@ -213,6 +220,11 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
     };
     obj.check_all_used()?;
     Ok(bsdf)
+}
+
+/// Whether `name` is a numeric parameter of matte's model `kind` (those a texture may give).
+fn numeric_parameter(kind: &str, name: &str) -> bool {
+    crate::brdf::lane::numeric_parameter_names(kind).contains(&name)
 }
 
 /// A matte model with textured numeric parameters (`TexturedMatte`); every other numeric
