@@ -66,13 +66,11 @@ public:
                 case Properties::Type::Object:
                     // A texture for a numeric parameter (sigma, roughness, alpha, int_ior, ...):
                     // evaluated per lane (docs/models.md#spatially-varying-parameters).
-                    // The model itself is built with the texture's mean (validated as a number).
                     if (!matte::ffi::is_numeric_parameter(rust::Str(m_kind.data(), m_kind.size()),
                                                          rust::Str(name.data(), name.size())))
                         Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this "
                               "model, so it cannot be a texture", m_kind, name);
                     m_textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
-                    m_params.push_back(number_param(name, scalar_value(m_textured.back().second->mean())));
                     break;
                 case Properties::Type::Float:
                 case Properties::Type::Integer:
@@ -88,6 +86,16 @@ public:
                     break;
             }
         }
+        // A textured parameter stands for a number when the model is built (its mean clamped
+        // into the per-lane range, so any texture is accepted: its values are clamped per lane).
+        std::vector<matte::ffi::Param> placeholders;
+        for (auto &[name, texture] : m_textured)
+            placeholders.push_back(number_param(name, matte::ffi::textured_placeholder(
+                rust::Str(m_kind.data(), m_kind.size()), rust::Str(name.data(), name.size()),
+                scalar_value(texture->mean()),
+                rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size()))));
+        for (auto &p : placeholders)
+            m_params.push_back(std::move(p));
         build_model();
         // The numeric parameters with their effective values (defaults filled in), as the
         // variant's Float: fixed from here on (traverse hands out references to them).
@@ -100,9 +108,6 @@ public:
             size_t k = 0;
             while (k < m_names.size() && m_names[k] != name)
                 ++k;
-            if (!(*m_model)->supports_lane_parameters())
-                Throw("bsdf \"%s\": parameter \"%s\": must be a number (a textured roughness needs "
-                      "a table over m, which the van Ginneken fast path does not have)", m_kind, name);
             if (k < m_textures.size())
                 m_textures[k] = texture;
         }
@@ -186,7 +191,7 @@ public:
             std::array<uint32_t, Channels> weight;
             wo.fill(zero);
             weight.fill(zero);
-            uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), slice(wi), ar.push(sample2.x()),
+            uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), m_any_textured, slice(wi), ar.push(sample2.x()),
                                                      ar.push(sample2.y()), slice(rho), mut_slice(wo),
                                                      mut_slice(weight));
             bs.wo = Vector3f(ar.get(wo[0]), ar.get(wo[1]), ar.get(wo[2]));
@@ -298,10 +303,20 @@ private:
     void update_traced_kernel() {
         if constexpr (dr::is_jit_v<Float>) {
             m_tables.clear();
-            for (size_t k = 0; k < (*m_model)->table_count(); ++k) {
-                rust::Slice<const float> t = (*m_model)->table(k);
-                m_tables.push_back(dr::load<Float>(t.data(), t.size()));
-            }
+            // Textured parameters read the per-lane tables (van Ginneken's stacks over m),
+            // uploaded once: they do not depend on the parameter values.
+            if (m_any_textured) {
+                if (m_lane_tables.empty())
+                    for (size_t k = 0; k < (*m_model)->lane_table_count(); ++k) {
+                        rust::Slice<const float> t = (*m_model)->lane_table(k);
+                        m_lane_tables.push_back(dr::load<Float>(t.data(), t.size()));
+                    }
+                m_tables = m_lane_tables;
+            } else
+                for (size_t k = 0; k < (*m_model)->table_count(); ++k) {
+                    rust::Slice<const float> t = (*m_model)->table(k);
+                    m_tables.push_back(dr::load<Float>(t.data(), t.size()));
+                }
             bool differentiable = false;
             for (Float &v : m_values) {
                 dr::make_opaque(v);
@@ -414,7 +429,7 @@ private:
             auto coef = coefficient_ids(ar, si, active);
             std::array<uint32_t, Channels> v;
             v.fill(ar.lit(0.f));
-            uint32_t pdf_id = (*m_model)->traced_eval_pdf(ar, slice(coef), slice(wi_), slice(wo_),
+            uint32_t pdf_id = (*m_model)->traced_eval_pdf(ar, slice(coef), m_any_textured, slice(wi_), slice(wo_),
                                                           slice(rho), mut_slice(v));
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = ar.get(v[c]);
@@ -439,6 +454,7 @@ private:
     /// JIT variants: the kernel's constants and tables (`update_traced_kernel`).
     std::vector<Float> m_coefficients;
     std::vector<Float> m_tables;
+    std::vector<Float> m_lane_tables;
     /// Always set after construction (optional only because rust::Box has no empty state).
     std::optional<rust::Box<matte::ffi::Model>> m_model;
 

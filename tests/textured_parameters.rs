@@ -51,6 +51,7 @@ fn lane_kernels_equal_the_constant_models() {
         ("wolff", &[("int_ior", 1.6), ("ext_ior", 1.2)], 2e-4),
         ("wolff", &[("int_ior", 3.5), ("ext_ior", 1.0)], 2e-4),
     ];
+    // (van Ginneken's per-lane kernel interpolates tables over m: `ginneken_fast_path.rs`.)
     for (kind, params, tol) in cases {
         for extra in [vec![], vec![("model", "full")], vec![("normalization", "normal")]] {
             let mut p = Params::new();
@@ -68,7 +69,7 @@ fn lane_kernels_equal_the_constant_models() {
             }
             let m = Model::from_params(kind, p).unwrap();
             let values: Vec<f32> = params.iter().map(|(_, v)| *v as f32).collect();
-            let k = m.lane_kernel::<f32>(&values).expect("per-lane kernel");
+            let k = m.lane_kernel_f32(&values).expect("per-lane kernel");
             for (wi, wo) in pairs() {
                 let want = m.eval(wi, wo, [0.3, 0.9, 1.0]);
                 let got = kernel::eval(&k, wi.into(), wo.into(), [0.3, 0.9, 1.0]);
@@ -82,7 +83,8 @@ fn lane_kernels_equal_the_constant_models() {
 }
 
 /// Out-of-range and NaN texture values are clamped into the valid range (σ, α ≥ 0;
-/// r ∈ [0, 1]; n ≥ 1), so the kernel stays finite and equals the model at the bound.
+/// r ∈ [0, 1]; n ≥ 1; m ∈ [0.02, 4]), so the kernel stays finite and equals the model at
+/// the bound.
 #[test]
 fn lane_values_out_of_range_are_clamped() {
     let (wi, wo) = (Vec3::new(0.3, 0.1, 0.95).normalize(), Vec3::new(-0.6, 0.2, 0.4).normalize());
@@ -92,6 +94,8 @@ fn lane_values_out_of_range_are_clamped() {
         ("eon", "roughness", 0.0, &[-3.0, f32::NAN]),
         ("eon", "roughness", 1.0, &[7.0, f32::INFINITY]),
         ("wolff", "int_ior", 1.0, &[0.2, f32::NAN, -4.0]),
+        ("ginneken", "roughness", 0.02, &[0.0, -1.0, f32::NAN]),
+        ("ginneken", "roughness", 4.0, &[9.0, f32::INFINITY]),
     ];
     for (kind, name, bound, values) in cases {
         let want = model(kind, &[(name, *bound)]).eval(wi, wo, [0.7])[0];
@@ -100,10 +104,12 @@ fn lane_values_out_of_range_are_clamped() {
             if *kind == "wolff" {
                 lane.push(1.0);
             }
-            let k = model(kind, &[]).lane_kernel::<f32>(&lane).unwrap();
+            let k = model(kind, &[]).lane_kernel_f32(&lane).unwrap();
             let got = kernel::eval(&k, wi.into(), wo.into(), [0.7])[0];
             assert!(got.is_finite(), "{kind} {name} = {v}: {got}");
-            assert!((got - want).abs() <= 2e-4 * want, "{kind} {name} = {v}: {got} vs {want} at the bound");
+            // van Ginneken: the roughness axis against the single-roughness table at the bound.
+            let tol = if *kind == "ginneken" { 2e-3 } else { 2e-4 };
+            assert!((got - want).abs() <= tol * want, "{kind} {name} = {v}: {got} vs {want} at the bound");
         }
     }
 }
@@ -139,6 +145,8 @@ fn constant_texture_equals_the_number() {
         ("eon", "roughness", 0.4, "1e-5"),
         ("roughdiffuse", "alpha", 0.3, "1e-5"),
         ("wolff", "int_ior", 1.7, "2e-4"),
+        // the roughness axis (Hermite in m) against the table built for m = 0.35
+        ("ginneken", "roughness", 0.35, "2e-3"),
     ];
     for (kind, name, v, tol) in cases {
         let number = scene(&format!(r#"<bsdf type="{kind}"><float name="{name}" value="{v}"/></bsdf>"#));
@@ -171,10 +179,6 @@ fn checkerboard_parameter_follows_mitsubas_eval_1() {
 #[test]
 fn refused_textures_name_file_and_line() {
     let cases = [
-        (
-            r#"<bsdf type="ginneken"><texture type="checkerboard" name="roughness"/></bsdf>"#,
-            "\"roughness\" must be a number",
-        ),
         (r#"<bsdf type="oren_nayar"><texture type="checkerboard" name="model"/></bsdf>"#, "not a numeric parameter"),
         (r#"<bsdf type="lambert"><texture type="checkerboard" name="sigma"/></bsdf>"#, "sigma"),
     ];

@@ -8,13 +8,15 @@
 //! Values come in the order of [`Bsdf::parameters`]' numbers (`oren_nayar`: σ; `eon`: r;
 //! `wolff`: int_ior, ext_ior; `ginneken`: m; `roughdiffuse`: α) and are clamped into the
 //! model's valid range, since a texture is not validated as a number is: σ, α ≥ 0;
-//! r ∈ [0, 1]; ext_ior ≥ 1 and n = int_ior/ext_ior ≥ 1; m ∈ [`ROUGHNESS_AXIS`]'s range.
+//! r ∈ [0, 1]; ext_ior ≥ 1 and n = int_ior/ext_ior ≥ 1; m ∈ [0.02, 4] (the roughness axis).
 //! NaN maps to the lower bound (`Real::max`). Wolff's Fresnel average comes from its fit
-//! ([`WolffKernel::per_lane`]); van Ginneken interpolates its roughness-axis table.
+//! ([`WolffKernel::per_lane`]); van Ginneken interpolates its tables stacked over m
+//! (`ginneken::roughness_axis`).
 
 use super::Bsdf;
 use super::eon::EonKernel;
 use super::ginneken::GinnekenKernel;
+use super::ginneken::roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use super::kernel::Kernel;
 use super::lambert::Lambert;
 use super::oren_nayar::OrenNayarKernel;
@@ -30,6 +32,8 @@ pub enum LaneKernel<'t, T: Real> {
     Eon(EonKernel<T>),
     Wolff(WolffKernel<T>),
     Ginneken(GinnekenKernel<'t, T>),
+    /// van Ginneken with the roughness per lane (its tables stacked over m).
+    GinnekenAxis(GinnekenAxisKernel<'t, T>),
 }
 
 impl<'t, T: Real> Kernel<T> for LaneKernel<'t, T> {
@@ -41,6 +45,7 @@ impl<'t, T: Real> Kernel<T> for LaneKernel<'t, T> {
             LaneKernel::Eon(k) => k.reduced_f(wi, wo, rho),
             LaneKernel::Wolff(k) => k.reduced_f(wi, wo, rho),
             LaneKernel::Ginneken(k) => k.reduced_f(wi, wo, rho),
+            LaneKernel::GinnekenAxis(k) => k.reduced_f(wi, wo, rho),
         }
     }
 }
@@ -57,6 +62,21 @@ pub fn numeric_parameter_names(kind: &str) -> &'static [&'static str] {
     }
 }
 
+/// The number a textured parameter stands for when its model is built (and validated as a
+/// number): the texture's `mean` clamped into the range its per-lane values are clamped to,
+/// so that any texture is accepted, as its values are per lane. `number(name)` gives another
+/// parameter's value when it is a number (Wolff's indices bound each other: int ≥ ext).
+pub fn textured_placeholder(kind: &str, name: &str, mean: f64, number: impl Fn(&str) -> Option<f64>) -> f64 {
+    let at_least = |lo: f64| if mean >= lo { mean } else { lo }; // NaN gives lo
+    match (kind, name) {
+        ("ginneken", "roughness") => at_least(M_MIN).min(M_MAX),
+        ("eon", "roughness") => at_least(0.0).min(1.0),
+        ("wolff", "int_ior") => at_least(number("ext_ior").unwrap_or(1.0).max(1.0)),
+        ("wolff", "ext_ior") => at_least(1.0).min(number("int_ior").unwrap_or(1.0).max(1.0)),
+        _ => at_least(0.0),
+    }
+}
+
 impl Bsdf {
     /// The number of numeric parameters ([`Self::lane_coefficients`]' input length).
     pub fn numeric_parameter_count(&self) -> usize {
@@ -67,23 +87,27 @@ impl Bsdf {
         }
     }
 
-    /// Whether the numeric parameters may vary per lane (textures). van Ginneken's fast path
-    /// interpolates a table built for one roughness, so its roughness must be a number.
-    pub fn supports_lane_parameters(&self) -> bool {
-        !matches!(self, Bsdf::Ginneken(_))
+    /// The tables [`Self::kernel_from_coefficients`] needs for per-lane parameters: van
+    /// Ginneken's roughness-axis stacks ([`RoughnessAxisTables`], built on first use), none for
+    /// the other models.
+    pub fn lane_tables(&self) -> Option<&'static RoughnessAxisTables> {
+        matches!(self, Bsdf::Ginneken(_)).then(RoughnessAxisTables::shared)
     }
 
-    /// The kernel for per-lane parameter `values`; `None` if `values` is too short or the
-    /// model does not support per-lane parameters.
-    pub fn lane_kernel<'t, T: Real>(&self, values: &[T]) -> Option<LaneKernel<'t, T>> {
+    /// The f32 kernel for per-lane parameter `values`; `None` if `values` is too short.
+    pub fn lane_kernel_f32(&self, values: &[f32]) -> Option<LaneKernel<'static, f32>> {
         let c = self.lane_coefficients(values)?;
-        self.kernel_from_coefficients(&c)
+        self.kernel_from_coefficients(&c, || self.lane_tables().map(|t| t.nodes()))
     }
 
-    /// The kernel with constants `c` (a [`Self::lane_coefficients`] or a traced
-    /// `coefficients()` layout); `None` if `c` is too short. van Ginneken is not built here
-    /// (its tables are the caller's).
-    pub fn kernel_from_coefficients<'t, T: Real>(&self, c: &[T]) -> Option<LaneKernel<'t, T>> {
+    /// The kernel with constants `c` (a [`Self::lane_coefficients`] or a `coefficients()`
+    /// layout); `None` if `c` is too short. van Ginneken's per-lane kernel takes the
+    /// roughness-axis stacks from `axis` (`I`, scaled `∂I/∂m`, `μΛ`, scaled `∂(μΛ)/∂m`).
+    pub fn kernel_from_coefficients<'t, T: Real>(
+        &self,
+        c: &[T],
+        axis: impl FnOnce() -> Option<[T::Table<'t>; 4]>,
+    ) -> Option<LaneKernel<'t, T>> {
         fn first<T: Copy, const N: usize>(c: &[T]) -> Option<[T; N]> {
             c.get(..N)?.try_into().ok()
         }
@@ -95,7 +119,10 @@ impl Bsdf {
             }
             Bsdf::Eon(_) => LaneKernel::Eon(EonKernel::from_coefficients(first(c)?)),
             Bsdf::Wolff(b) => LaneKernel::Wolff(WolffKernel::from_coefficients(first(c)?, b.normalization())),
-            Bsdf::Ginneken(_) => return None,
+            Bsdf::Ginneken(b) => {
+                let [m] = first(c)?;
+                LaneKernel::GinnekenAxis(GinnekenAxisKernel::new(axis()?, m, b.shadowing()))
+            }
         })
     }
 
@@ -116,8 +143,7 @@ impl Bsdf {
                 let (int_ior, ext_ior) = (v(0)?, v(1)?.max(T::c(1.0)));
                 WolffKernel::per_lane(int_ior / ext_ior, b.normalization()).coefficients().to_vec()
             }
-            // Needs a table over m too (not built yet): `supports_lane_parameters` is false.
-            Bsdf::Ginneken(_) => return None,
+            Bsdf::Ginneken(_) => vec![clamp_roughness(v(0)?)],
         })
     }
 }

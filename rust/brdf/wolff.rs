@@ -63,7 +63,7 @@ impl<T: Real> WolffKernel<T> {
     }
 
     /// The same constants with `F_dr` from its fit ([`diffuse_fresnel_external_fit`],
-    /// |error| ≤ 8e-5): cheap enough per lane and call, for an index that varies per lane
+    /// |error| ≤ 2e-5): cheap enough per lane and call, for an index that varies per lane
     /// (a textured `int_ior`). `n` is taken as at least 1.
     pub fn per_lane(n: T, normalization: WolffNormalization) -> Self {
         Self::with_average(n.max(T::c(1.0)), normalization, |n| diffuse_fresnel_external_fit(n))

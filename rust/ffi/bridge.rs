@@ -68,6 +68,9 @@ pub mod ffi {
         fn describe_parameters(self: &Model) -> Vec<Param>;
         /// Whether `name` is a numeric parameter of the model `kind` (a texture may give it).
         fn is_numeric_parameter(kind: &str, name: &str) -> bool;
+        /// The number a textured parameter stands for when the model is built: the texture's
+        /// `mean` clamped into the parameter's per-lane range (`params`: the other parameters).
+        fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64;
         fn numeric_parameters(self: &Model) -> Vec<Param>;
         /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`.
         fn eval_pdf(self: &Model, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32;
@@ -83,8 +86,6 @@ pub mod ffi {
             weight: &mut Channels,
         ) -> f32;
 
-        /// Whether the numeric parameters may be textures (per-lane values).
-        fn supports_lane_parameters(self: &Model) -> bool;
         /// `eval_pdf` with the numeric parameters' values for this call (textures).
         fn eval_pdf_lane(
             self: &Model,
@@ -118,11 +119,17 @@ pub mod ffi {
         /// The kernel's coefficients from per-lane (textured) parameter values, traced, in the
         /// layout `traced_eval_pdf`/`traced_sample` take; empty if unsupported.
         fn traced_lane_coefficients(self: &Model, arena: &Arena, params: &[u32]) -> Vec<u32>;
-        /// f·cos θo per channel into `value`; returns the pdf.
+        /// The tables per-lane parameters need (van Ginneken: its roughness-axis stacks),
+        /// registered instead of `table(k)`'s when a parameter is textured.
+        fn lane_table_count(self: &Model) -> usize;
+        fn lane_table(self: &Model, k: usize) -> &[f32];
+        /// f·cos θo per channel into `value`; returns the pdf. `lane`: the coefficients are
+        /// `traced_lane_coefficients`'.
         fn traced_eval_pdf(
             self: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             wo: &[u32],
             rho: &[u32],
@@ -133,6 +140,7 @@ pub mod ffi {
             self: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             u1: u32,
             u2: u32,
@@ -143,4 +151,4 @@ pub mod ffi {
     }
 }
 
-use super::{Model, is_numeric_parameter, model_new};
+use super::{Model, is_numeric_parameter, model_new, textured_placeholder};

@@ -56,6 +56,13 @@ fn is_numeric_parameter(kind: &str, name: &str) -> bool {
     crate::brdf::lane::numeric_parameter_names(kind).contains(&name)
 }
 
+fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64 {
+    crate::brdf::lane::textured_placeholder(kind, name, mean, |other| {
+        let p = params.iter().find(|p| p.name == other)?;
+        if p.is_number { Some(p.number) } else { crate::brdf::params::lookup_ior(&p.text) }
+    })
+}
+
 /// The used channels of a [`Channels`].
 #[inline]
 fn used(c: &Channels) -> &[f32] {
@@ -143,10 +150,6 @@ impl Model {
         pdf
     }
 
-    fn supports_lane_parameters(&self) -> bool {
-        self.bsdf.supports_lane_parameters()
-    }
-
     /// [`Self::eval_pdf`] with the numeric parameters given per call (`params`, in the order
     /// of `numeric_parameters`: a texture's value at the hit, or the constant), clamped into
     /// range (`crate::brdf::lane`). Zeros if the model has no per-lane form.
@@ -154,7 +157,7 @@ impl Model {
         let (wi, wo) = (v3(wi), v3(wo));
         f.n = reflectance.n;
         f.v = [0.0; MAX_CHANNELS];
-        let Some(k) = self.bsdf.lane_kernel::<f32>(params) else {
+        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
             return 0.0;
         };
         let mut rho = [0.0; MAX_CHANNELS];
@@ -178,7 +181,7 @@ impl Model {
     ) -> f32 {
         weight.n = reflectance.n;
         weight.v = [0.0; MAX_CHANNELS];
-        let Some(k) = self.bsdf.lane_kernel::<f32>(params) else {
+        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
             return 0.0;
         };
         let mut rho = [0.0; MAX_CHANNELS];

@@ -72,6 +72,16 @@ impl Model {
         }
     }
 
+    /// Tables for per-lane parameters (van Ginneken: the four roughness-axis stacks, built on
+    /// first use), registered instead of [`Self::table`]'s when a parameter is textured.
+    pub(super) fn lane_table_count(&self) -> usize {
+        if self.bsdf.lane_tables().is_some() { 4 } else { 0 }
+    }
+
+    pub(super) fn lane_table(&self, k: usize) -> &[f32] {
+        self.bsdf.lane_tables().map_or(&[], |t| t.table(k))
+    }
+
     pub(super) fn traced_coefficients(&self, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32> {
         let p = |k: usize| params.get(k).map(|&i| Traced::node(arena, i));
         match &self.bsdf {
@@ -115,10 +125,16 @@ impl Model {
     }
 
     /// The kernel with the constants `coefficients` (from [`Self::traced_coefficients`]).
-    fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32]) -> Option<TracedKernel<'a>> {
+    /// `lane`: the constants come from [`Self::traced_lane_coefficients`] (van Ginneken then
+    /// reads the roughness-axis stacks the plugin registered, [`Self::lane_table`]).
+    fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32], lane: bool) -> Option<TracedKernel<'a>> {
+        let table = |id| TracedTable { arena, id };
         match &self.bsdf {
+            Bsdf::Ginneken(_) if lane => {
+                let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
+                self.bsdf.kernel_from_coefficients(&c, || Some([table(0), table(1), table(2), table(3)]))
+            }
             Bsdf::Ginneken(b) => {
-                let table = |id| TracedTable { arena, id };
                 let roughness_derivative = nodes::<1>(arena, coefficients).map(|[dm]| (table(1), table(3), dm));
                 Some(LaneKernel::Ginneken(GinnekenKernel {
                     slope: table(0),
@@ -129,7 +145,7 @@ impl Model {
             }
             _ => {
                 let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
-                self.bsdf.kernel_from_coefficients(&c)
+                self.bsdf.kernel_from_coefficients(&c, || None)
             }
         }
     }
@@ -138,28 +154,32 @@ impl Model {
         &self,
         arena: &Arena,
         coefficients: &[u32],
+        lane: bool,
         wi: &[u32],
         wo: &[u32],
         rho: &[u32],
         value: &mut [u32],
     ) -> u32 {
+        #[allow(clippy::too_many_arguments)]
         fn go<const N: usize>(
             m: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             wo: &[u32],
             rho: &[u32],
             value: &mut [u32],
         ) -> Option<u32> {
-            let k = m.traced_kernel(arena, coefficients)?;
+            let k = m.traced_kernel(arena, coefficients, lane)?;
             let ([wx, wy, wz], [ox, oy, oz]) = (nodes::<3>(arena, wi)?, nodes::<3>(arena, wo)?);
             let (v, pdf) = kernel::eval_cos_pdf(&k, V3::new(wx, wy, wz), V3::new(ox, oy, oz), nodes::<N>(arena, rho)?);
             value.get_mut(..N)?.copy_from_slice(&ids(arena, v));
             Some(pdf.id(arena))
         }
         let zero = || arena.lit(0.0);
-        by_channels!(rho.len(), go, zero())(self, arena, coefficients, wi, wo, rho, value).unwrap_or_else(zero)
+        by_channels!(rho.len(), go, zero())(self, arena, coefficients, lane, wi, wo, rho, value)
+            .unwrap_or_else(zero)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs
@@ -167,6 +187,7 @@ impl Model {
         &self,
         arena: &Arena,
         coefficients: &[u32],
+        lane: bool,
         wi: &[u32],
         u1: u32,
         u2: u32,
@@ -179,13 +200,14 @@ impl Model {
             m: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             u: [u32; 2],
             rho: &[u32],
             wo: &mut [u32],
             weight: &mut [u32],
         ) -> Option<u32> {
-            let k = m.traced_kernel(arena, coefficients)?;
+            let k = m.traced_kernel(arena, coefficients, lane)?;
             let [wx, wy, wz] = nodes::<3>(arena, wi)?;
             let [u1, u2] = u.map(|i| Traced::node(arena, i));
             let (d, w, pdf) = kernel::sample(&k, V3::new(wx, wy, wz), u1, u2, nodes::<N>(arena, rho)?);
@@ -194,7 +216,7 @@ impl Model {
             Some(pdf.id(arena))
         }
         let zero = || arena.lit(0.0);
-        by_channels!(rho.len(), go, zero())(self, arena, coefficients, wi, [u1, u2], rho, wo, weight)
+        by_channels!(rho.len(), go, zero())(self, arena, coefficients, lane, wi, [u1, u2], rho, wo, weight)
             .unwrap_or_else(zero)
     }
 }

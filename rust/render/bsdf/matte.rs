@@ -65,7 +65,7 @@ impl TexturedMatte {
             return (Vec3::ZERO, 0.0);
         }
         let (v, n) = self.values(uv);
-        let Some(k) = self.model.lane_kernel::<f32>(&v[..n]) else {
+        let Some(k) = self.model.lane_kernel_f32(&v[..n]) else {
             return (Vec3::ZERO, 0.0);
         };
         let f = kernel::eval(&k, wi.into(), wo.into(), self.reflectance.eval(uv).to_array());
@@ -78,7 +78,7 @@ impl TexturedMatte {
             return None;
         }
         let (v, n) = self.values(uv);
-        let k = self.model.lane_kernel::<f32>(&v[..n])?;
+        let k = self.model.lane_kernel_f32(&v[..n])?;
         let (wo, weight, pdf) = kernel::sample(&k, wi.into(), u.x, u.y, self.reflectance.eval(uv).to_array());
         if !(pdf > 0.0) {
             return None;

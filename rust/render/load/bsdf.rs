@@ -77,9 +77,19 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                         "is not a numeric parameter of this model, so it cannot be a texture",
                     ));
                 }
-                let tex = texture::get_scalar(b, obj, &name, Vec3::ZERO)?;
-                params.push(&name, ParamValue::Number(tex.mean() as f64));
-                textured.push((name, tex));
+                textured.push((name.clone(), texture::get_scalar(b, obj, &name, Vec3::ZERO)?));
+            }
+            // A textured parameter stands for a number when the model is built: its mean,
+            // clamped into the per-lane range (any texture is accepted; values clamp per hit).
+            let number = |n: &str| match obj.properties.get(n).map(|p| &p.value) {
+                Some(Value::Float(x)) => Some(*x),
+                Some(Value::Integer(i)) => Some(*i as f64),
+                Some(Value::String(s)) => crate::brdf::params::lookup_ior(s),
+                _ => None,
+            };
+            for (name, tex) in &textured {
+                let v = crate::brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
+                params.push(name, ParamValue::Number(v));
             }
             let model =
                 crate::brdf::Bsdf::from_params(kind, params).map_err(|e| values::prop_err(obj, &e.param, e.message))?;
@@ -235,14 +245,6 @@ fn textured_matte(
     reflectance: Texture,
     mut textured: Vec<(String, Texture)>,
 ) -> Result<Bsdf, SceneError> {
-    if !model.supports_lane_parameters() {
-        let name = &textured[0].0;
-        return Err(values::prop_err(
-            obj,
-            name,
-            "must be a number (a textured roughness needs a table over m, which the van Ginneken fast path does not have)",
-        ));
-    }
     let mut params = Vec::new();
     for (name, value) in model.parameters() {
         let ParamValue::Number(x) = value else { continue };
