@@ -3,6 +3,7 @@
 
 pub mod bench_cmd;
 mod brdf_cmd;
+pub mod fit_cmd;
 pub mod render_cmd;
 pub mod study_cmd;
 mod tables;
@@ -38,6 +39,9 @@ pub enum Command {
     Study(study_cmd::StudyArgs),
     /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (README "Speed").
     Bench(bench_cmd::BenchArgs),
+    /// Inverse rendering: fit scene parameters (textured σ, reflectance, …) to target images
+    /// with Mitsuba's prb and Adam (runs `python -m matte_mitsuba.fit`).
+    Fit(fit_cmd::FitArgs),
     /// The BSDF plugin names matte provides, one per line (the plugin build reads them).
     Types,
 }
@@ -67,6 +71,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Validate(a) => validate_cmd::run(&a),
         Command::Study(a) => study_cmd::run(&a),
         Command::Bench(a) => bench_cmd::run(&a),
+        Command::Fit(a) => fit_cmd::run(&a),
         Command::Types => {
             crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
             Ok(())

@@ -178,8 +178,7 @@ impl Model {
             Some(pdf.id(arena))
         }
         let zero = || arena.lit(0.0);
-        by_channels!(rho.len(), go, zero())(self, arena, coefficients, lane, wi, wo, rho, value)
-            .unwrap_or_else(zero)
+        by_channels!(rho.len(), go, zero())(self, arena, coefficients, lane, wi, wo, rho, value).unwrap_or_else(zero)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs

@@ -36,11 +36,13 @@ import time
 # Valid ranges by parameter name (the last dotted component that names a BSDF parameter).
 # sigma: Oren-Nayar's slope-angle std (rad); roughness: EON's r in [0, 1] (van Ginneken's m
 # must stay > 0, so the lower bound is 1e-3); alpha: roughdiffuse's RMS slope; int_ior /
-# ext_ior: Wolff's indices; reflectance: albedo.
+# ext_ior: Wolff's indices; reflectance: albedo. Oren-Nayar depends on σ² only, so σ = 0
+# exactly (Lambert) is a stationary point of the loss: σ and α start and stay at >= 1e-3
+# (A(σ) = 1 − 1.5e-6 there, Lambert for any image), from where Adam's scale-free steps move.
 RANGES = {
-    "sigma": (0.0, 1.5),
+    "sigma": (1e-3, 1.5),
     "roughness": (1e-3, 1.0),
-    "alpha": (0.0, 2.0),
+    "alpha": (1e-3, 2.0),
     "int_ior": (1.0, 4.0),
     "ext_ior": (1.0, 4.0),
     "reflectance": (0.0, 1.0),
@@ -216,6 +218,8 @@ def fit(args):
             near = [x for x in params[0].keys() if x.split(".")[0] == k.split(".")[0]][:8]
             raise FitError(f"--param {k}: not a parameter of {args.scene}" + (f" (that object has: {', '.join(near)})" if near else ""))
 
+    # Every render (targets, fit, final) uses the same integrator: prb, --max-depth.
+    integrator = mi.load_dict({"type": "prb", "max_depth": args.max_depth})
     # Targets.
     truth = {}
     if args.target_scene and args.target:
@@ -226,7 +230,7 @@ def fit(args):
         targets = []
         for d in configs:
             ts = load(args.target_scene, d)
-            targets.append(mi.render(ts, spp=args.target_spp, seed=10_000 + args.seed))
+            targets.append(mi.render(ts, integrator=integrator, spp=args.target_spp, seed=10_000 + args.seed))
             tp = mi.traverse(ts)
             for k in args.param:
                 if k in tp and k not in truth:
@@ -244,7 +248,6 @@ def fit(args):
                 raise FitError(f"{path}: {t.shape[1]}x{t.shape[0]} pixels, but the scene's film is {film[0]}x{film[1]}")
             targets.append(t)
 
-    integrator = mi.load_dict({"type": "prb", "max_depth": args.max_depth})
     inits = parse_pairs(args.init, "--init")
     ranges_over = parse_pairs(args.range, "--range")
     ranges = {k: range_for(k, ranges_over) for k in args.param}
@@ -297,11 +300,11 @@ def fit(args):
         history["loss"].append(total)
         param_errors()
         bar.update(it, total)
-    write_outputs(args, configs, scenes, params, targets, truth, history, opt, ranges)
+    write_outputs(args, configs, scenes, params, targets, truth, history, opt, ranges, integrator)
     return 0
 
 
-def write_outputs(args, configs, scenes, params, targets, truth, history, opt, ranges):
+def write_outputs(args, configs, scenes, params, targets, truth, history, opt, ranges, integrator):
     import mitsuba as mi
     import numpy as np
     out = args.output
@@ -341,7 +344,7 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
 
     renders = []
     for c, (scene, p, target) in enumerate(zip(scenes, params, targets)):
-        img = mi.render(scene, p, spp=max(args.spp, 64), seed=99_999 + c)
+        img = mi.render(scene, p, integrator=integrator, spp=max(args.spp, 64), seed=99_999 + c)
         write_image_png(os.path.join(out, f"render_{c}.png"), img)
         write_image_png(os.path.join(out, f"target_{c}.png"), target)
         rmse = float(np.sqrt(np.mean((as_numpy(img) - as_numpy(target)) ** 2)))
