@@ -28,7 +28,7 @@ fn pairs() -> Vec<(Vec3, Vec3)> {
         .map(|k| {
             let f = |a: f64| ((0.5 + a * (k as f64 + 1.0)).fract()) as f32;
             let (ti, to) = (f(0.7548776662) * 1.55, f(0.5698402910) * 1.55);
-            let (pi, po) = (f(0.4302966531) * 6.283, f(0.2327856400) * 6.283);
+            let (pi, po) = (f(0.4302966531) * std::f32::consts::TAU, f(0.2327856400) * std::f32::consts::TAU);
             let d = |t: f32, p: f32| Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
             (d(ti, pi), d(to, po))
         })
@@ -40,7 +40,8 @@ fn pairs() -> Vec<(Vec3, Vec3)> {
 /// the fitted Fresnel average (Wolff, ≤ 2e-4 relative).
 #[test]
 fn lane_kernels_equal_the_constant_models() {
-    let cases: &[(&str, &[(&str, f64)], f32)] = &[
+    type Case<'a> = (&'a str, &'a [(&'a str, f64)], f32);
+    let cases: &[Case] = &[
         ("lambert", &[], 0.0),
         ("oren_nayar", &[("sigma", 0.0)], 1e-5),
         ("oren_nayar", &[("sigma", 0.45)], 1e-5),
@@ -88,7 +89,8 @@ fn lane_kernels_equal_the_constant_models() {
 #[test]
 fn lane_values_out_of_range_are_clamped() {
     let (wi, wo) = (Vec3::new(0.3, 0.1, 0.95).normalize(), Vec3::new(-0.6, 0.2, 0.4).normalize());
-    let cases: &[(&str, &str, f64, &[f32])] = &[
+    type Case<'a> = (&'a str, &'a str, f64, &'a [f32]);
+    let cases: &[Case] = &[
         ("oren_nayar", "sigma", 0.0, &[-1.0, f32::NAN, f32::NEG_INFINITY]),
         ("roughdiffuse", "alpha", 0.0, &[-0.5, f32::NAN]),
         ("eon", "roughness", 0.0, &[-3.0, f32::NAN]),

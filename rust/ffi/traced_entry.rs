@@ -150,6 +150,7 @@ impl Model {
         }
     }
 
+    #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs
     pub(super) fn traced_eval_pdf(
         &self,
         arena: &Arena,

@@ -285,6 +285,7 @@ def fit(args):
                 history["param_error"][k].append(float(np.mean(np.abs(cur.ravel() - t.ravel()))))
 
     bar = ProgressBar(args.iterations, args.quiet)
+    started = time.time()
     param_errors()
     for it in range(args.iterations):
         total = 0.0
@@ -300,6 +301,7 @@ def fit(args):
         history["loss"].append(total)
         param_errors()
         bar.update(it, total)
+    history["seconds"] = time.time() - started
     write_outputs(args, configs, scenes, params, targets, truth, history, opt, ranges, integrator)
     return 0
 
@@ -365,6 +367,7 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
         "ranges": {k: list(v) for k, v in ranges.items()},
         "settings": {"iterations": args.iterations, "lr": args.lr, "spp": args.spp, "target_spp": args.target_spp,
                      "max_depth": args.max_depth, "variant": args.variant, "seed": args.seed},
+        "seconds": history.get("seconds"),
         "loss": history["loss"],
         "param_error": history["param_error"],
         "fitted": fitted,

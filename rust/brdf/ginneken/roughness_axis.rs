@@ -99,12 +99,7 @@ impl RoughnessAxisTables {
 
     /// The four stacks as CPU tables, in [`Self::table`]'s order.
     pub fn nodes(&'static self) -> [Nodes<'static>; 4] {
-        [
-            Nodes::new(&*self.slope),
-            Nodes::new(&*self.d_slope),
-            Nodes::new(&*self.mu_lambda),
-            Nodes::new(&*self.d_mu_lambda),
-        ]
+        [Nodes::new(&self.slope), Nodes::new(&self.d_slope), Nodes::new(&self.mu_lambda), Nodes::new(&self.d_mu_lambda)]
     }
 }
 
