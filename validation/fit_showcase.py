@@ -19,7 +19,8 @@ configuration, the same freed parameters for all):
 Oren–Nayar at normal incidence is `ρ A(σ)/π`, so frontal images constrain only the product:
 σ and ρ trade off. Back-scattering adds `B(σ) sin θ tan θ`, which separates them. The script
 reports per set: mean |σ error| (rad), mean |ρ error|, and the correlation of the per-texel
-σ and ρ errors (strongly negative: the trade-off). Targets come from the truth scene
+σ and ρ errors (close to +1 is the trade-off: a σ too high lowers A(σ), which a ρ too high
+compensates). Targets come from the truth scene
 rendered at 512 spp with seeds the fit never uses; the oracle is the known truth maps.
 Outputs: one ``matte fit`` folder per set (``index.html``), ``showcase.json`` and
 ``showcase.html`` with the comparison figure ``maps.png``.
