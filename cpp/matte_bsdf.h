@@ -14,6 +14,11 @@
  *   ginneken:    roughness (float > 0, rms slope, 0.3), shadowing ("vginneken" | "height_correlated")
  *   roughdiffuse: alpha (float, RMS slope, 0.2; σ = alpha/√2), use_fast_approx (boolean, false)
  *
+ * Every numeric parameter may also be a texture (`<texture type="bitmap" name="sigma">`):
+ * evaluated with `eval_1` at the interaction, its kernel constants computed per lane inside
+ * eval/sample/pdf (rust/brdf/lane.rs; docs/models.md#spatially-varying-parameters), traversed
+ * as the texture (gradients reach its data). Constant parameters keep the per-value constants.
+ *
  * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
  * cosine-weighted. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
  *
