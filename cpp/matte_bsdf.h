@@ -14,6 +14,11 @@
  *   ginneken:    roughness (float > 0, rms slope, 0.3), shadowing ("vginneken" | "height_correlated")
  *   roughdiffuse: alpha (float, RMS slope, 0.2; σ = alpha/√2), use_fast_approx (boolean, false)
  *
+ * Every numeric parameter may also be a texture (`<texture type="bitmap" name="sigma">`):
+ * evaluated with `eval_1` at the interaction, its kernel constants computed per lane inside
+ * eval/sample/pdf (rust/brdf/lane.rs; docs/models.md#spatially-varying-parameters), traversed
+ * as the texture (gradients reach its data). Constant parameters keep the per-value constants.
+ *
  * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
  * cosine-weighted. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
  *
@@ -63,6 +68,15 @@ public:
             if (name == "reflectance")
                 continue;
             switch (props.type(name)) {
+                case Properties::Type::Object:
+                    // A texture for a numeric parameter (sigma, roughness, alpha, int_ior, ...):
+                    // evaluated per lane (docs/models.md#spatially-varying-parameters).
+                    if (!matte::ffi::is_numeric_parameter(rust::Str(m_kind.data(), m_kind.size()),
+                                                         rust::Str(name.data(), name.size())))
+                        Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this "
+                              "model, so it cannot be a texture", m_kind, name);
+                    m_textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
+                    break;
                 case Properties::Type::Float:
                 case Properties::Type::Integer:
                     m_params.push_back(number_param(name, props.get<double>(name)));
@@ -77,13 +91,34 @@ public:
                     break;
             }
         }
+        // A textured parameter stands for a number when the model is built (its mean clamped
+        // into the per-lane range, so any texture is accepted: its values are clamped per lane).
+        std::vector<matte::ffi::Param> placeholders;
+        for (auto &[name, texture] : m_textured)
+            placeholders.push_back(number_param(name, matte::ffi::textured_placeholder(
+                rust::Str(m_kind.data(), m_kind.size()), rust::Str(name.data(), name.size()),
+                scalar_value(texture->mean()),
+                rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size()))));
+        for (auto &p : placeholders)
+            m_params.push_back(std::move(p));
         build_model();
         // The numeric parameters with their effective values (defaults filled in), as the
         // variant's Float: fixed from here on (traverse hands out references to them).
         for (const auto &p : (*m_model)->numeric_parameters()) {
             m_names.emplace_back(std::string(p.name));
             m_values.push_back(Float((ScalarFloat) p.number));
+            m_textures.emplace_back();
         }
+        for (auto &[name, texture] : m_textured) {
+            size_t k = 0;
+            while (k < m_names.size() && m_names[k] != name)
+                ++k;
+            if (k < m_textures.size())
+                m_textures[k] = texture;
+        }
+        m_any_textured = !m_textured.empty();
+        m_texture_0 = m_textures.size() > 0 ? m_textures[0] : nullptr;
+        m_texture_1 = m_textures.size() > 1 ? m_textures[1] : nullptr;
         update_traced_kernel();
         m_flags = BSDFFlags::DiffuseReflection | BSDFFlags::FrontSide;
         m_components.push_back(m_flags);
@@ -91,14 +126,20 @@ public:
 
     void traverse(TraversalCallback *cb) override {
         cb->put("reflectance", m_reflectance, ParamFlags::Differentiable);
-        for (size_t k = 0; k < m_values.size(); ++k)
-            cb->put(m_names[k], m_values[k], ParamFlags::Differentiable);
+        for (size_t k = 0; k < m_values.size(); ++k) {
+            if (m_textures[k])
+                cb->put(m_names[k], m_textures[k], ParamFlags::Differentiable);
+            else
+                cb->put(m_names[k], m_values[k], ParamFlags::Differentiable);
+        }
     }
 
     void parameters_changed(const std::vector<std::string> & /*keys*/ = {}) override {
         // Numeric parameters may have been edited through mi.traverse(): rebuild the model
         // with the new values (validated again by the kernels), then the traced constants.
         for (size_t k = 0; k < m_values.size(); ++k) {
+            if (m_textures[k])
+                continue;  // evaluated per call
             double value = scalar_value(m_values[k]);
             bool found = false;
             for (auto &p : m_params)
@@ -131,8 +172,16 @@ public:
         if constexpr (!dr::is_jit_v<Float>) {
             matte::ffi::Channels weight{};
             matte::ffi::Vec3f wo{ 0.f, 0.f, 1.f };
-            float pdf = (*m_model)->sample(to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
-                                           to_channels(value), wo, weight);
+            float pdf;
+            if (m_any_textured) {
+                auto params = lane_values(si, active);
+                pdf = (*m_model)->sample_lane(rust::Slice<const float>(params.data(), params.size()),
+                                              to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
+                                              to_channels(value), wo, weight);
+            } else {
+                pdf = (*m_model)->sample(to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
+                                         to_channels(value), wo, weight);
+            }
             bs.wo = Vector3f(wo.x, wo.y, wo.z);
             bs.pdf = pdf;
             for (size_t c = 0; c < Channels; ++c)
@@ -141,13 +190,13 @@ public:
             matte::ArenaT<Float> ar(&m_tables);
             auto wi = ids(ar, si.wi);
             auto rho = ids(ar, value);
-            auto coef = ids(ar, m_coefficients);
+            auto coef = coefficient_ids(ar, si, active);
             uint32_t zero = ar.lit(0.f);
             std::array<uint32_t, 3> wo;
             std::array<uint32_t, Channels> weight;
             wo.fill(zero);
             weight.fill(zero);
-            uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), slice(wi), ar.push(sample2.x()),
+            uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), m_any_textured, slice(wi), ar.push(sample2.x()),
                                                      ar.push(sample2.y()), slice(rho), mut_slice(wo),
                                                      mut_slice(weight));
             bs.wo = Vector3f(ar.get(wo[0]), ar.get(wo[1]), ar.get(wo[2]));
@@ -206,7 +255,13 @@ public:
             << "  reflectance = " << string::indent(m_reflectance) << "," << std::endl;
         for (const auto &p : (*m_model)->describe_parameters()) {
             oss << "  " << std::string(p.name) << " = ";
-            if (p.is_number)
+            const Texture *tex = nullptr;
+            for (size_t k = 0; k < m_names.size(); ++k)
+                if (m_names[k] == std::string(p.name) && m_textures[k])
+                    tex = m_textures[k].get();
+            if (tex)
+                oss << string::indent(tex);
+            else if (p.is_number)
                 oss << p.number;
             else
                 oss << "\"" << std::string(p.text) << "\"";
@@ -253,10 +308,20 @@ private:
     void update_traced_kernel() {
         if constexpr (dr::is_jit_v<Float>) {
             m_tables.clear();
-            for (size_t k = 0; k < (*m_model)->table_count(); ++k) {
-                rust::Slice<const float> t = (*m_model)->table(k);
-                m_tables.push_back(dr::load<Float>(t.data(), t.size()));
-            }
+            // Textured parameters read the per-lane tables (van Ginneken's stacks over m),
+            // uploaded once: they do not depend on the parameter values.
+            if (m_any_textured) {
+                if (m_lane_tables.empty())
+                    for (size_t k = 0; k < (*m_model)->lane_table_count(); ++k) {
+                        rust::Slice<const float> t = (*m_model)->lane_table(k);
+                        m_lane_tables.push_back(dr::load<Float>(t.data(), t.size()));
+                    }
+                m_tables = m_lane_tables;
+            } else
+                for (size_t k = 0; k < (*m_model)->table_count(); ++k) {
+                    rust::Slice<const float> t = (*m_model)->table(k);
+                    m_tables.push_back(dr::load<Float>(t.data(), t.size()));
+                }
             bool differentiable = false;
             for (Float &v : m_values) {
                 dr::make_opaque(v);
@@ -315,6 +380,31 @@ private:
         return rust::Slice<uint32_t>(c.data(), c.size());
     }
 
+    /// Scalar variants: the numeric parameters' values at this hit (textures evaluated).
+    std::vector<float> lane_values(const SurfaceInteraction3f &si, Mask active) const {
+        std::vector<float> out;
+        if constexpr (!dr::is_jit_v<Float>) {
+            for (size_t k = 0; k < m_values.size(); ++k)
+                out.push_back(m_textures[k] ? (float) m_textures[k]->eval_1(si, active) : (float) m_values[k]);
+        }
+        return out;
+    }
+
+    /// JIT variants: the kernel constants in the arena. Constant parameters: the ones
+    /// computed in `parameters_changed`. Textured ones: computed here per lane from the
+    /// textures' values at `si` (traced, so gradients reach the texture's data).
+    std::vector<uint32_t> coefficient_ids(const matte::ArenaT<Float> &ar, const SurfaceInteraction3f &si,
+                                          Mask active) const {
+        if (!m_any_textured)
+            return ids(ar, m_coefficients);
+        std::vector<uint32_t> params;
+        for (size_t k = 0; k < m_values.size(); ++k)
+            params.push_back(ar.push(m_textures[k] ? m_textures[k]->eval_1(si, active) : m_values[k]));
+        rust::Vec<uint32_t> coef =
+            (*m_model)->traced_lane_coefficients(ar, rust::Slice<const uint32_t>(params.data(), params.size()));
+        return std::vector<uint32_t>(coef.begin(), coef.end());
+    }
+
     /// f·cos θo and the pdf: the kernels for every active lane, 0 elsewhere.
     std::pair<Spectrum, Float> eval_pdf_impl(const SurfaceInteraction3f &si, const Vector3f &wo,
                                              Mask active) const {
@@ -328,17 +418,23 @@ private:
         Float pdf;
         if constexpr (!dr::is_jit_v<Float>) {
             matte::ffi::Channels f{};
-            pdf = (*m_model)->eval_pdf(to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
+            if (m_any_textured) {
+                auto params = lane_values(si, active);
+                pdf = (*m_model)->eval_pdf_lane(rust::Slice<const float>(params.data(), params.size()),
+                                                to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
+            } else {
+                pdf = (*m_model)->eval_pdf(to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
+            }
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = f.v[c] * cos_theta_o;
         } else {
             matte::ArenaT<Float> ar(&m_tables);
             auto wi_ = ids(ar, si.wi), wo_ = ids(ar, wo);
             auto rho = ids(ar, value);
-            auto coef = ids(ar, m_coefficients);
+            auto coef = coefficient_ids(ar, si, active);
             std::array<uint32_t, Channels> v;
             v.fill(ar.lit(0.f));
-            uint32_t pdf_id = (*m_model)->traced_eval_pdf(ar, slice(coef), slice(wi_), slice(wo_),
+            uint32_t pdf_id = (*m_model)->traced_eval_pdf(ar, slice(coef), m_any_textured, slice(wi_), slice(wo_),
                                                           slice(rho), mut_slice(v));
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = ar.get(v[c]);
@@ -353,13 +449,21 @@ private:
     /// The numeric parameters (names and values, in the model's order), traversable.
     std::vector<std::string> m_names;
     std::vector<Float> m_values;
+    /// Per numeric parameter: its texture when one was given (else null), and whether any is.
+    std::vector<ref<Texture>> m_textures;
+    bool m_any_textured = false;
+    /// The `<texture name="...">` children, in the order given (matched to names above).
+    std::vector<std::pair<std::string, ref<Texture>>> m_textured;
+    /// The same textures as named members, for MI_TRAVERSE_CB (at most two numeric parameters).
+    ref<Texture> m_texture_0, m_texture_1;
     /// JIT variants: the kernel's constants and tables (`update_traced_kernel`).
     std::vector<Float> m_coefficients;
     std::vector<Float> m_tables;
+    std::vector<Float> m_lane_tables;
     /// Always set after construction (optional only because rust::Box has no empty state).
     std::optional<rust::Box<matte::ffi::Model>> m_model;
 
-    MI_TRAVERSE_CB(Base, m_reflectance)
+    MI_TRAVERSE_CB(Base, m_reflectance, m_texture_0, m_texture_1)
 };
 
 NAMESPACE_END(mitsuba)

@@ -16,7 +16,8 @@
 //!   Lambert at normal incidence; the fair side-by-side comparison).
 //! * `raw`: `ρ / π`.
 
-use super::fresnel::{Transmittance, diffuse_fresnel_external, diffuse_fresnel_internal, fresnel_dielectric};
+use super::fresnel::{Transmittance, diffuse_fresnel_external, fresnel_dielectric};
+use super::fresnel_fit::diffuse_fresnel_external_fit;
 use super::kernel::{self, Kernel};
 use super::model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
@@ -58,18 +59,31 @@ impl<T: Real> WolffKernel<T> {
     /// For relative index `n = int_ior / ext_ior ≥ 1`. `F_dr` is a 64-node quadrature: run
     /// once per parameter value, never per eval.
     pub fn new(n: T, normalization: WolffNormalization) -> Self {
+        Self::with_average(n, normalization, |n| diffuse_fresnel_external(n))
+    }
+
+    /// The same constants with `F_dr` from its fit ([`diffuse_fresnel_external_fit`],
+    /// |error| ≤ 2e-5): cheap enough per lane and call, for an index that varies per lane
+    /// (a textured `int_ior`). `n` is taken as at least 1.
+    pub fn per_lane(n: T, normalization: WolffNormalization) -> Self {
+        Self::with_average(n.max(T::c(1.0)), normalization, |n| diffuse_fresnel_external_fit(n))
+    }
+
+    fn with_average(n: T, normalization: WolffNormalization, f_dr_ext: impl Fn(T) -> T) -> Self {
         let one = T::c(1.0);
         let k_pi = match normalization {
             WolffNormalization::Raw => one,
             // 1 − F(0) = 4n/(n+1)², without cancellation.
             WolffNormalization::Normal => {
                 let n_plus_1 = n + one;
-                n_plus_1 * n_plus_1 / (n.scale(4.0) * (one - diffuse_fresnel_external(n)))
+                n_plus_1 * n_plus_1 / (n.scale(4.0) * (one - f_dr_ext(n)))
             }
             WolffNormalization::Physical => one / (n * n),
         };
+        // F_dr,int = F_dr(1/n) by the identity 1 − F_dr(1/n) = (1 − F_dr(n))/n²
+        // (`fresnel::diffuse_fresnel_internal`).
         let f_dr_int = match normalization {
-            WolffNormalization::Physical => diffuse_fresnel_internal(n),
+            WolffNormalization::Physical => one - (one - f_dr_ext(n)) / (n * n),
             _ => T::c(0.0),
         };
         Self { transmittance: Transmittance::new(n), k_pi, f_dr_int, normalization }

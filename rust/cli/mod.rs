@@ -3,6 +3,7 @@
 
 pub mod bench_cmd;
 mod brdf_cmd;
+pub mod fit_cmd;
 pub mod microgeometry_cmd;
 pub mod render_cmd;
 pub mod study_cmd;
@@ -42,6 +43,9 @@ pub enum Command {
     Microgeometry(microgeometry_cmd::MicrogeometryArgs),
     /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (README "Speed").
     Bench(bench_cmd::BenchArgs),
+    /// Inverse rendering: fit scene parameters (textured σ, reflectance, …) to target images
+    /// with Mitsuba's prb and Adam (runs `python -m matte_mitsuba.fit`).
+    Fit(fit_cmd::FitArgs),
     /// The BSDF plugin names matte provides, one per line (the plugin build reads them).
     Types,
 }
@@ -79,6 +83,7 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Study(a) => study_cmd::run(&a),
         Command::Bench(a) => bench_cmd::run(&a),
         Command::Microgeometry(a) => microgeometry_cmd::run(&a),
+        Command::Fit(a) => fit_cmd::run(&a),
         Command::Types => {
             crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
             Ok(())

@@ -66,6 +66,11 @@ pub mod ffi {
         /// message naming the bad parameter.
         fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>>;
         fn describe_parameters(self: &Model) -> Vec<Param>;
+        /// Whether `name` is a numeric parameter of the model `kind` (a texture may give it).
+        fn is_numeric_parameter(kind: &str, name: &str) -> bool;
+        /// The number a textured parameter stands for when the model is built: the texture's
+        /// `mean` clamped into the parameter's per-lane range (`params`: the other parameters).
+        fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64;
         fn numeric_parameters(self: &Model) -> Vec<Param>;
         /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`.
         fn eval_pdf(self: &Model, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32;
@@ -73,6 +78,27 @@ pub mod ffi {
         /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample).
         fn sample(
             self: &Model,
+            wi: &Vec3f,
+            u1: f32,
+            u2: f32,
+            reflectance: &Channels,
+            wo: &mut Vec3f,
+            weight: &mut Channels,
+        ) -> f32;
+
+        /// `eval_pdf` with the numeric parameters' values for this call (textures).
+        fn eval_pdf_lane(
+            self: &Model,
+            params: &[f32],
+            wi: &Vec3f,
+            wo: &Vec3f,
+            reflectance: &Channels,
+            f: &mut Channels,
+        ) -> f32;
+        /// `sample` with the numeric parameters' values for this call (textures).
+        fn sample_lane(
+            self: &Model,
+            params: &[f32],
             wi: &Vec3f,
             u1: f32,
             u2: f32,
@@ -90,11 +116,20 @@ pub mod ffi {
         /// `numeric_parameters`). `differentiable`: a parameter carries a gradient (van
         /// Ginneken then adds its roughness-derivative tables to the kernel).
         fn traced_coefficients(self: &Model, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32>;
-        /// f·cos θo per channel into `value`; returns the pdf.
+        /// The kernel's coefficients from per-lane (textured) parameter values, traced, in the
+        /// layout `traced_eval_pdf`/`traced_sample` take; empty if unsupported.
+        fn traced_lane_coefficients(self: &Model, arena: &Arena, params: &[u32]) -> Vec<u32>;
+        /// The tables per-lane parameters need (van Ginneken: its roughness-axis stacks),
+        /// registered instead of `table(k)`'s when a parameter is textured.
+        fn lane_table_count(self: &Model) -> usize;
+        fn lane_table(self: &Model, k: usize) -> &[f32];
+        /// f·cos θo per channel into `value`; returns the pdf. `lane`: the coefficients are
+        /// `traced_lane_coefficients`'.
         fn traced_eval_pdf(
             self: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             wo: &[u32],
             rho: &[u32],
@@ -105,6 +140,7 @@ pub mod ffi {
             self: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             u1: u32,
             u2: u32,
@@ -115,4 +151,4 @@ pub mod ffi {
     }
 }
 
-use super::{Model, model_new};
+use super::{Model, is_numeric_parameter, model_new, textured_placeholder};

@@ -14,6 +14,7 @@ mod bridge;
 pub mod traced;
 mod traced_entry;
 
+use crate::brdf::kernel;
 use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
 use bridge::ffi::{Channels, Param, Vec3f};
 use glam::{Vec2, Vec3};
@@ -49,6 +50,17 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
         Ok(Err(message)) => Err(message),
         Err(_) => Err(format!("internal error while constructing bsdf \"{kind}\" (a bug in matte; please report it)")),
     }
+}
+
+fn is_numeric_parameter(kind: &str, name: &str) -> bool {
+    crate::brdf::lane::numeric_parameter_names(kind).contains(&name)
+}
+
+fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64 {
+    crate::brdf::lane::textured_placeholder(kind, name, mean, |other| {
+        let p = params.iter().find(|p| p.name == other)?;
+        if p.is_number { Some(p.number) } else { crate::brdf::params::lookup_ior(&p.text) }
+    })
 }
 
 /// The used channels of a [`Channels`].
@@ -133,6 +145,52 @@ impl Model {
         let Some((dir, pdf, w)) = drawn else {
             return 0.0;
         };
+        *wo = Vec3f { x: dir.x, y: dir.y, z: dir.z };
+        weight.v = w;
+        pdf
+    }
+
+    /// [`Self::eval_pdf`] with the numeric parameters given per call (`params`, in the order
+    /// of `numeric_parameters`: a texture's value at the hit, or the constant), clamped into
+    /// range (`crate::brdf::lane`). Zeros if the model has no per-lane form.
+    fn eval_pdf_lane(&self, params: &[f32], wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
+        let (wi, wo) = (v3(wi), v3(wo));
+        f.n = reflectance.n;
+        f.v = [0.0; MAX_CHANNELS];
+        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
+            return 0.0;
+        };
+        let mut rho = [0.0; MAX_CHANNELS];
+        let used = used(reflectance);
+        rho[..used.len()].copy_from_slice(used);
+        f.v = kernel::eval(&k, wi.into(), wo.into(), rho);
+        self.bsdf.pdf(wi, wo)
+    }
+
+    /// [`Self::sample`] with per-call parameters, as [`Self::eval_pdf_lane`].
+    #[allow(clippy::too_many_arguments)]
+    fn sample_lane(
+        &self,
+        params: &[f32],
+        wi: &Vec3f,
+        u1: f32,
+        u2: f32,
+        reflectance: &Channels,
+        wo: &mut Vec3f,
+        weight: &mut Channels,
+    ) -> f32 {
+        weight.n = reflectance.n;
+        weight.v = [0.0; MAX_CHANNELS];
+        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
+            return 0.0;
+        };
+        let mut rho = [0.0; MAX_CHANNELS];
+        let used = used(reflectance);
+        rho[..used.len()].copy_from_slice(used);
+        let (dir, w, pdf) = kernel::sample(&k, v3(wi).into(), u1, u2, rho);
+        if !(pdf > 0.0) {
+            return 0.0;
+        }
         *wo = Vec3f { x: dir.x, y: dir.y, z: dir.z };
         weight.v = w;
         pdf

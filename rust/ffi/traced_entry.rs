@@ -13,38 +13,15 @@ use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
 use crate::brdf::eon::EonKernel;
 use crate::brdf::ginneken::GinnekenKernel;
-use crate::brdf::kernel::{self, Kernel};
+use crate::brdf::kernel;
+use crate::brdf::lane::LaneKernel;
 use crate::brdf::oren_nayar::OrenNayarKernel;
 use crate::brdf::real::V3;
 use crate::brdf::wolff::WolffKernel;
-use crate::brdf::{Bsdf, Lambert, RoughDiffuse};
+use crate::brdf::{Bsdf, RoughDiffuse};
 
 /// One model's kernel with traced constants.
-enum TracedKernel<'a> {
-    Lambert(Lambert),
-    OrenNayar(OrenNayarKernel<Traced<'a>>),
-    Eon(EonKernel<Traced<'a>>),
-    Wolff(WolffKernel<Traced<'a>>),
-    Ginneken(GinnekenKernel<'a, Traced<'a>>),
-}
-
-impl<'a> Kernel<Traced<'a>> for TracedKernel<'a> {
-    #[inline]
-    fn reduced_f<const N: usize>(
-        &self,
-        wi: V3<Traced<'a>>,
-        wo: V3<Traced<'a>>,
-        rho: [Traced<'a>; N],
-    ) -> [Traced<'a>; N] {
-        match self {
-            TracedKernel::Lambert(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::OrenNayar(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Eon(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Wolff(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Ginneken(k) => k.reduced_f(wi, wo, rho),
-        }
-    }
-}
+type TracedKernel<'a> = LaneKernel<'a, Traced<'a>>;
 
 /// The first `N` indices of `ids` as traced values, or `None` if there are fewer.
 fn nodes<'a, const N: usize>(arena: &'a Arena, ids: &[u32]) -> Option<[Traced<'a>; N]> {
@@ -95,6 +72,16 @@ impl Model {
         }
     }
 
+    /// Tables for per-lane parameters (van Ginneken: the four roughness-axis stacks, built on
+    /// first use), registered instead of [`Self::table`]'s when a parameter is textured.
+    pub(super) fn lane_table_count(&self) -> usize {
+        if self.bsdf.lane_tables().is_some() { 4 } else { 0 }
+    }
+
+    pub(super) fn lane_table(&self, k: usize) -> &[f32] {
+        self.bsdf.lane_tables().map_or(&[], |t| t.table(k))
+    }
+
     pub(super) fn traced_coefficients(&self, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32> {
         let p = |k: usize| params.get(k).map(|&i| Traced::node(arena, i));
         match &self.bsdf {
@@ -124,60 +111,75 @@ impl Model {
         }
     }
 
+    /// The kernel constants for per-lane (textured) parameters, traced: `params` holds every
+    /// numeric parameter's value per lane (a texture's `eval_1`, or the constant), in the order
+    /// of `numeric_parameters`; the result is in [`Self::traced_coefficients`]' layout, so
+    /// [`Self::traced_eval_pdf`] / [`Self::traced_sample`] take it unchanged
+    /// (`crate::brdf::lane`). Empty if the model has no per-lane form or `params` is short.
+    pub(super) fn traced_lane_coefficients(&self, arena: &Arena, params: &[u32]) -> Vec<u32> {
+        let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
+        match self.bsdf.lane_coefficients(&values) {
+            Some(c) => c.iter().map(|v| v.id(arena)).collect(),
+            None => vec![],
+        }
+    }
+
     /// The kernel with the constants `coefficients` (from [`Self::traced_coefficients`]).
-    fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32]) -> Option<TracedKernel<'a>> {
-        Some(match &self.bsdf {
-            Bsdf::Lambert(k) => TracedKernel::Lambert(*k),
-            Bsdf::OrenNayar(b) => {
-                TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(nodes(arena, coefficients)?, b.model()))
-            }
-            Bsdf::Eon(_) => TracedKernel::Eon(EonKernel::from_coefficients(nodes(arena, coefficients)?)),
-            Bsdf::RoughDiffuse(b) => TracedKernel::OrenNayar(OrenNayarKernel::from_coefficients(
-                nodes(arena, coefficients)?,
-                b.oren_nayar().model(),
-            )),
-            Bsdf::Wolff(b) => {
-                TracedKernel::Wolff(WolffKernel::from_coefficients(nodes(arena, coefficients)?, b.normalization()))
+    /// `lane`: the constants come from [`Self::traced_lane_coefficients`] (van Ginneken then
+    /// reads the roughness-axis stacks the plugin registered, [`Self::lane_table`]).
+    fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32], lane: bool) -> Option<TracedKernel<'a>> {
+        let table = |id| TracedTable { arena, id };
+        match &self.bsdf {
+            Bsdf::Ginneken(_) if lane => {
+                let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
+                self.bsdf.kernel_from_coefficients(&c, || Some([table(0), table(1), table(2), table(3)]))
             }
             Bsdf::Ginneken(b) => {
-                let table = |id| TracedTable { arena, id };
                 let roughness_derivative = nodes::<1>(arena, coefficients).map(|[dm]| (table(1), table(3), dm));
-                TracedKernel::Ginneken(GinnekenKernel {
+                Some(LaneKernel::Ginneken(GinnekenKernel {
                     slope: table(0),
                     mu_lambda: table(2),
                     roughness_derivative,
                     shadowing: b.shadowing(),
-                })
+                }))
             }
-        })
+            _ => {
+                let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
+                self.bsdf.kernel_from_coefficients(&c, || None)
+            }
+        }
     }
 
+    #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs
     pub(super) fn traced_eval_pdf(
         &self,
         arena: &Arena,
         coefficients: &[u32],
+        lane: bool,
         wi: &[u32],
         wo: &[u32],
         rho: &[u32],
         value: &mut [u32],
     ) -> u32 {
+        #[allow(clippy::too_many_arguments)]
         fn go<const N: usize>(
             m: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             wo: &[u32],
             rho: &[u32],
             value: &mut [u32],
         ) -> Option<u32> {
-            let k = m.traced_kernel(arena, coefficients)?;
+            let k = m.traced_kernel(arena, coefficients, lane)?;
             let ([wx, wy, wz], [ox, oy, oz]) = (nodes::<3>(arena, wi)?, nodes::<3>(arena, wo)?);
             let (v, pdf) = kernel::eval_cos_pdf(&k, V3::new(wx, wy, wz), V3::new(ox, oy, oz), nodes::<N>(arena, rho)?);
             value.get_mut(..N)?.copy_from_slice(&ids(arena, v));
             Some(pdf.id(arena))
         }
         let zero = || arena.lit(0.0);
-        by_channels!(rho.len(), go, zero())(self, arena, coefficients, wi, wo, rho, value).unwrap_or_else(zero)
+        by_channels!(rho.len(), go, zero())(self, arena, coefficients, lane, wi, wo, rho, value).unwrap_or_else(zero)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs
@@ -185,6 +187,7 @@ impl Model {
         &self,
         arena: &Arena,
         coefficients: &[u32],
+        lane: bool,
         wi: &[u32],
         u1: u32,
         u2: u32,
@@ -197,13 +200,14 @@ impl Model {
             m: &Model,
             arena: &Arena,
             coefficients: &[u32],
+            lane: bool,
             wi: &[u32],
             u: [u32; 2],
             rho: &[u32],
             wo: &mut [u32],
             weight: &mut [u32],
         ) -> Option<u32> {
-            let k = m.traced_kernel(arena, coefficients)?;
+            let k = m.traced_kernel(arena, coefficients, lane)?;
             let [wx, wy, wz] = nodes::<3>(arena, wi)?;
             let [u1, u2] = u.map(|i| Traced::node(arena, i));
             let (d, w, pdf) = kernel::sample(&k, V3::new(wx, wy, wz), u1, u2, nodes::<N>(arena, rho)?);
@@ -212,7 +216,7 @@ impl Model {
             Some(pdf.id(arena))
         }
         let zero = || arena.lit(0.0);
-        by_channels!(rho.len(), go, zero())(self, arena, coefficients, wi, [u1, u2], rho, wo, weight)
+        by_channels!(rho.len(), go, zero())(self, arena, coefficients, lane, wi, [u1, u2], rho, wo, weight)
             .unwrap_or_else(zero)
     }
 }

@@ -55,6 +55,8 @@ def mitsuba_means(scene, defines):
     ("cornell_box.xml", {"res": RES}),
     # Every element matte renders: all shapes, lights, BSDFs incl. glass, metals, textures.
     ("features.xml", {}),
+    # matte's numeric parameters as textures (σ, r, int_ior checkerboards and bitmaps).
+    ("textured_parameters.xml", {"res": RES}),
 ])
 def test_image_mean_agrees_with_mitsuba(scene, defines):
     path = os.path.join(SCENES, scene)

@@ -1,9 +1,14 @@
-"""The ``matte`` command of the wheel: runs the ``matte`` binary shipped in this package."""
+"""The ``matte`` command of the wheel: runs the ``matte`` binary shipped in this package;
+``matte fit`` runs :mod:`matte_mitsuba.fit` in this Python (the binary's own ``fit`` forwards
+to ``python -m matte_mitsuba.fit`` as well)."""
 import os
 import sys
 
 
 def main():
+    if sys.argv[1:2] == ["fit"]:
+        from .fit import main as fit_main
+        sys.exit(fit_main(sys.argv[2:]))
     binary = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bin", "matte")
     if not os.path.exists(binary):
         sys.exit("matte: the command-line tool is not in this installation (%s); it ships in the matte-mitsuba "

@@ -11,6 +11,7 @@
 //! angles of eqs. 2–3", i.e. the facet-local cosines: that is the integrand of `I`.
 
 pub mod accuracy;
+pub mod roughness_axis;
 pub mod shadowing;
 pub mod slope_integral;
 pub mod table;
@@ -69,22 +70,37 @@ impl<'t, T: Real> GinnekenKernel<'t, T> {
 impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
-        // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo; the product of the sines is one
-        // square root of the product of the squared sines. Δφ itself (for the visibility) is
-        // the angle of (s, c) with c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos
-        // after this square root and division, which would make the chain longer.
-        let s = azimuthal_dot(wi, wo);
-        let sin2_prod = (wi.x * wi.x + wi.y * wi.y) * (wo.x * wo.x + wo.y * wo.y);
-        let defined = sin2_prod.gt(T::c(1e-24));
-        let cos_phi = T::select(defined, (s / sin2_prod.max(T::c(1e-24)).sqrt()).clamp_to(-1.0, 1.0), T::c(1.0));
-        let phi = T::select(defined, approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s), T::c(0.0));
-        let (x_i, x_o) = (axis_of_cos(mu_i), axis_of_cos(mu_o));
-        let (num, den) = visibility_fraction(self.shadowing, mu_i, mu_o, self.mu_lambda(x_i), self.mu_lambda(x_o), phi);
-        // num/den does not wait for the table lookup (usually a cache miss).
-        let g = self.slope_integral(x_i, x_o, cos_phi) * (num / den);
-        rho.map(|r| r * g)
+        reduced_with(self.shadowing, wi, wo, rho, |x| self.mu_lambda(x), |x_i, x_o, c| self.slope_integral(x_i, x_o, c))
     }
+}
+
+/// `π f` given how `μΛ` (at an axis coordinate) and the slope integral `I` (at both axis
+/// coordinates and cos Δφ) are looked up: one table ([`GinnekenKernel`]) or a table over m
+/// too ([`roughness_axis::GinnekenAxisKernel`]).
+#[inline(always)]
+pub(crate) fn reduced_with<T: Real, const N: usize>(
+    shadowing: Shadowing,
+    wi: V3<T>,
+    wo: V3<T>,
+    rho: [T; N],
+    mu_lambda: impl Fn(T) -> T,
+    slope_integral: impl Fn(T, T, T) -> T,
+) -> [T; N] {
+    let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
+    // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo; the product of the sines is one
+    // square root of the product of the squared sines. Δφ itself (for the visibility) is
+    // the angle of (s, c) with c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos
+    // after this square root and division, which would make the chain longer.
+    let s = azimuthal_dot(wi, wo);
+    let sin2_prod = (wi.x * wi.x + wi.y * wi.y) * (wo.x * wo.x + wo.y * wo.y);
+    let defined = sin2_prod.gt(T::c(1e-24));
+    let cos_phi = T::select(defined, (s / sin2_prod.max(T::c(1e-24)).sqrt()).clamp_to(-1.0, 1.0), T::c(1.0));
+    let phi = T::select(defined, approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s), T::c(0.0));
+    let (x_i, x_o) = (axis_of_cos(mu_i), axis_of_cos(mu_o));
+    let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, mu_lambda(x_i), mu_lambda(x_o), phi);
+    // num/den does not wait for the table lookup (usually a cache miss).
+    let g = slope_integral(x_i, x_o, cos_phi) * (num / den);
+    rho.map(|r| r * g)
 }
 
 #[derive(Clone, Debug)]

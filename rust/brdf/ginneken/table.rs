@@ -145,6 +145,13 @@ impl SlopeTable {
 /// would leave three dependent levels).
 #[inline(always)]
 pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
+    lookup_layer_in(table, None, u_i, u_o, c)
+}
+
+/// [`lookup_in`] on one layer of a stack of slope tables: `layer_base` is the index of the
+/// layer's first node (an integer-valued float), `None` for a single table.
+#[inline(always)]
+pub fn lookup_layer_in<T: Real>(table: T::Table<'_>, layer_base: Option<T>, u_i: T, u_o: T, c: T) -> T {
     let one = T::c(1.0);
     let (i0, fi) = cell(u_i.scale((U_NODES - 1) as f64), U_NODES);
     let (o0, fo) = cell(u_o.scale((U_NODES - 1) as f64), U_NODES);
@@ -152,6 +159,10 @@ pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
     let (c0, fc) = cell(c.fma(half, half), C_NODES);
     let (gi, go, gc) = (one - fi, one - fo, one - fc);
     let base = (i0.scale(U_NODES as f64) + o0).fma(T::c(C_NODES as f64), c0);
+    let base = match layer_base {
+        Some(l) => base + l,
+        None => base,
+    };
     let pair = |offset: usize, w: T| {
         let offset = offset as u32;
         (w * gc).fma(T::gather(table, base, offset), (w * fc) * T::gather(table, base, offset + 1))
@@ -167,7 +178,18 @@ pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
 /// linearly interpolated, in any [`Real`].
 #[inline(always)]
 pub fn mu_lambda_in<T: Real>(table: T::Table<'_>, x: T) -> T {
+    mu_lambda_layer_in(table, None, x)
+}
+
+/// [`mu_lambda_in`] on one layer of a stack of such tables (`layer_base` as in
+/// [`lookup_layer_in`]).
+#[inline(always)]
+pub fn mu_lambda_layer_in<T: Real>(table: T::Table<'_>, layer_base: Option<T>, x: T) -> T {
     let (i, f) = cell(x.scale((LAMBDA_NODES - 1) as f64), LAMBDA_NODES);
+    let i = match layer_base {
+        Some(l) => i + l,
+        None => i,
+    };
     let (a, b) = (T::gather(table, i, 0), T::gather(table, i, 1));
     f.fma(b - a, a)
 }

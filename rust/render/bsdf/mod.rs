@@ -38,6 +38,7 @@ pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
 pub use fresnel::fresnel_conductor;
 pub use mask::Mask;
+pub use matte::TexturedMatte;
 pub use microfacet::MicrofacetDistribution;
 pub use normal_map::NormalMap;
 pub use plastic::Plastic;
@@ -89,6 +90,8 @@ pub enum Bsdf {
     PrincipledThin(Box<PrincipledThin>),
     /// `roughconductor`/`roughdielectric` whose roughness is a texture.
     TexturedRoughness(Box<TexturedRoughness>),
+    /// A matte model with textured numeric parameters.
+    TexturedMatte(Box<TexturedMatte>),
 }
 
 impl Bsdf {
@@ -117,6 +120,7 @@ impl Bsdf {
             Bsdf::Principled(p) => p.eval_pdf(si, wi, wo),
             Bsdf::PrincipledThin(p) => p.eval_pdf(si, wi, wo),
             Bsdf::TexturedRoughness(t) => t.eval_pdf(si, wi, wo),
+            Bsdf::TexturedMatte(t) => t.eval_pdf(si, wi, wo),
         }
     }
 
@@ -149,6 +153,7 @@ impl Bsdf {
             Bsdf::Principled(p) => p.sample(si, wi, u_lobe, u),
             Bsdf::PrincipledThin(p) => p.sample(si, wi, u_lobe, u),
             Bsdf::TexturedRoughness(t) => t.sample(si, wi, u_lobe, u),
+            Bsdf::TexturedMatte(t) => t.sample(si, wi, u),
         }
     }
 
@@ -164,7 +169,8 @@ impl Bsdf {
             | Bsdf::RoughPlastic(_)
             | Bsdf::Principled(_)
             | Bsdf::PrincipledThin(_)
-            | Bsdf::TexturedRoughness(_) => true,
+            | Bsdf::TexturedRoughness(_)
+            | Bsdf::TexturedMatte(_) => true,
             Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),

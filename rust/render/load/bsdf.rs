@@ -9,7 +9,7 @@ use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
-    RoughPlastic, Texture, TexturedRoughness, ThinDielectric, conductor_material,
+    RoughPlastic, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
@@ -69,9 +69,39 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 p.used.set(true);
                 params.push(&p.name, value);
             }
+            // Numeric parameters given as nested textures (sigma, roughness, alpha, int_ior, …):
+            // the model is validated with each texture's mean, then evaluated per hit.
+            let mut textured: Vec<(String, Texture)> = Vec::new();
+            for child in obj.children.iter().filter(|c| c.name.as_deref().is_some_and(|n| n != "reflectance")) {
+                let name = child.name.clone().unwrap_or_default();
+                if !numeric_parameter(kind, &name) {
+                    return Err(values::prop_err(
+                        obj,
+                        &name,
+                        "is not a numeric parameter of this model, so it cannot be a texture",
+                    ));
+                }
+                textured.push((name.clone(), texture::get_scalar(b, obj, &name, Vec3::ZERO)?));
+            }
+            // A textured parameter stands for a number when the model is built: its mean,
+            // clamped into the per-lane range (any texture is accepted; values clamp per hit).
+            let number = |n: &str| match obj.properties.get(n).map(|p| &p.value) {
+                Some(Value::Float(x)) => Some(*x),
+                Some(Value::Integer(i)) => Some(*i as f64),
+                Some(Value::String(s)) => crate::brdf::params::lookup_ior(s),
+                _ => None,
+            };
+            for (name, tex) in &textured {
+                let v = crate::brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
+                params.push(name, ParamValue::Number(v));
+            }
             let model =
                 crate::brdf::Bsdf::from_params(kind, params).map_err(|e| values::prop_err(obj, &e.param, e.message))?;
-            Bsdf::Matte { model, reflectance }
+            if textured.is_empty() {
+                Bsdf::Matte { model, reflectance }
+            } else {
+                textured_matte(obj, model, reflectance, textured)?
+            }
         }
         "twosided" => {
             let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
@@ -272,6 +302,33 @@ fn is_transmissive(bsdf: &Bsdf) -> bool {
         Bsdf::BumpMap(m) => is_transmissive(&m.nested),
         _ => false,
     }
+}
+
+/// Whether `name` is a numeric parameter of matte's model `kind` (those a texture may give).
+fn numeric_parameter(kind: &str, name: &str) -> bool {
+    crate::brdf::lane::numeric_parameter_names(kind).contains(&name)
+}
+
+/// A matte model with textured numeric parameters (`TexturedMatte`); every other numeric
+/// parameter becomes a constant texture of its value.
+fn textured_matte(
+    obj: &SceneObject,
+    model: crate::brdf::Bsdf,
+    reflectance: Texture,
+    mut textured: Vec<(String, Texture)>,
+) -> Result<Bsdf, SceneError> {
+    let mut params = Vec::new();
+    for (name, value) in model.parameters() {
+        let ParamValue::Number(x) = value else { continue };
+        match textured.iter().position(|(n, _)| n == name) {
+            Some(k) => params.push(textured.swap_remove(k).1),
+            None => params.push(Texture::Constant(Vec3::splat(x as f32))),
+        }
+    }
+    if let Some((name, _)) = textured.first() {
+        return Err(values::prop_err(obj, name, "is not a numeric parameter of this model, so it cannot be a texture"));
+    }
+    Ok(Bsdf::TexturedMatte(Box::new(TexturedMatte { model, reflectance, params })))
 }
 
 /// `material` (default "none": a perfect mirror) or explicit `eta` and `k`. As in Mitsuba

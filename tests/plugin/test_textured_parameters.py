@@ -1,0 +1,233 @@
+"""Textured numeric parameters (sigma, roughness, alpha, int_ior, ext_ior) of matte's plugins
+(docs/models.md#spatially-varying-parameters).
+
+Oracles: central finite differences of the same function (for the gradients that reach the
+texture's data through `mi.traverse`), the float form of each parameter (a texture with the
+same value everywhere must give the float's BSDF and, summed over its texels, the float's
+gradient), and Mitsuba's own error reporting for refused forms.
+"""
+import numpy as np
+import pytest
+
+from conftest import random_pairs
+
+N = 4000
+# (type, textured parameter, value, fixed parameters, relative tolerance against the float form)
+CASES = [
+    ("oren_nayar", "sigma", 0.4, {}, 1e-5),
+    ("oren_nayar", "sigma", 0.7, {"model": "full"}, 1e-5),
+    ("eon", "roughness", 0.6, {}, 1e-5),
+    ("roughdiffuse", "alpha", 0.5, {}, 1e-5),
+    ("wolff", "int_ior", 1.6, {}, 2e-4),  # F_dr from its fit (|error| <= 2e-5)
+    ("wolff", "ext_ior", 1.2, {"int_ior": 1.9, "normalization": "normal"}, 2e-4),
+    # tables over m (Hermite in m) against the table built for m = 0.35
+    ("ginneken", "roughness", 0.35, {}, 5e-3),
+]
+# The float's gradient against the constant texture's: the same function except Wolff's F_dr
+# (fit: its n-derivative is within 0.11 % for n in [1.1, 4]) and van Ginneken (its first-order
+# ∂/∂m table at m₀ against the Hermite interpolation over m).
+GRADIENT_TOLERANCE = {"wolff": 3e-3, "ginneken": 1e-2}
+
+
+def case_id(case):
+    kind, name, value, fixed, _ = case
+    return f"{kind}-{name}" + "".join(f"-{k}={v}" for k, v in fixed.items())
+
+
+def bitmap(mi, values):
+    """A 1-channel raw bitmap texture of the 2-D array `values` (bilinear, repeat)."""
+    arr = np.asarray(values, dtype=np.float32)[..., None]
+    return {"type": "bitmap", "raw": True, "bitmap": mi.Bitmap(arr)}
+
+
+def load(mi, kind, fixed, name, value):
+    d = {"type": kind, "reflectance": {"type": "rgb", "value": [0.8, 0.5, 0.3]}}
+    d.update(fixed)
+    d[name] = value
+    return mi.load_dict(d)
+
+
+def interaction(mi, n, seed):
+    import drjit as dr
+    wi, wo = random_pairs(n, seed)
+    uv = np.random.default_rng(seed + 1).uniform(0, 1, (n, 2)).astype(np.float32)
+    si = dr.zeros(mi.SurfaceInteraction3f, n)
+    si.wi = mi.Vector3f(wi.T)
+    si.uv = mi.Point2f(uv.T)
+    si.n = mi.Normal3f(0, 0, 1)
+    si.sh_frame = mi.Frame3f(si.n)
+    return si, mi.Vector3f(wo.T)
+
+
+def evaluate(mi, bsdf, si, wo):
+    """eval, pdf and a sample's weight and direction, as float64 arrays."""
+    ctx = mi.BSDFContext()
+    value, pdf = bsdf.eval_pdf(ctx, si, wo)
+    n = np.size(np.array(pdf))
+    u = np.random.default_rng(9).uniform(0, 1, (2, n)).astype(np.float32)
+    bs, weight = bsdf.sample(ctx, si, 0.5, mi.Point2f(u) if n > 1 else mi.Point2f(float(u[0, 0]), float(u[1, 0])))
+    return [np.array(x, dtype=np.float64) for x in (value, pdf, weight, bs.wo)]
+
+
+@pytest.mark.parametrize("case", CASES, ids=case_id)
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb", "scalar_rgb"], indirect=True)
+def test_constant_texture_equals_the_float(mi_variant, case):
+    mi = mi_variant
+    kind, name, value, fixed, tol = case
+    as_float = load(mi, kind, fixed, name, value)
+    as_texture = load(mi, kind, fixed, name, bitmap(mi, [[value, value], [value, value]]))
+    if mi.variant().startswith("scalar"):
+        wi, wo = random_pairs(200, 5)
+        rows = []
+        for k in range(len(wi)):
+            si = mi.SurfaceInteraction3f()
+            si.wi, si.uv = mi.Vector3f(wi[k]), mi.Point2f(0.3, 0.7)
+            si.n = mi.Normal3f(0, 0, 1)
+            si.sh_frame = mi.Frame3f(si.n)
+            rows.append([evaluate(mi, b, si, mi.Vector3f(wo[k])) for b in (as_float, as_texture)])
+        got = [[np.array([r[j][i] for r in rows]) for i in range(4)] for j in range(2)]
+    else:
+        si, wo = interaction(mi, N, 5)
+        got = [evaluate(mi, b, si, wo) for b in (as_float, as_texture)]
+    for i, what in enumerate(["eval", "pdf", "sample weight", "sample direction"]):
+        a, b = got[0][i], got[1][i]
+        assert np.isfinite(b).all(), what
+        err = np.abs(a - b).max() / max(np.abs(a).max(), 1e-12)
+        assert err <= tol, f"{what}: textured differs from the float by {err:.2e} (relative to its maximum)"
+
+
+@pytest.mark.parametrize("case", CASES, ids=case_id)
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
+def test_texture_gradient_matches_finite_differences(mi_variant, case):
+    """d(Σ eval)/d(texel) for each texel of a 2×2 bilinear texture with four different values
+    (uv spread over the texture, so every texel contributes), against central differences of
+    the same sum; and the four texel gradients of a constant texture sum to the float's."""
+    mi = mi_variant
+    import drjit as dr
+    kind, name, value, fixed, _ = case
+    texels = np.array([[value, value * 1.1], [value * 0.9, value * 1.05]])
+    if name == "int_ior":
+        texels = np.maximum(texels, 1.05)
+    if kind == "ginneken":  # one texel per cell of the roughness axis, no node crossed by ±h
+        texels = np.array([[0.13, 0.22], [0.33, 0.46]])
+    bsdf = load(mi, kind, fixed, name, bitmap(mi, texels))
+    params = mi.traverse(bsdf)
+    key = name + ".data"
+    assert key in params, list(params.keys())
+    si, wo = interaction(mi, N, 11)
+    ctx = mi.BSDFContext()
+
+    def total(data):
+        params[key] = mi.TensorXf(np.asarray(data, dtype=np.float32).reshape(2, 2, 1))
+        params.update()
+        return float(np.array(bsdf.eval(ctx, si, wo), dtype=np.float64).sum())
+
+    params[key] = mi.TensorXf(texels.astype(np.float32).reshape(2, 2, 1))
+    dr.enable_grad(params[key])
+    params.update()
+    dr.backward(dr.sum(bsdf.eval(ctx, si, wo), axis=None))
+    ad = np.array(dr.grad(params[key]), dtype=np.float64).ravel()
+    assert np.isfinite(ad).all()
+    h = 1e-2 * value
+    for k in range(4):
+        plus, minus = texels.ravel().copy(), texels.ravel().copy()
+        plus[k] += h
+        minus[k] -= h
+        fd = (total(plus) - total(minus)) / (2 * h)
+        print(f"{case_id(case)} texel {k}: AD {ad[k]:.6g} FD {fd:.6g}")
+        assert abs(fd) > 1e-3, fd
+        assert abs(ad[k] - fd) <= 5e-3 * abs(fd), f"texel {k}: AD {ad[k]} vs FD {fd}"
+
+    # The float's gradient equals the constant texture's gradient summed over its texels.
+    flat = load(mi, kind, fixed, name, value)
+    fp = mi.traverse(flat)
+    dr.enable_grad(fp[name])
+    fp.update()
+    dr.backward(dr.sum(flat.eval(ctx, si, wo), axis=None))
+    g_float = float(np.array(dr.grad(fp[name]))[0])
+    const = load(mi, kind, fixed, name, bitmap(mi, [[value, value], [value, value]]))
+    cp = mi.traverse(const)
+    dr.enable_grad(cp[key])
+    cp.update()
+    dr.backward(dr.sum(const.eval(ctx, si, wo), axis=None))
+    g_texels = float(np.array(dr.grad(cp[key]), dtype=np.float64).sum())
+    assert abs(g_texels - g_float) <= GRADIENT_TOLERANCE.get(kind, 2e-5) * abs(g_float), (g_texels, g_float)
+
+
+@pytest.mark.parametrize("kind, name, bound", [
+    ("oren_nayar", "sigma", 0.0), ("roughdiffuse", "alpha", 0.0), ("eon", "roughness", 0.0),
+    ("eon", "roughness", 1.0), ("wolff", "int_ior", 1.0), ("ginneken", "roughness", 0.0),
+    ("ginneken", "roughness", 4.0)])
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
+def test_texture_at_and_beyond_the_bounds_is_finite(mi_variant, kind, name, bound):
+    """Texels at the bound and beyond it (clamped) give finite values and gradients: the
+    finiteness rule of docs/traced-kernels.md holds per lane."""
+    mi = mi_variant
+    import drjit as dr
+    beyond = bound - 0.5 if bound == 0.0 or name == "int_ior" else bound + 0.5
+    if kind == "ginneken" and bound == 0.0:
+        bound = 0.02  # the roughness axis starts at 0.02: 0 and below clamp to it
+    bsdf = load(mi, "oren_nayar" if kind == "oren_nayar" else kind, {}, name,
+                bitmap(mi, [[bound, beyond], [bound, bound]]))
+    params = mi.traverse(bsdf)
+    dr.enable_grad(params[name + ".data"])
+    params.update()
+    si, wo = interaction(mi, N, 3)
+    value = bsdf.eval(mi.BSDFContext(), si, wo)
+    dr.backward(dr.sum(value, axis=None))
+    assert np.isfinite(np.array(value)).all()
+    assert np.isfinite(np.array(dr.grad(params[name + ".data"]))).all()
+
+
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
+def test_render_gradient_of_a_textured_sigma(mi_variant):
+    """A small render (prb) of a plane whose σ is a 2×2 texture: d(image mean)/d(texel) by the
+    adjoint pass with the primal's seed, against central differences of renders, within 1 %."""
+    mi = mi_variant
+    import drjit as dr
+    texels = np.array([[0.2, 0.5], [0.8, 0.35]], dtype=np.float32)
+    scene = mi.load_dict({
+        "type": "scene",
+        "integrator": {"type": "prb", "max_depth": 2},
+        "sensor": {"type": "perspective", "fov": 50,
+                   "to_world": mi.ScalarTransform4f().look_at(origin=[0, -2, 2.5], target=[0, 0, 0], up=[0, 0, 1]),
+                   "film": {"type": "hdrfilm", "width": 16, "height": 16}},
+        "light": {"type": "directional", "direction": [0.6, -0.4, -1], "irradiance": {"type": "rgb", "value": 3.0}},
+        "plane": {"type": "rectangle",
+                  "bsdf": {"type": "oren_nayar", "sigma": bitmap(mi, texels),
+                           "reflectance": {"type": "rgb", "value": 0.7}}},
+    })
+    params = mi.traverse(scene)
+    key = "plane.bsdf.sigma.data"
+    spp, seed = 16, 2
+
+    def mean(data):
+        params[key] = mi.TensorXf(np.asarray(data, dtype=np.float32).reshape(2, 2, 1))
+        params.update()
+        return float(np.array(mi.render(scene, params, spp=spp, seed=seed), dtype=np.float64).mean())
+
+    params[key] = mi.TensorXf(texels.reshape(2, 2, 1))
+    dr.enable_grad(params[key])
+    params.update()
+    # The adjoint pass with the primal's seed: the exact derivative of what FD measures.
+    img = mi.render(scene, params, spp=spp, seed=seed)
+    n = int(np.prod(img.shape))
+    grad_in = mi.TensorXf(dr.full(mi.Float, 1.0 / n, n), img.shape)
+    scene.integrator().render_backward(scene, params, grad_in, sensor=0, seed=seed, spp=spp)
+    ad = np.array(dr.grad(params[key]), dtype=np.float64).ravel()
+    h = 1e-2
+    for k in range(4):
+        plus, minus = texels.ravel().copy(), texels.ravel().copy()
+        plus[k] += h
+        minus[k] -= h
+        fd = (mean(plus) - mean(minus)) / (2 * h)
+        print(f"texel {k}: AD {ad[k]:.6g} FD {fd:.6g}")
+        assert abs(fd) > 1e-5, fd
+        assert abs(ad[k] - fd) <= 0.01 * abs(fd), f"texel {k}: AD {ad[k]} vs FD {fd}"
+
+
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb", "scalar_rgb"], indirect=True)
+def test_refused_textures_raise(mi_variant):
+    mi = mi_variant
+    with pytest.raises(RuntimeError, match='parameter "model": is not a numeric parameter'):
+        mi.load_dict({"type": "oren_nayar", "model": {"type": "checkerboard"}})
