@@ -5,7 +5,9 @@
 //! At every facet a photon reaches, the facet's radiance toward `wo` is added if the ray from
 //! there along `wo` escapes (next-event estimation toward the sensor):
 //!
-//!     f(wi, wo) = E[ Σ_hits  w · (ρ/π) · max(0, n·wo) · V(x, wo) ] / cos θo
+//! ```text
+//! f(wi, wo) = E[ Σ_hits  w · (ρ/π) · max(0, n·wo) · V(x, wo) ] / cos θo
+//! ```
 //!
 //! where w is the photon's throughput before the hit (ρ^k after k bounces). For a flat surface
 //! this is ρ/π exactly. Each photon's sum is one i.i.d. sample, so the 99 % interval comes from
