@@ -1,7 +1,9 @@
 //! `matte validate`: renders scenes with the Rust renderer and with Mitsuba 3.9.1 (matte's
-//! plugins loaded) and decides per pixel, with a statistical test, whether the two expected
-//! images agree ([`stats`]); writes both images, heatmaps ([`heatmap`]), `summary.json` and
-//! `report.html` ([`report`]).
+//! plugins loaded) in independent passes ([`passes`]) and decides with statistical tests at
+//! several scales — pixels, blocks, the whole image ([`scales`], [`stats`]) — whether the two
+//! expected images agree; `--power` measures what the budget detects ([`power`]); writes both
+//! images, heatmaps ([`heatmap`]), crops of rejected places, `summary.json` and `report.html`
+//! ([`report`]). `docs/validation.md` has the method and the measured numbers.
 
 pub mod crop;
 pub mod heatmap;
@@ -31,7 +33,7 @@ pub struct Options {
     /// `sample_count`.
     pub spp: Option<u32>,
     pub seed: u64,
-    /// Family-wise level of the per-pixel test and of the global test.
+    /// Family-wise level of all tests over all scales.
     pub alpha: f64,
     pub out: PathBuf,
     pub matte_defines: Vec<(String, String)>,
