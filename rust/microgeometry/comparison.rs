@@ -8,7 +8,9 @@ use super::gonioreflectometer::{Bounces, Setup, measure};
 use super::height_field::HeightField;
 use super::surface::MicroSurface;
 use super::v_cavity::VCavities;
-use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+use crate::brdf::frame::spherical_direction_f64;
+use crate::brdf::oren_nayar::OrenNayarKernel;
+use crate::brdf::{Bsdf, DiffuseBrdf, OrenNayarModel, ParamValue, Params};
 use glam::DVec3;
 use serde::Serialize;
 
@@ -73,16 +75,14 @@ fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<Bsdf, String> {
 }
 
 fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
-    let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
-    DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
+    spherical_direction_f64(theta_deg.to_radians(), phi_deg.to_radians())
 }
 
 /// The kernels compared with V-cavities of slope deviation `sigma`: Oren–Nayar qualitative and
 /// full at σ, and EON at r = B/A of the qualitative model (its ratio of the two terms).
 pub fn v_cavity_models(sigma: f64) -> Result<Vec<(String, Bsdf)>, String> {
-    let s2 = sigma * sigma;
-    let (a, b) = (1.0 - 0.5 * s2 / (s2 + 0.33), 0.45 * s2 / (s2 + 0.09));
-    let r = (b / a).min(1.0);
+    let qualitative = OrenNayarKernel::<f64>::new(sigma, OrenNayarModel::Qualitative);
+    let r = (qualitative.b / qualitative.a).min(1.0);
     use ParamValue::{Number as N, Text as T};
     Ok(vec![
         ("Oren–Nayar qualitative".into(), build("oren_nayar", &[("sigma", N(sigma))])?),
