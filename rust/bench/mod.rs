@@ -7,6 +7,7 @@ pub mod kernels;
 pub mod mitsuba;
 pub mod render;
 pub mod report;
+pub mod traversal;
 
 use crate::validate::passes::repo_root;
 use render::RenderJob;
@@ -48,6 +49,8 @@ pub struct Measurements {
     /// Cornell box samples/s at increasing spp.
     pub scaling: Vec<(u32, f64)>,
     pub kernels: Vec<kernels::KernelTime>,
+    /// Per scene: ns per ray of each mesh backend on the same rays.
+    pub traversal: Vec<(String, Vec<traversal::TraversalTime>)>,
 }
 
 pub const MITSUBA_VARIANTS: [&str; 2] = ["scalar_rgb", "llvm_ad_rgb"];
@@ -63,6 +66,13 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
         progress(&format!("matte {}", job.name));
         timed.push((job.clone(), render::time_matte(job, repeats)?));
     }
+    progress("traversal: Embree and CWBVH on the same rays");
+    let mut traversal = Vec::new();
+    for job in &jobs {
+        let loaded = crate::render::load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
+        let paths = if opts.quick { 2_000 } else { 100_000 };
+        traversal.push((job.name.clone(), traversal::time_traversal(&loaded, paths, repeats)));
+    }
     progress("matte spp scaling");
     let mut scaling_job = jobs[0].clone();
     scaling_job.defines[0].1 = if opts.quick { "16".into() } else { "128".into() };
@@ -74,5 +84,5 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
     } else {
         None
     };
-    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels })
+    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels, traversal })
 }

@@ -2,6 +2,7 @@
 //! its BVH built beforehand, as Mitsuba's side times `mi.render` on a loaded scene), best of
 //! several runs, with the BVH build time and traced rays.
 
+use crate::render::accel::MeshBackend;
 use crate::render::{load, renderer};
 use std::path::PathBuf;
 
@@ -22,24 +23,40 @@ pub struct MatteTime {
     pub samples: u64,
     pub rays: u64,
     pub threads: usize,
+    /// The structure that traced the meshes.
+    pub backend: MeshBackend,
+    /// Best render time with the meshes in the CWBVH instead (the renderer before Embree),
+    /// when the main run used Embree.
+    pub cwbvh_seconds: Option<f64>,
 }
 
 /// Loads `job` once and renders it `repeats` times (after one warm-up render).
 pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
-    let loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
-    let run = || {
-        let film = loaded.film.clone();
-        renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, job.spp, 0, &|_, _| {}).1
+    let mut loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
+    let best_of = |loaded: &load::LoadedScene| {
+        let run = || {
+            let film = loaded.film.clone();
+            renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, job.spp, 0, &|_, _| {}).1
+        };
+        run();
+        (0..repeats.max(1)).map(|_| run()).min_by(|a, b| a.seconds.total_cmp(&b.seconds)).expect("at least one run")
     };
-    run();
-    let best =
-        (0..repeats.max(1)).map(|_| run()).min_by(|a, b| a.seconds.total_cmp(&b.seconds)).expect("at least one run");
+    let best = best_of(&loaded);
+    let (backend, accel_build_seconds) = (loaded.scene.accel_backend(), loaded.scene.accel_build_seconds());
+    let cwbvh_seconds = if backend == MeshBackend::CwBvh {
+        None
+    } else {
+        loaded.scene.set_accel_backend(MeshBackend::CwBvh)?;
+        Some(best_of(&loaded).seconds)
+    };
     Ok(MatteTime {
         seconds: best.seconds,
-        accel_build_seconds: loaded.scene.accel_build_seconds(),
+        accel_build_seconds,
         samples: best.samples,
         rays: best.rays,
         threads: rayon::current_num_threads(),
+        backend,
+        cwbvh_seconds,
     })
 }
 

@@ -28,7 +28,7 @@ pub fn targets(m: &Measurements) -> Vec<Target> {
     if let Some(mi) = &m.mitsuba {
         for (job, mt) in &m.jobs {
             if let Some(s) = mi.seconds(&job.name, "llvm_ad_rgb") {
-                t.push(le(format!("{}: matte / llvm_ad_rgb time", job.name), mt.seconds / s, 1.0));
+                t.push(le(format!("{}: matte / llvm_ad_rgb time", job.name), mt.seconds / s, 0.8));
             }
             if let Some(s) = mi.seconds(&job.name, "scalar_rgb") {
                 t.push(le(format!("{}: matte / scalar_rgb time", job.name), mt.seconds / s, 0.4));
@@ -92,25 +92,42 @@ pub fn table(m: &Measurements) -> String {
     let _ = writeln!(s, "machine: {}", machine());
     let _ = writeln!(
         s,
-        "\n| scene | res, spp | matte s | Mrays/s | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
+        "\n| scene | res, spp | matte s | Mrays/s | matte s, CWBVH meshes | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
     for (job, mt) in &m.jobs {
         let res = job.defines.iter().find(|d| d.0 == "res").map_or("?", |d| d.1.as_str());
         let mi = |v: &str| m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v));
         let cell = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("—".to_string(), f);
         let _ = writeln!(
             s,
-            "| {} | {res}², {} | {:.3} | {:.2} | {} | {} | {} | {} |",
+            "| {} | {res}², {} | {:.3} ({}) | {:.2} | {} | {} | {} | {} | {} |",
             job.name,
             job.spp,
             mt.seconds,
+            mt.backend.name(),
             mt.rays as f64 / mt.seconds / 1e6,
+            cell(mt.cwbvh_seconds, &|x| format!("{x:.3}")),
             cell(mi("scalar_rgb"), &|x| format!("{x:.3}")),
             cell(mi("llvm_ad_rgb"), &|x| format!("{x:.3}")),
             cell(mi("scalar_rgb"), &|x| format!("{:.2}×", mt.seconds / x)),
             cell(mi("llvm_ad_rgb"), &|x| format!("{:.2}×", mt.seconds / x)),
         );
+    }
+    let _ = writeln!(s, "\n| scene | backend | ns/ray (closest hit) | ns/shadow ray | rays, shadow rays |");
+    let _ = writeln!(s, "|---|---|---|---|---|");
+    for (scene, times) in &m.traversal {
+        for t in times {
+            let _ = writeln!(
+                s,
+                "| {scene} | {} | {:.1} | {:.1} | {}, {} |",
+                t.backend.name(),
+                t.ns_per_ray,
+                t.ns_per_shadow_ray,
+                t.rays,
+                t.shadow_rays
+            );
+        }
     }
     let _ = writeln!(s, "\n| kernel | ns/eval (RGB) | / Lambert |");
     let _ = writeln!(s, "|---|---|---|");
@@ -150,6 +167,7 @@ pub struct BenchJson {
     pub renders: Vec<RenderJson>,
     pub spp_scaling: Vec<ScalingJson>,
     pub kernels: Vec<KernelJson>,
+    pub traversal: Vec<TraversalJson>,
     /// Best seconds per plugin type (`diffuse` and matte's), Cornell box, llvm_ad_rgb.
     pub plugin_seconds_llvm_ad_rgb: Option<BTreeMap<String, f64>>,
     pub targets: Vec<TargetJson>,
@@ -167,6 +185,10 @@ pub struct RenderJson {
     pub matte_samples_per_second: f64,
     pub accel_build_seconds: f64,
     pub threads: usize,
+    /// The structure that traced the meshes (`embree` or `cwbvh`).
+    pub accel: &'static str,
+    /// Best seconds with the meshes in the CWBVH (when `accel` is `embree`).
+    pub matte_seconds_cwbvh: Option<f64>,
     /// Best seconds per Mitsuba variant (none when Mitsuba did not run).
     pub mitsuba_seconds: BTreeMap<&'static str, Option<f64>>,
 }
@@ -175,6 +197,16 @@ pub struct RenderJson {
 pub struct ScalingJson {
     pub spp: u32,
     pub samples_per_second: f64,
+}
+
+#[derive(Serialize)]
+pub struct TraversalJson {
+    pub scene: String,
+    pub backend: &'static str,
+    pub ns_per_ray: f64,
+    pub ns_per_shadow_ray: f64,
+    pub rays: usize,
+    pub shadow_rays: usize,
 }
 
 #[derive(Serialize)]
@@ -208,6 +240,8 @@ pub fn json(m: &Measurements) -> BenchJson {
                 matte_samples_per_second: mt.samples as f64 / mt.seconds,
                 accel_build_seconds: mt.accel_build_seconds,
                 threads: mt.threads,
+                accel: mt.backend.name(),
+                matte_seconds_cwbvh: mt.cwbvh_seconds,
                 mitsuba_seconds: super::MITSUBA_VARIANTS
                     .iter()
                     .map(|v| (*v, m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v))))
@@ -216,6 +250,20 @@ pub fn json(m: &Measurements) -> BenchJson {
             .collect(),
         spp_scaling: m.scaling.iter().map(|(n, r)| ScalingJson { spp: *n, samples_per_second: *r }).collect(),
         kernels: m.kernels.iter().map(|k| KernelJson { model: k.model, ns_per_eval: k.ns_per_eval }).collect(),
+        traversal: m
+            .traversal
+            .iter()
+            .flat_map(|(scene, times)| {
+                times.iter().map(|t| TraversalJson {
+                    scene: scene.clone(),
+                    backend: t.backend.name(),
+                    ns_per_ray: t.ns_per_ray,
+                    ns_per_shadow_ray: t.ns_per_shadow_ray,
+                    rays: t.rays,
+                    shadow_rays: t.shadow_rays,
+                })
+            })
+            .collect(),
         plugin_seconds_llvm_ad_rgb: m.mitsuba.as_ref().map(|mi| mi.plugin.iter().cloned().collect()),
         targets: targets(m)
             .into_iter()

@@ -48,6 +48,20 @@ impl Scene {
         self.accel.primitive_count()
     }
 
+    /// Rebuilds the acceleration structure with the meshes in `backend` (for comparing
+    /// backends on one loaded scene), or says why `backend` is unavailable.
+    pub fn set_accel_backend(&mut self, backend: crate::render::accel::MeshBackend) -> Result<(), String> {
+        let t0 = std::time::Instant::now();
+        self.accel = Accel::build_with(&self.shapes, backend)?;
+        self.accel_build_seconds = t0.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// The structure tracing the meshes (Embree, or the CWBVH without it).
+    pub fn accel_backend(&self) -> crate::render::accel::MeshBackend {
+        self.accel.backend()
+    }
+
     pub fn accel_build_seconds(&self) -> f64 {
         self.accel_build_seconds
     }

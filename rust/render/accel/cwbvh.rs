@@ -1,7 +1,9 @@
-//! Ray queries over all shapes: one compressed wide BVH (CWBVH, `obvhs`, PLOC build) whose
+//! Ray queries over shapes with one compressed wide BVH (CWBVH, `obvhs`, PLOC build) whose
 //! leaves are mesh triangles and whole analytic shapes. Triangles are stored in BVH leaf
-//! order in the layout `obvhs` intersects fastest (v0, v0−v1, v2−v0, normal).
+//! order in the layout `obvhs` intersects fastest (v0, v0−v1, v2−v0, normal). With Embree
+//! (`super::embree`) it holds the analytic shapes only; without, everything.
 
+use super::Hit;
 use crate::render::geometry::Ray;
 use crate::render::shape::{Geometry, Shape};
 use glam::{Vec2, Vec3A};
@@ -9,16 +11,6 @@ use obvhs::aabb::Aabb;
 use obvhs::cwbvh::CwBvh;
 use obvhs::ray::{Ray as BvhRay, RayHit};
 use std::time::Duration;
-
-/// A closest hit: distance, shape, primitive (triangle index; 0 for analytic shapes) and
-/// barycentrics (meshes only).
-#[derive(Clone, Copy, Debug)]
-pub struct Hit {
-    pub t: f32,
-    pub shape: u32,
-    pub prim: u32,
-    pub bary: Vec2,
-}
 
 /// Leaf primitive in BVH order.
 #[derive(Clone, Copy, Debug)]
@@ -34,33 +26,20 @@ struct Prim {
 
 const ANALYTIC: u32 = u32::MAX;
 
-thread_local! {
-    /// Rays traced by this thread since the last [`take_ray_count`] (for rays/s reports).
-    static RAY_COUNT: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
-}
-
-/// Counts one traced ray (closest-hit or shadow).
-#[inline]
-pub fn count_ray() {
-    RAY_COUNT.with(|c| c.set(c.get() + 1));
-}
-
-/// Returns and resets this thread's ray count.
-pub fn take_ray_count() -> u64 {
-    RAY_COUNT.with(|c| c.replace(0))
-}
-
-pub struct Accel {
+pub struct CwBvhAccel {
     bvh: Option<CwBvh>,
     prims: Vec<Prim>,
 }
 
-impl Accel {
-    pub fn build(shapes: &[Shape]) -> Self {
+impl CwBvhAccel {
+    /// The BVH over the analytic shapes of `shapes`, and over their meshes' triangles too
+    /// when `with_meshes`.
+    pub fn build(shapes: &[Shape], with_meshes: bool) -> Self {
         let mut prims = Vec::new();
         let mut aabbs = Vec::new();
         for (si, shape) in shapes.iter().enumerate() {
             match &shape.geometry {
+                Geometry::Triangles(_) if !with_meshes => {}
                 Geometry::Triangles(m) => {
                     for tri in 0..m.mesh.triangles.len() as u32 {
                         let [a, b, c] = m.vertices(tri).map(Vec3A::from);
@@ -78,7 +57,7 @@ impl Accel {
             }
         }
         if prims.is_empty() {
-            return Accel { bvh: None, prims };
+            return CwBvhAccel { bvh: None, prims };
         }
         let bvh = obvhs::cwbvh::builder::build_cwbvh(
             &aabbs,
@@ -86,7 +65,7 @@ impl Accel {
             &mut Duration::ZERO.clone(),
         );
         let prims = bvh.primitive_indices.iter().map(|&i| prims[i as usize]).collect();
-        Accel { bvh: Some(bvh), prims }
+        CwBvhAccel { bvh: Some(bvh), prims }
     }
 
     /// Closest hit along `ray` in `(0, ray.maxt)`.
@@ -96,7 +75,6 @@ impl Accel {
     /// distance is exact and never goes through the shifted frame.
     #[inline]
     pub fn intersect(&self, ray: &Ray, shapes: &[Shape]) -> Option<Hit> {
-        count_ray();
         let bvh = self.bvh.as_ref()?;
         let mut hit = RayHit::none();
         let mut best: Option<Hit> = None;
@@ -124,7 +102,6 @@ impl Accel {
     /// Whether anything blocks `ray` before `ray.maxt` (shadow rays).
     #[inline]
     pub fn occluded(&self, ray: &Ray, shapes: &[Shape]) -> bool {
-        count_ray();
         let Some(bvh) = self.bvh.as_ref() else { return false };
         !bvh.ray_traverse_miss(bvh_ray(ray), |_, id| {
             let p = &self.prims[id];
@@ -136,6 +113,11 @@ impl Accel {
             // Any value below the BVH ray's tmax (≥ BOX_ORIGIN_SHIFT) ends the traversal.
             if blocked { 0.0 } else { f32::INFINITY }
         })
+    }
+
+    /// Whether the BVH holds nothing (every query misses).
+    pub fn is_empty(&self) -> bool {
+        self.bvh.is_none()
     }
 
     pub fn primitive_count(&self) -> usize {

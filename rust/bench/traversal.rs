@@ -1,0 +1,88 @@
+//! Traversal cost alone: ns per ray of each mesh backend (Embree, the CWBVH) on the same rays.
+//!
+//! The rays are those of a path tracer's incoherent bounces: camera rays through uniformly
+//! random film positions, then up to [`BOUNCES`] cosine-weighted bounces around the shading
+//! normal; the shadow rays join consecutive hit points of different paths (so about half are
+//! blocked). Both sets are traced one ray at a time on one thread, best of the repeats.
+
+use crate::render::accel::{Accel, MeshBackend};
+use crate::render::geometry::{Ray, ray};
+use crate::render::load::LoadedScene;
+use crate::render::sampler::Sampler;
+use glam::{Vec2, Vec3};
+use std::hint::black_box;
+use std::time::Instant;
+
+/// Bounces after the camera ray.
+pub const BOUNCES: u32 = 3;
+
+/// One scene's traversal times per backend.
+#[derive(Clone, Debug)]
+pub struct TraversalTime {
+    pub backend: MeshBackend,
+    /// Closest-hit queries.
+    pub ns_per_ray: f64,
+    /// Occlusion queries (shadow rays).
+    pub ns_per_shadow_ray: f64,
+    pub rays: usize,
+    pub shadow_rays: usize,
+}
+
+/// The closest-hit and shadow rays of `paths` random walks in `loaded` (seeded, reproducible).
+pub fn ray_sets(loaded: &LoadedScene, paths: u32) -> (Vec<Ray>, Vec<Ray>) {
+    let scene = &loaded.scene;
+    let size = Vec2::new(loaded.film.width() as f32, loaded.film.height() as f32);
+    let mut rays = Vec::new();
+    let mut vertices: Vec<(Vec3, Vec3)> = Vec::new();
+    for i in 0..paths {
+        let mut s = Sampler::for_pixel(0x7261_7973, i as u64);
+        let pos = s.next_2d() * size;
+        let mut r = loaded.camera.ray(pos);
+        for _ in 0..=BOUNCES {
+            rays.push(r);
+            let Some(si) = scene.intersect(&r) else { break };
+            vertices.push((si.p, si.n));
+            let u = s.next_2d();
+            let (rad, phi) = (u.x.sqrt(), std::f32::consts::TAU * u.y);
+            let local = Vec3::new(rad * phi.cos(), rad * phi.sin(), (1.0 - u.x).max(0.0).sqrt());
+            // The side the ray came from, so that walks continue inside closed rooms.
+            let local = if si.wi.z < 0.0 { -local } else { local };
+            r = ray::spawn_ray(si.p, si.n, si.to_world(local));
+        }
+    }
+    let shadow = vertices
+        .windows(2)
+        .filter(|w| w[0].0 != w[1].0)
+        .map(|w| ray::spawn_ray_to(w[0].0, w[0].1, w[1].0))
+        .filter(|r| r.maxt > 0.0)
+        .collect();
+    (rays, shadow)
+}
+
+/// ns per closest-hit and per shadow ray of each backend available here, on the same rays.
+pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<TraversalTime> {
+    let (rays, shadow) = ray_sets(loaded, paths);
+    let shapes = &loaded.scene.shapes;
+    let mut out = Vec::new();
+    for backend in [MeshBackend::Embree, MeshBackend::CwBvh] {
+        let Ok(accel) = Accel::build_with(shapes, backend) else { continue };
+        let best = |f: &dyn Fn() -> f64| (0..repeats.max(1) + 1).map(|_| f()).skip(1).fold(f64::INFINITY, f64::min);
+        let ns_per_ray = best(&|| {
+            let t0 = Instant::now();
+            for r in &rays {
+                black_box(accel.intersect(black_box(r), shapes));
+            }
+            t0.elapsed().as_secs_f64() * 1e9 / rays.len().max(1) as f64
+        });
+        let ns_per_shadow_ray = best(&|| {
+            let t0 = Instant::now();
+            for r in &shadow {
+                black_box(accel.occluded(black_box(r), shapes));
+            }
+            t0.elapsed().as_secs_f64() * 1e9 / shadow.len().max(1) as f64
+        });
+        out.push(TraversalTime { backend, ns_per_ray, ns_per_shadow_ray, rays: rays.len(), shadow_rays: shadow.len() });
+    }
+    crate::render::accel::take_ray_count();
+    out
+}

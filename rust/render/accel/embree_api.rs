@@ -1,0 +1,184 @@
+//! The few Embree 3 calls the renderer needs, loaded at run time from `libembree3.so.3`
+//! (Debian 12's `libembree3-3`, Embree 3.13) with `dlopen`.
+//!
+//! Why a hand-written FFI and not a binding crate: the Rust bindings for Embree 3 on crates.io
+//! (`embree` 0.3, `embree3-sys` 0.1) are unmaintained and link `-lembree3` at build time. A
+//! link-time dependency would make every build of matte fail on a machine without Embree, and
+//! would put `rtc*` references into the crate's staticlib, which the Mitsuba plugin links into
+//! a process whose `libmitsuba` carries its own Embree. Loading the library at run time with
+//! `RTLD_LOCAL` and looking the functions up by handle keeps both apart: a build never needs
+//! Embree, a machine without it renders with the CWBVH (`super::cwbvh`), and the symbols can
+//! never bind to another Embree. The declarations mirror `embree3/rtcore_*.h` of 3.13.5
+//! (`RTC_MAX_INSTANCE_LEVEL_COUNT` = 1, `RTC_MIN_WIDTH` = 0), and only what is used here.
+
+use std::ffi::{CStr, c_char, c_int, c_uint, c_void};
+use std::sync::OnceLock;
+
+pub type Device = *mut c_void;
+pub type Scene = *mut c_void;
+pub type Geometry = *mut c_void;
+
+/// `RTC_GEOMETRY_TYPE_TRIANGLE`.
+pub const GEOMETRY_TYPE_TRIANGLE: c_int = 0;
+/// `RTC_BUFFER_TYPE_INDEX`, `RTC_BUFFER_TYPE_VERTEX`.
+pub const BUFFER_TYPE_INDEX: c_int = 0;
+pub const BUFFER_TYPE_VERTEX: c_int = 1;
+/// `RTC_FORMAT_UINT3`, `RTC_FORMAT_FLOAT3`.
+pub const FORMAT_UINT3: c_int = 0x5003;
+pub const FORMAT_FLOAT3: c_int = 0x9003;
+/// `RTC_BUILD_QUALITY_HIGH` (what Mitsuba 3 sets, `src/render/scene_embree.inl`).
+pub const BUILD_QUALITY_HIGH: c_int = 2;
+/// `RTC_SCENE_FLAG_NONE` (Mitsuba's default: `embree_use_robust_intersections` = false).
+pub const SCENE_FLAG_NONE: c_int = 0;
+/// `RTC_INVALID_GEOMETRY_ID`.
+pub const INVALID_GEOMETRY_ID: c_uint = u32::MAX;
+/// `RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT`, `RTC_INTERSECT_CONTEXT_FLAG_COHERENT`.
+pub const CONTEXT_FLAG_INCOHERENT: c_int = 0;
+
+/// `struct RTCRay` (16-byte aligned, 48 bytes).
+#[repr(C, align(16))]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RtcRay {
+    pub org: [f32; 3],
+    pub tnear: f32,
+    pub dir: [f32; 3],
+    pub time: f32,
+    pub tfar: f32,
+    pub mask: c_uint,
+    pub id: c_uint,
+    pub flags: c_uint,
+}
+
+/// `struct RTCHit` (16-byte aligned, 32 bytes).
+#[repr(C, align(16))]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RtcHit {
+    pub ng: [f32; 3],
+    pub u: f32,
+    pub v: f32,
+    pub prim_id: c_uint,
+    pub geom_id: c_uint,
+    pub inst_id: [c_uint; 1],
+}
+
+/// `struct RTCRayHit`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RtcRayHit {
+    pub ray: RtcRay,
+    pub hit: RtcHit,
+}
+
+/// `struct RTCIntersectContext` as `rtcInitIntersectContext` fills it.
+#[repr(C)]
+pub struct IntersectContext {
+    pub flags: c_int,
+    pub filter: *const c_void,
+    pub inst_id: [c_uint; 1],
+}
+
+impl IntersectContext {
+    /// `rtcInitIntersectContext`: incoherent rays, no filter, no instance.
+    #[inline(always)]
+    pub fn incoherent() -> Self {
+        IntersectContext { flags: CONTEXT_FLAG_INCOHERENT, filter: std::ptr::null(), inst_id: [INVALID_GEOMETRY_ID] }
+    }
+}
+
+/// The resolved entry points (names as in `rtcore_*.h`).
+pub struct Api {
+    pub new_device: unsafe extern "C" fn(*const c_char) -> Device,
+    pub get_device_error: unsafe extern "C" fn(Device) -> c_int,
+    pub new_scene: unsafe extern "C" fn(Device) -> Scene,
+    pub release_scene: unsafe extern "C" fn(Scene),
+    pub set_scene_build_quality: unsafe extern "C" fn(Scene, c_int),
+    pub set_scene_flags: unsafe extern "C" fn(Scene, c_int),
+    pub commit_scene: unsafe extern "C" fn(Scene),
+    pub new_geometry: unsafe extern "C" fn(Device, c_int) -> Geometry,
+    pub set_new_geometry_buffer: unsafe extern "C" fn(Geometry, c_int, c_uint, c_int, usize, usize) -> *mut c_void,
+    pub commit_geometry: unsafe extern "C" fn(Geometry),
+    pub attach_geometry: unsafe extern "C" fn(Scene, Geometry) -> c_uint,
+    pub release_geometry: unsafe extern "C" fn(Geometry),
+    pub intersect1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRayHit),
+    pub occluded1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRay),
+    /// One device for the process (Embree's thread pool is per device); never released.
+    pub device: Device,
+}
+
+// SAFETY: the device handle is only used to create scenes and geometries, which Embree allows
+// from any thread; the function pointers are plain code addresses.
+unsafe impl Send for Api {}
+unsafe impl Sync for Api {}
+
+/// The shared library's name (Debian's `libembree3-3`).
+pub const LIBRARY: &str = "libembree3.so.3";
+
+static API: OnceLock<Result<Api, String>> = OnceLock::new();
+
+/// Embree, loaded once per process, or why it could not be loaded.
+pub fn api() -> Result<&'static Api, &'static str> {
+    API.get_or_init(load).as_ref().map_err(String::as_str)
+}
+
+fn load() -> Result<Api, String> {
+    let name = std::ffi::CString::new(LIBRARY).expect("no NUL in the library name");
+    // SAFETY: dlopen with a valid C string; RTLD_LOCAL keeps its symbols out of the global scope.
+    let handle = unsafe { libc::dlopen(name.as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) };
+    if handle.is_null() {
+        // SAFETY: dlerror returns a thread-local C string or null.
+        let why = unsafe { libc::dlerror() };
+        let why = if why.is_null() { "unknown".into() } else { unsafe { CStr::from_ptr(why) }.to_string_lossy() };
+        return Err(format!("cannot load {LIBRARY} ({why})"));
+    }
+    let sym = |s: &CStr| -> Result<*mut c_void, String> {
+        // SAFETY: handle is a live dlopen handle, s a C string.
+        let p = unsafe { libc::dlsym(handle, s.as_ptr()) };
+        if p.is_null() { Err(format!("{LIBRARY} has no symbol {}", s.to_string_lossy())) } else { Ok(p) }
+    };
+    macro_rules! f {
+        ($name:literal) => {
+            // SAFETY: the symbol is the Embree 3 function of that name, whose C signature is
+            // the field's type (rtcore_*.h of Embree 3.13).
+            unsafe { std::mem::transmute::<*mut c_void, _>(sym($name)?) }
+        };
+    }
+    let new_device: unsafe extern "C" fn(*const c_char) -> Device = f!(c"rtcNewDevice");
+    let get_device_error: unsafe extern "C" fn(Device) -> c_int = f!(c"rtcGetDeviceError");
+    // SAFETY: a null config string selects Embree's defaults.
+    let device = unsafe { new_device(std::ptr::null()) };
+    if device.is_null() {
+        return Err(format!("{LIBRARY}: rtcNewDevice failed (is the CPU supported?)"));
+    }
+    Ok(Api {
+        new_device,
+        get_device_error,
+        new_scene: f!(c"rtcNewScene"),
+        release_scene: f!(c"rtcReleaseScene"),
+        set_scene_build_quality: f!(c"rtcSetSceneBuildQuality"),
+        set_scene_flags: f!(c"rtcSetSceneFlags"),
+        commit_scene: f!(c"rtcCommitScene"),
+        new_geometry: f!(c"rtcNewGeometry"),
+        set_new_geometry_buffer: f!(c"rtcSetNewGeometryBuffer"),
+        commit_geometry: f!(c"rtcCommitGeometry"),
+        attach_geometry: f!(c"rtcAttachGeometry"),
+        release_geometry: f!(c"rtcReleaseGeometry"),
+        intersect1: f!(c"rtcIntersect1"),
+        occluded1: f!(c"rtcOccluded1"),
+        device,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The layouts `rtcore_ray.h` and `rtcore_common.h` define (sizes from the C headers).
+    #[test]
+    fn layouts_match_the_c_headers() {
+        assert_eq!(std::mem::size_of::<RtcRay>(), 48);
+        assert_eq!(std::mem::size_of::<RtcHit>(), 32);
+        assert_eq!(std::mem::size_of::<RtcRayHit>(), 80);
+        assert_eq!(std::mem::align_of::<RtcRayHit>(), 16);
+        assert_eq!(std::mem::size_of::<IntersectContext>(), 24);
+    }
+}
