@@ -2,7 +2,7 @@
 //! its BVH built beforehand, as Mitsuba's side times `mi.render` on a loaded scene), best of
 //! several runs, with the BVH build time and traced rays.
 
-use crate::render::accel::MeshBackend;
+use crate::render::accel::Backend;
 use crate::render::{load, renderer};
 use std::path::PathBuf;
 
@@ -24,7 +24,7 @@ pub struct MatteTime {
     pub rays: u64,
     pub threads: usize,
     /// The structure that traced the meshes.
-    pub backend: MeshBackend,
+    pub backend: Backend,
     /// Best render time with the meshes in the CWBVH instead (the renderer before Embree),
     /// when the main run used Embree.
     pub cwbvh_seconds: Option<f64>,
@@ -43,10 +43,10 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
     };
     let best = best_of(&loaded);
     let (backend, accel_build_seconds) = (loaded.scene.accel_backend(), loaded.scene.accel_build_seconds());
-    let cwbvh_seconds = if backend == MeshBackend::CwBvh {
+    let cwbvh_seconds = if backend == Backend::CwBvh {
         None
     } else {
-        loaded.scene.set_accel_backend(MeshBackend::CwBvh)?;
+        loaded.scene.set_accel_backend(Backend::CwBvh)?;
         Some(best_of(&loaded).seconds)
     };
     Ok(MatteTime {

@@ -1,11 +1,11 @@
-//! Traversal cost alone: ns per ray of each mesh backend (Embree, the CWBVH) on the same rays.
+//! Traversal cost alone: ns per ray of each arrangement (`render::accel::Backend`) on the same rays.
 //!
 //! The rays are those of a path tracer's incoherent bounces: camera rays through uniformly
 //! random film positions, then up to [`BOUNCES`] cosine-weighted bounces around the shading
 //! normal; the shadow rays join consecutive hit points of different paths (so about half are
 //! blocked). Both sets are traced one ray at a time on one thread, best of the repeats.
 
-use crate::render::accel::{Accel, MeshBackend};
+use crate::render::accel::{Accel, Backend};
 use crate::render::geometry::{Ray, ray};
 use crate::render::load::LoadedScene;
 use crate::render::sampler::Sampler;
@@ -19,7 +19,7 @@ pub const BOUNCES: u32 = 3;
 /// One scene's traversal times per backend.
 #[derive(Clone, Debug)]
 pub struct TraversalTime {
-    pub backend: MeshBackend,
+    pub backend: Backend,
     /// Closest-hit queries.
     pub ns_per_ray: f64,
     /// Occlusion queries (shadow rays).
@@ -64,7 +64,7 @@ pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<Tra
     let (rays, shadow) = ray_sets(loaded, paths);
     let shapes = &loaded.scene.shapes;
     let mut out = Vec::new();
-    for backend in [MeshBackend::Embree, MeshBackend::CwBvh] {
+    for backend in Backend::ALL {
         let Ok(accel) = Accel::build_with(shapes, backend) else { continue };
         let best = |f: &dyn Fn() -> f64| (0..repeats.max(1) + 1).map(|_| f()).skip(1).fold(f64::INFINITY, f64::min);
         let ns_per_ray = best(&|| {

@@ -50,7 +50,7 @@ impl Scene {
 
     /// Rebuilds the acceleration structure with the meshes in `backend` (for comparing
     /// backends on one loaded scene), or says why `backend` is unavailable.
-    pub fn set_accel_backend(&mut self, backend: crate::render::accel::MeshBackend) -> Result<(), String> {
+    pub fn set_accel_backend(&mut self, backend: crate::render::accel::Backend) -> Result<(), String> {
         let t0 = std::time::Instant::now();
         self.accel = Accel::build_with(&self.shapes, backend)?;
         self.accel_build_seconds = t0.elapsed().as_secs_f64();
@@ -58,7 +58,7 @@ impl Scene {
     }
 
     /// The structure tracing the meshes (Embree, or the CWBVH without it).
-    pub fn accel_backend(&self) -> crate::render::accel::MeshBackend {
+    pub fn accel_backend(&self) -> crate::render::accel::Backend {
         self.accel.backend()
     }
 

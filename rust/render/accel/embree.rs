@@ -1,31 +1,37 @@
-//! The triangle meshes of a scene in one Embree scene (one Embree triangle geometry per mesh
-//! shape), built and queried as Mitsuba 3 does for its scalar variants
-//! (`src/render/scene_embree.inl`: `RTC_BUILD_QUALITY_HIGH`, no robust flag, `tnear` = 0,
-//! `tfar` = the ray's `maxt`, `rtcIntersect1` / `rtcOccluded1` per ray).
+//! A scene's shapes in one Embree scene, built and queried as Mitsuba 3 does for its scalar
+//! variants (`src/render/scene_embree.inl`: `RTC_BUILD_QUALITY_HIGH`, no robust flag,
+//! `tnear` = 0, `tfar` = the ray's `maxt`, `rtcIntersect1` / `rtcOccluded1` per ray): one
+//! triangle geometry per mesh, and, unless they are left to the CWBVH, one user geometry per
+//! analytic shape (sphere, disk, cylinder) whose callbacks call the shape's own exact
+//! intersection, as Mitsuba's `embree_intersect` does.
 
 use super::Hit;
-use super::embree_api::{self as rtc, Api, IntersectContext, RtcRay, RtcRayHit};
+use super::embree_api::{self as rtc, Api, BoundsArgs, IntersectContext, RtcRay, RtcRayHit, UserQueryArgs};
 use crate::render::geometry::Ray;
 use crate::render::shape::{Geometry, Shape};
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
-pub struct EmbreeMeshes {
+pub struct EmbreeScene {
     api: &'static Api,
     scene: rtc::Scene,
     /// Embree geometry id → index of the shape in the scene.
     shape_of_geometry: Vec<u32>,
+    /// Copies of the analytic shapes the user geometries point to (never moved or resized
+    /// after the build: Embree holds their addresses).
+    analytic: Box<[Geometry]>,
     triangles: usize,
 }
 
 // SAFETY: a committed Embree scene is immutable and its queries are thread-safe (Embree 3
 // API docs, `rtcIntersect1`: "may be called from multiple threads").
-unsafe impl Send for EmbreeMeshes {}
-unsafe impl Sync for EmbreeMeshes {}
+unsafe impl Send for EmbreeScene {}
+unsafe impl Sync for EmbreeScene {}
 
-impl EmbreeMeshes {
-    /// Builds the Embree scene of every mesh in `shapes` (`Ok(None)` if there is none), or
-    /// says why Embree is unavailable.
-    pub fn build(shapes: &[Shape]) -> Result<Option<Self>, String> {
+impl EmbreeScene {
+    /// Builds the Embree scene of every mesh in `shapes`, and of every analytic shape too
+    /// when `with_analytic` (`Ok(None)` if that leaves nothing), or says why Embree is
+    /// unavailable.
+    pub fn build(shapes: &[Shape], with_analytic: bool) -> Result<Option<Self>, String> {
         let meshes: Vec<(u32, &crate::render::shape::Triangles)> = shapes
             .iter()
             .enumerate()
@@ -34,7 +40,17 @@ impl EmbreeMeshes {
                 _ => None,
             })
             .collect();
-        if meshes.is_empty() {
+        let analytic: Vec<(u32, Geometry)> = if with_analytic {
+            shapes
+                .iter()
+                .enumerate()
+                .filter(|(_, s)| s.geometry.analytic_bounds().is_some())
+                .map(|(i, s)| (i as u32, s.geometry.clone()))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        if meshes.is_empty() && analytic.is_empty() {
             return Ok(None);
         }
         let api = rtc::api().map_err(str::to_string)?;
@@ -48,7 +64,23 @@ impl EmbreeMeshes {
             }
             (api.set_scene_build_quality)(scene, rtc::BUILD_QUALITY_HIGH);
             (api.set_scene_flags)(scene, rtc::SCENE_FLAG_NONE);
-            let mut this = EmbreeMeshes { api, scene, shape_of_geometry: Vec::new(), triangles: 0 };
+            let (analytic_shapes, analytic): (Vec<u32>, Vec<Geometry>) = analytic.into_iter().unzip();
+            let mut this = EmbreeScene {
+                api,
+                scene,
+                shape_of_geometry: Vec::new(),
+                analytic: analytic.into_boxed_slice(),
+                triangles: 0,
+            };
+            let attach = |this: &mut Self, geom: rtc::Geometry, shape: u32| {
+                (api.commit_geometry)(geom);
+                let id = (api.attach_geometry)(scene, geom) as usize;
+                (api.release_geometry)(geom);
+                if this.shape_of_geometry.len() <= id {
+                    this.shape_of_geometry.resize(id + 1, u32::MAX);
+                }
+                this.shape_of_geometry[id] = shape;
+            };
             for (shape, m) in meshes {
                 let geom = (api.new_geometry)(api.device, rtc::GEOMETRY_TYPE_TRIANGLE);
                 let n_vert = m.mesh.positions.len();
@@ -69,15 +101,21 @@ impl EmbreeMeshes {
                 for (i, t) in m.mesh.triangles.iter().enumerate() {
                     *ib.add(i) = *t;
                 }
-                (api.commit_geometry)(geom);
-                let id = (api.attach_geometry)(scene, geom);
-                (api.release_geometry)(geom);
-                let id = id as usize;
-                if this.shape_of_geometry.len() <= id {
-                    this.shape_of_geometry.resize(id + 1, u32::MAX);
-                }
-                this.shape_of_geometry[id] = shape;
+                attach(&mut this, geom, shape);
                 this.triangles += n_tri;
+            }
+            for (k, &shape) in analytic_shapes.iter().enumerate() {
+                let geom = (api.new_geometry)(api.device, rtc::GEOMETRY_TYPE_USER);
+                if geom.is_null() {
+                    return Err(format!("Embree user geometry failed (error {})", (api.get_device_error)(api.device)));
+                }
+                let ptr = &this.analytic[k] as *const Geometry as *mut std::ffi::c_void;
+                (api.set_geometry_user_primitive_count)(geom, 1);
+                (api.set_geometry_user_data)(geom, ptr);
+                (api.set_geometry_bounds_function)(geom, analytic_bounds, std::ptr::null_mut());
+                (api.set_geometry_intersect_function)(geom, analytic_intersect);
+                (api.set_geometry_occluded_function)(geom, analytic_occluded);
+                attach(&mut this, geom, shape);
             }
             (api.commit_scene)(scene);
             match (api.get_device_error)(api.device) {
@@ -87,8 +125,9 @@ impl EmbreeMeshes {
         }
     }
 
-    pub fn triangle_count(&self) -> usize {
-        self.triangles
+    /// Triangles and analytic shapes in the scene.
+    pub fn primitive_count(&self) -> usize {
+        self.triangles + self.analytic.len()
     }
 
     /// Closest mesh hit along `ray` within `maxt`.
@@ -121,7 +160,78 @@ impl EmbreeMeshes {
     }
 }
 
-impl Drop for EmbreeMeshes {
+/// Embree's bounds callback: the analytic shape's world-space box.
+unsafe extern "C" fn analytic_bounds(args: *const BoundsArgs) {
+    // SAFETY: Embree passes valid arguments; the user pointer is a `Geometry` that
+    // `EmbreeScene` owns for the scene's lifetime.
+    unsafe {
+        let args = &*args;
+        let geometry = &*(args.geometry_user_ptr as *const Geometry);
+        let (lo, hi) = geometry.analytic_bounds().unwrap_or((Vec3::ZERO, Vec3::ZERO));
+        *args.bounds_o = rtc::RtcBounds { lower: lo.to_array(), align0: 0.0, upper: hi.to_array(), align1: 0.0 };
+    }
+}
+
+/// Ray `i` of the `n` structure-of-arrays rays at `base` (`tfar` as `maxt`).
+#[inline(always)]
+unsafe fn soa_ray(base: *const f32, n: usize, i: usize) -> Ray {
+    // SAFETY: the caller passes Embree's ray block of `n` rays and `i < n`.
+    let f = |k: usize| unsafe { *base.add(k * n + i) };
+    Ray::new(Vec3::new(f(0), f(1), f(2)), Vec3::new(f(4), f(5), f(6)), f(8))
+}
+
+/// Embree's intersect callback for an analytic shape: the shape's exact hit distance in
+/// `(tnear, tfar)`; a hit shortens `tfar` and records the ids (no barycentrics).
+unsafe extern "C" fn analytic_intersect(args: *const UserQueryArgs) {
+    // SAFETY: Embree passes `n` valid lanes of a ray-hit block and a live context; the user
+    // pointer is a `Geometry` owned by `EmbreeScene`.
+    unsafe {
+        let args = &*args;
+        let geometry = &*(args.geometry_user_ptr as *const Geometry);
+        let n = args.n as usize;
+        for i in 0..n {
+            if *args.valid.add(i) == 0 {
+                continue;
+            }
+            let ray = soa_ray(args.rayhit, n, i);
+            let tnear = *args.rayhit.add(3 * n + i);
+            if let Some(t) = geometry.intersect_analytic(&ray)
+                && t > tnear
+            {
+                let put = |k: usize, v: f32| *args.rayhit.add(k * n + i) = v;
+                let put_u = |k: usize, v: u32| *(args.rayhit.add(k * n + i) as *mut u32) = v;
+                put(8, t);
+                put(15, 0.0);
+                put(16, 0.0);
+                put_u(17, args.prim_id);
+                put_u(18, args.geom_id);
+                put_u(19, (*args.context).inst_id[0]);
+            }
+        }
+    }
+}
+
+/// Embree's occluded callback for an analytic shape: `tfar = −∞` when the shape blocks.
+unsafe extern "C" fn analytic_occluded(args: *const UserQueryArgs) {
+    // SAFETY: as in `analytic_intersect`, with a ray block (no hits).
+    unsafe {
+        let args = &*args;
+        let geometry = &*(args.geometry_user_ptr as *const Geometry);
+        let n = args.n as usize;
+        for i in 0..n {
+            if *args.valid.add(i) == 0 {
+                continue;
+            }
+            let ray = soa_ray(args.rayhit, n, i);
+            let tnear = *args.rayhit.add(3 * n + i);
+            if geometry.intersect_analytic(&ray).is_some_and(|t| t > tnear) {
+                *args.rayhit.add(8 * n + i) = f32::NEG_INFINITY;
+            }
+        }
+    }
+}
+
+impl Drop for EmbreeScene {
     fn drop(&mut self) {
         // SAFETY: the scene was created by `build` and is released once.
         unsafe { (self.api.release_scene)(self.scene) };

@@ -20,6 +20,8 @@ pub type Geometry = *mut c_void;
 
 /// `RTC_GEOMETRY_TYPE_TRIANGLE`.
 pub const GEOMETRY_TYPE_TRIANGLE: c_int = 0;
+/// `RTC_GEOMETRY_TYPE_USER`.
+pub const GEOMETRY_TYPE_USER: c_int = 120;
 /// `RTC_BUFFER_TYPE_INDEX`, `RTC_BUFFER_TYPE_VERTEX`.
 pub const BUFFER_TYPE_INDEX: c_int = 0;
 pub const BUFFER_TYPE_VERTEX: c_int = 1;
@@ -85,6 +87,43 @@ impl IntersectContext {
     }
 }
 
+/// `struct RTCBounds`.
+#[repr(C, align(16))]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RtcBounds {
+    pub lower: [f32; 3],
+    pub align0: f32,
+    pub upper: [f32; 3],
+    pub align1: f32,
+}
+
+/// `struct RTCBoundsFunctionArguments`.
+#[repr(C)]
+pub struct BoundsArgs {
+    pub geometry_user_ptr: *mut c_void,
+    pub prim_id: c_uint,
+    pub time_step: c_uint,
+    pub bounds_o: *mut RtcBounds,
+}
+
+/// `struct RTCIntersectFunctionNArguments` and `struct RTCOccludedFunctionNArguments` (the
+/// same layout): `N` rays in structure-of-arrays layout at `rayhit` (float `k` of ray `i` at
+/// `k·N + i`: origin 0–2, tnear 3, direction 4–6, time 7, tfar 8, mask, id, flags; then, for
+/// intersect only, Ng 12–14, u 15, v 16, primID 17, geomID 18, instID 19).
+#[repr(C)]
+pub struct UserQueryArgs {
+    pub valid: *const c_int,
+    pub geometry_user_ptr: *mut c_void,
+    pub prim_id: c_uint,
+    pub context: *mut IntersectContext,
+    pub rayhit: *mut f32,
+    pub n: c_uint,
+    pub geom_id: c_uint,
+}
+
+pub type BoundsFn = unsafe extern "C" fn(*const BoundsArgs);
+pub type UserQueryFn = unsafe extern "C" fn(*const UserQueryArgs);
+
 /// The resolved entry points (names as in `rtcore_*.h`).
 pub struct Api {
     pub new_device: unsafe extern "C" fn(*const c_char) -> Device,
@@ -99,6 +138,11 @@ pub struct Api {
     pub commit_geometry: unsafe extern "C" fn(Geometry),
     pub attach_geometry: unsafe extern "C" fn(Scene, Geometry) -> c_uint,
     pub release_geometry: unsafe extern "C" fn(Geometry),
+    pub set_geometry_user_primitive_count: unsafe extern "C" fn(Geometry, c_uint),
+    pub set_geometry_user_data: unsafe extern "C" fn(Geometry, *mut c_void),
+    pub set_geometry_bounds_function: unsafe extern "C" fn(Geometry, BoundsFn, *mut c_void),
+    pub set_geometry_intersect_function: unsafe extern "C" fn(Geometry, UserQueryFn),
+    pub set_geometry_occluded_function: unsafe extern "C" fn(Geometry, UserQueryFn),
     pub intersect1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRayHit),
     pub occluded1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRay),
     /// One device for the process (Embree's thread pool is per device); never released.
@@ -162,6 +206,11 @@ fn load() -> Result<Api, String> {
         commit_geometry: f!(c"rtcCommitGeometry"),
         attach_geometry: f!(c"rtcAttachGeometry"),
         release_geometry: f!(c"rtcReleaseGeometry"),
+        set_geometry_user_primitive_count: f!(c"rtcSetGeometryUserPrimitiveCount"),
+        set_geometry_user_data: f!(c"rtcSetGeometryUserData"),
+        set_geometry_bounds_function: f!(c"rtcSetGeometryBoundsFunction"),
+        set_geometry_intersect_function: f!(c"rtcSetGeometryIntersectFunction"),
+        set_geometry_occluded_function: f!(c"rtcSetGeometryOccludedFunction"),
         intersect1: f!(c"rtcIntersect1"),
         occluded1: f!(c"rtcOccluded1"),
         device,
@@ -180,5 +229,8 @@ mod tests {
         assert_eq!(std::mem::size_of::<RtcRayHit>(), 80);
         assert_eq!(std::mem::align_of::<RtcRayHit>(), 16);
         assert_eq!(std::mem::size_of::<IntersectContext>(), 24);
+        assert_eq!(std::mem::size_of::<RtcBounds>(), 32);
+        assert_eq!(std::mem::size_of::<BoundsArgs>(), 24);
+        assert_eq!(std::mem::size_of::<UserQueryArgs>(), 48);
     }
 }

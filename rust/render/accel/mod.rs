@@ -1,12 +1,15 @@
-//! Ray queries over all shapes. Two structures, each for what it traces fastest:
-//! - triangle meshes in Embree 3 ([`embree`], loaded at run time, [`embree_api`]), as
-//!   Mitsuba 3 traces them;
-//! - analytic shapes (spheres, disks, cylinders) in a compressed wide BVH ([`cwbvh`],
-//!   `obvhs`), whose leaves call the shapes' own exact intersection.
+//! Ray queries over all shapes, with one of three arrangements ([`Backend`]):
+//! - `embree` (the default): everything in one Embree 3 scene ([`embree`], the library
+//!   loaded at run time by [`embree_api`]): meshes as Embree triangles, analytic shapes
+//!   (spheres, disks, cylinders) as user geometries whose callbacks run the shapes' own exact
+//!   intersection, as Mitsuba 3 arranges its scalar variants;
+//! - `embree-meshes`: meshes in Embree, analytic shapes in a compressed wide BVH ([`cwbvh`],
+//!   `obvhs`); a closest-hit query asks both and keeps the nearer hit, a shadow ray asks both;
+//! - `cwbvh`: everything in the CWBVH (mesh triangles and analytic shapes as leaves).
 //!
-//! A closest-hit query asks both and keeps the nearer hit; a shadow ray asks Embree's
-//! occlusion query and then the CWBVH. Without Embree (library missing, or `MATTE_ACCEL=cwbvh`)
-//! the CWBVH holds the meshes' triangles too, so every build of matte renders every scene.
+//! `MATTE_ACCEL` picks one; without Embree (library missing) matte says so once and uses
+//! `cwbvh`, so every build of matte renders every scene. `matte bench` times all three on the
+//! same rays (README "Speed").
 
 pub mod cwbvh;
 pub mod embree;
@@ -15,7 +18,7 @@ pub mod embree_api;
 use crate::render::geometry::Ray;
 use crate::render::shape::Shape;
 use cwbvh::CwBvhAccel;
-use embree::EmbreeMeshes;
+use embree::EmbreeScene;
 use glam::Vec2;
 
 /// A closest hit: distance, shape, primitive (triangle index; 0 for analytic shapes) and
@@ -28,30 +31,36 @@ pub struct Hit {
     pub bary: Vec2,
 }
 
-/// Which structure traces the triangle meshes.
+/// Which structures hold which shapes (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MeshBackend {
+pub enum Backend {
+    /// Everything in Embree.
     Embree,
+    /// Meshes in Embree, analytic shapes in the CWBVH.
+    EmbreeMeshes,
+    /// Everything in the CWBVH.
     CwBvh,
 }
 
-impl MeshBackend {
+impl Backend {
+    pub const ALL: [Backend; 3] = [Backend::Embree, Backend::EmbreeMeshes, Backend::CwBvh];
+
     pub fn name(self) -> &'static str {
         match self {
-            MeshBackend::Embree => "embree",
-            MeshBackend::CwBvh => "cwbvh",
+            Backend::Embree => "embree",
+            Backend::EmbreeMeshes => "embree-meshes",
+            Backend::CwBvh => "cwbvh",
         }
     }
 
-    /// The environment's choice (`MATTE_ACCEL` = `embree` | `cwbvh`), Embree by default.
+    /// The environment's choice (`MATTE_ACCEL` = one of the names), `embree` by default.
     pub fn from_env() -> Self {
-        match std::env::var("MATTE_ACCEL").as_deref() {
-            Ok("cwbvh") => MeshBackend::CwBvh,
-            Ok("embree") | Err(_) => MeshBackend::Embree,
-            Ok(other) => {
-                warn_once(&format!("MATTE_ACCEL={other:?} is neither \"embree\" nor \"cwbvh\"; using embree"));
-                MeshBackend::Embree
-            }
+        match std::env::var("MATTE_ACCEL") {
+            Err(_) => Backend::Embree,
+            Ok(v) => Backend::ALL.into_iter().find(|b| b.name() == v).unwrap_or_else(|| {
+                warn_once(&format!("MATTE_ACCEL={v:?} is not embree, embree-meshes or cwbvh; using embree"));
+                Backend::Embree
+            }),
         }
     }
 }
@@ -79,38 +88,47 @@ fn warn_once(msg: &str) {
 }
 
 pub struct Accel {
-    /// The meshes, when Embree traces them.
-    embree: Option<EmbreeMeshes>,
-    /// The analytic shapes, and the meshes when Embree does not trace them.
+    /// What Embree traces (nothing with `cwbvh`).
+    embree: Option<EmbreeScene>,
+    /// What Embree does not trace.
     bvh: CwBvhAccel,
-    backend: MeshBackend,
+    backend: Backend,
 }
 
 impl Accel {
-    /// The structures for `shapes` with the environment's backend ([`MeshBackend::from_env`]);
+    /// The structures for `shapes` with the environment's backend ([`Backend::from_env`]);
     /// if Embree cannot be loaded, a one-line note and the CWBVH for everything.
     pub fn build(shapes: &[Shape]) -> Self {
-        match Self::build_with(shapes, MeshBackend::from_env()) {
+        match Self::build_with(shapes, Backend::from_env()) {
             Ok(a) => a,
             Err(why) => {
                 warn_once(&format!("{why}; tracing meshes with the CWBVH"));
-                Self::build_with(shapes, MeshBackend::CwBvh).expect("the CWBVH always builds")
+                Self::build_with(shapes, Backend::CwBvh).expect("the CWBVH always builds")
             }
         }
     }
 
     /// The structures for `shapes` with meshes in `backend`, or why that backend is unavailable.
-    pub fn build_with(shapes: &[Shape], backend: MeshBackend) -> Result<Self, String> {
+    pub fn build_with(shapes: &[Shape], backend: Backend) -> Result<Self, String> {
         let embree = match backend {
-            MeshBackend::Embree => EmbreeMeshes::build(shapes)?,
-            MeshBackend::CwBvh => None,
+            Backend::Embree => EmbreeScene::build(shapes, true)?,
+            Backend::EmbreeMeshes => EmbreeScene::build(shapes, false)?,
+            Backend::CwBvh => None,
         };
-        let bvh = CwBvhAccel::build(shapes, backend == MeshBackend::CwBvh);
+        // Whether Embree can be loaded at all, also for a scene that gives it nothing.
+        if backend != Backend::CwBvh {
+            embree_api::api()?;
+        }
+        let bvh = match backend {
+            Backend::Embree => CwBvhAccel::build(&[], false),
+            Backend::EmbreeMeshes => CwBvhAccel::build(shapes, false),
+            Backend::CwBvh => CwBvhAccel::build(shapes, true),
+        };
         Ok(Accel { embree, bvh, backend })
     }
 
-    /// The structure tracing the meshes.
-    pub fn backend(&self) -> MeshBackend {
+    /// The arrangement in use.
+    pub fn backend(&self) -> Backend {
         self.backend
     }
 
@@ -135,6 +153,6 @@ impl Accel {
 
     /// Triangles and analytic shapes in the structures.
     pub fn primitive_count(&self) -> usize {
-        self.bvh.primitive_count() + self.embree.as_ref().map_or(0, EmbreeMeshes::triangle_count)
+        self.bvh.primitive_count() + self.embree.as_ref().map_or(0, EmbreeScene::primitive_count)
     }
 }
