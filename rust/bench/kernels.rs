@@ -58,3 +58,56 @@ pub fn time_kernels(repeats: u32) -> Vec<KernelTime> {
         })
         .collect()
 }
+
+/// One model's generic kernel in f32 and 8-wide: ns per RGB eval of one direction pair.
+#[derive(Clone, Debug)]
+pub struct WideKernelTime {
+    pub model: &'static str,
+    pub f32_ns: f64,
+    pub f32x8_ns: f64,
+}
+
+/// Best-of-`repeats` ns per RGB eval and pair for every model, f32 against
+/// [`crate::brdf::simd::F32x8`] (`super::wide_kernels`: same constructors, same pairs).
+pub fn time_wide_kernels(repeats: u32) -> Vec<WideKernelTime> {
+    use super::wide_kernels::{ModelPair, eval_scalar, eval_wide, to_lanes};
+    use crate::brdf::simd::F32x8;
+    let pairs: Vec<(Vec3, Vec3)> = direction_pairs(4096).into_iter().map(|p| (p.0, p.1)).collect();
+    let lanes = to_lanes(&pairs);
+    let best = |pass: &dyn Fn() -> f64| {
+        pass();
+        (0..repeats.max(1)).map(|_| pass()).fold(f64::INFINITY, f64::min)
+    };
+    BSDF_TYPES
+        .iter()
+        .filter_map(|&model| {
+            let m = ModelPair::new(model)?;
+            let (scalar, wide) = (m.scalar(), m.wide());
+            let per_pair = |t: Instant| t.elapsed().as_secs_f64() * 1e9 / (64 * pairs.len()) as f64;
+            let f32_ns = best(&|| {
+                let t = Instant::now();
+                let mut acc = 0.0f32;
+                for _ in 0..64 {
+                    for (wi, wo) in &pairs {
+                        acc += eval_scalar(&scalar, black_box(*wi).into(), black_box(*wo).into(), [0.8, 0.5, 0.2])[1];
+                    }
+                }
+                black_box(acc);
+                per_pair(t)
+            });
+            let rho = [0.8, 0.5, 0.2].map(F32x8::splat);
+            let f32x8_ns = best(&|| {
+                let t = Instant::now();
+                let mut acc = F32x8::splat(0.0);
+                for _ in 0..64 {
+                    for (wi, wo) in &lanes {
+                        acc = acc + eval_wide(&wide, black_box(*wi), black_box(*wo), rho)[1];
+                    }
+                }
+                black_box(acc);
+                per_pair(t)
+            });
+            Some(WideKernelTime { model, f32_ns, f32x8_ns })
+        })
+        .collect()
+}

@@ -8,6 +8,7 @@ pub mod mitsuba;
 pub mod render;
 pub mod report;
 pub mod traversal;
+pub mod wide_kernels;
 
 use crate::validate::passes::repo_root;
 use render::RenderJob;
@@ -49,6 +50,8 @@ pub struct Measurements {
     /// Cornell box samples/s at increasing spp.
     pub scaling: Vec<(u32, f64)>,
     pub kernels: Vec<kernels::KernelTime>,
+    /// The generic kernels in f32 and 8-wide (ns per pair).
+    pub wide_kernels: Vec<kernels::WideKernelTime>,
     /// Per scene: ns per ray of each mesh backend on the same rays.
     pub traversal: Vec<(String, Vec<traversal::TraversalTime>)>,
 }
@@ -61,6 +64,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
     let repeats = if opts.quick { 1 } else { opts.repeats };
     progress("kernels");
     let kernels = kernels::time_kernels(repeats);
+    let wide_kernels = kernels::time_wide_kernels(repeats);
     let mut timed = Vec::new();
     for job in &jobs {
         progress(&format!("matte {}", job.name));
@@ -84,5 +88,5 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
     } else {
         None
     };
-    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels, traversal })
+    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels, wide_kernels, traversal })
 }

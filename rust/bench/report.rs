@@ -135,6 +135,11 @@ pub fn table(m: &Measurements) -> String {
     for k in &m.kernels {
         let _ = writeln!(s, "| {} | {:.2} | {:.2}× |", k.model, k.ns_per_eval, k.ns_per_eval / lambert);
     }
+    let _ = writeln!(s, "\n| kernel (generic, RGB) | f32 ns/pair | f32x8 ns/pair | speed-up |");
+    let _ = writeln!(s, "|---|---|---|---|");
+    for k in &m.wide_kernels {
+        let _ = writeln!(s, "| {} | {:.2} | {:.2} | {:.1}× |", k.model, k.f32_ns, k.f32x8_ns, k.f32_ns / k.f32x8_ns);
+    }
     let _ = writeln!(
         s,
         "\nCornell box samples/s by spp: {}",
@@ -168,6 +173,7 @@ pub struct BenchJson {
     pub spp_scaling: Vec<ScalingJson>,
     pub kernels: Vec<KernelJson>,
     pub traversal: Vec<TraversalJson>,
+    pub wide_kernels: Vec<WideKernelJson>,
     /// Best seconds per plugin type (`diffuse` and matte's), Cornell box, llvm_ad_rgb.
     pub plugin_seconds_llvm_ad_rgb: Option<BTreeMap<String, f64>>,
     pub targets: Vec<TargetJson>,
@@ -207,6 +213,13 @@ pub struct TraversalJson {
     pub ns_per_shadow_ray: f64,
     pub rays: usize,
     pub shadow_rays: usize,
+}
+
+#[derive(Serialize)]
+pub struct WideKernelJson {
+    pub model: &'static str,
+    pub f32_ns_per_pair: f64,
+    pub f32x8_ns_per_pair: f64,
 }
 
 #[derive(Serialize)]
@@ -263,6 +276,11 @@ pub fn json(m: &Measurements) -> BenchJson {
                     shadow_rays: t.shadow_rays,
                 })
             })
+            .collect(),
+        wide_kernels: m
+            .wide_kernels
+            .iter()
+            .map(|k| WideKernelJson { model: k.model, f32_ns_per_pair: k.f32_ns, f32x8_ns_per_pair: k.f32x8_ns })
             .collect(),
         plugin_seconds_llvm_ad_rgb: m.mitsuba.as_ref().map(|mi| mi.plugin.iter().cloned().collect()),
         targets: targets(m)

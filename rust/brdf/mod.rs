@@ -21,6 +21,7 @@ pub mod quadrature;
 pub mod real;
 pub mod rough_diffuse;
 pub mod sampling;
+pub mod simd;
 pub mod wolff;
 
 pub use eon::Eon;
