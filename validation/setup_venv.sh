@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Idempotent set-up of matte's Python side:
-#   1. the Debian package libllvm19 (Dr.Jit's llvm_* variants load it at run
-#      time; LLVM 15, which Debian 12 also ships, makes Dr.Jit 1.5.0 abort);
+# Idempotent set-up of matte's Python side and run-time libraries:
+#   1. the Debian packages libllvm19 (Dr.Jit's llvm_* variants load it at run
+#      time; LLVM 15, which Debian 12 also ships, makes Dr.Jit 1.5.0 abort) and
+#      libembree3-3 (Embree 3.13; matte's renderer loads libembree3.so.3 at run
+#      time for its ray queries, rust/render/accel/embree_api.rs, and falls back
+#      to its own BVH without it);
 #   2. <repo>/.venv with validation/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
@@ -11,6 +14,7 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 LIBLLVM=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1   # provided by libllvm19
+LIBEMBREE=/usr/lib/x86_64-linux-gnu/libembree3.so.3 # provided by libembree3-3
 VENV=.venv
 REQ=validation/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
@@ -26,13 +30,16 @@ quiet() {
     return "$rc"
 }
 
-# --- 1. libLLVM 19 -----------------------------------------------------------
-if [ ! -e "$LIBLLVM" ]; then
+# --- 1. libLLVM 19 and Embree 3 ----------------------------------------------
+packages=()
+[ -e "$LIBLLVM" ] || packages+=(libllvm19)
+[ -e "$LIBEMBREE" ] || packages+=(libembree3-3)
+if [ ${#packages[@]} -gt 0 ]; then
     SUDO=()
     if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
     apt_install() {
         "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
-            apt-get install -y -q --no-install-recommends libllvm19
+            apt-get install -y -q --no-install-recommends "${packages[@]}"
     }
     # Try without refreshing the package lists first; update only if needed.
     if ! apt_install >/dev/null 2>&1; then
@@ -40,7 +47,8 @@ if [ ! -e "$LIBLLVM" ]; then
         quiet apt_install
     fi
     [ -e "$LIBLLVM" ] || { echo "setup_venv: libllvm19 installed but $LIBLLVM is missing" >&2; exit 1; }
-    did+=("installed libllvm19")
+    [ -e "$LIBEMBREE" ] || { echo "setup_venv: libembree3-3 installed but $LIBEMBREE is missing" >&2; exit 1; }
+    did+=("installed ${packages[*]}")
 fi
 
 # --- 2. virtualenv -----------------------------------------------------------
@@ -67,7 +75,7 @@ if [ -e "$PTH" ]; then
 fi
 
 if [ ${#did[@]} -eq 0 ]; then
-    echo "setup_venv: up to date (libllvm19 present, $VENV matches $REQ)"
+    echo "setup_venv: up to date (libllvm19 and libembree3-3 present, $VENV matches $REQ)"
 else
     msg=$(IFS=';'; echo "${did[*]}")
     echo "setup_venv: ${msg//;/, }"
