@@ -60,29 +60,38 @@ pub fn ray_sets(loaded: &LoadedScene, paths: u32) -> (Vec<Ray>, Vec<Ray>) {
 }
 
 /// ns per closest-hit and per shadow ray of each backend available here, on the same rays.
+/// The backends take turns within each repeat (best of the repeats each), so that a change in
+/// the machine's load hits them alike.
 pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<TraversalTime> {
     let (rays, shadow) = ray_sets(loaded, paths);
     let shapes = &loaded.scene.shapes;
-    let mut out = Vec::new();
-    for backend in Backend::ALL {
-        let Ok(accel) = Accel::build_with(shapes, backend) else { continue };
-        let best = |f: &dyn Fn() -> f64| (0..repeats.max(1) + 1).map(|_| f()).skip(1).fold(f64::INFINITY, f64::min);
-        let ns_per_ray = best(&|| {
+    let accels: Vec<Accel> = Backend::ALL.into_iter().filter_map(|b| Accel::build_with(shapes, b).ok()).collect();
+    let mut best = vec![(f64::INFINITY, f64::INFINITY); accels.len()];
+    for _ in 0..repeats.max(1) + 1 {
+        for (accel, best) in accels.iter().zip(&mut best) {
             let t0 = Instant::now();
             for r in &rays {
                 black_box(accel.intersect(black_box(r), shapes));
             }
-            t0.elapsed().as_secs_f64() * 1e9 / rays.len().max(1) as f64
-        });
-        let ns_per_shadow_ray = best(&|| {
+            let closest = t0.elapsed().as_secs_f64() * 1e9 / rays.len().max(1) as f64;
             let t0 = Instant::now();
             for r in &shadow {
                 black_box(accel.occluded(black_box(r), shapes));
             }
-            t0.elapsed().as_secs_f64() * 1e9 / shadow.len().max(1) as f64
-        });
-        out.push(TraversalTime { backend, ns_per_ray, ns_per_shadow_ray, rays: rays.len(), shadow_rays: shadow.len() });
+            let occluded = t0.elapsed().as_secs_f64() * 1e9 / shadow.len().max(1) as f64;
+            *best = (best.0.min(closest), best.1.min(occluded));
+        }
     }
     crate::render::accel::take_ray_count();
-    out
+    accels
+        .iter()
+        .zip(best)
+        .map(|(a, (ns_per_ray, ns_per_shadow_ray))| TraversalTime {
+            backend: a.backend(),
+            ns_per_ray,
+            ns_per_shadow_ray,
+            rays: rays.len(),
+            shadow_rays: shadow.len(),
+        })
+        .collect()
 }
