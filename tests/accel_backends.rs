@@ -45,7 +45,10 @@ fn compare_backends(name: &str, loaded: &load::LoadedScene) {
         let blocked_differ =
             shadow.iter().filter(|r| accel.occluded(r, shapes) != reference.occluded(r, shapes)).count();
         let (n, m) = (rays.len(), shadow.len());
-        eprintln!("{name} {}: {differ} of {n} closest hits, {blocked_differ} of {m} shadow rays differ", backend.name());
+        eprintln!(
+            "{name} {}: {differ} of {n} closest hits, {blocked_differ} of {m} shadow rays differ",
+            backend.name()
+        );
         assert!(differ * 2000 <= n, "{name} {}: {differ} of {n} closest hits differ", backend.name());
         assert!(blocked_differ * 2000 <= m, "{name} {}: {blocked_differ} of {m} shadow rays differ", backend.name());
         let blocked = shadow.iter().filter(|r| reference.occluded(r, shapes)).count();
