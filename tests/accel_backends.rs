@@ -42,6 +42,27 @@ fn compare_backends(name: &str, loaded: &load::LoadedScene) {
                 _ => differ += 1,
             }
         }
+        // Eight rays per call (Embree's rtcIntersect8 with `embree`) give the one-ray answers.
+        for c in rays.chunks_exact(8) {
+            let packet: [matte::render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
+            for (r, (a, b)) in c
+                .iter()
+                .zip(accel.intersect8(&packet, shapes).into_iter().zip(c.iter().map(|r| accel.intersect(r, shapes))))
+            {
+                match (a, b) {
+                    (Some(a), Some(b)) => {
+                        assert!(
+                            a.shape == b.shape && a.prim == b.prim,
+                            "{name} {}: packet hit {a:?} vs {b:?} on {r:?}",
+                            backend.name()
+                        );
+                        assert!((a.t - b.t).abs() <= 1e-4 * b.t.max(1.0), "{name}: packet t {} vs {}", a.t, b.t);
+                    }
+                    (None, None) => {}
+                    (a, b) => panic!("{name} {}: packet {a:?} vs one ray {b:?} on {r:?}", backend.name()),
+                }
+            }
+        }
         let blocked_differ =
             shadow.iter().filter(|r| accel.occluded(r, shapes) != reference.occluded(r, shapes)).count();
         let (n, m) = (rays.len(), shadow.len());

@@ -114,15 +114,19 @@ pub fn table(m: &Measurements) -> String {
             cell(mi("llvm_ad_rgb"), &|x| format!("{:.2}×", mt.seconds / x)),
         );
     }
-    let _ = writeln!(s, "\n| scene | backend | ns/ray (closest hit) | ns/shadow ray | rays, shadow rays |");
-    let _ = writeln!(s, "|---|---|---|---|---|");
+    let _ = writeln!(
+        s,
+        "\n| scene | backend | ns/ray (closest hit) | ns/ray, 8 per call | ns/shadow ray | rays, shadow rays |"
+    );
+    let _ = writeln!(s, "|---|---|---|---|---|---|");
     for (scene, times) in &m.traversal {
         for t in times {
             let _ = writeln!(
                 s,
-                "| {scene} | {} | {:.1} | {:.1} | {}, {} |",
+                "| {scene} | {} | {:.1} | {:.1} | {:.1} | {}, {} |",
                 t.backend.name(),
                 t.ns_per_ray,
+                t.ns_per_ray_packet8,
                 t.ns_per_shadow_ray,
                 t.rays,
                 t.shadow_rays
@@ -211,6 +215,7 @@ pub struct TraversalJson {
     pub backend: &'static str,
     pub ns_per_ray: f64,
     pub ns_per_shadow_ray: f64,
+    pub ns_per_ray_packet8: f64,
     pub rays: usize,
     pub shadow_rays: usize,
 }
@@ -272,6 +277,7 @@ pub fn json(m: &Measurements) -> BenchJson {
                     backend: t.backend.name(),
                     ns_per_ray: t.ns_per_ray,
                     ns_per_shadow_ray: t.ns_per_shadow_ray,
+                    ns_per_ray_packet8: t.ns_per_ray_packet8,
                     rays: t.rays,
                     shadow_rays: t.shadow_rays,
                 })

@@ -26,6 +26,9 @@ pub struct TraversalTime {
     pub ns_per_shadow_ray: f64,
     pub rays: usize,
     pub shadow_rays: usize,
+    /// Closest-hit queries eight rays at a time ([`Accel::intersect8`]: Embree's
+    /// `rtcIntersect8` with `embree`), the same rays in order.
+    pub ns_per_ray_packet8: f64,
 }
 
 /// The closest-hit and shadow rays of `paths` random walks in `loaded` (seeded, reproducible).
@@ -66,7 +69,8 @@ pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<Tra
     let (rays, shadow) = ray_sets(loaded, paths);
     let shapes = &loaded.scene.shapes;
     let accels: Vec<Accel> = Backend::ALL.into_iter().filter_map(|b| Accel::build_with(shapes, b).ok()).collect();
-    let mut best = vec![(f64::INFINITY, f64::INFINITY); accels.len()];
+    let mut best = vec![(f64::INFINITY, f64::INFINITY, f64::INFINITY); accels.len()];
+    let packets: Vec<[Ray; 8]> = rays.chunks_exact(8).map(|c| std::array::from_fn(|i| c[i])).collect();
     for _ in 0..repeats.max(1) + 1 {
         for (accel, best) in accels.iter().zip(&mut best) {
             let t0 = Instant::now();
@@ -79,19 +83,25 @@ pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<Tra
                 black_box(accel.occluded(black_box(r), shapes));
             }
             let occluded = t0.elapsed().as_secs_f64() * 1e9 / shadow.len().max(1) as f64;
-            *best = (best.0.min(closest), best.1.min(occluded));
+            let t0 = Instant::now();
+            for p in &packets {
+                black_box(accel.intersect8(black_box(p), shapes));
+            }
+            let packet = t0.elapsed().as_secs_f64() * 1e9 / (8 * packets.len()).max(1) as f64;
+            *best = (best.0.min(closest), best.1.min(occluded), best.2.min(packet));
         }
     }
     crate::render::accel::take_ray_count();
     accels
         .iter()
         .zip(best)
-        .map(|(a, (ns_per_ray, ns_per_shadow_ray))| TraversalTime {
+        .map(|(a, (ns_per_ray, ns_per_shadow_ray, ns_per_ray_packet8))| TraversalTime {
             backend: a.backend(),
             ns_per_ray,
             ns_per_shadow_ray,
             rays: rays.len(),
             shadow_rays: shadow.len(),
+            ns_per_ray_packet8,
         })
         .collect()
 }

@@ -149,6 +149,33 @@ impl EmbreeScene {
         })
     }
 
+    /// The closest hits of eight rays in one `rtcIntersect8` call (Embree's packet query).
+    #[inline]
+    pub fn intersect8(&self, rays: &[Ray; 8]) -> [Option<Hit>; 8] {
+        let mut p = rtc::RtcRayHit8 { f: [[0.0; 8]; 20] };
+        for (i, r) in rays.iter().enumerate() {
+            let fields = [r.o.x, r.o.y, r.o.z, 0.0, r.d.x, r.d.y, r.d.z, 0.0, r.maxt, f32::from_bits(u32::MAX)];
+            for (k, v) in fields.into_iter().enumerate() {
+                p.f[k][i] = v;
+            }
+            p.f[18][i] = f32::from_bits(rtc::INVALID_GEOMETRY_ID);
+        }
+        let valid = [-1i32; 8];
+        let mut ctx = IntersectContext::incoherent();
+        // SAFETY: a committed scene, an initialised context, a 32-byte aligned RTCRayHit8 and
+        // eight valid lanes.
+        unsafe { (self.api.intersect8)(valid.as_ptr(), self.scene, &mut ctx, &mut p) };
+        std::array::from_fn(|i| {
+            let geom = p.f[18][i].to_bits();
+            (geom != rtc::INVALID_GEOMETRY_ID).then(|| Hit {
+                t: p.f[8][i],
+                shape: self.shape_of_geometry[geom as usize],
+                prim: p.f[17][i].to_bits(),
+                bary: Vec2::new(p.f[15][i], p.f[16][i]),
+            })
+        })
+    }
+
     /// Whether a mesh blocks `ray` before `maxt`.
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {

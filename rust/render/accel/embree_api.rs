@@ -71,6 +71,14 @@ pub struct RtcRayHit {
     pub hit: RtcHit,
 }
 
+/// `struct RTCRayHit8`: eight rays and hits in structure-of-arrays layout, field `k` (the
+/// order of [`UserQueryArgs`]) of lane `i` at `f[k][i]`.
+#[repr(C, align(32))]
+#[derive(Clone, Copy, Debug)]
+pub struct RtcRayHit8 {
+    pub f: [[f32; 8]; 20],
+}
+
 /// `struct RTCIntersectContext` as `rtcInitIntersectContext` fills it.
 #[repr(C)]
 pub struct IntersectContext {
@@ -145,6 +153,7 @@ pub struct Api {
     pub set_geometry_occluded_function: unsafe extern "C" fn(Geometry, UserQueryFn),
     pub intersect1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRayHit),
     pub occluded1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRay),
+    pub intersect8: unsafe extern "C" fn(*const c_int, Scene, *mut IntersectContext, *mut RtcRayHit8),
     /// One device for the process (Embree's thread pool is per device); never released.
     pub device: Device,
 }
@@ -213,6 +222,7 @@ fn load() -> Result<Api, String> {
         set_geometry_occluded_function: f!(c"rtcSetGeometryOccludedFunction"),
         intersect1: f!(c"rtcIntersect1"),
         occluded1: f!(c"rtcOccluded1"),
+        intersect8: f!(c"rtcIntersect8"),
         device,
     })
 }
@@ -230,6 +240,7 @@ mod tests {
         assert_eq!(std::mem::align_of::<RtcRayHit>(), 16);
         assert_eq!(std::mem::size_of::<IntersectContext>(), 24);
         assert_eq!(std::mem::size_of::<RtcBounds>(), 32);
+        assert_eq!(std::mem::size_of::<RtcRayHit8>(), 640);
         assert_eq!(std::mem::size_of::<BoundsArgs>(), 24);
         assert_eq!(std::mem::size_of::<UserQueryArgs>(), 48);
     }

@@ -144,6 +144,21 @@ impl Accel {
         self.bvh.intersect(&Ray::new(ray.o, ray.d, maxt), shapes).or(mesh_hit)
     }
 
+    /// The closest hits of eight rays: one Embree packet query with `embree`, else one query
+    /// per ray. Same answers as [`Self::intersect`] (`tests/accel_backends.rs`).
+    #[inline]
+    pub fn intersect8(&self, rays: &[Ray; 8], shapes: &[Shape]) -> [Option<Hit>; 8] {
+        match &self.embree {
+            Some(e) if self.bvh.is_empty() => {
+                for _ in rays {
+                    count_ray();
+                }
+                e.intersect8(rays)
+            }
+            _ => std::array::from_fn(|i| self.intersect(&rays[i], shapes)),
+        }
+    }
+
     /// Whether anything blocks `ray` before `ray.maxt` (shadow rays).
     #[inline]
     pub fn occluded(&self, ray: &Ray, shapes: &[Shape]) -> bool {
