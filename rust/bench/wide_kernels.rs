@@ -125,7 +125,7 @@ pub fn to_lanes(pairs: &[(glam::Vec3, glam::Vec3)]) -> Vec<(V3<F32x8>, V3<F32x8>
     pairs
         .chunks_exact(8)
         .map(|c| {
-            let lane = |f: &dyn Fn(usize) -> f32| F32x8::new(std::array::from_fn(|i| f(i)));
+            let lane = |f: &dyn Fn(usize) -> f32| F32x8::new(std::array::from_fn(f));
             (
                 V3::new(lane(&|i| c[i].0.x), lane(&|i| c[i].0.y), lane(&|i| c[i].0.z)),
                 V3::new(lane(&|i| c[i].1.x), lane(&|i| c[i].1.y), lane(&|i| c[i].1.z)),

@@ -192,7 +192,7 @@ fn load() -> Result<Api, String> {
         ($name:literal) => {
             // SAFETY: the symbol is the Embree 3 function of that name, whose C signature is
             // the field's type (rtcore_*.h of Embree 3.13).
-            unsafe { std::mem::transmute::<*mut c_void, _>(sym($name)?) }
+            unsafe { fn_pointer(sym($name)?) }
         };
     }
     let new_device: unsafe extern "C" fn(*const c_char) -> Device = f!(c"rtcNewDevice");
@@ -225,6 +225,16 @@ fn load() -> Result<Api, String> {
         intersect8: f!(c"rtcIntersect8"),
         device,
     })
+}
+
+/// The function pointer of type `F` at `p`.
+///
+/// # Safety
+/// `p` must be the address of a function whose C signature is `F`.
+unsafe fn fn_pointer<F: Copy>(p: *mut c_void) -> F {
+    const { assert!(std::mem::size_of::<F>() == std::mem::size_of::<*mut c_void>()) };
+    // SAFETY: same size (checked above); the caller guarantees the signature.
+    unsafe { std::mem::transmute_copy::<*mut c_void, F>(&p) }
 }
 
 #[cfg(test)]
