@@ -41,7 +41,7 @@ fn test_pairs() -> Vec<(Vec3, Vec3, Vec2)> {
         pairs.push((Vec3::new(wi.x, wi.y, -wi.z), wo, u));
         pairs.push((wi, Vec3::new(wo.x, wo.y, -wo.z), u));
     }
-    while pairs.len() % 8 != 0 {
+    while !pairs.len().is_multiple_of(8) {
         pairs.push((Vec3::Z, Vec3::Z, Vec2::ZERO));
     }
     pairs
