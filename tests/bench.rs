@@ -22,6 +22,16 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
     assert_eq!(models, matte::brdf::BSDF_TYPES.to_vec());
     assert!(m.kernels.iter().all(|k| k.ns_per_eval.is_finite() && k.ns_per_eval > 0.0));
     assert_eq!(m.scaling.len(), 2);
+    // Every arrangement of the ray queries on every scene's rays (Embree is installed by the
+    // set-up), and every model's kernel in f32 and 8-wide.
+    assert_eq!(m.traversal.len(), 3);
+    for (scene, times) in &m.traversal {
+        let names: Vec<&str> = times.iter().map(|t| t.backend.name()).collect();
+        assert_eq!(names, ["embree", "embree-meshes", "cwbvh"], "{scene}");
+        assert!(times.iter().all(|t| t.rays > 0 && t.shadow_rays > 0 && t.ns_per_ray > 0.0), "{scene}");
+    }
+    let wide: Vec<&str> = m.wide_kernels.iter().map(|k| k.model).collect();
+    assert_eq!(wide, matte::brdf::BSDF_TYPES.to_vec());
     // Without Mitsuba: no renderer ratios, but the spp, BVH and kernel targets.
     let t = targets(&m);
     assert!(t.iter().all(|t| !t.what.contains("scalar_rgb") && !t.what.contains("llvm")));

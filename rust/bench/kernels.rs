@@ -68,23 +68,20 @@ pub struct WideKernelTime {
 }
 
 /// Best-of-`repeats` ns per RGB eval and pair for every model, f32 against
-/// [`crate::brdf::simd::F32x8`] (`super::wide_kernels`: same constructors, same pairs).
+/// [`crate::brdf::simd::F32x8`] (`super::wide_kernels`: same constructors, same pairs). The
+/// two take turns within each repeat, so that the machine's load hits them alike.
 pub fn time_wide_kernels(repeats: u32) -> Vec<WideKernelTime> {
     use super::wide_kernels::{ModelPair, eval_scalar, eval_wide, to_lanes};
     use crate::brdf::simd::F32x8;
     let pairs: Vec<(Vec3, Vec3)> = direction_pairs(4096).into_iter().map(|p| (p.0, p.1)).collect();
     let lanes = to_lanes(&pairs);
-    let best = |pass: &dyn Fn() -> f64| {
-        pass();
-        (0..repeats.max(1)).map(|_| pass()).fold(f64::INFINITY, f64::min)
-    };
     BSDF_TYPES
         .iter()
         .filter_map(|&model| {
             let m = ModelPair::new(model)?;
             let (scalar, wide) = (m.scalar(), m.wide());
             let per_pair = |t: Instant| t.elapsed().as_secs_f64() * 1e9 / (64 * pairs.len()) as f64;
-            let f32_ns = best(&|| {
+            let f32_pass = || {
                 let t = Instant::now();
                 let mut acc = 0.0f32;
                 for _ in 0..64 {
@@ -94,9 +91,9 @@ pub fn time_wide_kernels(repeats: u32) -> Vec<WideKernelTime> {
                 }
                 black_box(acc);
                 per_pair(t)
-            });
+            };
             let rho = [0.8, 0.5, 0.2].map(F32x8::splat);
-            let f32x8_ns = best(&|| {
+            let wide_pass = || {
                 let t = Instant::now();
                 let mut acc = F32x8::splat(0.0);
                 for _ in 0..64 {
@@ -106,7 +103,12 @@ pub fn time_wide_kernels(repeats: u32) -> Vec<WideKernelTime> {
                 }
                 black_box(acc);
                 per_pair(t)
-            });
+            };
+            let (mut f32_ns, mut f32x8_ns) = (f64::INFINITY, f64::INFINITY);
+            for _ in 0..repeats.max(1) + 1 {
+                f32_ns = f32_ns.min(f32_pass());
+                f32x8_ns = f32x8_ns.min(wide_pass());
+            }
             Some(WideKernelTime { model, f32_ns, f32x8_ns })
         })
         .collect()
