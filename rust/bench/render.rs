@@ -25,7 +25,7 @@ pub struct MatteTime {
     pub threads: usize,
     /// The structure that traced the meshes.
     pub backend: Backend,
-    /// Best render time with the meshes in the CWBVH instead (the renderer before Embree),
+    /// Best render time with everything in the CWBVH instead (the renderer before Embree),
     /// when the main run used Embree.
     pub cwbvh_seconds: Option<f64>,
 }

@@ -92,7 +92,7 @@ pub fn table(m: &Measurements) -> String {
     let _ = writeln!(s, "machine: {}", machine());
     let _ = writeln!(
         s,
-        "\n| scene | res, spp | matte s | Mrays/s | matte s, CWBVH meshes | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
+        "\n| scene | res, spp | matte s | Mrays/s | matte s, all in CWBVH | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
     for (job, mt) in &m.jobs {
