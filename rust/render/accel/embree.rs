@@ -179,11 +179,16 @@ impl EmbreeScene {
     /// Whether a mesh blocks `ray` before `maxt`.
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {
+        // An empty segment (maxt ≤ 0, or NaN) is never blocked; checked here because a
+        // negative `tfar` would read as Embree's "blocked" below.
+        if !(ray.maxt > 0.0) {
+            return false;
+        }
         let mut r = rtc_ray(ray);
         let mut ctx = IntersectContext::incoherent();
         // SAFETY: as in `intersect`; Embree sets `tfar` to −∞ when the ray is blocked.
         unsafe { (self.api.occluded1)(self.scene, &mut ctx, &mut r) };
-        r.tfar < 0.0
+        r.tfar == f32::NEG_INFINITY
     }
 }
 
