@@ -133,6 +133,9 @@ impl EmbreeScene {
     /// Closest mesh hit along `ray` within `maxt`.
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        if !traceable(ray) {
+            return None;
+        }
         let mut rh = RtcRayHit { ray: rtc_ray(ray), ..Default::default() };
         rh.hit.geom_id = rtc::INVALID_GEOMETRY_ID;
         let mut ctx = IntersectContext::incoherent();
@@ -153,6 +156,7 @@ impl EmbreeScene {
     #[inline]
     pub fn intersect8(&self, rays: &[Ray; 8]) -> [Option<Hit>; 8] {
         let mut p = rtc::RtcRayHit8 { f: [[0.0; 8]; 20] };
+        let valid: [i32; 8] = std::array::from_fn(|i| if traceable(&rays[i]) { -1 } else { 0 });
         for (i, r) in rays.iter().enumerate() {
             let fields = [r.o.x, r.o.y, r.o.z, 0.0, r.d.x, r.d.y, r.d.z, 0.0, r.maxt, f32::from_bits(u32::MAX)];
             for (k, v) in fields.into_iter().enumerate() {
@@ -160,7 +164,6 @@ impl EmbreeScene {
             }
             p.f[18][i] = f32::from_bits(rtc::INVALID_GEOMETRY_ID);
         }
-        let valid = [-1i32; 8];
         let mut ctx = IntersectContext::incoherent();
         // SAFETY: a committed scene, an initialised context, a 32-byte aligned RTCRayHit8 and
         // eight valid lanes.
@@ -179,9 +182,9 @@ impl EmbreeScene {
     /// Whether a mesh blocks `ray` before `maxt`.
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {
-        // An empty segment (maxt ≤ 0, or NaN) is never blocked; checked here because a
-        // negative `tfar` would read as Embree's "blocked" below.
-        if !(ray.maxt > 0.0) {
+        // An empty segment (maxt ≤ 0, or NaN) is never blocked; checked because a negative
+        // `tfar` would read as Embree's "blocked" below.
+        if !traceable(ray) {
             return false;
         }
         let mut r = rtc_ray(ray);
@@ -268,6 +271,20 @@ impl Drop for EmbreeScene {
         // SAFETY: the scene was created by `build` and is released once.
         unsafe { (self.api.release_scene)(self.scene) };
     }
+}
+
+/// Embree's `|x| ≤ FLT_LARGE` bound on origins and directions (`common/math/constants.h`).
+const FLT_LARGE: f32 = 1.844e18;
+
+/// Whether Embree may be asked about `ray`: finite origin and direction within Embree's range
+/// and a non-empty segment. Debian's Embree checks `ray.valid()` with an assertion that aborts
+/// the process; matte's odd inputs (NaN from a broken transform, a zero-length segment) get
+/// "no hit" here instead, as the CWBVH gives them.
+#[inline(always)]
+fn traceable(ray: &Ray) -> bool {
+    // `cmple` is false for NaN (where `max_element` would skip it).
+    let bound = Vec3::splat(FLT_LARGE);
+    ray.o.abs().cmple(bound).all() && ray.d.abs().cmple(bound).all() && ray.maxt > 0.0
 }
 
 /// The Embree ray for `ray`: `tnear` = 0 and `tfar` = `maxt`, as Mitsuba passes them.
