@@ -23,6 +23,10 @@ pub struct MicrogeometryArgs {
     /// Height field: grid cells per side (8 per correlation length).
     #[arg(long, default_value_t = 256)]
     pub cells: usize,
+    /// Height field: independent realisations pooled (photons are split between them; the
+    /// interval comes from their spread).
+    #[arg(long, default_value_t = 8)]
+    pub realisations: usize,
     /// Facet albedo ρ.
     #[arg(long, default_value_t = 0.8)]
     pub reflectance: f64,
@@ -42,7 +46,9 @@ pub fn run(a: &MicrogeometryArgs) -> Result<(), String> {
     }
     let c = match a.surface {
         SurfaceKind::VCavities => compare_v_cavities(a.roughness, a.reflectance, a.photons, a.seed)?,
-        SurfaceKind::HeightField => compare_height_field(a.roughness, a.cells, a.reflectance, a.photons, a.seed)?,
+        SurfaceKind::HeightField => {
+            compare_height_field(a.roughness, a.cells, a.realisations, a.reflectance, a.photons, a.seed)?
+        }
     };
     println!("{}", serde_json::to_string_pretty(&c).map_err(|e| format!("JSON output: {e}"))?);
     Ok(())

@@ -9,13 +9,17 @@
 //!   Lambertian triangles with per-axis rms slope m.
 //! * [`gonioreflectometer`]: photons from a distant source, next-event estimates of f toward
 //!   every sensor direction, all bounces or the first only, and the directional albedo.
-//! * [`comparison`]: the Oren–Nayar-family kernels against their simulated surface.
+//! * [`comparison`]: every rough model against both simulated surfaces.
+//! * [`realisations`]: one measurement pooled over independent realisations of a random surface.
+//! * [`eon_fit`]: EON's roughness that fits a simulated surface best.
 //! * [`estimate`]: running means with 99 % intervals.
 
 pub mod comparison;
+pub mod eon_fit;
 pub mod estimate;
 pub mod gonioreflectometer;
 pub mod height_field;
+pub mod realisations;
 pub mod surface;
 pub mod v_cavity;
 
