@@ -21,6 +21,7 @@ pub mod quadrature;
 pub mod real;
 pub mod rough_diffuse;
 pub mod sampling;
+pub mod tabulated;
 pub mod wolff;
 
 pub use eon::Eon;
