@@ -7,8 +7,8 @@
 use super::gonioreflectometer::{Bounces, Setup, measure_reflectances};
 use super::realisations::pool;
 use super::surface::MicroSurface;
-use crate::brdf::frame::spherical_direction_f64;
 use crate::brdf::DiffuseBrdf;
+use crate::brdf::frame::spherical_direction_f64;
 use crate::brdf::tabulated::TabulatedBrdf;
 use glam::DVec3;
 

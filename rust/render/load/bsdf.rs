@@ -1,6 +1,6 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
 //! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`,
-//! `principledthin` and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
+//! `principledthin`, `tabulated_brdf` (a table file, `docs/microgeometry.md`) and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
 //! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
 //! plugin uses).
 
@@ -9,7 +9,7 @@ use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
-    RoughPlastic, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
+    RoughPlastic, TabulatedBrdf, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
 };
 use crate::scene::SceneError;
 use crate::scene::xml::{ColorUse, SceneObject, Value};
@@ -102,6 +102,15 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             } else {
                 textured_matte(obj, model, reflectance, textured)?
             }
+        }
+        "tabulated_brdf" => {
+            let reflectance = texture::get(b, obj, "reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
+            let filename =
+                obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+            let path = b.resolve(&filename);
+            let table = crate::brdf::tabulated::TabulatedBrdf::read(&path)
+                .map_err(|e| values::prop_err(obj, "filename", values::one_line(&e)))?;
+            Bsdf::Tabulated(TabulatedBrdf { table: std::sync::Arc::new(table), reflectance })
         }
         "twosided" => {
             let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
@@ -278,7 +287,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 obj,
                 format!(
                     "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
-                     conductor, roughconductor, plastic, roughplastic, normalmap, bumpmap, mask, blendbsdf, principled, principledthin, {})",
+                     conductor, roughconductor, plastic, roughplastic, normalmap, bumpmap, mask, blendbsdf, principled, principledthin, tabulated_brdf, {})",
                     BSDF_TYPES.join(", ")
                 ),
             ));
