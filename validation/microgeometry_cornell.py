@@ -99,7 +99,7 @@ def main():
     (out / "cornell_ground_truth.json").write_text(json.dumps(result, indent=2))
     fig, axes = plt.subplots(1, len(CONFIGS), figsize=(2.6 * len(CONFIGS), 3.2))
     for ax, (key, label, _, _), c in zip(axes, CONFIGS, result["configurations"]):
-        ax.imshow(np.clip(images[key] / (1 + images[key]), 0, 1) ** (1 / 2.2))
+        ax.imshow(np.clip(images[key] / (1 + images[key]), 0, 1) ** (1 / 2.2), interpolation="nearest")
         ax.set_title(f"{label}\n{c['image_mean_ratio']['ratio']:.3f} ± {c['image_mean_ratio']['half_width']:.3f}",
                      fontsize=7)
         ax.axis("off")
