@@ -23,7 +23,7 @@ pub mod strip;
 pub mod variant_scene;
 pub mod variants;
 
-use crate::render::film::Image;
+use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
 use crate::validate::Reference;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
@@ -208,7 +208,7 @@ pub(crate) fn render_side(
         regions,
     };
     match &opts.renderer {
-        Reference::Matte => passes::rust_side(scene, &plan, progress),
+        Reference::Matte => passes::rust_side(scene, &plan, SplatWeights::default(), progress),
         Reference::Mitsuba(variant) => passes::mitsuba_side_in_venv(scene, variant, &plan, work, progress),
     }
 }

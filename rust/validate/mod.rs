@@ -13,6 +13,7 @@ pub mod report;
 pub mod scales;
 pub mod stats;
 
+use crate::render::film::SplatWeights;
 use crate::render::image_io;
 use passes::{Budget, PassPlan, Side};
 use std::path::{Path, PathBuf};
@@ -91,7 +92,13 @@ pub fn validate_scene(
         Ok(PassPlan { passes: k * reps, spp, ..one })
     };
     let n = k * reps;
-    let a: Side = passes::rust_side(matte_scene, &plan(matte_scene, &opts.matte_defines, opts.seed)?, &|i| {
+    // The Rust renderer's film weights samples as the reference does (Mitsuba's scalar and JIT
+    // variants differ at sharp edges; `docs/validation.md`).
+    let splat = match reference {
+        Reference::Mitsuba(variant) => SplatWeights::of_mitsuba_variant(variant),
+        Reference::Matte => SplatWeights::default(),
+    };
+    let a: Side = passes::rust_side(matte_scene, &plan(matte_scene, &opts.matte_defines, opts.seed)?, splat, &|i| {
         progress("matte", i, n)
     })?;
     let ref_plan = plan(scene, &opts.reference_defines, opts.seed + 1_000_003)?;
@@ -102,7 +109,7 @@ pub fn validate_scene(
             })?
         }
         Reference::Matte => {
-            let mut s = passes::rust_side(scene, &ref_plan, &|i| progress("matte (reference)", i, n))?;
+            let mut s = passes::rust_side(scene, &ref_plan, splat, &|i| progress("matte (reference)", i, n))?;
             s.label = "matte (other seeds)".into();
             s
         }

@@ -5,7 +5,7 @@
 
 use super::crop::pixel_box;
 use super::stats::Moments;
-use crate::render::film::Image;
+use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
 use crate::render::load;
 use crate::render::renderer;
@@ -100,8 +100,10 @@ pub fn spp_per_pass(scene: &Path, plan: &PassPlan) -> Result<u32, String> {
     }
 }
 
-/// K passes of the Rust renderer. `progress(k)` after each pass.
-pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Result<Side, String> {
+/// K passes of the Rust renderer, its film weighting samples by `splat` (that of the Mitsuba
+/// variant it is compared with: [`SplatWeights::of_mitsuba_variant`]). `progress(k)` after
+/// each pass.
+pub fn rust_side(scene: &Path, plan: &PassPlan, splat: SplatWeights, progress: &dyn Fn(u32)) -> Result<Side, String> {
     let mut seconds = 0.0;
     // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
     let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
@@ -113,7 +115,7 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
             &loaded.scene,
             &loaded.integrator,
             &loaded.camera,
-            loaded.film.clone(),
+            loaded.film.clone().with_splat_weights(splat),
             spp_used,
             plan.seed + k as u64,
             &|_, _| {},

@@ -200,3 +200,16 @@ pub fn chi2_sampling_ires<B: DiffuseBrdf>(bsdf: &B, wi: Vec3, seed: u64, ires: u
 pub fn sidak(test_count: usize) -> f64 {
     1.0 - (1.0 - 0.01f64).powf(1.0 / test_count as f64)
 }
+
+/// The project's `.venv` Python (Mitsuba 3.9.1, as `make venv` installs it), if this checkout
+/// has one; checks against Mitsuba itself are skipped (with a note) where it does not. `make
+/// test` builds the venv first, so the suite always runs them.
+pub fn mitsuba_python() -> Option<std::path::PathBuf> {
+    let python = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
+    if python.exists() {
+        Some(python)
+    } else {
+        println!("note: {} not found; skipping a check against Mitsuba itself", python.display());
+        None
+    }
+}
