@@ -199,7 +199,7 @@ fn white_furnace_returns_the_environment_radiance() {
     for bsdf in [
         diffuse(1.0),
         Bsdf::Matte {
-            model: matte::brdf::Bsdf::Lambert(matte::brdf::Lambert),
+            model: matte::brdf::DiffuseModel::Lambert(matte::brdf::Lambert),
             reflectance: Texture::Constant(Vec3::ONE),
         },
     ] {

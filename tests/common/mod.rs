@@ -7,7 +7,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use glam::{Vec2, Vec3};
-use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
 
@@ -56,16 +56,16 @@ impl Pcg32 {
 }
 
 /// Builds a model from `(name, value)` pairs, panicking on rejection (test inputs are valid).
-pub fn model(kind: &str, params: &[(&str, &str)]) -> Bsdf {
+pub fn model(kind: &str, params: &[(&str, &str)]) -> DiffuseModel {
     let mut p = Params::new();
     for (n, v) in params {
         p.push(n, ParamValue::parse(v));
     }
-    Bsdf::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
+    DiffuseModel::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
 }
 
 /// Every model with defaults and with low / high roughness (and each option).
-pub fn catalogue() -> Vec<(String, Bsdf)> {
+pub fn catalogue() -> Vec<(String, DiffuseModel)> {
     let cfgs: &[(&str, &[(&str, &str)])] = &[
         ("lambert", &[]),
         ("oren_nayar", &[]),

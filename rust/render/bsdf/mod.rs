@@ -62,7 +62,7 @@ pub enum Bsdf {
         reflectance: Texture,
     },
     Matte {
-        model: crate::brdf::Bsdf,
+        model: crate::brdf::DiffuseModel,
         reflectance: Texture,
     },
     /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` (the same BSDF when only one is
