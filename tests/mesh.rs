@@ -1,4 +1,4 @@
-//! Mesh loading (`rust/scene/mesh`): OBJ, PLY (ascii, binary LE/BE), rectangle, cube.
+//! Mesh loading (`rust/scene_file/mesh`): OBJ, PLY (ascii, binary LE/BE), rectangle, cube.
 //! Oracles: hand-written files with hand-derived expectations, closed forms (symmetry,
 //! inverse-transpose normals), the verified smooth-normal value of `docs/renderer-semantics.md` §8, and the vertex buffers /
 //! ray-query results of Mitsuba 3.9.1 `scalar_rgb` (`mi.traverse`, `scene.ray_intersect`).
@@ -6,7 +6,7 @@
 mod common;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
-use matte::scene::mesh::{MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, rectangle};
+use matte::scene_file::mesh::{MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, rectangle};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 

@@ -10,7 +10,7 @@ use matte::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
 use matte::render::sampler::Sampler;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use matte::scene::mesh::TriangleMesh;
+use matte::scene_file::mesh::TriangleMesh;
 use std::f32::consts::PI;
 
 fn shape(geometry: Geometry, bsdf: u32, emitter: Option<u32>) -> Shape {

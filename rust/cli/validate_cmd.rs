@@ -2,7 +2,8 @@
 //! report. Exit status 1 and the failing scenes on stderr when any scene disagrees.
 
 use super::render_cmd::parse_defines;
-use crate::validate::{self, Options, Reference, SceneResult};
+use crate::validate::passes::Renderer;
+use crate::validate::{self, Options, SceneResult};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -109,10 +110,10 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
         power_replicates: a.power.then_some(a.replicates),
     };
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    let references: Vec<Reference> = if a.self_check {
-        vec![Reference::Matte]
+    let references: Vec<Renderer> = if a.self_check {
+        vec![Renderer::Matte]
     } else {
-        a.variants.iter().map(|v| Reference::Mitsuba(v.clone())).collect()
+        a.variants.iter().map(|v| Renderer::Mitsuba(v.clone())).collect()
     };
     let show = !a.quiet && std::io::stderr().is_terminal();
     let mut results: Vec<SceneResult> = Vec::new();

@@ -15,17 +15,8 @@ pub mod stats;
 
 use crate::render::film::SplatWeights;
 use crate::render::image_io;
-use passes::{Budget, PassPlan, Side};
+use passes::{Budget, PassPlan, Renderer, Side};
 use std::path::{Path, PathBuf};
-
-/// Which renderer the Rust renderer is compared with.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Reference {
-    /// Mitsuba in this variant.
-    Mitsuba(String),
-    /// The Rust renderer itself with other seeds (a size check of the test).
-    Matte,
-}
 
 #[derive(Clone, Debug)]
 pub struct Options {
@@ -65,14 +56,14 @@ pub struct SceneResult {
 
 pub fn validate_scene(
     scene: &Path,
-    reference: &Reference,
+    reference: &Renderer,
     opts: &Options,
     progress: &dyn Fn(&str, u32, u32),
 ) -> Result<SceneResult, String> {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
     let ref_label = match reference {
-        Reference::Mitsuba(v) => v.clone(),
-        Reference::Matte => "matte".into(),
+        Renderer::Mitsuba(v) => v.clone(),
+        Renderer::Matte => "matte".into(),
     };
     let rel_dir = PathBuf::from(&name).join(&ref_label);
     let dir = opts.out.join(&rel_dir);
@@ -95,20 +86,20 @@ pub fn validate_scene(
     // The Rust renderer's film weights samples as the reference does (Mitsuba's scalar and JIT
     // variants differ at sharp edges; `docs/validation.md`).
     let splat = match reference {
-        Reference::Mitsuba(variant) => SplatWeights::of_mitsuba_variant(variant),
-        Reference::Matte => SplatWeights::default(),
+        Renderer::Mitsuba(variant) => SplatWeights::of_mitsuba_variant(variant),
+        Renderer::Matte => SplatWeights::default(),
     };
     let a: Side = passes::rust_side(matte_scene, &plan(matte_scene, &opts.matte_defines, opts.seed)?, splat, &|i| {
         progress("matte", i, n)
     })?;
     let ref_plan = plan(scene, &opts.reference_defines, opts.seed + 1_000_003)?;
     let b: Side = match reference {
-        Reference::Mitsuba(variant) => {
+        Renderer::Mitsuba(variant) => {
             passes::mitsuba_side_in_venv(scene, variant, &ref_plan, &dir.join("mitsuba_work"), &|i| {
                 progress(variant, i, n)
             })?
         }
-        Reference::Matte => {
+        Renderer::Matte => {
             let mut s = passes::rust_side(scene, &ref_plan, splat, &|i| progress("matte (reference)", i, n))?;
             s.label = "matte (other seeds)".into();
             s

@@ -15,6 +15,15 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
+/// The renderer of one side: the Rust renderer (in validation's reference role: itself with
+/// other seeds, a size check of the test), or Mitsuba in a variant.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Renderer {
+    Matte,
+    /// Mitsuba 3.9.1 in this variant (`scalar_rgb`, `llvm_ad_rgb`, …).
+    Mitsuba(String),
+}
+
 /// Samples per pixel of each pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Budget {

@@ -11,8 +11,8 @@ use crate::render::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
     RoughPlastic, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
 };
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject, Value};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
 /// The BSDF index for this XML object, building it the first time it is seen.
