@@ -149,7 +149,7 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     }
     validate::report::write_run(&a.out, &results)?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&validate::report::summary_json(&results)).expect("json"));
+        println!("{}", validate::summary::Summary::new(&results).to_json());
     }
     let failed: Vec<String> = results
         .iter()

@@ -12,6 +12,7 @@ pub mod power;
 pub mod report;
 pub mod scales;
 pub mod stats;
+pub mod summary;
 
 use crate::render::film::SplatWeights;
 use crate::render::image_io;

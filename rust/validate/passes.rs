@@ -181,16 +181,20 @@ pub fn mitsuba_side(
     let images = (0..plan.passes)
         .map(|k| image_io::read_exr(&work.join(pass_file_name(k))))
         .collect::<Result<Vec<_>, String>>()?;
-    let info: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(work.join("passes.json")).map_err(|e| e.to_string())?)
-            .map_err(|e| e.to_string())?;
-    side_from_images(
-        images,
-        &plan.regions,
-        info["render_seconds"].as_f64().unwrap_or(f64::NAN),
-        spp,
-        format!("mitsuba {variant}"),
+    let info_path = work.join("passes.json");
+    let info: DriverInfo = serde_json::from_str(
+        &std::fs::read_to_string(&info_path).map_err(|e| format!("{}: {e}", info_path.display()))?,
     )
+    .map_err(|e| format!("{}: {e}", info_path.display()))?;
+    side_from_images(images, &plan.regions, info.render_seconds, spp, format!("mitsuba {variant}"))
+}
+
+/// What the Mitsuba driver reports about its run in `passes.json` (it writes the variant,
+/// passes, spp, seed and load time too; only the render time is used here).
+#[derive(serde::Deserialize)]
+struct DriverInfo {
+    /// Seconds spent rendering all passes.
+    render_seconds: f64,
 }
 
 /// The file the Mitsuba driver writes pass `k` to (`validation/mitsuba_passes.py`).
