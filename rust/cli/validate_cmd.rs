@@ -193,10 +193,15 @@ fn one_line(name: &str, r: &SceneResult) -> String {
         c.global.ci99.y,
         c.global.ci99.z
     );
+    let d = |x: Option<f64>| x.map(|d| format!("{:.2}%", d * 100.0)).unwrap_or_else(|| "> 30%".into());
+    line += &format!(
+        "; predicted 80% power at {} uniform, {} in a 16×16 patch",
+        d(r.predicted_power.uniform),
+        d(r.predicted_power.patch)
+    );
     if let Some(p) = &r.power {
-        let d = |x: Option<f64>| x.map(|d| format!("{:.2}%", d * 100.0)).unwrap_or_else(|| "> 30%".into());
         line += &format!(
-            "; 80% power at {} uniform, {} in a 16×16 patch; identical inputs rejected {}/{} (matte), {}/{} (reference)",
+            "; measured 80% power at {} uniform, {} in a 16×16 patch; identical inputs rejected {}/{} (matte), {}/{} (reference)",
             d(p.uniform.detected),
             d(p.patch.detected),
             p.identical_matte.rejected,

@@ -9,6 +9,7 @@ pub mod crop;
 pub mod heatmap;
 pub mod passes;
 pub mod power;
+pub mod predicted_power;
 pub mod report;
 pub mod scales;
 pub mod stats;
@@ -49,8 +50,10 @@ pub struct SceneResult {
     pub seconds_reference: f64,
     pub passes: u32,
     pub spp_per_pass: u32,
-    /// `--power`: what this budget detects.
+    /// `--power`: what this budget detects, measured by injection over replicates.
     pub power: Option<power::Calibration>,
+    /// What this budget detects, predicted from this run's variances (a lower bound on power).
+    pub predicted_power: predicted_power::Prediction,
     /// Files, relative to the output folder.
     pub files: report::Files,
 }
@@ -114,6 +117,7 @@ pub fn validate_scene(
     } else {
         None
     };
+    let predicted_power = predicted_power::predict(&a.images, &b.images, opts.alpha)?;
     let files = report::write_scene_files(&opts.out, &rel_dir, &a, &b, &comparison)?;
     Ok(SceneResult {
         scene: scene.to_path_buf(),
@@ -125,6 +129,7 @@ pub fn validate_scene(
         passes: opts.passes,
         spp_per_pass: a.spp,
         power,
+        predicted_power,
         files,
     })
 }

@@ -6,6 +6,7 @@ use super::crop::PixelBox;
 use super::heatmap;
 use super::passes::Side;
 use super::power::Calibration;
+use super::predicted_power::Prediction;
 use super::scales::Rejection;
 use super::stats::Comparison;
 use super::{SceneResult, write_mean};
@@ -164,7 +165,7 @@ scale rejects anything (docs/validation.md).</p>"#,
         let p = |p: &PathBuf| escape(&p.display().to_string());
         let _ = write!(
             h,
-            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{power}</p>
+            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{predicted}</p><p>{power}</p>
 <div class="imgs">
 <figure><img class="r" src="{mp}"><figcaption>matte (<a href="{me}">EXR</a>)</figcaption></figure>
 <figure><img class="r" src="{rp}"><figcaption>{reference} (<a href="{re}">EXR</a>)</figcaption></figure>
@@ -178,6 +179,7 @@ scale rejects anything (docs/validation.md).</p>"#,
 <tr><th>passes × spp</th><td>{passes} × {spp} per renderer</td></tr>
 <tr><th>render time</th><td>matte {ta:.2} s, {reference} {tb:.2} s</td></tr>
 </table>{extra}</div>"#,
+            predicted = predicted_power_html(&r.predicted_power),
             power = power_html(r.power.as_ref()),
             extra = scales_html(r) + &crops_html(r),
             name = escape(&r.name),
@@ -214,11 +216,27 @@ scale rejects anything (docs/validation.md).</p>"#,
     h
 }
 
+/// A detectable change as a percentage.
+fn percent(x: Option<f64>) -> String {
+    x.map(|d| format!("{:.2} %", d * 100.0)).unwrap_or_else(|| "more than 30 %".into())
+}
+
+fn predicted_power_html(p: &Prediction) -> String {
+    format!(
+        "Predicted from this run's own variances (a lower bound on power; docs/validation.md#power): \
+         80 % power for a uniform relative change of <b>{}</b>, or of <b>{}</b> confined to the 16×16 patch at ({}, {}).",
+        percent(p.uniform),
+        percent(p.patch),
+        p.patch_place.x0,
+        p.patch_place.y0,
+    )
+}
+
 fn power_html(p: Option<&Calibration>) -> String {
     let Some(p) = p else {
-        return "Power not calibrated (run with <code>--power</code> to measure what this budget detects).".into();
+        return "Not measured by injection (run with <code>--power</code>).".into();
     };
-    let d = |x: Option<f64>| x.map(|d| format!("{:.2} %", d * 100.0)).unwrap_or_else(|| "more than 30 %".into());
+    let d = percent;
     // Injection measures power on top of the existing difference: meaningless when that
     // difference alone is already rejected in most replicates.
     let note = if p.unchanged.fraction() > 0.5 {

@@ -32,6 +32,7 @@ pub struct SceneSummary<'a> {
     uncorrected_rejection_rate: f64,
     scales: Vec<ScaleSummary>,
     power: Option<PowerSummary>,
+    predicted_power: PredictedSummary,
     global: GlobalSummary,
     seconds_matte: f64,
     seconds_reference: f64,
@@ -74,6 +75,16 @@ struct PowerSummary {
     identical_reference: RateSummary,
     uniform: CurveSummary,
     patch: CurveSummary,
+    patch_place: Place,
+}
+
+/// What the run's own variances predict (a lower bound on power; `validate::predicted_power`).
+#[derive(Serialize)]
+struct PredictedSummary {
+    /// Smallest uniform relative change detected with 80 % power (`null`: none up to 10⁶).
+    uniform_80: Option<f64>,
+    /// The same for a change confined to `patch_place`.
+    patch_80: Option<f64>,
     patch_place: Place,
 }
 
@@ -178,6 +189,11 @@ impl<'a> Summary<'a> {
                         })
                         .collect(),
                     power: r.power.as_ref().map(power),
+                    predicted_power: PredictedSummary {
+                        uniform_80: r.predicted_power.uniform,
+                        patch_80: r.predicted_power.patch,
+                        patch_place: place(&r.predicted_power.patch_place),
+                    },
                     global: GlobalSummary {
                         mean_matte: array(c.global.mean_a),
                         mean_reference: array(c.global.mean_b),
