@@ -193,7 +193,7 @@ fn one_line(name: &str, r: &SceneResult) -> String {
         c.global.ci99.y,
         c.global.ci99.z
     );
-    let d = |x: Option<f64>| x.map(|d| format!("{:.2}%", d * 100.0)).unwrap_or_else(|| "> 30%".into());
+    let d = validate::report::percent;
     line += &format!(
         "; predicted 80% power at {} uniform, {} in a 16×16 patch",
         d(r.predicted_power.uniform),

@@ -216,9 +216,18 @@ scale rejects anything (docs/validation.md).</p>"#,
     h
 }
 
-/// A detectable change as a percentage.
-fn percent(x: Option<f64>) -> String {
-    x.map(|d| format!("{:.2} %", d * 100.0)).unwrap_or_else(|| "more than 30 %".into())
+/// A detectable relative change as a percentage with two significant digits (changes far
+/// below 0.01 % are detectable where both renderers are exact, e.g. directly seen emitters);
+/// `None`: not detectable by any change tried.
+pub fn percent(x: Option<f64>) -> String {
+    match x {
+        Some(d) => {
+            let p = d * 100.0;
+            let decimals = if p > 0.0 { (1.0 - p.log10().floor()).clamp(0.0, 12.0) as usize } else { 2 };
+            format!("{p:.decimals$} %")
+        }
+        None => "more than 30 %".into(),
+    }
 }
 
 fn predicted_power_html(p: &Prediction) -> String {
