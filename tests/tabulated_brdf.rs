@@ -8,7 +8,7 @@ mod common;
 use common::{Pcg32, chi2_sampling, model, sidak};
 use glam::Vec3;
 use matte::brdf::tabulated::TabulatedBrdf;
-use matte::brdf::{Bsdf, DiffuseBrdf};
+use matte::brdf::{DiffuseBrdf, DiffuseModel};
 use matte::microgeometry::tabulation::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
 use std::f64::consts::PI;
 
@@ -17,7 +17,7 @@ fn direction(theta: f64, phi: f64) -> Vec3 {
 }
 
 /// `model` sampled on the production grid.
-fn table_of(m: &Bsdf) -> TabulatedBrdf {
+fn table_of(m: &DiffuseModel) -> TabulatedBrdf {
     TabulatedBrdf::from_fn(
         "test",
         TABLE_THETA.to_vec(),
@@ -30,7 +30,7 @@ fn table_of(m: &Bsdf) -> TabulatedBrdf {
 
 /// Relative error of the table against the model at random directions with θ ≤ `max_theta`°
 /// and random ρ: (mean, largest).
-fn interpolation_error(m: &Bsdf, t: &TabulatedBrdf, max_theta: f64) -> (f64, f64) {
+fn interpolation_error(m: &DiffuseModel, t: &TabulatedBrdf, max_theta: f64) -> (f64, f64) {
     let mut rng = Pcg32::new(3, 1);
     let (mut sum, mut worst, n) = (0.0f64, 0.0f64, 20_000);
     for _ in 0..n {

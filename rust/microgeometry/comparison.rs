@@ -10,7 +10,7 @@ use super::realisations::{PooledEstimate, pool};
 use super::v_cavity::VCavities;
 use crate::brdf::frame::spherical_direction_f64;
 use crate::brdf::oren_nayar::OrenNayarKernel;
-use crate::brdf::{Bsdf, DiffuseBrdf, OrenNayarModel, ParamValue, Params};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, OrenNayarModel, ParamValue, Params};
 use glam::DVec3;
 use serde::Serialize;
 
@@ -80,10 +80,10 @@ pub struct ModelError {
     pub worst_albedo_at: f64,
 }
 
-fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<Bsdf, String> {
+fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<DiffuseModel, String> {
     let mut p = Params::new();
     params.iter().for_each(|(n, v)| p.push(n, v.clone()));
-    Bsdf::from_params(kind, p).map_err(|e| e.to_string())
+    DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
 }
 
 fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
@@ -101,7 +101,7 @@ pub fn eon_roughness_by_term_ratio(sigma: f64) -> f64 {
 /// qualitative and full at σ = s, EON at r = B/A (of the qualitative model at σ = s) and van
 /// Ginneken at m = s with both shadowing options (σ = m is Mitsuba 0.6's `roughdiffuse`
 /// conversion σ = α/√2 with α = √2 m; `docs/models.md`). van Ginneken needs s > 0.
-pub fn models_at(s: f64) -> Result<Vec<(String, Bsdf)>, String> {
+pub fn models_at(s: f64) -> Result<Vec<(String, DiffuseModel)>, String> {
     use ParamValue::{Number as N, Text as T};
     let r = eon_roughness_by_term_ratio(s);
     let mut models = vec![
@@ -181,7 +181,7 @@ fn compare(
     roughness: f64,
     cells: usize,
     realisations: usize,
-    mut models: Vec<(String, Bsdf)>,
+    mut models: Vec<(String, DiffuseModel)>,
     reflectance: f64,
     photons: u64,
     seed: u64,

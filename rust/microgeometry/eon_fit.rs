@@ -3,7 +3,7 @@
 //! 2025) gives no relation between them. The r that describes a measured surface best is the one
 //! that minimises the mean relative error of f over the measured directions.
 
-use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use glam::DVec3;
 
 /// Scan step of r over [0, 1] before the golden-section refinement.
@@ -11,8 +11,8 @@ const SCAN_STEP: f64 = 0.01;
 
 /// Mean |f_EON(r) / f − 1| over `targets` = (wi, wo, measured f).
 pub fn mean_relative_error(r: f64, targets: &[(DVec3, DVec3, f64)], reflectance: f64) -> Result<f64, String> {
-    let eon =
-        Bsdf::from_params("eon", Params::new().with("roughness", ParamValue::Number(r))).map_err(|e| e.to_string())?;
+    let eon = DiffuseModel::from_params("eon", Params::new().with("roughness", ParamValue::Number(r)))
+        .map_err(|e| e.to_string())?;
     let rho = [reflectance as f32];
     let sum: f64 =
         targets.iter().map(|(wi, wo, f)| (eon.eval(wi.as_vec3(), wo.as_vec3(), rho)[0] as f64 / f - 1.0).abs()).sum();
@@ -60,7 +60,7 @@ mod tests {
             let (t, p) = (t.to_radians(), p.to_radians());
             DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
         };
-        let eon = Bsdf::from_params("eon", Params::new().with("roughness", ParamValue::Number(0.437))).unwrap();
+        let eon = DiffuseModel::from_params("eon", Params::new().with("roughness", ParamValue::Number(0.437))).unwrap();
         let mut targets = Vec::new();
         for ti in [0.0, 30.0, 60.0, 75.0] {
             for to in [0.0, 20.0, 40.0, 60.0, 80.0] {
