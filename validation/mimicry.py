@@ -1,0 +1,436 @@
+"""Can one diffuse model mimic another? The 5×5 mimicry table.
+
+    .venv/bin/python validation/mimicry.py [-o mimicry_out] [--scenes cornell,sphere]
+
+For the paper's four models and EON (lambert, wolff, oren_nayar, eon, ginneken) at the study's
+parameters (the plugins' defaults: Wolff IOR 1.4, Oren–Nayar σ 0.3, EON r 0.3, van Ginneken
+m 0.3; README "The study"), the script renders a target with each model, then fits every model
+to every target with ``matte_mitsuba.fit`` (Adam on ``prb`` renders): the reflectance of every
+material and the model's own shape parameter (Wolff ``int_ior``, Oren–Nayar ``sigma``, EON and
+van Ginneken ``roughness``; Lambert has only the reflectance). What is left after the fit is
+what no tuning of that model can reproduce. Two scenes:
+
+* ``cornell``: the study's Cornell box (``mitsuba_scenes/study/cornell.xml``, three materials,
+  each with its own reflectance and shape parameter), 64², ``prb`` max_depth 3 (direct light
+  and one interreflection, as ``matte fit``'s default);
+* ``sphere``: a sphere (reflectance 0.8, 0.6, 0.4) under one directional light, no other
+  light, seen from 4.5 radii, 64², direct lighting, in three images that share the fitted
+  parameters: phase angle (light–sphere–camera) 0° (light at the camera: back-scattering,
+  where rough models flatten the disc), 75° (side light: the terminator's fall-off) and 135°
+  (light from behind: a crescent of forward scattering at grazing angles, where Fresnel and
+  shadowing differ). A sphere shows every incidence and view angle of its phase angle at once.
+
+Every fit starts from ρ = 0.5 and a shape parameter away from the study's value (σ, r, m =
+0.6; IOR 2.0) and runs the same iterations (Adam, learning rate decaying geometrically). The
+residual is measured on a fresh render of the fitted model at the target's spp with a seed the
+target never used, against the target:
+
+* **relative RMSE** ‖fit − target‖₂ / ‖target‖₂ over all pixels and channels (all images of
+  the scene together);
+* **worst region**: the largest |mean(fit) − mean(target)| / mean(target) of luminance over
+  8×8-pixel blocks whose target luminance is at least 10 % of the image's brightest block;
+* the **noise floor** of both: the same numbers for the target against a second target rendered
+  with another seed. A residual at its floor means the fitted model is indistinguishable from
+  the target at this noise level; ``excess`` = √(rmse² − floor²) estimates the part of the
+  relative RMSE that is model mismatch, not noise.
+
+Outputs in ``-o``: ``mimicry.json`` (every number), ``index.html`` (the tables per scene, the
+grid of difference images, a strip per pair), ``<scene>/grid.png``, ``<scene>/<target>/
+<fitted>.png`` (target | fit | relative difference per image) and the ``matte fit`` folder of
+every pair (``<scene>/<target>/<fitted>/index.html``).
+"""
+import argparse
+import html
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+
+MODELS = ("lambert", "wolff", "oren_nayar", "eon", "ginneken")
+LABELS = {"lambert": "Lambert", "wolff": "Wolff", "oren_nayar": "Oren–Nayar", "eon": "EON",
+          "ginneken": "van Ginneken"}
+# Each model's shape parameter: (key suffix, the study's value (the plugin's default), start
+# of every fit). Lambert has none.
+SHAPE = {
+    "lambert": None,
+    "wolff": ("int_ior", 1.4, 2.0),
+    "oren_nayar": ("sigma", 0.3, 0.6),
+    "eon": ("roughness", 0.3, 0.6),
+    "ginneken": ("roughness", 0.3, 0.6),
+}
+RHO_START = 0.5
+BLOCK = 8  # pixels per side of a worst-region block
+BLOCK_MIN = 0.1  # blocks darker than this fraction of the image's brightest block are skipped
+
+SPHERE = """<scene version="3.0.0">
+    <!-- matte mimicry: a sphere under one directional light (validation/mimicry.py). -->
+    <default name="bsdf" value="lambert"/>
+    <default name="res" value="64"/>
+    <default name="lx" value="0"/><default name="lz" value="-1"/>
+    <sensor type="perspective">
+        <float name="fov" value="30"/>
+        <transform name="to_world"><lookat origin="0, 0, 4.5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="$res"/>
+            <rfilter type="box"/></film>
+    </sensor>
+    <emitter type="directional">
+        <vector name="direction" value="$lx, 0, $lz"/>
+        <rgb name="irradiance" value="3"/>
+    </emitter>
+    <shape type="sphere" id="ball">
+        <float name="radius" value="1"/>
+        <bsdf type="$bsdf">
+            <rgb name="reflectance" value="0.8, 0.6, 0.4"/>
+        </bsdf>
+    </shape>
+</scene>
+"""
+
+
+def sphere_config(phase_deg):
+    """Defines for a light at `phase_deg` from the camera direction (+z), in the x–z plane."""
+    g = math.radians(phase_deg)
+    return {"lx": f"{-math.sin(g):.7f}", "lz": f"{-math.cos(g):.7f}"}
+
+
+def scene_specs(out, res):
+    """The two scenes: file, configurations (defines per image), materials (the prefix of their
+    SceneParameters keys), prb depth."""
+    sphere_file = os.path.join(out, "sphere.xml")
+    return {
+        "cornell": {"file": os.path.join(REPO, "mitsuba_scenes", "study", "cornell.xml"),
+                    "configs": [{"res": str(res)}], "config_names": ["Cornell box"],
+                    "materials": ("white", "green", "red"), "max_depth": 3},
+        "sphere": {"file": sphere_file, "write": SPHERE,
+                   "configs": [dict(sphere_config(g), res=str(res)) for g in (0, 75, 135)],
+                   "config_names": ["phase 0°", "phase 75°", "phase 135°"],
+                   "materials": ("ball.bsdf",), "max_depth": 2},
+    }
+
+
+def free_keys(model, materials):
+    """The keys a fit of `model` frees and their start values."""
+    keys = {}
+    for m in materials:
+        keys[f"{m}.reflectance.value"] = RHO_START
+        if SHAPE[model]:
+            keys[f"{m}.{SHAPE[model][0]}"] = SHAPE[model][2]
+    return keys
+
+
+# -- Error measures (numpy; images are lists of H×W×3 arrays, one per configuration) ----------
+
+def luminance(img):
+    return img[..., 0] * 0.2126 + img[..., 1] * 0.7152 + img[..., 2] * 0.0722
+
+
+def relative_rmse(images, targets):
+    """‖a − b‖₂ / ‖b‖₂ over every pixel and channel of every image."""
+    num = sum(float(np.sum((a - b) ** 2)) for a, b in zip(images, targets))
+    den = sum(float(np.sum(b ** 2)) for b in targets)
+    return math.sqrt(num / den)
+
+
+def block_means(y, block):
+    h, w = y.shape[0] // block * block, y.shape[1] // block * block
+    return y[:h, :w].reshape(h // block, block, w // block, block).mean(axis=(1, 3))
+
+
+def worst_region(images, targets, block=BLOCK, min_fraction=BLOCK_MIN):
+    """The largest relative luminance error of a block mean, over the blocks at least
+    `min_fraction` as bright as each image's brightest: (error, image index, block row, col)."""
+    worst = (0.0, -1, -1, -1)
+    for c, (a, b) in enumerate(zip(images, targets)):
+        ma, mb = block_means(luminance(a), block), block_means(luminance(b), block)
+        valid = mb >= min_fraction * mb.max()
+        rel = np.where(valid, np.abs(ma - mb) / np.where(valid, mb, 1.0), 0.0)
+        i, j = np.unravel_index(int(np.argmax(rel)), rel.shape)
+        if rel[i, j] > worst[0]:
+            worst = (float(rel[i, j]), c, int(i), int(j))
+    return worst
+
+
+def excess(value, floor):
+    """The part of a relative RMSE above the noise floor (independent errors add in squares)."""
+    return math.sqrt(max(0.0, value * value - floor * floor))
+
+
+# -- Rendering -------------------------------------------------------------------------------
+
+def render_model(mi, spec, model, spp, seed, values=None):
+    """One render per configuration of `spec` with `model`; `values` (key → list) overrides
+    parameters (the fitted ones). Returns numpy arrays."""
+    integrator = mi.load_dict({"type": "prb", "max_depth": spec["max_depth"]})
+    out = []
+    for c, defines in enumerate(spec["configs"]):
+        scene = mi.load_file(spec["file"], bsdf=model, **defines)
+        if values:
+            p = mi.traverse(scene)
+            for k, v in values.items():
+                p[k] = type(p[k])(*v) if len(v) > 1 else type(p[k])(v[0])
+            p.update()
+        img = mi.render(scene, integrator=integrator, spp=spp, seed=seed + c)
+        out.append(np.array(img, dtype=np.float64))
+    return out
+
+
+def fit_pair(spec, target_files, model, folder, args):
+    """Fits `model` to the targets with matte_mitsuba.fit; returns its fit.json."""
+    from matte_mitsuba.fit import main as fit_main
+    keys = free_keys(model, spec["materials"])
+    argv = [spec["file"], "--iterations", str(args.iterations), "--lr", str(args.lr),
+            "--lr-final", str(args.lr_final), "--spp", str(args.spp), "--max-depth", str(spec["max_depth"]),
+            "--seed", str(args.seed), "-o", folder, "--quiet"]
+    for k, v in keys.items():
+        argv += ["--param", k, "--init", f"{k}={v}"]
+    for defines, t in zip(spec["configs"], target_files):
+        argv += ["--config", ",".join(f"{k}={v}" for k, v in dict(defines, bsdf=model).items()), "--target", t]
+    if fit_main(argv) != 0:
+        raise SystemExit(f"mimicry: the fit of {model} in {folder} failed")
+    with open(os.path.join(folder, "fit.json")) as f:
+        return json.load(f)
+
+
+def run_scene(mi, name, spec, out, args):
+    """Targets, the 25 fits and their residuals for one scene."""
+    folder = os.path.join(out, name)
+    os.makedirs(folder, exist_ok=True)
+    if "write" in spec:
+        with open(spec["file"], "w") as f:
+            f.write(spec["write"])
+    models = args.models
+    targets, target_files, floors = {}, {}, {}
+    for t in models:
+        targets[t] = render_model(mi, spec, t, args.target_spp, seed=1_000_000)
+        second = render_model(mi, spec, t, args.target_spp, seed=2_000_000)
+        os.makedirs(os.path.join(folder, t), exist_ok=True)
+        target_files[t] = []
+        for c, img in enumerate(targets[t]):
+            path = os.path.join(folder, t, f"target_{c}.exr")
+            mi.Bitmap(img.astype(np.float32)).write(path)
+            target_files[t].append(path)
+        floors[t] = {"relative_rmse": relative_rmse(second, targets[t]),
+                     "worst_region": worst_region(second, targets[t])[0]}
+        print(f"mimicry: {name}: target {t}: noise floor {100 * floors[t]['relative_rmse']:.2f} % "
+              f"(worst region {100 * floors[t]['worst_region']:.2f} %)", file=sys.stderr, flush=True)
+    cells = {}
+    for t in models:
+        cells[t] = {}
+        for m in models:
+            started = time.time()
+            fj = fit_pair(spec, target_files[t], m, os.path.join(folder, t, m), args)
+            values = {k: v["value"] for k, v in fj["fitted"].items()}
+            fitted = render_model(mi, spec, m, args.target_spp, seed=3_000_000, values=values)
+            rmse = relative_rmse(fitted, targets[t])
+            worst = worst_region(fitted, targets[t])
+            strip_png(os.path.join(folder, t, f"{m}.png"), targets[t], fitted, args.diff_range)
+            np.save(os.path.join(folder, t, m, "fitted_render.npy"), np.stack(fitted).astype(np.float32))
+            ranges = fj["ranges"]
+            at_bound = sorted(k for k, v in values.items()
+                              if any(abs(x - ranges[k][0]) < 1e-6 or abs(x - ranges[k][1]) < 1e-6 for x in v))
+            cells[t][m] = {
+                "relative_rmse": rmse,
+                "excess": excess(rmse, floors[t]["relative_rmse"]),
+                "worst_region": worst[0],
+                "worst_region_at": {"image": worst[1], "block_row": worst[2], "block_col": worst[3]},
+                "fitted": values,
+                "at_bound": at_bound,
+                "loss_first": fj["loss"][0],
+                "loss_last": fj["loss"][-1],
+                "seconds": time.time() - started,
+                "fit_report": os.path.join(t, m, "index.html"),
+                "strip": os.path.join(t, f"{m}.png"),
+            }
+            print(f"mimicry: {name}: target {t:<10} fitted {m:<10} rel. RMSE {100 * rmse:6.2f} % "
+                  f"(floor {100 * floors[t]['relative_rmse']:.2f} %), worst region {100 * worst[0]:6.2f} % "
+                  f"(floor {100 * floors[t]['worst_region']:.2f} %), {cells[t][m]['seconds']:.0f} s",
+                  file=sys.stderr, flush=True)
+    grid_png(os.path.join(folder, "grid.png"), models, targets, folder, cells, args.diff_range)
+    return {"file": os.path.relpath(spec["file"], REPO) if spec["file"].startswith(REPO) else os.path.basename(spec["file"]),
+            "images": spec["config_names"], "materials": list(spec["materials"]), "max_depth": spec["max_depth"],
+            "noise_floor": floors, "cells": cells}
+
+
+# -- Pictures --------------------------------------------------------------------------------
+
+def srgb(img):
+    x = np.clip(img, 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1 / 2.4) - 0.055)
+
+
+def difference_rgb(a, b, value_range):
+    """(L_a − L_b) / L_b as red (a brighter) / blue (a darker), ±`value_range` saturates; black
+    where the target is dark (below 2 % of its brightest pixel)."""
+    import matplotlib
+    la, lb = luminance(a), luminance(b)
+    dark = lb < 0.02 * max(lb.max(), 1e-12)
+    rel = np.where(dark, 0.0, (la - lb) / np.where(dark, 1.0, lb))
+    rgb = matplotlib.colormaps["RdBu_r"](0.5 + 0.5 * np.clip(rel / value_range, -1, 1))[..., :3]
+    rgb[dark] = 0.0
+    return rgb
+
+
+def strip_png(path, targets, fitted, value_range):
+    """Per image one row: target | fitted render | relative difference."""
+    import mitsuba as mi
+    rows = [np.concatenate([srgb(t), np.full((t.shape[0], 2, 3), 1.0), srgb(f), np.full((t.shape[0], 2, 3), 1.0),
+                            difference_rgb(f, t, value_range)], axis=1) for t, f in zip(targets, fitted)]
+    gap = np.full((2, rows[0].shape[1], 3), 1.0)
+    img = np.concatenate(sum(([r, gap] for r in rows), [])[:-1], axis=0)
+    mi.Bitmap((np.clip(img, 0, 1) * 255 + 0.5).astype(np.uint8), mi.Bitmap.PixelFormat.RGB).write(path)
+
+
+def grid_png(path, models, targets, folder, cells, value_range):
+    """Rows: target model (its target, then the difference of each fitted model's render)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    n = len(models)
+    fig, ax = plt.subplots(n, n + 1, figsize=(1.9 * (n + 1) * len(targets[models[0]]) ** 0.5, 1.9 * n + 0.6),
+                           dpi=110, squeeze=False)
+    for i, t in enumerate(models):
+        ax[i, 0].imshow(srgb(np.concatenate(targets[t], axis=1)))
+        ax[i, 0].set_title(f"target: {LABELS[t]}", fontsize=8)
+        for j, m in enumerate(models, start=1):
+            fitted = np.load(os.path.join(folder, t, m, "fitted_render.npy")).astype(np.float64)
+            diff = np.concatenate([difference_rgb(f, g, value_range) for f, g in zip(fitted, targets[t])], axis=1)
+            ax[i, j].imshow(diff)
+            c = cells[t][m]
+            ax[i, j].set_title(f"{LABELS[m]}: {100 * c['relative_rmse']:.1f} %", fontsize=8)
+    for a in ax.ravel():
+        a.set_axis_off()
+    fig.suptitle(f"fitted − target, relative luminance, blue −{100 * value_range:.0f} % … red +{100 * value_range:.0f} %",
+                 fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+# -- Report ----------------------------------------------------------------------------------
+
+def cell_colour(value, floor):
+    """Green at the noise floor, through yellow to red at 5× the floor and above."""
+    r = min(max((value / floor - 1.0) / 4.0, 0.0), 1.0) if floor > 0 else 1.0
+    hue = 120 * (1 - r)
+    return f"hsl({hue:.0f},70%,88%)"
+
+
+def shape_text(model, values):
+    if not SHAPE[model]:
+        return ""
+    name = SHAPE[model][0]
+    vals = [v[0] for k, v in values.items() if k.endswith("." + name)]
+    return f"{name} " + ", ".join(f"{v:.3g}" for v in vals)
+
+
+def write_html(out, summary):
+    e = html.escape
+    s = summary["settings"]
+    parts = [f"""<!doctype html><html><head><meta charset="utf-8"><title>matte mimicry</title><style>
+body{{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}} img{{max-width:100%;border:1px solid #ddd}}
+table{{border-collapse:collapse;font-size:14px;margin:8px 0}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}}
+td{{white-space:nowrap}} th:first-child,td:first-child{{text-align:left}} .scene{{border-top:1px solid #ccc;padding-top:12px;margin-top:16px}}
+.small{{font-size:13px;color:#555}} img.px{{image-rendering:pixelated;width:{4 * s['res']}px;max-width:none}}
+</style></head><body><h1>matte mimicry: can one diffuse model mimic another?</h1>
+<p>Each target is rendered with one model at the study's parameters (Wolff IOR 1.4, Oren–Nayar σ 0.3, EON r 0.3,
+van Ginneken m 0.3) at {s['target_spp']} spp; every model is then fitted to it (<code>matte_mitsuba.fit</code>: Adam,
+{s['iterations']} iterations, learning rate {s['lr']} decaying to {s['lr_final']}, {s['spp']} spp per step, {s['res']}²
+images): every material's reflectance and the model's shape parameter, from ρ = {RHO_START} and σ, r, m = 0.6, IOR 2.0.
+Rows: the target's model; columns: the fitted model. Residual on a fresh render of the fit at {s['target_spp']} spp
+with a new seed: relative RMSE ‖fit − target‖₂ / ‖target‖₂ and the worst region (largest relative luminance error of an
+{BLOCK}×{BLOCK}-pixel block mean among blocks at least {100 * BLOCK_MIN:.0f} % as bright as the brightest). The noise floor
+is the same number for the target against a second target with another seed. Cells: green at the floor, red at 5× the
+floor and above.</p>"""]
+    for name, sc in summary["scenes"].items():
+        models = list(sc["cells"].keys())
+        parts.append(f"<div class=scene><h2>{e(name)}</h2><p class=small>Scene <code>{e(sc['file'])}</code>; images: "
+                     f"{e(', '.join(sc['images']))}; materials fitted: {e(', '.join(sc['materials']))}; "
+                     f"prb max_depth {sc['max_depth']}.</p>")
+        for what, title in (("relative_rmse", "Relative RMSE (%)"), ("worst_region", "Worst region (%)")):
+            head = "".join(f"<th>{e(LABELS[m])}</th>" for m in models)
+            rows = []
+            for t in models:
+                floor = sc["noise_floor"][t][what]
+                tds = "".join(
+                    f"<td style='background:{cell_colour(sc['cells'][t][m][what], floor)}'>"
+                    f"<a href='{e(name)}/{e(sc['cells'][t][m]['fit_report'])}'>{100 * sc['cells'][t][m][what]:.2f}</a></td>"
+                    for m in models)
+                rows.append(f"<tr><td>{e(LABELS[t])}</td>{tds}<td>{100 * floor:.2f}</td></tr>")
+            parts.append(f"<h3>{title}</h3><table><tr><th>target \\ fitted</th>{head}<th>noise floor</th></tr>"
+                         f"{''.join(rows)}</table>")
+        head = "".join(f"<th>{e(LABELS[m])}</th>" for m in models)
+        rows = []
+        for t in models:
+            tds = "".join(
+                f"<td class=small>{e(shape_text(m, sc['cells'][t][m]['fitted']))}"
+                f"{' (bound)' if any(not k.endswith('reflectance.value') for k in sc['cells'][t][m]['at_bound']) else ''}</td>"
+                for m in models)
+            rows.append(f"<tr><td>{e(LABELS[t])}</td>{tds}</tr>")
+        parts.append(f"<h3>Fitted shape parameters</h3><table><tr><th>target \\ fitted</th>{head}</tr>{''.join(rows)}</table>"
+                     f"<p class=small>(bound): a shape parameter ended at its clamp range's end. Every fitted value is in "
+                     f"<a href='mimicry.json'>mimicry.json</a>.</p>")
+        parts.append(f"<h3>Differences</h3><img src='{e(name)}/grid.png'>")
+        for t in models:
+            parts.append(f"<h3>Target {e(LABELS[t])}: target | fit | (fit − target) / target, ±{100 * s['diff_range']:.0f} %</h3>"
+                         "<div style='display:flex;flex-wrap:wrap;gap:12px'>")
+            for m in models:
+                c = sc["cells"][t][m]
+                parts.append(f"<figure style='margin:0'><img class=px src='{e(name)}/{e(c['strip'])}'>"
+                             f"<figcaption class=small>{e(LABELS[m])}: {100 * c['relative_rmse']:.2f} %, worst "
+                             f"{100 * c['worst_region']:.2f} % (<a href='{e(name)}/{e(c['fit_report'])}'>fit</a>)"
+                             f"</figcaption></figure>")
+            parts.append("</div>")
+        parts.append("</div>")
+    parts.append(f"<p class=small>Total time {summary['seconds']:.0f} s. <a href='mimicry.json'>mimicry.json</a> has every number."
+                 "</p></body></html>\n")
+    with open(os.path.join(out, "index.html"), "w") as f:
+        f.write("\n".join(parts))
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("-o", "--output", default="mimicry_out")
+    ap.add_argument("--scenes", default="cornell,sphere")
+    ap.add_argument("--models", default=",".join(MODELS), help="comma-separated subset of " + ", ".join(MODELS))
+    ap.add_argument("--res", type=int, default=64)
+    ap.add_argument("--iterations", type=int, default=80)
+    ap.add_argument("--lr", type=float, default=0.05)
+    ap.add_argument("--lr-final", type=float, default=0.002)
+    ap.add_argument("--spp", type=int, default=8, help="samples per pixel of each optimisation render")
+    ap.add_argument("--target-spp", type=int, default=1024)
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--diff-range", type=float, default=0.2, help="colour scale of the difference images (relative)")
+    args = ap.parse_args(argv)
+    args.models = args.models.split(",")
+    for m in args.models:
+        if m not in MODELS:
+            ap.error(f"--models: unknown model {m!r} (one of {', '.join(MODELS)})")
+
+    import mitsuba as mi
+    mi.set_variant("llvm_ad_rgb")
+    import matte_mitsuba  # noqa: F401  (registers the plugins)
+
+    out = os.path.abspath(args.output)
+    os.makedirs(out, exist_ok=True)
+    specs = scene_specs(out, args.res)
+    started = time.time()
+    summary = {"settings": {k: v for k, v in vars(args).items() if k != "output"}, "scenes": {}}
+    for name in args.scenes.split(","):
+        if name not in specs:
+            ap.error(f"--scenes: unknown scene {name!r} (one of {', '.join(specs)})")
+        summary["scenes"][name] = run_scene(mi, name, specs[name], out, args)
+    summary["seconds"] = time.time() - started
+    with open(os.path.join(out, "mimicry.json"), "w") as f:
+        json.dump(summary, f, indent=1)
+    write_html(out, summary)
+    print(os.path.join(out, "index.html"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
