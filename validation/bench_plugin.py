@@ -12,8 +12,9 @@ is the best of `--repeats` after a warm-up render (JIT compilation, table buildi
 ``--bitmap`` gives each type's numeric parameter (``SHAPE_PARAMETER``) as a 16×16 bitmap
 texture holding the default value everywhere, so the image is the float's and only the
 textured code path differs. ``--plugin-root DIR`` imports ``matte_mitsuba`` from DIR (e.g.
-another revision's ``validation`` folder after its ``cpp/build_plugin.sh``) instead of the
-installed one. ``--float-fast-path OLD`` times, per type, the float parameter with the plugin
+another revision's ``validation`` folder after its ``cpp/build_plugin.sh``); without it, the
+first ``matte_mitsuba`` on the path is used (this script's folder's, where ``make plugin``
+builds the plugins, then the installed one); ``--one`` prints the folder it loaded. ``--float-fast-path OLD`` times, per type, the float parameter with the plugin
 build in OLD (a revision before textured parameters) and with this one, and the bitmap with
 this one; every configuration in its own process, `--rounds` rounds interleaved (machine
 load drifts), best over all.
@@ -26,7 +27,19 @@ import sys
 import tempfile
 import time
 
-from matte_mitsuba import BSDF_TYPES as TYPES  # the plugin names, as the build wrote them
+
+
+def _plugin_root_first():
+    """`--plugin-root DIR` puts DIR before every other folder (this script's own folder, which
+    holds the checkout's matte_mitsuba, comes first otherwise) before matte_mitsuba is imported."""
+    for i, a in enumerate(sys.argv):
+        if a == "--plugin-root" and i + 1 < len(sys.argv):
+            sys.path.insert(0, os.path.abspath(sys.argv[i + 1]))
+
+
+_plugin_root_first()
+import matte_mitsuba  # noqa: E402
+from matte_mitsuba import BSDF_TYPES as TYPES  # noqa: E402  (the plugin names, as the build wrote them)
 
 # Each type's numeric parameter and its default (README, "Models and parameters").
 SHAPE_PARAMETER = {
@@ -79,13 +92,15 @@ def best_time(kind, variant, res, spp, repeats, bitmap=False):
 
 
 def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None):
-    env = dict(os.environ)
-    if plugin_root:
-        env["PYTHONPATH"] = os.path.abspath(plugin_root) + os.pathsep + env.get("PYTHONPATH", "")
     out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", kind, "--variant", variant,
                           "--res", str(res), "--spp", str(spp), "--repeats", str(repeats)]
-                         + (["--bitmap"] if bitmap else []), capture_output=True, text=True, check=True, env=env)
-    return json.loads(out.stdout)["seconds"]
+                         + (["--bitmap"] if bitmap else [])
+                         + (["--plugin-root", os.path.abspath(plugin_root)] if plugin_root else []),
+                         capture_output=True, text=True, check=True)
+    result = json.loads(out.stdout)
+    if plugin_root and not result["plugins"].startswith(os.path.abspath(plugin_root)):
+        raise RuntimeError(f"--plugin-root {plugin_root}: the child loaded {result['plugins']}")
+    return result["seconds"]
 
 
 def time_all(variant, res, spp, repeats, types=TYPES):
@@ -120,6 +135,7 @@ def main():
     ap.add_argument("--types", nargs="+", default=TYPES, choices=TYPES)
     ap.add_argument("--one", help="time this one type (or diffuse) in this process; print JSON")
     ap.add_argument("--bitmap", action="store_true", help="with --one: the numeric parameter as a constant bitmap")
+    ap.add_argument("--plugin-root", metavar="DIR", help="import matte_mitsuba from DIR (read before the imports)")
     ap.add_argument("--float-fast-path", metavar="OLD_ROOT",
                     help="compare float parameters with the build in OLD_ROOT (its matte_mitsuba's parent folder)")
     ap.add_argument("--rounds", type=int, default=2, help="with --float-fast-path: interleaved rounds")
@@ -128,7 +144,7 @@ def main():
     if a.one:
         if a.bitmap and a.one not in SHAPE_PARAMETER:
             ap.error(f"--bitmap: {a.one} has no numeric parameter")
-        print(json.dumps({"type": a.one, "bitmap": a.bitmap,
+        print(json.dumps({"type": a.one, "bitmap": a.bitmap, "plugins": matte_mitsuba.PLUGIN_ROOT,
                           "seconds": best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap)}))
         return
     if a.float_fast_path:

@@ -11,10 +11,10 @@ van Ginneken ``roughness``; Lambert has only the reflectance). What is left afte
 what no tuning of that model can reproduce. Two scenes:
 
 * ``cornell``: the study's Cornell box (``mitsuba_scenes/study/cornell.xml``, three materials,
-  each with its own reflectance and shape parameter), 64², ``prb`` max_depth 3 (direct light
+  each with its own reflectance and shape parameter), 48², ``prb`` max_depth 3 (direct light
   and one interreflection, as ``matte fit``'s default);
 * ``sphere``: a sphere (reflectance 0.8, 0.6, 0.4) under one directional light, no other
-  light, seen from 4.5 radii, 64², direct lighting, in three images that share the fitted
+  light, seen from 4.5 radii, 48², direct lighting, in three images that share the fitted
   parameters: phase angle (light–sphere–camera) 0° (light at the camera: back-scattering,
   where rough models flatten the disc), 75° (side light: the terminator's fall-off) and 135°
   (light from behind: a crescent of forward scattering at grazing angles, where Fresnel and
@@ -35,7 +35,7 @@ target never used, against the target:
 * **relative RMSE** ‖fit − target‖₂ / ‖target‖₂ over all pixels and channels (all images of
   the scene together);
 * **worst region**: the largest |mean(fit) − mean(target)| / mean(target) of luminance over
-  8×8-pixel blocks whose target luminance is at least 25 % of the image's mean block;
+  blocks of 1/8 of the image side (6×6 pixels at 48²) whose target luminance is at least 25 % of the image's mean block;
 * the **noise floor** of both: the same numbers for the target against a second target rendered
   with another seed. A residual at its floor means the fitted model is indistinguishable from
   the target at this noise level; ``excess`` = √(rmse² − floor²) estimates the part of the
@@ -70,7 +70,7 @@ SHAPE = {
     "eon": ("roughness", 0.3),
     "ginneken": ("roughness", 0.3),
 }
-BLOCK = 8  # pixels per side of a worst-region block
+BLOCKS = 8  # worst-region blocks per image side
 BLOCK_MIN = 0.25  # blocks darker than this fraction of the image's mean block are skipped
 
 SPHERE = """<scene version="3.0.0">
@@ -148,11 +148,12 @@ def block_means(y, block):
     return y[:h, :w].reshape(h // block, block, w // block, block).mean(axis=(1, 3))
 
 
-def worst_region(images, targets, block=BLOCK, min_fraction=BLOCK_MIN):
+def worst_region(images, targets, blocks=BLOCKS, min_fraction=BLOCK_MIN):
     """The largest relative luminance error of a block mean, over the blocks at least
     `min_fraction` as bright as the image's mean block (a mean, not the brightest block, so that
     a visible light does not exclude the walls): (error, image index, block row, col)."""
     worst = (0.0, -1, -1, -1)
+    block = max(1, targets[0].shape[0] // blocks)
     for c, (a, b) in enumerate(zip(images, targets)):
         ma, mb = block_means(luminance(a), block), block_means(luminance(b), block)
         valid = mb >= min_fraction * mb.mean()
@@ -369,7 +370,7 @@ images): every material's reflectance and the model's shape parameter, starting 
 own noise).
 Rows: the target's model; columns: the fitted model. Residual on a fresh render of the fit at {s['target_spp']} spp
 with a new seed: relative RMSE ‖fit − target‖₂ / ‖target‖₂ and the worst region (largest relative luminance error of an
-{BLOCK}×{BLOCK}-pixel block mean among blocks at least {100 * BLOCK_MIN:.0f} % as bright as the image's mean block). The noise floor
+{s['res'] // BLOCKS}×{s['res'] // BLOCKS}-pixel block mean among blocks at least {100 * BLOCK_MIN:.0f} % as bright as the image's mean block). The noise floor
 is the same number for the target against a second target with another seed. Cells: green at the floor, red at 5× the
 floor and above.</p>"""]
     for name, sc in summary["scenes"].items():
@@ -423,8 +424,8 @@ def main(argv=None):
     ap.add_argument("-o", "--output", default="mimicry_out")
     ap.add_argument("--scenes", default="cornell,sphere")
     ap.add_argument("--models", default=",".join(MODELS), help="comma-separated subset of " + ", ".join(MODELS))
-    ap.add_argument("--res", type=int, default=64)
-    ap.add_argument("--iterations", type=int, default=40)
+    ap.add_argument("--res", type=int, default=48)
+    ap.add_argument("--iterations", type=int, default=32)
     ap.add_argument("--lr", type=float, default=0.04)
     ap.add_argument("--lr-final", type=float, default=0.001)
     ap.add_argument("--spp", type=int, default=8, help="samples per pixel of each optimisation render")

@@ -29,11 +29,11 @@ def test_relative_rmse_and_worst_region_of_a_uniform_scale(image):
 
 def test_worst_region_finds_the_changed_block_and_skips_dark_ones(image):
     changed = image.copy()
-    changed[8:16, 0:8] *= 1.1  # block (1, 0) of 8x8 pixels: +10 %
-    assert mimicry.worst_region([image, changed], [image, image]) == (pytest.approx(0.1, rel=1e-9), 1, 1, 0)
+    changed[8:16, 0:8] *= 1.1  # block (1, 0) of 8x8 pixels (two blocks per side): +10 %
+    assert mimicry.worst_region([image, changed], [image, image], blocks=2) == (pytest.approx(0.1, rel=1e-9), 1, 1, 0)
     dark = image.copy()
     dark[0:8, 8:16] = 1e-3  # far below 25 % of the mean block: skipped even when doubled
-    assert mimicry.worst_region([np.where(dark < 0.01, 2 * dark, dark)], [dark])[0] == 0.0
+    assert mimicry.worst_region([np.where(dark < 0.01, 2 * dark, dark)], [dark], blocks=2)[0] == 0.0
 
 
 def test_excess_above_the_noise_floor():
