@@ -17,7 +17,8 @@ first ``matte_mitsuba`` on the path is used (this script's folder's, where ``mak
 builds the plugins, then the installed one); ``--one`` prints the folder it loaded. ``--float-fast-path OLD`` times, per type, the float parameter with the plugin
 build in OLD (a revision before textured parameters) and with this one, and the bitmap with
 this one; every configuration in its own process, `--rounds` rounds interleaved (machine
-load drifts), best over all.
+load drifts), best over all, as wall time and as the process's CPU time (less sensitive to
+other work on a shared machine).
 """
 import argparse
 import json
@@ -70,28 +71,41 @@ def scene(mi, kind, res, bitmap_folder=None):
     return mi.load_dict(d)
 
 
-def timed(s, spp):
+def timed_wall_cpu(s, spp):
+    """Wall time and CPU time (all threads of this process: user + system) of one render. On a
+    machine shared with other work the CPU time depends much less on the load than the wall
+    time does."""
+    import resource
     import drjit as dr
     import mitsuba as mi
+    r0 = resource.getrusage(resource.RUSAGE_SELF)
     t = time.perf_counter()
     img = mi.render(s, spp=spp, seed=0)
     dr.eval(img)
     dr.sync_thread()
-    return time.perf_counter() - t
+    wall = time.perf_counter() - t
+    r1 = resource.getrusage(resource.RUSAGE_SELF)
+    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+
+
+def timed(s, spp):
+    return timed_wall_cpu(s, spp)[0]
 
 
 def best_time(kind, variant, res, spp, repeats, bitmap=False):
-    """Best-of time of one type in this process (after a warm-up render)."""
+    """Best-of wall and CPU times of one type in this process (after a warm-up render)."""
     import mitsuba as mi
     mi.set_variant(variant)
     import matte_mitsuba  # noqa: F401  (registers the plugins)
     with tempfile.TemporaryDirectory() as folder:
         s = scene(mi, kind, res, folder if bitmap else None)
         timed(s, spp)
-        return min(timed(s, spp) for _ in range(repeats))
+        times = [timed_wall_cpu(s, spp) for _ in range(repeats)]
+        return min(t[0] for t in times), min(t[1] for t in times)
 
 
-def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None):
+def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None, both=False):
+    """Best wall seconds of one configuration in its own process; (wall, CPU) with `both`."""
     out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", kind, "--variant", variant,
                           "--res", str(res), "--spp", str(spp), "--repeats", str(repeats)]
                          + (["--bitmap"] if bitmap else [])
@@ -100,7 +114,7 @@ def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_ro
     result = json.loads(out.stdout)
     if plugin_root and not result["plugins"].startswith(os.path.abspath(plugin_root)):
         raise RuntimeError(f"--plugin-root {plugin_root}: the child loaded {result['plugins']}")
-    return result["seconds"]
+    return (result["seconds"], result["cpu_seconds"]) if both else result["seconds"]
 
 
 def time_all(variant, res, spp, repeats, types=TYPES):
@@ -116,13 +130,16 @@ def float_fast_path(old_root, variant, res, spp, repeats, rounds, types):
         configs += [(k, "old", False), (k, "this", False)]
         if k in SHAPE_PARAMETER:
             configs.append((k, "this", True))
-    best = {}
+    best = {"wall": {}, "cpu": {}}
     for r in range(rounds):
         for kind, build, bitmap in configs:
             key = f"{kind} {build} {'bitmap' if bitmap else 'float'}"
-            t = time_in_subprocess(kind, variant, res, spp, repeats, bitmap, old_root if build == "old" else None)
-            best[key] = min(best.get(key, t), t)
-            print(f"  round {r + 1}/{rounds}: {key:<26} {t:.3f} s", file=sys.stderr, flush=True)
+            wall, cpu = time_in_subprocess(kind, variant, res, spp, repeats, bitmap,
+                                           old_root if build == "old" else None, both=True)
+            best["wall"][key] = min(best["wall"].get(key, wall), wall)
+            best["cpu"][key] = min(best["cpu"].get(key, cpu), cpu)
+            print(f"  round {r + 1}/{rounds}: {key:<26} wall {wall:.3f} s, CPU {cpu:.3f} s", file=sys.stderr,
+                  flush=True)
     return best
 
 
@@ -144,24 +161,26 @@ def main():
     if a.one:
         if a.bitmap and a.one not in SHAPE_PARAMETER:
             ap.error(f"--bitmap: {a.one} has no numeric parameter")
+        wall, cpu = best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap)
         print(json.dumps({"type": a.one, "bitmap": a.bitmap, "plugins": matte_mitsuba.PLUGIN_ROOT,
-                          "seconds": best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap)}))
+                          "seconds": wall, "cpu_seconds": cpu}))
         return
     if a.float_fast_path:
         print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats} per process, "
               f"{a.rounds} rounds, one process per configuration; old build: {a.float_fast_path}")
-        best = float_fast_path(a.float_fast_path, a.variant, a.res, a.spp, a.repeats, a.rounds, a.types)
-        print(f"  diffuse {best['diffuse this float']:.3f} s")
-        print(f"  {'type':<13} {'old float':>9} {'float':>9} {'float/old':>9} {'bitmap':>9} {'bitmap/float':>12}")
-        for k in a.types:
-            old, new = best[f"{k} old float"], best[f"{k} this float"]
-            bm = best.get(f"{k} this bitmap")
-            tail = f" {bm:9.3f} {bm / new:12.3f}" if bm else ""
-            print(f"  {k:<13} {old:9.3f} {new:9.3f} {new / old:9.3f}{tail}")
+        times = float_fast_path(a.float_fast_path, a.variant, a.res, a.spp, a.repeats, a.rounds, a.types)
+        for clock, best in times.items():
+            print(f"{clock} time (s): diffuse {best['diffuse this float']:.3f}")
+            print(f"  {'type':<13} {'old float':>9} {'float':>9} {'float/old':>9} {'bitmap':>9} {'bitmap/float':>12}")
+            for k in a.types:
+                old, new = best[f"{k} old float"], best[f"{k} this float"]
+                bm = best.get(f"{k} this bitmap")
+                tail = f" {bm:9.3f} {bm / new:12.3f}" if bm else ""
+                print(f"  {k:<13} {old:9.3f} {new:9.3f} {new / old:9.3f}{tail}")
         if a.json:
             with open(a.json, "w") as f:
                 json.dump({"res": a.res, "spp": a.spp, "variant": a.variant, "repeats": a.repeats,
-                           "rounds": a.rounds, "old_root": os.path.abspath(a.float_fast_path), "seconds": best}, f,
+                           "rounds": a.rounds, "old_root": os.path.abspath(a.float_fast_path), "seconds": times}, f,
                           indent=1)
         return
     print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats}, one process per type")

@@ -11,17 +11,19 @@ van Ginneken ``roughness``; Lambert has only the reflectance). What is left afte
 what no tuning of that model can reproduce. Two scenes:
 
 * ``cornell``: the study's Cornell box (``mitsuba_scenes/study/cornell.xml``, three materials,
-  each with its own reflectance and shape parameter), 48², ``prb`` max_depth 3 (direct light
+  each with its own reflectance and shape parameter), 32², ``prb`` max_depth 3 (direct light
   and one interreflection, as ``matte fit``'s default);
 * ``sphere``: a sphere (reflectance 0.8, 0.6, 0.4) under one directional light, no other
-  light, seen from 4.5 radii, 48², direct lighting, in three images that share the fitted
+  light, seen from 4.5 radii, 32², direct lighting, in three images that share the fitted
   parameters: phase angle (light–sphere–camera) 0° (light at the camera: back-scattering,
   where rough models flatten the disc), 75° (side light: the terminator's fall-off) and 135°
   (light from behind: a crescent of forward scattering at grazing angles, where Fresnel and
   shadowing differ). A sphere shows every incidence and view angle of its phase angle at once.
 
-Every fit starts from the model as the study uses it (the scene's reflectances, the study's
-shape parameter) and runs the same iterations (Adam, learning rate decaying geometrically).
+Every fit starts from the study's shape parameter and the scene's reflectances scaled per
+channel to the target's mean brightness (one 32-spp render; Wolff's K divides by n², so its
+reflectances differ from Lambert's for the same image), and runs the same iterations (Adam,
+learning rate decaying geometrically, the reflectances' a quarter of the shape parameter's).
 So a diagonal cell starts at its optimum: its residual is what the fit's own noise leaves
 (parameters jitter with the noisy 8-spp gradients), the floor for the other cells of its row
 next to the render-noise floor. A residual is an upper bound on how closely the fitted model
@@ -35,7 +37,8 @@ target never used, against the target:
 * **relative RMSE** ‖fit − target‖₂ / ‖target‖₂ over all pixels and channels (all images of
   the scene together);
 * **worst region**: the largest |mean(fit) − mean(target)| / mean(target) of luminance over
-  blocks of 1/8 of the image side (6×6 pixels at 48²) whose target luminance is at least 25 % of the image's mean block;
+  blocks of 1/8 of the image side (4×4 pixels at 32²) whose target luminance is at least 25 %
+  of the image's mean block;
 * the **noise floor** of both: the same numbers for the target against a second target rendered
   with another seed. A residual at its floor means the fitted model is indistinguishable from
   the target at this noise level; ``excess`` = √(rmse² − floor²) estimates the part of the
@@ -188,8 +191,21 @@ def render_model(mi, spec, model, spp, seed, values=None):
     return out
 
 
-def fit_pair(spec, target_files, model, folder, args):
-    """Fits `model` to the targets with matte_mitsuba.fit; returns its fit.json."""
+def matched_reflectances(mi, spec, model, targets, spp=32):
+    """The scene's reflectances scaled per channel so that `model`'s render has the targets'
+    mean (clamped to [0.001, 1]): the fit's start. Models with other normalisations (Wolff's K
+    divides by n²) need other reflectances for the same brightness; this first step leaves
+    the fit the shape to find, not the scale."""
+    renders = render_model(mi, spec, model, spp, seed=4_000_000)
+    ratio = sum(t.sum(axis=(0, 1)) for t in targets) / sum(r.sum(axis=(0, 1)) for r in renders)
+    p = mi.traverse(mi.load_file(spec["file"], bsdf=model, **spec["configs"][0]))
+    return {f"{m}.reflectance.value": np.clip(np.array(p[f"{m}.reflectance.value"]).ravel() * ratio, 0.001, 1.0)
+            for m in spec["materials"]}
+
+
+def fit_pair(spec, target_files, model, folder, args, start_rho):
+    """Fits `model` to the targets with matte_mitsuba.fit, starting from the reflectances
+    `start_rho` and the study's shape parameter; returns its fit.json."""
     from matte_mitsuba.fit import main as fit_main
     keys = free_keys(model, spec["materials"])
     argv = [spec["file"], "--iterations", str(args.iterations), "--lr", str(args.lr),
@@ -197,7 +213,10 @@ def fit_pair(spec, target_files, model, folder, args):
             "--seed", str(args.seed), "-o", folder, "--quiet"]
     for k in keys:
         argv += ["--param", k]
-        if SHAPE[model] and k.endswith("." + SHAPE[model][0]) and model in args.start:
+        if k in start_rho:
+            argv += ["--init", f"{k}=" + ",".join(f"{x:.6g}" for x in start_rho[k]),
+                     "--lr-factor", f"{k}={args.rho_lr_factor}"]
+        elif model in args.start:
             argv += ["--init", f"{k}={args.start[model]}"]
     for defines, t in zip(spec["configs"], target_files):
         argv += ["--config", ",".join(f"{k}={v}" for k, v in dict(defines, bsdf=model).items()), "--target", t]
@@ -234,7 +253,8 @@ def run_scene(mi, name, spec, out, args):
         cells[t] = {}
         for m in models:
             started = time.time()
-            fj = fit_pair(spec, target_files[t], m, os.path.join(folder, t, m), args)
+            start_rho = matched_reflectances(mi, spec, m, targets[t])
+            fj = fit_pair(spec, target_files[t], m, os.path.join(folder, t, m), args, start_rho)
             values = {k: v["value"] for k, v in fj["fitted"].items()}
             fitted = render_model(mi, spec, m, args.target_spp, seed=3_000_000, values=values)
             rmse = relative_rmse(fitted, targets[t])
@@ -249,6 +269,7 @@ def run_scene(mi, name, spec, out, args):
                 "worst_region": worst[0],
                 "worst_region_at": {"image": worst[1], "block_row": worst[2], "block_col": worst[3]},
                 "fitted": values,
+                "start_reflectance": {k: v.tolist() for k, v in start_rho.items()},
                 "at_bound": at_bound,
                 "loss_first": fj["loss"][0],
                 "loss_last": fj["loss"][-1],
@@ -366,8 +387,9 @@ td{{white-space:nowrap}} th:first-child,td:first-child{{text-align:left}} .scene
 van Ginneken m 0.3) at {s['target_spp']} spp; every model is then fitted to it (<code>matte_mitsuba.fit</code>: Adam,
 {s['iterations']} iterations, learning rate {s['lr']} decaying to {s['lr_final']}, {s['spp']} spp per step, {s['res']}²
 images): every material's reflectance and the model's shape parameter, starting from the model as the study uses it
-(the scene's reflectances, the study's parameter; a diagonal cell starts at its optimum, so its residual is the fit's
-own noise).
+(the study's parameter, the scene's reflectances scaled per channel to the target's mean; a diagonal cell starts at its
+optimum, so its residual is the fit's own noise); the reflectances' learning rate is {s['rho_lr_factor']} of the shape
+parameter's.
 Rows: the target's model; columns: the fitted model. Residual on a fresh render of the fit at {s['target_spp']} spp
 with a new seed: relative RMSE ‖fit − target‖₂ / ‖target‖₂ and the worst region (largest relative luminance error of an
 {s['res'] // BLOCKS}×{s['res'] // BLOCKS}-pixel block mean among blocks at least {100 * BLOCK_MIN:.0f} % as bright as the image's mean block). The noise floor
@@ -424,10 +446,12 @@ def main(argv=None):
     ap.add_argument("-o", "--output", default="mimicry_out")
     ap.add_argument("--scenes", default="cornell,sphere")
     ap.add_argument("--models", default=",".join(MODELS), help="comma-separated subset of " + ", ".join(MODELS))
-    ap.add_argument("--res", type=int, default=48)
-    ap.add_argument("--iterations", type=int, default=32)
-    ap.add_argument("--lr", type=float, default=0.04)
-    ap.add_argument("--lr-final", type=float, default=0.001)
+    ap.add_argument("--res", type=int, default=32)
+    ap.add_argument("--iterations", type=int, default=24)
+    ap.add_argument("--lr", type=float, default=0.08)
+    ap.add_argument("--lr-final", type=float, default=0.002)
+    ap.add_argument("--rho-lr-factor", type=float, default=0.25,
+                    help="the reflectances' learning rate relative to the shape parameter's")
     ap.add_argument("--spp", type=int, default=8, help="samples per pixel of each optimisation render")
     ap.add_argument("--target-spp", type=int, default=1024)
     ap.add_argument("--seed", type=int, default=0)
