@@ -44,7 +44,8 @@ target never used, against the target:
   the target at this noise level; ``excess`` = √(rmse² − floor²) estimates the part of the
   relative RMSE that is model mismatch, not noise.
 
-Outputs in ``-o``: ``mimicry.json`` (every number), ``index.html`` (the tables per scene, the
+Outputs in ``-o``: ``mimicry.json`` (every number), ``mimicry.md`` (the tables; bold: above
+twice the noise floor), ``index.html`` (the tables per scene, the
 grid of difference images, a strip per pair), ``<scene>/grid.png``, ``<scene>/<target>/
 <fitted>.png`` (target | fit | relative difference per image) and the ``matte fit`` folder of
 every pair (``<scene>/<target>/<fitted>/index.html``).
@@ -441,6 +442,40 @@ floor and above.</p>"""]
         f.write("\n".join(parts))
 
 
+def markdown(summary):
+    """The tables of every scene as Markdown (the README's): relative RMSE and worst region in
+    %, each row with its noise floor, and the fitted shape parameters."""
+    lines = []
+    for name, sc in summary["scenes"].items():
+        models = list(sc["cells"])
+        head = "| target \\ fitted | " + " | ".join(LABELS[m] for m in models) + " | noise floor |"
+        rule = "|---" * (len(models) + 2) + "|"
+        for what, title in (("relative_rmse", "relative RMSE, %"), ("worst_region", "worst region, %")):
+            lines += [f"**{name}: {title}**", "", head, rule]
+            for t in models:
+                cells = []
+                for m in models:
+                    v, floor = sc["cells"][t][m][what], sc["noise_floor"][t][what]
+                    text = f"{100 * v:.2f}"
+                    cells.append(f"**{text}**" if v > 2 * floor else text)
+                lines.append(f"| {LABELS[t]} | " + " | ".join(cells) + f" | {100 * sc['noise_floor'][t][what]:.2f} |")
+            lines.append("")
+        lines += [f"**{name}: fitted shape parameters**", "", head.replace(" noise floor |", ""),
+                  "|---" * (len(models) + 1) + "|"]
+        for t in models:
+            lines.append(f"| {LABELS[t]} | " + " | ".join(shape_text(m, sc["cells"][t][m]["fitted"]) or "–"
+                                                            for m in models) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+def write_reports(out, summary):
+    """index.html and mimicry.md."""
+    write_html(out, summary)
+    with open(os.path.join(out, "mimicry.md"), "w") as f:
+        f.write(markdown(summary))
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("-o", "--output", default="mimicry_out")
@@ -486,7 +521,7 @@ def main(argv=None):
             folder = os.path.join(out, name)
             targets = load_targets(folder, models, len(sc["images"]))
             pictures(folder, models, targets, sc["cells"], summary["settings"]["diff_range"])
-        write_html(out, summary)
+        write_reports(out, summary)
         print(os.path.join(out, "index.html"))
         return 0
     os.makedirs(out, exist_ok=True)
@@ -500,7 +535,7 @@ def main(argv=None):
     summary["seconds"] = time.time() - started
     with open(os.path.join(out, "mimicry.json"), "w") as f:
         json.dump(summary, f, indent=1)
-    write_html(out, summary)
+    write_reports(out, summary)
     print(os.path.join(out, "index.html"))
     return 0
 
