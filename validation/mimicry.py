@@ -227,8 +227,50 @@ def fit_pair(spec, target_files, model, folder, args, start_rho):
         return json.load(f)
 
 
+def noise_floor(mi, spec, model, target, target_spp):
+    """The error measures of `target` against a second target rendered with another seed."""
+    second = render_model(mi, spec, model, target_spp, seed=2_000_000)
+    return {"relative_rmse": relative_rmse(second, target), "worst_region": worst_region(second, target)[0]}
+
+
+def cell(fit_json, fitted, target, floor, t, m, seconds, start_rho=None):
+    """One table cell: the fitted render's residual against the target, and the fit."""
+    values = {k: v["value"] for k, v in fit_json["fitted"].items()}
+    rmse = relative_rmse(fitted, target)
+    worst = worst_region(fitted, target)
+    ranges = fit_json["ranges"]
+    at_bound = sorted(k for k, v in values.items()
+                      if any(abs(x - ranges[k][0]) < 1e-6 or abs(x - ranges[k][1]) < 1e-6 for x in v))
+    return {
+        "relative_rmse": rmse,
+        "excess": excess(rmse, floor["relative_rmse"]),
+        "worst_region": worst[0],
+        "worst_region_at": {"image": worst[1], "block_row": worst[2], "block_col": worst[3]},
+        "fitted": values,
+        "start_reflectance": {k: v.tolist() for k, v in start_rho.items()} if start_rho else None,
+        "at_bound": at_bound,
+        "loss_first": fit_json["loss"][0],
+        "loss_last": fit_json["loss"][-1],
+        "seconds": seconds,
+        "fit_report": os.path.join(t, m, "index.html"),
+        "strip": os.path.join(t, f"{m}.png"),
+    }
+
+
+def scene_summary(spec, floors, cells):
+    return {"file": os.path.relpath(spec["file"], REPO) if spec["file"].startswith(REPO) else os.path.basename(spec["file"]),
+            "images": spec["config_names"], "materials": list(spec["materials"]), "max_depth": spec["max_depth"],
+            "noise_floor": floors, "cells": cells}
+
+
+def log_cell(name, t, m, c, floor):
+    print(f"mimicry: {name}: target {t:<10} fitted {m:<10} rel. RMSE {100 * c['relative_rmse']:6.2f} % "
+          f"(floor {100 * floor['relative_rmse']:.2f} %), worst region {100 * c['worst_region']:6.2f} % "
+          f"(floor {100 * floor['worst_region']:.2f} %), {c['seconds']:.0f} s", file=sys.stderr, flush=True)
+
+
 def run_scene(mi, name, spec, out, args):
-    """Targets, the 25 fits and their residuals for one scene."""
+    """Targets (the rows `args.targets`), their fits by every model and the residuals."""
     folder = os.path.join(out, name)
     os.makedirs(folder, exist_ok=True)
     if "write" in spec:
@@ -236,21 +278,19 @@ def run_scene(mi, name, spec, out, args):
             f.write(spec["write"])
     models = args.models
     targets, target_files, floors = {}, {}, {}
-    for t in models:
+    for t in args.targets:
         targets[t] = render_model(mi, spec, t, args.target_spp, seed=1_000_000)
-        second = render_model(mi, spec, t, args.target_spp, seed=2_000_000)
         os.makedirs(os.path.join(folder, t), exist_ok=True)
         target_files[t] = []
         for c, img in enumerate(targets[t]):
             path = os.path.join(folder, t, f"target_{c}.exr")
             mi.Bitmap(img.astype(np.float32)).write(path)
             target_files[t].append(path)
-        floors[t] = {"relative_rmse": relative_rmse(second, targets[t]),
-                     "worst_region": worst_region(second, targets[t])[0]}
+        floors[t] = noise_floor(mi, spec, t, targets[t], args.target_spp)
         print(f"mimicry: {name}: target {t}: noise floor {100 * floors[t]['relative_rmse']:.2f} % "
               f"(worst region {100 * floors[t]['worst_region']:.2f} %)", file=sys.stderr, flush=True)
     cells = {}
-    for t in models:
+    for t in args.targets:
         cells[t] = {}
         for m in models:
             started = time.time()
@@ -258,45 +298,52 @@ def run_scene(mi, name, spec, out, args):
             fj = fit_pair(spec, target_files[t], m, os.path.join(folder, t, m), args, start_rho)
             values = {k: v["value"] for k, v in fj["fitted"].items()}
             fitted = render_model(mi, spec, m, args.target_spp, seed=3_000_000, values=values)
-            rmse = relative_rmse(fitted, targets[t])
-            worst = worst_region(fitted, targets[t])
             np.save(os.path.join(folder, t, m, "fitted_render.npy"), np.stack(fitted).astype(np.float32))
-            ranges = fj["ranges"]
-            at_bound = sorted(k for k, v in values.items()
-                              if any(abs(x - ranges[k][0]) < 1e-6 or abs(x - ranges[k][1]) < 1e-6 for x in v))
-            cells[t][m] = {
-                "relative_rmse": rmse,
-                "excess": excess(rmse, floors[t]["relative_rmse"]),
-                "worst_region": worst[0],
-                "worst_region_at": {"image": worst[1], "block_row": worst[2], "block_col": worst[3]},
-                "fitted": values,
-                "start_reflectance": {k: v.tolist() for k, v in start_rho.items()},
-                "at_bound": at_bound,
-                "loss_first": fj["loss"][0],
-                "loss_last": fj["loss"][-1],
-                "seconds": time.time() - started,
-                "fit_report": os.path.join(t, m, "index.html"),
-                "strip": os.path.join(t, f"{m}.png"),
-            }
-            print(f"mimicry: {name}: target {t:<10} fitted {m:<10} rel. RMSE {100 * rmse:6.2f} % "
-                  f"(floor {100 * floors[t]['relative_rmse']:.2f} %), worst region {100 * worst[0]:6.2f} % "
-                  f"(floor {100 * floors[t]['worst_region']:.2f} %), {cells[t][m]['seconds']:.0f} s",
-                  file=sys.stderr, flush=True)
-    pictures(folder, models, targets, cells, args.diff_range)
-    return {"file": os.path.relpath(spec["file"], REPO) if spec["file"].startswith(REPO) else os.path.basename(spec["file"]),
-            "images": spec["config_names"], "materials": list(spec["materials"]), "max_depth": spec["max_depth"],
-            "noise_floor": floors, "cells": cells}
+            cells[t][m] = cell(fj, fitted, targets[t], floors[t], t, m, time.time() - started, start_rho)
+            log_cell(name, t, m, cells[t][m], floors[t])
+    pictures(folder, args.targets, models, targets, cells, args.diff_range)
+    return scene_summary(spec, floors, cells)
+
+
+def collect_scene(mi, name, spec, out, args):
+    """The summary of one scene rebuilt from what runs left in its folder (rows run by separate
+    processes with --targets, or a run stopped early): the saved targets, each pair's fit.json
+    and fitted render; the noise floors re-rendered with the run's seed. Pairs without a fitted
+    render are left out."""
+    folder = os.path.join(out, name)
+    if "write" in spec and not os.path.exists(spec["file"]):
+        with open(spec["file"], "w") as f:
+            f.write(spec["write"])
+    rows = [t for t in MODELS if os.path.exists(os.path.join(folder, t, "target_0.exr"))]
+    targets = load_targets(folder, rows, len(spec["configs"]))
+    floors = {t: noise_floor(mi, spec, t, targets[t], args.target_spp) for t in rows}
+    cells = {}
+    for t in rows:
+        for m in MODELS:
+            pair = os.path.join(folder, t, m)
+            if not os.path.exists(os.path.join(pair, "fitted_render.npy")):
+                continue
+            with open(os.path.join(pair, "fit.json")) as f:
+                fj = json.load(f)
+            fitted = list(np.load(os.path.join(pair, "fitted_render.npy")).astype(np.float64))
+            cells.setdefault(t, {})[m] = cell(fj, fitted, targets[t], floors[t], t, m, fj.get("seconds"))
+            log_cell(name, t, m, cells[t][m], floors[t])
+    columns = [m for m in MODELS if any(m in r for r in cells.values())]
+    pictures(folder, list(cells), columns, targets, cells, args.diff_range)
+    return scene_summary(spec, {t: floors[t] for t in cells}, cells)
 
 
 # -- Pictures --------------------------------------------------------------------------------
 
-def pictures(folder, models, targets, cells, value_range):
-    """The strip of every pair and the scene's grid, from the targets and the saved fitted renders."""
-    for t in models:
-        for m in models:
-            fitted = np.load(os.path.join(folder, t, m, "fitted_render.npy")).astype(np.float64)
-            strip_png(os.path.join(folder, t, f"{m}.png"), targets[t], fitted, value_range)
-    grid_png(os.path.join(folder, "grid.png"), models, targets, folder, cells, value_range)
+def pictures(folder, rows, columns, targets, cells, value_range):
+    """The strip of every pair in `cells` and the scene's grid, from the targets and the saved
+    fitted renders."""
+    for t in rows:
+        for m in columns:
+            if m in cells.get(t, {}):
+                fitted = np.load(os.path.join(folder, t, m, "fitted_render.npy")).astype(np.float64)
+                strip_png(os.path.join(folder, t, f"{m}.png"), targets[t], fitted, value_range)
+    grid_png(os.path.join(folder, "grid.png"), rows, columns, targets, folder, cells, value_range)
 
 
 def load_targets(folder, models, count):
@@ -332,18 +379,20 @@ def strip_png(path, targets, fitted, value_range):
     mi.Bitmap((np.clip(img, 0, 1) * 255 + 0.5).astype(np.uint8), mi.Bitmap.PixelFormat.RGB).write(path)
 
 
-def grid_png(path, models, targets, folder, cells, value_range):
+def grid_png(path, rows, columns, targets, folder, cells, value_range):
     """Rows: target model (its target, then the difference of each fitted model's render)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    n = len(models)
-    fig, ax = plt.subplots(n, n + 1, figsize=(1.9 * (n + 1) * len(targets[models[0]]) ** 0.5, 1.9 * n + 0.6),
-                           dpi=110, squeeze=False)
-    for i, t in enumerate(models):
+    n = len(columns)
+    fig, ax = plt.subplots(len(rows), n + 1, figsize=(1.9 * (n + 1) * len(targets[rows[0]]) ** 0.5,
+                                                      1.9 * len(rows) + 0.6), dpi=110, squeeze=False)
+    for i, t in enumerate(rows):
         ax[i, 0].imshow(srgb(np.concatenate(targets[t], axis=1)))
         ax[i, 0].set_title(f"target: {LABELS[t]}", fontsize=8)
-        for j, m in enumerate(models, start=1):
+        for j, m in enumerate(columns, start=1):
+            if m not in cells.get(t, {}):
+                continue
             fitted = np.load(os.path.join(folder, t, m, "fitted_render.npy")).astype(np.float64)
             diff = np.concatenate([difference_rgb(f, g, value_range) for f, g in zip(fitted, targets[t])], axis=1)
             ax[i, j].imshow(diff)
@@ -493,10 +542,17 @@ def main(argv=None):
     ap.add_argument("--diff-range", type=float, default=0.2, help="colour scale of the difference images (relative)")
     ap.add_argument("--start", action="append", default=[], metavar="MODEL=VALUE",
                     help="start fits of MODEL at this shape parameter instead of the study's value (repeatable)")
+    ap.add_argument("--targets", help="comma-separated rows (target models) to run; default: --models")
+    ap.add_argument("--collect", action="store_true",
+                    help="rebuild mimicry.json and the reports from the pair folders in -o (runs split with --targets)")
     ap.add_argument("--report-only", action="store_true",
                     help="redraw the pictures and the page from the outputs of an earlier run in -o")
     args = ap.parse_args(argv)
     args.models = args.models.split(",")
+    args.targets = args.targets.split(",") if args.targets else list(args.models)
+    for m in args.targets:
+        if m not in MODELS:
+            ap.error(f"--targets: unknown model {m!r} (one of {', '.join(MODELS)})")
     try:
         args.start = {m: float(v) for m, v in (x.split("=", 1) for x in args.start)}
     except ValueError:
@@ -517,21 +573,26 @@ def main(argv=None):
         with open(os.path.join(out, "mimicry.json")) as f:
             summary = json.load(f)
         for name, sc in summary["scenes"].items():
-            models = list(sc["cells"])
+            rows = list(sc["cells"])
+            columns = [m for m in MODELS if any(m in r for r in sc["cells"].values())]
             folder = os.path.join(out, name)
-            targets = load_targets(folder, models, len(sc["images"]))
-            pictures(folder, models, targets, sc["cells"], summary["settings"]["diff_range"])
+            targets = load_targets(folder, rows, len(sc["images"]))
+            pictures(folder, rows, columns, targets, sc["cells"], summary["settings"]["diff_range"])
         write_reports(out, summary)
         print(os.path.join(out, "index.html"))
         return 0
     os.makedirs(out, exist_ok=True)
     specs = scene_specs(out, args.res)
     started = time.time()
-    summary = {"settings": {k: v for k, v in vars(args).items() if k != "output"}, "scenes": {}}
+    summary = {"settings": {k: v for k, v in vars(args).items() if k not in ("output", "collect", "report_only")},
+               "scenes": {}}
     for name in args.scenes.split(","):
         if name not in specs:
             ap.error(f"--scenes: unknown scene {name!r} (one of {', '.join(specs)})")
-        summary["scenes"][name] = run_scene(mi, name, specs[name], out, args)
+        run = collect_scene if args.collect else run_scene
+        summary["scenes"][name] = run(mi, name, specs[name], out, args)
+    if args.collect:
+        summary["collected"] = True
     summary["seconds"] = time.time() - started
     with open(os.path.join(out, "mimicry.json"), "w") as f:
         json.dump(summary, f, indent=1)
