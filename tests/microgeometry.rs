@@ -147,10 +147,10 @@ mod height_field {
 /// interreflections cut, an oracle that shares no code with the kernel.
 #[test]
 fn van_ginneken_is_the_single_bounce_brdf_of_its_gaussian_surface() {
-    use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+    use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
     let m = 0.4;
     let surface = matte::microgeometry::HeightField::gaussian(m, 128, 11).unwrap();
-    let model = Bsdf::from_params("ginneken", Params::new().with("roughness", ParamValue::Number(m))).unwrap();
+    let model = DiffuseModel::from_params("ginneken", Params::new().with("roughness", ParamValue::Number(m))).unwrap();
     let wi = direction(30.0, 0.0);
     let wo: Vec<DVec3> = [(0.0, 0.0), (20.0, 0.0), (40.0, 0.0), (20.0, 180.0), (40.0, 180.0), (45.0, 90.0)]
         .map(|(t, p)| direction(t, p))

@@ -10,7 +10,7 @@ use super::surface::MicroSurface;
 use super::v_cavity::VCavities;
 use crate::brdf::frame::spherical_direction_f64;
 use crate::brdf::oren_nayar::OrenNayarKernel;
-use crate::brdf::{Bsdf, DiffuseBrdf, OrenNayarModel, ParamValue, Params};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, OrenNayarModel, ParamValue, Params};
 use glam::DVec3;
 use serde::Serialize;
 
@@ -68,10 +68,10 @@ pub struct ModelError {
     pub max_abs_albedo_relative_error: f64,
 }
 
-fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<Bsdf, String> {
+fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<DiffuseModel, String> {
     let mut p = Params::new();
     params.iter().for_each(|(n, v)| p.push(n, v.clone()));
-    Bsdf::from_params(kind, p).map_err(|e| e.to_string())
+    DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
 }
 
 fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
@@ -80,7 +80,7 @@ fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
 
 /// The kernels compared with V-cavities of slope deviation `sigma`: Oren–Nayar qualitative and
 /// full at σ, and EON at r = B/A of the qualitative model (its ratio of the two terms).
-pub fn v_cavity_models(sigma: f64) -> Result<Vec<(String, Bsdf)>, String> {
+pub fn v_cavity_models(sigma: f64) -> Result<Vec<(String, DiffuseModel)>, String> {
     let qualitative = OrenNayarKernel::<f64>::new(sigma, OrenNayarModel::Qualitative);
     let r = (qualitative.b / qualitative.a).min(1.0);
     use ParamValue::{Number as N, Text as T};
@@ -93,7 +93,7 @@ pub fn v_cavity_models(sigma: f64) -> Result<Vec<(String, Bsdf)>, String> {
 
 /// The kernels compared with a Gaussian height field of per-axis rms slope `m`: van Ginneken
 /// with both shadowing options.
-pub fn height_field_models(m: f64) -> Result<Vec<(String, Bsdf)>, String> {
+pub fn height_field_models(m: f64) -> Result<Vec<(String, DiffuseModel)>, String> {
     use ParamValue::{Number as N, Text as T};
     Ok(vec![
         ("van Ginneken (vginneken)".into(), build("ginneken", &[("roughness", N(m))])?),
@@ -130,7 +130,7 @@ fn compare<S: MicroSurface>(
     surface: &S,
     name: &'static str,
     roughness: f64,
-    models: Vec<(String, Bsdf)>,
+    models: Vec<(String, DiffuseModel)>,
     reflectance: f64,
     photons: u64,
     seed: u64,

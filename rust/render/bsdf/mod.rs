@@ -17,6 +17,7 @@ pub mod matte;
 pub mod microfacet;
 pub mod microfacet_albedo;
 pub mod normal_map;
+mod parameter_checks;
 pub mod plastic;
 pub mod principled;
 pub mod principled_helpers;
@@ -28,7 +29,6 @@ pub mod sample;
 pub mod texture;
 pub mod textured_roughness;
 pub mod thin_dielectric;
-mod validate;
 pub mod vndf;
 
 pub use blend::Blend;
@@ -62,7 +62,7 @@ pub enum Bsdf {
         reflectance: Texture,
     },
     Matte {
-        model: crate::brdf::Bsdf,
+        model: crate::brdf::DiffuseModel,
         reflectance: Texture,
     },
     /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` (the same BSDF when only one is

@@ -11,8 +11,8 @@ use crate::render::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
     RoughPlastic, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
 };
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject, Value};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
 /// The BSDF index for this XML object, building it the first time it is seen.
@@ -95,8 +95,8 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 let v = crate::brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
                 params.push(name, ParamValue::Number(v));
             }
-            let model =
-                crate::brdf::Bsdf::from_params(kind, params).map_err(|e| values::prop_err(obj, &e.param, e.message))?;
+            let model = crate::brdf::DiffuseModel::from_params(kind, params)
+                .map_err(|e| values::prop_err(obj, &e.param, e.message))?;
             if textured.is_empty() {
                 Bsdf::Matte { model, reflectance }
             } else {
@@ -313,7 +313,7 @@ fn numeric_parameter(kind: &str, name: &str) -> bool {
 /// parameter becomes a constant texture of its value.
 fn textured_matte(
     obj: &SceneObject,
-    model: crate::brdf::Bsdf,
+    model: crate::brdf::DiffuseModel,
     reflectance: Texture,
     mut textured: Vec<(String, Texture)>,
 ) -> Result<Bsdf, SceneError> {
