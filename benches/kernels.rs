@@ -8,7 +8,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use matte::bench::kernels::direction_pairs;
 use matte::bench::wide_kernels::{ModelPair, eval_scalar, eval_wide, to_lanes};
 use matte::brdf::simd::F32x8;
-use matte::brdf::{BSDF_TYPES, Bsdf, DiffuseBrdf, Params};
+use matte::brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
 use std::hint::black_box;
 
 fn kernels(c: &mut Criterion) {
@@ -16,7 +16,7 @@ fn kernels(c: &mut Criterion) {
     let mut group = c.benchmark_group("kernel");
     group.throughput(Throughput::Elements(data.len() as u64));
     for kind in BSDF_TYPES {
-        let bsdf = Bsdf::from_params(kind, Params::new()).unwrap();
+        let bsdf = DiffuseModel::from_params(kind, Params::new()).unwrap();
         group.bench_function(format!("{kind}/eval"), |b| {
             b.iter(|| {
                 let mut acc = 0.0f32;

@@ -23,6 +23,6 @@ pub mod ffi;
 pub mod markup;
 pub mod microgeometry;
 pub mod render;
-pub mod scene;
+pub mod scene_file;
 pub mod study;
 pub mod validate;

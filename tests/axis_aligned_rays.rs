@@ -13,7 +13,7 @@ use matte::render::bsdf::{Bsdf, Texture};
 use matte::render::geometry::Ray;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use matte::scene::mesh::{MeshOptions, cube, rectangle};
+use matte::scene_file::mesh::{MeshOptions, cube, rectangle};
 
 fn scene(geometries: Vec<Geometry>) -> Scene {
     let shapes = geometries

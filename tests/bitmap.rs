@@ -3,6 +3,8 @@
 //! back from Mitsuba 3.9.1 for RGBA / gray-alpha PNGs, the exact sRGB EOTF, and hand-derived
 //! texel indices for orientation and wrapping.
 
+mod common;
+
 use glam::{Affine2, Vec2, Vec3};
 use image::{ImageBuffer, Luma, LumaA, Rgb, Rgba};
 use matte::render::film::Image;
@@ -213,11 +215,7 @@ fn lookups_match_mitsuba_bitmap_texture() {
     // Mitsuba 3.9.1 writes a random 5×3 8-bit PNG and evaluates its `bitmap` texture at 200
     // random uv in [-2, 3]² for every filter / wrap / raw combination, with a to_uv of
     // translate(0.1, -0.2)·scale(1.5, 0.7). Skipped when the venv is absent.
-    let python = std::path::Path::new("/work/main/.venv/bin/python");
-    if !python.exists() {
-        println!("note: {} not found; skipping the check against Mitsuba's bitmap texture", python.display());
-        return;
-    }
+    let Some(python) = common::mitsuba_python() else { return };
     let script = r#"
 import sys, json, numpy as np, mitsuba as mi
 mi.set_variant('scalar_rgb')

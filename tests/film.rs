@@ -7,7 +7,7 @@ mod common;
 
 use common::Pcg32;
 use glam::{Vec2, Vec3};
-use matte::render::film::{CropWindow, Film, GAUSSIAN_FIT, Image, ReconstructionFilter, Tile};
+use matte::render::film::{CropWindow, Film, GAUSSIAN_FIT, Image, ReconstructionFilter, SplatWeights, Tile};
 use matte::render::image_io::{read_exr, write_exr, write_png};
 use std::path::PathBuf;
 use std::process::Command;
@@ -292,25 +292,16 @@ fn crop_is_a_window_of_the_full_film() {
     }
 }
 
-/// `/work/main/.venv/bin/python` with Mitsuba 3.9.1, if this machine has it.
-fn mitsuba_python() -> Option<&'static std::path::Path> {
-    let python = std::path::Path::new("/work/main/.venv/bin/python");
-    if python.exists() {
-        Some(python)
-    } else {
-        println!("note: {} not found; skipping a check against Mitsuba itself", python.display());
-        None
-    }
-}
-
 #[test]
 fn splatting_matches_mitsuba_imageblock() {
     // Mitsuba's own hdrfilm (7×5, crop (1,1)+(5,3)) fed the same samples through
-    // ImageBlock.put (box: at the integer pixel, as its integrator does), then developed.
-    let Some(python) = mitsuba_python() else { return };
+    // ImageBlock.put (box: at the integer pixel, as its integrator does), then developed, in
+    // scalar_rgb (weights from the step table) and in llvm_ad_rgb (weights from the kernel).
+    let Some(python) = common::mitsuba_python() else { return };
     let script = r#"
 import sys, json, numpy as np, mitsuba as mi
-mi.set_variant('scalar_rgb')
+variant, out_path = sys.argv[1:3]
+mi.set_variant(variant)
 rng = np.random.default_rng(5)
 samples = []
 for y in range(1, 4):
@@ -325,22 +316,19 @@ for name, rf in [('box', {'type': 'box'}), ('tent', {'type': 'tent'}), ('tent17'
     film.prepare([])
     block = film.create_block(mi.ScalarVector2u(5, 3), False, True)
     block.set_offset(mi.ScalarPoint2i(1, 1))
-    for p, v in samples:
-        pos = mi.Point2f(np.floor(p[0]), np.floor(p[1])) if rf['type'] == 'box' else mi.Point2f(p[0], p[1])
-        block.put(pos, v + [1.0])
+    box = rf['type'] == 'box'
+    if variant.startswith('scalar'):
+        for p, v in samples:
+            block.put(mi.Point2f(np.floor(p[0]), np.floor(p[1])) if box else mi.Point2f(p[0], p[1]), v + [1.0])
+    else:
+        xy = np.array([p for p, _ in samples], dtype=np.float32)
+        xy = np.floor(xy) if box else xy
+        rgb = np.array([v for _, v in samples], dtype=np.float32)
+        block.put(mi.Point2f(xy[:, 0], xy[:, 1]), [mi.Float(rgb[:, c]) for c in range(3)] + [mi.Float(np.ones(len(samples)))])
     film.put_block(block)
     out[name] = np.array(film.develop()).tolist()
-json.dump(out, open(sys.argv[1], 'w'))
+json.dump(out, open(out_path, 'w'))
 "#;
-    let json_path = temp_path("splat.json");
-    let out = Command::new(python).arg("-c").arg(script).arg(&json_path).output().unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
-    let samples: Vec<(Vec2, Vec3)> = serde_json::from_value::<Vec<([f32; 2], [f32; 3])>>(j["samples"].clone())
-        .unwrap()
-        .into_iter()
-        .map(|(p, v)| (Vec2::from(p), Vec3::from(v)))
-        .collect();
     let filters = [
         ("box", ReconstructionFilter::Box),
         ("tent", ReconstructionFilter::TENT),
@@ -348,19 +336,50 @@ json.dump(out, open(sys.argv[1], 'w'))
         ("gaussian", ReconstructionFilter::GAUSSIAN),
         ("gaussian1", ReconstructionFilter::Gaussian { stddev: 1.0 }),
     ];
-    for (name, filter) in filters {
-        let want: Vec<Vec<[f32; 3]>> = serde_json::from_value(j[name].clone()).unwrap();
-        for tile_size in [1, 2, 16] {
-            let mut film = Film::new(7, 5, Some(CropWindow { offset: [1, 1], size: [5, 3] }), filter).unwrap();
-            let img = render(&mut film, tile_size, &samples);
-            for (y, row) in want.iter().enumerate() {
-                for (x, w) in row.iter().enumerate() {
-                    let got = img.get(x as u32, y as u32);
-                    assert!(
-                        (got - Vec3::from(*w)).abs().max_element() < 1e-6,
-                        "{name} tile {tile_size} ({x},{y}): {got} vs {w:?}"
-                    );
-                }
+    let largest_difference = |want: &[Vec<[f32; 3]>], img: &Image| {
+        let mut d = 0.0f32;
+        for (y, row) in want.iter().enumerate() {
+            for (x, w) in row.iter().enumerate() {
+                d = d.max((img.get(x as u32, y as u32) - Vec3::from(*w)).abs().max_element());
+            }
+        }
+        d
+    };
+    for (variant, weights, other) in [
+        ("scalar_rgb", SplatWeights::Discretized, SplatWeights::Exact),
+        ("llvm_ad_rgb", SplatWeights::Exact, SplatWeights::Discretized),
+    ] {
+        let json_path = temp_path(&format!("splat-{variant}.json"));
+        let out = Command::new(&python).arg("-c").arg(script).arg(variant).arg(&json_path).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&json_path).unwrap()).unwrap();
+        let samples: Vec<(Vec2, Vec3)> = serde_json::from_value::<Vec<([f32; 2], [f32; 3])>>(j["samples"].clone())
+            .unwrap()
+            .into_iter()
+            .map(|(p, v)| (Vec2::from(p), Vec3::from(v)))
+            .collect();
+        assert_eq!(SplatWeights::of_mitsuba_variant(variant), weights);
+        for (name, filter) in filters {
+            let want: Vec<Vec<[f32; 3]>> = serde_json::from_value(j[name].clone()).unwrap();
+            let film = |w| {
+                Film::new(7, 5, Some(CropWindow { offset: [1, 1], size: [5, 3] }), filter)
+                    .unwrap()
+                    .with_splat_weights(w)
+            };
+            for tile_size in [1, 2, 16] {
+                let d = largest_difference(&want, &render(&mut film(weights), tile_size, &samples));
+                assert!(d < 2e-6, "{variant} {name} tile {tile_size}: pixels differ by up to {d}");
+            }
+            // The other weighting differs from this variant (for every filter but the box), so
+            // the comparison above can tell them apart.
+            let d = largest_difference(&want, &render(&mut film(other), 16, &samples));
+            if name == "box" {
+                assert!(d < 2e-6, "{variant} box with {other:?} weights: {d}");
+            } else {
+                assert!(
+                    d > 1e-4,
+                    "{variant} {name}: {other:?} weights agree too ({d}); the check cannot see the difference"
+                );
             }
         }
     }
@@ -455,7 +474,7 @@ fn png_is_clamped_srgb_8bit() {
 
 #[test]
 fn reads_exr_files_written_by_mitsuba() {
-    let Some(python) = mitsuba_python() else { return };
+    let Some(python) = common::mitsuba_python() else { return };
     let (f32_path, f16_path) = (temp_path("mitsuba32.exr"), temp_path("mitsuba16.exr"));
     // float32 via mi.Bitmap(...).write, float16 via hdrfilm.write (the default format).
     let script = r#"

@@ -5,13 +5,14 @@
 mod common;
 use matte::brdf::frame::spherical_direction;
 use matte::brdf::ginneken::accuracy::fast_path_error;
-use matte::brdf::{Bsdf, DiffuseBrdf};
+use matte::brdf::{DiffuseBrdf, DiffuseModel};
 
 #[test]
 fn fast_path_within_half_a_percent_away_from_grazing() {
     for m in ["0.1", "0.3", "0.5", "1.0"] {
         for shadowing in ["vginneken", "height_correlated"] {
-            let Bsdf::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)]) else {
+            let DiffuseModel::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)])
+            else {
                 unreachable!()
             };
             let e = fast_path_error(&g, 80.0, 1500);
@@ -46,7 +47,8 @@ fn roughness_gradient_matches_the_reference_derivative() {
     use matte::brdf::ginneken::accuracy::roughness_gradient_error;
     for m in ["0.1", "0.3", "0.7"] {
         for shadowing in ["vginneken", "height_correlated"] {
-            let Bsdf::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)]) else {
+            let DiffuseModel::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)])
+            else {
                 unreachable!()
             };
             let e = roughness_gradient_error(&g, 80.0, 600);

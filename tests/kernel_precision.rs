@@ -11,7 +11,7 @@
 mod common;
 use common::{Pcg32, model};
 use glam::{DVec3, Vec3};
-use matte::brdf::{Bsdf, DiffuseBrdf};
+use matte::brdf::{DiffuseBrdf, DiffuseModel};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 const RHO: [f32; 3] = [0.8, 0.5, 0.2];
@@ -34,7 +34,11 @@ fn pairs() -> Vec<(Vec3, Vec3)> {
 }
 
 /// Max over all pairs and channels of |f32 − f64| / max(|f64|, floor · ρ/π).
-fn max_relative_error(bsdf: &Bsdf, floor: f64, oracle: impl Fn(DVec3, DVec3, f64) -> f64) -> (f64, (Vec3, Vec3)) {
+fn max_relative_error(
+    bsdf: &DiffuseModel,
+    floor: f64,
+    oracle: impl Fn(DVec3, DVec3, f64) -> f64,
+) -> (f64, (Vec3, Vec3)) {
     let mut worst = (0.0, (Vec3::Z, Vec3::Z));
     for (wi, wo) in pairs() {
         let got = bsdf.eval(wi, wo, RHO);

@@ -1,10 +1,12 @@
-//! Mesh loading (`rust/scene/mesh`): OBJ, PLY (ascii, binary LE/BE), rectangle, cube.
+//! Mesh loading (`rust/scene_file/mesh`): OBJ, PLY (ascii, binary LE/BE), rectangle, cube.
 //! Oracles: hand-written files with hand-derived expectations, closed forms (symmetry,
 //! inverse-transpose normals), the verified smooth-normal value of `docs/renderer-semantics.md` §8, and the vertex buffers /
 //! ray-query results of Mitsuba 3.9.1 `scalar_rgb` (`mi.traverse`, `scene.ray_intersect`).
 
+mod common;
+
 use glam::{Mat4, Quat, Vec2, Vec3};
-use matte::scene::mesh::{MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, rectangle};
+use matte::scene_file::mesh::{MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, rectangle};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -594,11 +596,7 @@ fn random_obj_and_ply_match_mitsuba_buffers() {
     // v/vt triples, no normals → smooth ones) under a rotate·scale·translate to_world, with and
     // without face_normals, and writes it back as binary PLY (x y z nx ny nz s t) which it
     // loads again; its vertex buffers are the oracle. Skipped when the venv is absent.
-    let python = Path::new("/work/main/.venv/bin/python");
-    if !python.exists() {
-        println!("note: {} not found; skipping the check against Mitsuba's mesh loaders", python.display());
-        return;
-    }
+    let Some(python) = common::mitsuba_python() else { return };
     let script = r#"
 import sys, json, numpy as np, mitsuba as mi
 mi.set_variant('scalar_rgb')

@@ -9,7 +9,7 @@ use glam::{Mat4, Vec3};
 use matte::render::bsdf::Bsdf;
 use matte::render::geometry::Ray;
 use matte::render::load::load_file;
-use matte::scene::mesh::{MeshOptions, load_ply};
+use matte::scene_file::mesh::{MeshOptions, load_ply};
 use std::path::{Path, PathBuf};
 
 /// A unit square as one quad (0 1 2 3) plus a triangle (1 4 2) to its right, in z = 0.
@@ -128,7 +128,7 @@ fn mesh_attribute_errors() {
             r#"<bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance"><string name="name" value="{name}"/></texture></bsdf>"#
         )
     };
-    let text = |r: Result<matte::render::load::LoadedScene, matte::scene::SceneError>| match r {
+    let text = |r: Result<matte::render::load::LoadedScene, matte::scene_file::SceneError>| match r {
         Ok(_) => panic!("expected an error"),
         Err(e) => e.to_string(),
     };

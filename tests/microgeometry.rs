@@ -142,15 +142,47 @@ mod height_field {
     }
 }
 
+/// Patch independence (`docs/microgeometry.md#patch-independence`): pooled over independent
+/// realisations, 16 T patches and 64 T patches measure the same BRDF within their intervals
+/// (each interval from the spread of its realisations). A small-photon version of the
+/// measurement recorded in the doc.
+#[test]
+fn two_patch_sizes_agree_within_their_realisation_intervals() {
+    use matte::microgeometry::HeightField;
+    use matte::microgeometry::realisations::pool;
+    let (m, rho, r) = (0.6, 0.8, 6);
+    let wi = direction(60.0, 0.0);
+    let wo: Vec<DVec3> = [(0.0, 0.0), (40.0, 0.0), (40.0, 180.0), (70.0, 90.0)].map(|(t, p)| direction(t, p)).into();
+    let measure_size = |cells: usize, seed: u64| {
+        let ms: Vec<_> = (0..r as u64)
+            .map(|k| {
+                let s = HeightField::gaussian(m, cells, seed + k).unwrap();
+                measure(&s, &Setup { seed: seed + 100 + k, ..setup(rho, wi, wo.clone(), 6_000, Bounces::All) }).unwrap()
+            })
+            .collect();
+        let f: Vec<_> = (0..wo.len()).map(|j| pool(&ms.iter().map(|x| x.f[j]).collect::<Vec<_>>())).collect();
+        (f, pool(&ms.iter().map(|x| x.albedo).collect::<Vec<_>>()))
+    };
+    let (small, small_albedo) = measure_size(128, 10);
+    let (large, large_albedo) = measure_size(512, 20);
+    for (j, (a, b)) in small.iter().zip(&large).enumerate() {
+        let hw = a.half_width.hypot(b.half_width);
+        assert!((a.mean - b.mean).abs() <= hw, "wo {}: 16 T {a:?}, 64 T {b:?}", wo[j]);
+        assert!(hw < 0.1 * a.mean, "intervals too wide to tell: {a:?} {b:?}");
+    }
+    let hw = small_albedo.half_width.hypot(large_albedo.half_width);
+    assert!((small_albedo.mean - large_albedo.mean).abs() <= hw, "{small_albedo:?} vs {large_albedo:?}");
+}
+
 /// van Ginneken's model is the single-scattering BRDF of a Lambertian Gaussian surface with
 /// Smith-type shadowing: away from grazing angles it must match the simulated surface with its
 /// interreflections cut, an oracle that shares no code with the kernel.
 #[test]
 fn van_ginneken_is_the_single_bounce_brdf_of_its_gaussian_surface() {
-    use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+    use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
     let m = 0.4;
     let surface = matte::microgeometry::HeightField::gaussian(m, 128, 11).unwrap();
-    let model = Bsdf::from_params("ginneken", Params::new().with("roughness", ParamValue::Number(m))).unwrap();
+    let model = DiffuseModel::from_params("ginneken", Params::new().with("roughness", ParamValue::Number(m))).unwrap();
     let wi = direction(30.0, 0.0);
     let wo: Vec<DVec3> = [(0.0, 0.0), (20.0, 0.0), (40.0, 0.0), (20.0, 180.0), (40.0, 180.0), (45.0, 90.0)]
         .map(|(t, p)| direction(t, p))

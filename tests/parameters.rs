@@ -1,14 +1,14 @@
 //! Bad parameters are rejected at construction with an error naming the parameter.
 
 mod common;
-use matte::brdf::{Bsdf, ParamValue, Params};
+use matte::brdf::{DiffuseModel, ParamValue, Params};
 
 fn rejected(kind: &str, params: &[(&str, ParamValue)]) -> String {
     let mut p = Params::new();
     for (n, v) in params {
         p.push(n, v.clone());
     }
-    match Bsdf::from_params(kind, p) {
+    match DiffuseModel::from_params(kind, p) {
         Ok(b) => panic!("{kind} {params:?} was accepted: {b:?}"),
         Err(e) => {
             let text = e.to_string();
@@ -48,7 +48,7 @@ fn unknown_names_are_rejected() {
 
 #[test]
 fn defaults_follow_the_seed_study() {
-    let p = |kind: &str| Bsdf::from_params(kind, Params::new()).unwrap().parameters();
+    let p = |kind: &str| DiffuseModel::from_params(kind, Params::new()).unwrap().parameters();
     assert_eq!(p("oren_nayar")[0], ("sigma", N(0.30000001192092896)));
     assert_eq!(p("wolff")[0], ("int_ior", N(1.399999976158142)));
     assert_eq!(p("wolff")[1], ("ext_ior", N(1.0)));
@@ -61,7 +61,8 @@ fn boundary_values_are_accepted() {
     for (kind, name, v) in
         [("oren_nayar", "sigma", 0.0), ("eon", "roughness", 0.0), ("eon", "roughness", 1.0), ("wolff", "int_ior", 1.0)]
     {
-        Bsdf::from_params(kind, Params::new().with(name, N(v))).unwrap_or_else(|e| panic!("{kind} {name}={v}: {e}"));
+        DiffuseModel::from_params(kind, Params::new().with(name, N(v)))
+            .unwrap_or_else(|e| panic!("{kind} {name}={v}: {e}"));
     }
 }
 
@@ -77,7 +78,7 @@ fn magnitudes_beyond_the_limit_are_rejected_by_every_model() {
     ] {
         let mut p = Params::new();
         p.push(name, N(1e7));
-        let e = Bsdf::from_params(kind, p).expect_err(kind);
+        let e = DiffuseModel::from_params(kind, p).expect_err(kind);
         assert_eq!(e.param, name);
         assert!(e.to_string().contains("up to 1e6"), "{kind}: {e}");
     }

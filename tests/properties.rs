@@ -6,7 +6,7 @@
 mod common;
 use common::{Pcg32, catalogue};
 use glam::Vec3;
-use matte::brdf::{Bsdf, DiffuseBrdf};
+use matte::brdf::{DiffuseBrdf, DiffuseModel};
 
 #[test]
 fn reciprocity_on_random_pairs() {
@@ -119,7 +119,7 @@ fn finite_everywhere_and_zero_below_horizon() {
                     "{label}: bad sample {s:?}"
                 );
             } else {
-                assert!(wi.z <= 0.0 || matches!(bsdf, Bsdf::Lambert(_)) || wi.z > 0.0, "{label}");
+                assert!(wi.z <= 0.0 || matches!(bsdf, DiffuseModel::Lambert(_)) || wi.z > 0.0, "{label}");
             }
         }
     }

@@ -8,7 +8,7 @@ mod common;
 use common::model;
 use glam::DVec3;
 use matte::brdf::frame::spherical_direction;
-use matte::brdf::{Bsdf, DiffuseBrdf};
+use matte::brdf::{DiffuseBrdf, DiffuseModel};
 
 const COLUMNS: [(f32, f32, f32); 10] = [
     (0.0, 0.0, 0.0),
@@ -24,7 +24,7 @@ const COLUMNS: [(f32, f32, f32); 10] = [
 ];
 
 /// Table 1 rows matte implements (FON is not a matte plugin).
-fn table1() -> Vec<(&'static str, Bsdf, [f64; 10])> {
+fn table1() -> Vec<(&'static str, DiffuseModel, [f64; 10])> {
     vec![
         ("Lambert", model("lambert", &[]), [0.25465; 10]),
         (
@@ -83,7 +83,7 @@ fn close(got: f64, want: f64, rel: f64, half_digit: f64) -> bool {
 fn table1_brdf_values() {
     let mut failures = vec![];
     for (label, bsdf, row) in table1() {
-        let vg = matches!(bsdf, Bsdf::Ginneken(_));
+        let vg = matches!(bsdf, DiffuseModel::Ginneken(_));
         for (&(ti, to, ph), &want) in COLUMNS.iter().zip(&row) {
             let wi = spherical_direction(ti.to_radians(), 0.0);
             let wo = spherical_direction(to.to_radians(), ph.to_radians());
@@ -92,7 +92,7 @@ fn table1_brdf_values() {
             if !close(got, want, rel, 5e-6) {
                 failures.push(format!("{label} at {ti}/{to}/{ph}: {got:.6} vs {want}"));
             }
-            if let Bsdf::Ginneken(g) = &bsdf {
+            if let DiffuseModel::Ginneken(g) = &bsdf {
                 let wi = DVec3::new(ti.to_radians().sin() as f64, 0.0, ti.to_radians().cos() as f64);
                 let (p, t) = ((ph as f64).to_radians(), (to as f64).to_radians());
                 let wo = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
@@ -108,7 +108,7 @@ fn table1_brdf_values() {
 
 #[test]
 fn table2_white_furnace_albedo() {
-    let rows: Vec<(&str, Bsdf, [f64; 5])> = vec![
+    let rows: Vec<(&str, DiffuseModel, [f64; 5])> = vec![
         ("Lambert", model("lambert", &[]), [1.0; 5]),
         ("QON s=0.25", model("oren_nayar", &[("sigma", "0.25")]), [0.9204, 0.9428, 0.9754, 1.0012, 1.0116]),
         ("QON s=0.5", model("oren_nayar", &[("sigma", "0.5")]), [0.7845, 0.8247, 0.8831, 0.9294, 0.9481]),
@@ -147,7 +147,7 @@ fn table2_white_furnace_albedo() {
         }
     }
     // van Ginneken: the table's quadrature is ~3e-4; no 89° column.
-    let vg: [(&str, Bsdf, [f64; 4]); 4] = [
+    let vg: [(&str, DiffuseModel, [f64; 4]); 4] = [
         ("vG m=0.3", model("ginneken", &[("roughness", "0.3")]), [0.9257, 0.9257, 0.9256, 0.9264]),
         (
             "vG m=0.3 hc",

@@ -10,7 +10,7 @@ use matte::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
 use matte::render::sampler::Sampler;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use matte::scene::mesh::TriangleMesh;
+use matte::scene_file::mesh::TriangleMesh;
 use std::f32::consts::PI;
 
 fn shape(geometry: Geometry, bsdf: u32, emitter: Option<u32>) -> Shape {
@@ -199,7 +199,7 @@ fn white_furnace_returns_the_environment_radiance() {
     for bsdf in [
         diffuse(1.0),
         Bsdf::Matte {
-            model: matte::brdf::Bsdf::Lambert(matte::brdf::Lambert),
+            model: matte::brdf::DiffuseModel::Lambert(matte::brdf::Lambert),
             reflectance: Texture::Constant(Vec3::ONE),
         },
     ] {

@@ -22,7 +22,7 @@ use matte::render::geometry::Ray;
 use matte::render::integrator::Integrator;
 use matte::render::load::{LoadedScene, load_file, load_str};
 use matte::render::shape::SurfaceInteraction;
-use matte::scene::SceneError;
+use matte::scene_file::SceneError;
 
 const FILE: &str = "/virtual/scenes/scene.xml";
 

@@ -11,7 +11,7 @@ use matte::render::emitter::Emitter;
 use matte::render::geometry::Ray;
 use matte::render::integrator::Integrator;
 use matte::render::load::{LoadedScene, load_file, load_str};
-use matte::scene::SceneError;
+use matte::scene_file::SceneError;
 
 const FILE: &str = "/virtual/scenes/scene.xml";
 const SENSOR: &str = r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="2"/></film></sensor>"#;

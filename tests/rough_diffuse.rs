@@ -4,7 +4,7 @@
 
 mod common;
 use glam::Vec3;
-use matte::brdf::{Bsdf as Model, DiffuseBrdf, ParamValue};
+use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use matte::render::bsdf::Bsdf;
 use matte::render::load::load_str;
 use std::path::Path;
@@ -43,10 +43,11 @@ fn defaults_are_mitsuba_0_6s() {
 
 #[test]
 fn bad_alpha_names_the_parameter() {
-    let e = Model::from_params("roughdiffuse", matte::brdf::Params::new().with("alpha", ParamValue::Number(-0.1)))
-        .unwrap_err();
+    let e =
+        DiffuseModel::from_params("roughdiffuse", matte::brdf::Params::new().with("alpha", ParamValue::Number(-0.1)))
+            .unwrap_err();
     assert_eq!(e.param, "alpha");
-    let e = Model::from_params(
+    let e = DiffuseModel::from_params(
         "roughdiffuse",
         matte::brdf::Params::new().with("use_fast_approx", ParamValue::Text("maybe".into())),
     )

@@ -8,7 +8,7 @@ use matte::render::bsdf::{Bsdf, Texture};
 use matte::render::geometry::Ray;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, SurfaceInteraction, Triangles};
-use matte::scene::mesh::TriangleMesh;
+use matte::scene_file::mesh::TriangleMesh;
 
 fn hit(g: Geometry, o: Vec3, d: Vec3) -> SurfaceInteraction {
     let shapes = vec![Shape { geometry: g, bsdf: 0, emitter: None, plugin: "test".into() }];

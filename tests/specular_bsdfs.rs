@@ -11,7 +11,7 @@ mod mitsuba_reference;
 use common::{Pcg32, chi2_sampling, sidak};
 use glam::{DVec3, Vec2, Vec3};
 use matte::brdf::quadrature::GaussLegendre;
-use matte::brdf::{BsdfSample as DiffuseSample, DiffuseBrdf};
+use matte::brdf::{BrdfSample as DiffuseSample, DiffuseBrdf};
 use matte::render::bsdf::fresnel::fresnel_dielectric;
 use matte::render::bsdf::vndf::erf_inv;
 use matte::render::bsdf::{
@@ -126,7 +126,7 @@ fn dielectric_fresnel_agrees_with_the_one_sided_brdf_version() {
         for i in 0..=100 {
             let c = i as f32 / 100.0;
             let a = fresnel_dielectric(c, eta).r;
-            let b = matte::brdf::fresnel::fresnel_dielectric(c as f64, eta as f64) as f32;
+            let b = matte::brdf::fresnel::dielectric_reflectance(c as f64, eta as f64) as f32;
             assert!((a - b).abs() < 2e-6, "eta={eta} c={c}: {a} vs {b}");
         }
     }

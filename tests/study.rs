@@ -245,6 +245,7 @@ fn diffuse_fresnel(eta: f64) -> f64 {
 
 #[test]
 fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() {
+    use matte::render::film::SplatWeights;
     use matte::validate::passes::{Budget, PassPlan, rust_side};
     // Closed form (`docs/models.md#wolff-normalisations`): K_raw / K_physical = n² (1 − ρ F_dr,int), F_dr,int = F_dr(1/n).
     // With direct lighting only (max_depth 2) every path has one bounce, on the same geometry
@@ -270,7 +271,7 @@ fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() 
             ("res".into(), "32".into()),
         ];
         let plan = PassPlan { passes: 1, spp: Budget::PerPass(8), seed: 5, defines, regions: vec![back_wall] };
-        rust_side(&file, &plan, &|_| {})
+        rust_side(&file, &plan, SplatWeights::default(), &|_| {})
             .expect("the derived scene loads (absolute mesh paths) and renders")
             .region_pass_means[0][0]
     };

@@ -9,7 +9,7 @@ use matte::brdf::BSDF_TYPES;
 use matte::render::film::Image;
 use matte::render::load::{load_file, load_str};
 use matte::render::renderer::render;
-use matte::scene::mesh::{MeshOptions, TriangleMesh, load_obj, load_ply};
+use matte::scene_file::mesh::{MeshOptions, TriangleMesh, load_obj, load_ply};
 use std::collections::HashSet;
 use std::f64::consts::PI;
 use std::path::PathBuf;

@@ -8,18 +8,18 @@ use std::path::Path;
 
 use glam::{Vec2, Vec3};
 use matte::brdf::kernel;
-use matte::brdf::{Bsdf as Model, DiffuseBrdf, ParamValue, Params};
+use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use matte::render::bsdf::Bsdf;
 use matte::render::load::load_str;
 
 const FILE: &str = "/virtual/scenes/textured.xml";
 
-fn model(kind: &str, params: &[(&str, f64)]) -> Model {
+fn model(kind: &str, params: &[(&str, f64)]) -> DiffuseModel {
     let mut p = Params::new();
     for (n, v) in params {
         p.push(n, ParamValue::Number(*v));
     }
-    Model::from_params(kind, p).unwrap()
+    DiffuseModel::from_params(kind, p).unwrap()
 }
 
 /// Quasi-random direction pairs above the surface, grazing included.
@@ -68,7 +68,7 @@ fn lane_kernels_equal_the_constant_models() {
             for (n, v) in &extra {
                 p.push(n, ParamValue::Text(v.to_string()));
             }
-            let m = Model::from_params(kind, p).unwrap();
+            let m = DiffuseModel::from_params(kind, p).unwrap();
             let values: Vec<f32> = params.iter().map(|(_, v)| *v as f32).collect();
             let k = m.lane_kernel_f32(&values).expect("per-lane kernel");
             for (wi, wo) in pairs() {

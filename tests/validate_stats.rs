@@ -217,3 +217,29 @@ fn measured_power_matches_the_normal_approximation_for_a_uniform_change() {
     assert!(got / predicted < 1.6 && predicted / got < 1.6, "measured {got}, predicted {predicted}");
     assert!(cal.identical_matte.rejected <= 2 && cal.identical_reference.rejected <= 2);
 }
+
+#[test]
+fn predicted_power_is_a_lower_bound_close_to_injection() {
+    // Correlated noise (3 × 3 smoothing, as a filter makes it), 32², K = 16 per side, 40
+    // replicate pairs: injection measures the smallest uniform and 16² patch change detected
+    // with 80 % power; the prediction from replicate 0 alone must not claim more power than
+    // that (it is a lower bound on power, so its δ is at least the measured one, allowing one
+    // step of the δ grid, ≤ 1.5×, for the measurement's own noise) and must stay within 2.5×
+    // of it (useful, not vacuous).
+    let mut rng = Rng(11);
+    let (w, k, sigma) = (32u32, 16usize, 0.5);
+    let reps = 40;
+    let a: Vec<_> = (0..reps).map(|_| passes(&mut rng, w, w, k, 1.0, sigma, true)).collect();
+    let b: Vec<_> = (0..reps).map(|_| passes(&mut rng, w, w, k, 1.0, sigma, true)).collect();
+    let cal = power::calibrate(&a, &b, 0.01, &|_| {}).unwrap();
+    let predicted = matte::validate::predicted_power::predict(&a[0], &b[0], 0.01).unwrap();
+    assert_eq!(predicted.patch_place, cal.patch_place);
+    for (what, measured, predicted) in [
+        ("uniform", cal.uniform.detected.expect("uniform detected"), predicted.uniform.expect("uniform predicted")),
+        ("patch", cal.patch.detected.expect("patch detected"), predicted.patch.expect("patch predicted")),
+    ] {
+        println!("{what}: measured {measured}, predicted {predicted}");
+        assert!(predicted >= measured / 1.5, "{what}: predicted {predicted} claims more than measured {measured}");
+        assert!(predicted <= measured * 2.5, "{what}: predicted {predicted} is far above measured {measured}");
+    }
+}

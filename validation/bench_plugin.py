@@ -6,53 +6,141 @@ is the best of `--repeats` after a warm-up render (JIT compilation, table buildi
 
     .venv/bin/python validation/bench_plugin.py [--variant llvm_ad_rgb] [--repeats 3]
     .venv/bin/python validation/bench_plugin.py --one wolff      # one type: JSON on stdout
+    .venv/bin/python validation/bench_plugin.py --one wolff --bitmap   # its int_ior as a bitmap
+    .venv/bin/python validation/bench_plugin.py --float-fast-path OLD/validation [--rounds 2]
+
+``--bitmap`` gives each type's numeric parameter (``SHAPE_PARAMETER``) as a 16×16 bitmap
+texture holding the default value everywhere, so the image is the float's and only the
+textured code path differs. ``--plugin-root DIR`` imports ``matte_mitsuba`` from DIR (e.g.
+another revision's ``validation`` folder after its ``cpp/build_plugin.sh``); without it, the
+first ``matte_mitsuba`` on the path is used (this script's folder's, where ``make plugin``
+builds the plugins, then the installed one); ``--one`` prints the folder it loaded. ``--float-fast-path OLD`` times, per type, the float parameter with the plugin
+build in OLD (a revision before textured parameters) and with this one, and the bitmap with
+this one; every configuration in its own process, `--rounds` rounds interleaved (machine
+load drifts), best over all, as wall time and as the process's CPU time (less sensitive to
+other work on a shared machine).
 """
 import argparse
 import json
+import os
 import subprocess
 import sys
+import tempfile
 import time
 
-from matte_mitsuba import BSDF_TYPES as TYPES  # the plugin names, as the build wrote them
 
 
-def scene(mi, kind, res):
+def _plugin_root_first():
+    """`--plugin-root DIR` puts DIR before every other folder (this script's own folder, which
+    holds the checkout's matte_mitsuba, comes first otherwise) before matte_mitsuba is imported."""
+    for i, a in enumerate(sys.argv):
+        if a == "--plugin-root" and i + 1 < len(sys.argv):
+            sys.path.insert(0, os.path.abspath(sys.argv[i + 1]))
+
+
+_plugin_root_first()
+import matte_mitsuba  # noqa: E402
+from matte_mitsuba import BSDF_TYPES as TYPES  # noqa: E402  (the plugin names, as the build wrote them)
+
+# Each type's numeric parameter and its default (README, "Models and parameters").
+SHAPE_PARAMETER = {
+    "oren_nayar": ("sigma", 0.3),
+    "eon": ("roughness", 0.3),
+    "wolff": ("int_ior", 1.4),
+    "ginneken": ("roughness", 0.3),
+    "roughdiffuse": ("alpha", 0.2),
+}
+
+
+def constant_bitmap(mi, value, folder):
+    """A 16×16 one-channel EXR holding `value`: the texture form of a number."""
+    import numpy as np
+    path = os.path.join(folder, f"constant_{value}.exr")
+    mi.Bitmap(np.full((16, 16, 1), value, dtype=np.float32)).write(path)
+    return {"type": "bitmap", "filename": path, "raw": True}
+
+
+def scene(mi, kind, res, bitmap_folder=None):
     d = mi.cornell_box()
     d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = res
     for name in ("white", "red", "green"):
         d[name]["type"] = kind
+        if bitmap_folder is not None:
+            param, value = SHAPE_PARAMETER[kind]
+            d[name][param] = constant_bitmap(mi, value, bitmap_folder)
     return mi.load_dict(d)
 
 
-def timed(s, spp):
+def timed_wall_cpu(s, spp):
+    """Wall time and CPU time (all threads of this process: user + system) of one render. On a
+    machine shared with other work the CPU time depends much less on the load than the wall
+    time does."""
+    import resource
     import drjit as dr
     import mitsuba as mi
+    r0 = resource.getrusage(resource.RUSAGE_SELF)
     t = time.perf_counter()
     img = mi.render(s, spp=spp, seed=0)
     dr.eval(img)
     dr.sync_thread()
-    return time.perf_counter() - t
+    wall = time.perf_counter() - t
+    r1 = resource.getrusage(resource.RUSAGE_SELF)
+    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
 
 
-def best_time(kind, variant, res, spp, repeats):
-    """Best-of time of one type in this process (after a warm-up render)."""
+def timed(s, spp):
+    return timed_wall_cpu(s, spp)[0]
+
+
+def best_time(kind, variant, res, spp, repeats, bitmap=False):
+    """Best-of wall and CPU times of one type in this process (after a warm-up render)."""
     import mitsuba as mi
     mi.set_variant(variant)
     import matte_mitsuba  # noqa: F401  (registers the plugins)
-    s = scene(mi, kind, res)
-    timed(s, spp)
-    return min(timed(s, spp) for _ in range(repeats))
+    with tempfile.TemporaryDirectory() as folder:
+        s = scene(mi, kind, res, folder if bitmap else None)
+        timed(s, spp)
+        times = [timed_wall_cpu(s, spp) for _ in range(repeats)]
+        return min(t[0] for t in times), min(t[1] for t in times)
 
 
-def time_in_subprocess(kind, variant, res, spp, repeats):
-    out = subprocess.run([sys.executable, __file__, "--one", kind, "--variant", variant, "--res", str(res),
-                          "--spp", str(spp), "--repeats", str(repeats)], capture_output=True, text=True, check=True)
-    return json.loads(out.stdout)["seconds"]
+def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None, both=False):
+    """Best wall seconds of one configuration in its own process; (wall, CPU) with `both`."""
+    out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", kind, "--variant", variant,
+                          "--res", str(res), "--spp", str(spp), "--repeats", str(repeats)]
+                         + (["--bitmap"] if bitmap else [])
+                         + (["--plugin-root", os.path.abspath(plugin_root)] if plugin_root else []),
+                         capture_output=True, text=True, check=True)
+    result = json.loads(out.stdout)
+    if plugin_root and not result["plugins"].startswith(os.path.abspath(plugin_root)):
+        raise RuntimeError(f"--plugin-root {plugin_root}: the child loaded {result['plugins']}")
+    return (result["seconds"], result["cpu_seconds"]) if both else result["seconds"]
 
 
 def time_all(variant, res, spp, repeats, types=TYPES):
     """{type: best seconds} for `diffuse` and every type, each in its own process."""
     return {k: time_in_subprocess(k, variant, res, spp, repeats) for k in ["diffuse"] + list(types)}
+
+
+def float_fast_path(old_root, variant, res, spp, repeats, rounds, types):
+    """Per type: float parameters with the `old_root` build and with this one, and a bitmap
+    parameter with this one; {configuration: best seconds over `rounds` interleaved rounds}."""
+    configs = [("diffuse", "this", False)]
+    for k in types:
+        configs += [(k, "old", False), (k, "this", False)]
+        if k in SHAPE_PARAMETER:
+            configs.append((k, "this", True))
+    best = {"wall": {}, "cpu": {}}
+    for r in range(rounds):
+        for kind, build, bitmap in configs:
+            key = f"{kind} {build} {'bitmap' if bitmap else 'float'}"
+            wall, cpu = time_in_subprocess(kind, variant, res, spp, repeats, bitmap,
+                                           old_root if build == "old" else None, both=True)
+            best["wall"][key] = min(best["wall"].get(key, wall), wall)
+            best["cpu"][key] = min(best["cpu"].get(key, cpu), cpu)
+            print(f"  round {r + 1}/{rounds}: {key:<26} wall {wall:.3f} s, CPU {cpu:.3f} s", file=sys.stderr,
+                  flush=True)
+    return best
 
 
 def main():
@@ -63,9 +151,37 @@ def main():
     ap.add_argument("--spp", type=int, default=64)
     ap.add_argument("--types", nargs="+", default=TYPES, choices=TYPES)
     ap.add_argument("--one", help="time this one type (or diffuse) in this process; print JSON")
+    ap.add_argument("--bitmap", action="store_true", help="with --one: the numeric parameter as a constant bitmap")
+    ap.add_argument("--plugin-root", metavar="DIR", help="import matte_mitsuba from DIR (read before the imports)")
+    ap.add_argument("--float-fast-path", metavar="OLD_ROOT",
+                    help="compare float parameters with the build in OLD_ROOT (its matte_mitsuba's parent folder)")
+    ap.add_argument("--rounds", type=int, default=2, help="with --float-fast-path: interleaved rounds")
+    ap.add_argument("--json", metavar="FILE", help="with --float-fast-path: write the times here")
     a = ap.parse_args()
     if a.one:
-        print(json.dumps({"type": a.one, "seconds": best_time(a.one, a.variant, a.res, a.spp, a.repeats)}))
+        if a.bitmap and a.one not in SHAPE_PARAMETER:
+            ap.error(f"--bitmap: {a.one} has no numeric parameter")
+        wall, cpu = best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap)
+        print(json.dumps({"type": a.one, "bitmap": a.bitmap, "plugins": matte_mitsuba.PLUGIN_ROOT,
+                          "seconds": wall, "cpu_seconds": cpu}))
+        return
+    if a.float_fast_path:
+        print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats} per process, "
+              f"{a.rounds} rounds, one process per configuration; old build: {a.float_fast_path}")
+        times = float_fast_path(a.float_fast_path, a.variant, a.res, a.spp, a.repeats, a.rounds, a.types)
+        for clock, best in times.items():
+            print(f"{clock} time (s): diffuse {best['diffuse this float']:.3f}")
+            print(f"  {'type':<13} {'old float':>9} {'float':>9} {'float/old':>9} {'bitmap':>9} {'bitmap/float':>12}")
+            for k in a.types:
+                old, new = best[f"{k} old float"], best[f"{k} this float"]
+                bm = best.get(f"{k} this bitmap")
+                tail = f" {bm:9.3f} {bm / new:12.3f}" if bm else ""
+                print(f"  {k:<13} {old:9.3f} {new:9.3f} {new / old:9.3f}{tail}")
+        if a.json:
+            with open(a.json, "w") as f:
+                json.dump({"res": a.res, "spp": a.spp, "variant": a.variant, "repeats": a.repeats,
+                           "rounds": a.rounds, "old_root": os.path.abspath(a.float_fast_path), "seconds": times}, f,
+                          indent=1)
         return
     print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats}, one process per type")
     best = time_all(a.variant, a.res, a.spp, a.repeats, a.types)

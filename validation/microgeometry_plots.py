@@ -53,7 +53,7 @@ def plot(comparison, out_dir):
                  f"simulated surface (99 % intervals) and models")
     fig.tight_layout()
     path = Path(out_dir) / f"slices_{tag}.png"
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=80)
     plt.close(fig)
     return path
 

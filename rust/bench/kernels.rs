@@ -2,7 +2,7 @@
 //! direction pairs cycled so that branch prediction and caches see renderer-like variety.
 //! The same pairs feed the criterion benchmark (`benches/kernels.rs`).
 
-use crate::brdf::{BSDF_TYPES, Bsdf, DiffuseBrdf, Params};
+use crate::brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
 use glam::{Vec2, Vec3};
 use std::hint::black_box;
 use std::time::Instant;
@@ -40,7 +40,7 @@ pub fn time_kernels(repeats: u32) -> Vec<KernelTime> {
     BSDF_TYPES
         .iter()
         .map(|&model| {
-            let bsdf = Bsdf::from_params(model, Params::new()).expect("default parameters are valid");
+            let bsdf = DiffuseModel::from_params(model, Params::new()).expect("default parameters are valid");
             let pass = || {
                 let t = Instant::now();
                 let mut acc = 0.0f32;

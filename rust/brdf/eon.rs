@@ -6,7 +6,7 @@
 
 use super::approx::acos_unit;
 use super::kernel::{self, Kernel, azimuthal_dot};
-use super::model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
+use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
 use super::real::{Real, V3};
 use glam::{Vec2, Vec3};
@@ -165,8 +165,8 @@ impl DiffuseBrdf for Eon {
     }
 
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
-        BsdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
     }
 
     /// `E = ρ E_F(μi) + ρ_ms (1 − E_F(μi))` (Portsmouth et al. 2025, eq. 17).

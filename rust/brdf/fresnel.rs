@@ -10,7 +10,7 @@ use super::real::Real;
 /// (n < 1: light inside the denser medium). Cook–Torrance `g` form; total internal reflection
 /// and `c = 0` give 1. Branch-free and finite on every lane.
 #[inline]
-pub fn fresnel_dielectric<T: Real>(c: T, n: T) -> T {
+pub fn dielectric_reflectance<T: Real>(c: T, n: T) -> T {
     let one = T::c(1.0);
     let c = c.clamp_to(0.0, 1.0);
     let g2 = n.fma(n, c.fma(c, -one));
@@ -29,7 +29,7 @@ pub fn fresnel_dielectric<T: Real>(c: T, n: T) -> T {
 ///
 /// `T = ½ (Ts + Tp)`, `Ts = 4cg/(c+g)²`, `Tp = 4n²cg/(n²c+g)²`
 ///
-/// (the same `g` as [`fresnel_dielectric`]'s Cook–Torrance form, `Rs = ((c−g)/(c+g))²`,
+/// (the same `g` as [`dielectric_reflectance`]'s Cook–Torrance form, `Rs = ((c−g)/(c+g))²`,
 /// `Rp = ((n²c−g)/(n²c+g))²`). Every term is positive, so unlike `1 − F` it has no
 /// cancellation, and it needs one square root and two reciprocals (no ratio `b`). Written as
 /// products of ratios in [0, 1] so that nothing overflows for any finite n. `n² − 1` is formed
@@ -55,7 +55,7 @@ impl<T: Real> Transmittance<T> {
         let c = c.clamp_to(0.0, 1.0);
         let g = c.fma(c, self.n2_minus_1).safe_sqrt();
         let n2c = self.n2 * c;
-        // c + g = 0 only for c = 0 and n = 1, where T = 0 (F = 1, as fresnel_dielectric).
+        // c + g = 0 only for c = 0 and n = 1, where T = 0 (F = 1, as dielectric_reflectance).
         let tiny = T::c(f32::MIN_POSITIVE as f64);
         let rs = T::c(1.0) / (c + g).max(tiny);
         let rp = T::c(1.0) / (n2c + g).max(tiny);
@@ -74,7 +74,7 @@ impl Transmittance<f64> {
 /// for `n ≥ 1` (smooth integrand: 64 Gauss–Legendre nodes converge to 1e-12).
 pub fn diffuse_fresnel_external<T: Real>(n: T) -> T {
     let gl = GaussLegendre::new(64);
-    gl.mapped(0.0, 1.0).fold(T::c(0.0), |sum, (mu, w)| (fresnel_dielectric(T::c(mu), n).scale(2.0 * mu * w)) + sum)
+    gl.mapped(0.0, 1.0).fold(T::c(0.0), |sum, (mu, w)| (dielectric_reflectance(T::c(mu), n).scale(2.0 * mu * w)) + sum)
 }
 
 /// The same average seen from inside, `F_dr(1/n)` for `n ≥ 1` (total internal reflection
@@ -89,7 +89,7 @@ pub fn diffuse_fresnel_internal<T: Real>(n: T) -> T {
 /// which makes it smooth: an independent check of [`diffuse_fresnel_internal`]'s identity.
 pub fn diffuse_fresnel_reflectance(n: f64) -> f64 {
     let gl = GaussLegendre::new(64);
-    let f = |mu: f64| 2.0 * fresnel_dielectric(mu, n) * mu;
+    let f = |mu: f64| 2.0 * dielectric_reflectance(mu, n) * mu;
     if n >= 1.0 {
         gl.integrate(0.0, 1.0, f)
     } else {
@@ -120,7 +120,7 @@ mod tests {
         for &n in &[1.2, 1.4, 1.5, 2.0, 1.0 / 1.5] {
             for k in 1..=100 {
                 let c = k as f64 / 100.0;
-                let d = (fresnel_dielectric(c, n) - via_rs_rp(c, n)).abs();
+                let d = (dielectric_reflectance(c, n) - via_rs_rp(c, n)).abs();
                 assert!(d < 1e-12, "n={n} c={c}: {d}");
             }
         }
@@ -128,7 +128,7 @@ mod tests {
 
     #[test]
     fn reference_values_research_page_3a() {
-        assert!((fresnel_dielectric(1.0, 1.5) - 0.04).abs() < 1e-12);
+        assert!((dielectric_reflectance(1.0, 1.5) - 0.04).abs() < 1e-12);
         assert!((diffuse_fresnel_reflectance(1.5) - 0.09178).abs() < 1e-5);
         assert!((diffuse_fresnel_reflectance(1.0 / 1.5) - 0.59635).abs() < 1e-5);
     }
@@ -160,7 +160,7 @@ mod tests {
             for k in 1..=4096 {
                 // cosines from 1e-6 to 1, denser towards grazing
                 let c = (1e-6f64.ln() * (1.0 - k as f64 / 4096.0)).exp() as f32;
-                let want = 1.0 - fresnel_dielectric(c as f64, n);
+                let want = 1.0 - dielectric_reflectance(c as f64, n);
                 let got = t.at(c) as f64;
                 worst = worst.max((got - want).abs() / want);
             }
@@ -180,8 +180,8 @@ mod tests {
 
     #[test]
     fn grazing_and_total_internal_reflection_give_one() {
-        assert_eq!(fresnel_dielectric(0.0, 1.5), 1.0);
-        assert_eq!(fresnel_dielectric(0.1, 1.0 / 1.5), 1.0);
+        assert_eq!(dielectric_reflectance(0.0, 1.5), 1.0);
+        assert_eq!(dielectric_reflectance(0.1, 1.0 / 1.5), 1.0);
         assert_eq!(Transmittance::new(1.5f32).at(0.0), 0.0);
         assert_eq!(Transmittance::new(1.0f32).at(0.0), 0.0);
     }

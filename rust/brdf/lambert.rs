@@ -2,7 +2,7 @@
 //! precision, including its sampling routine and its sampling weight `ρ`.
 
 use super::kernel::{self, Kernel};
-use super::model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
+use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 use super::real::{Real, V3};
 use glam::{Vec2, Vec3};
 
@@ -23,8 +23,8 @@ impl DiffuseBrdf for Lambert {
     }
 
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
-        BsdfSample::from_kernel(kernel::sample(self, wi.into(), u.x, u.y, reflectance))
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(self, wi.into(), u.x, u.y, reflectance))
     }
 
     fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {

@@ -5,7 +5,7 @@
 //! `EonKernel::new`, …): in f32 by the Rust renderer and the scalar plugin variants, traced
 //! (so per lane, with the texture's gradient) by the JIT variants.
 //!
-//! Values come in the order of [`Bsdf::parameters`]' numbers (`oren_nayar`: σ; `eon`: r;
+//! Values come in the order of [`DiffuseModel::parameters`]' numbers (`oren_nayar`: σ; `eon`: r;
 //! `wolff`: int_ior, ext_ior; `ginneken`: m; `roughdiffuse`: α) and are clamped into the
 //! model's valid range, since a texture is not validated as a number is: σ, α ≥ 0;
 //! r ∈ [0, 1]; ext_ior ≥ 1 and n = int_ior/ext_ior ≥ 1; m ∈ [0.02, 4] (the roughness axis).
@@ -13,7 +13,7 @@
 //! ([`WolffKernel::per_lane`]); van Ginneken interpolates its tables stacked over m
 //! (`ginneken::roughness_axis`).
 
-use super::Bsdf;
+use super::DiffuseModel;
 use super::eon::EonKernel;
 use super::ginneken::GinnekenKernel;
 use super::ginneken::roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
@@ -77,12 +77,12 @@ pub fn textured_placeholder(kind: &str, name: &str, mean: f64, number: impl Fn(&
     }
 }
 
-impl Bsdf {
+impl DiffuseModel {
     /// The number of numeric parameters ([`Self::lane_coefficients`]' input length).
     pub fn numeric_parameter_count(&self) -> usize {
         match self {
-            Bsdf::Lambert(_) => 0,
-            Bsdf::Wolff(_) => 2,
+            DiffuseModel::Lambert(_) => 0,
+            DiffuseModel::Wolff(_) => 2,
             _ => 1,
         }
     }
@@ -91,7 +91,7 @@ impl Bsdf {
     /// Ginneken's roughness-axis stacks ([`RoughnessAxisTables`], built on first use), none for
     /// the other models.
     pub fn lane_tables(&self) -> Option<&'static RoughnessAxisTables> {
-        matches!(self, Bsdf::Ginneken(_)).then(RoughnessAxisTables::shared)
+        matches!(self, DiffuseModel::Ginneken(_)).then(RoughnessAxisTables::shared)
     }
 
     /// The f32 kernel for per-lane parameter `values`; `None` if `values` is too short.
@@ -112,14 +112,16 @@ impl Bsdf {
             c.get(..N)?.try_into().ok()
         }
         Some(match self {
-            Bsdf::Lambert(k) => LaneKernel::Lambert(*k),
-            Bsdf::OrenNayar(b) => LaneKernel::OrenNayar(OrenNayarKernel::from_coefficients(first(c)?, b.model())),
-            Bsdf::RoughDiffuse(b) => {
+            DiffuseModel::Lambert(k) => LaneKernel::Lambert(*k),
+            DiffuseModel::OrenNayar(b) => {
+                LaneKernel::OrenNayar(OrenNayarKernel::from_coefficients(first(c)?, b.model()))
+            }
+            DiffuseModel::RoughDiffuse(b) => {
                 LaneKernel::OrenNayar(OrenNayarKernel::from_coefficients(first(c)?, b.oren_nayar().model()))
             }
-            Bsdf::Eon(_) => LaneKernel::Eon(EonKernel::from_coefficients(first(c)?)),
-            Bsdf::Wolff(b) => LaneKernel::Wolff(WolffKernel::from_coefficients(first(c)?, b.normalization())),
-            Bsdf::Ginneken(b) => {
+            DiffuseModel::Eon(_) => LaneKernel::Eon(EonKernel::from_coefficients(first(c)?)),
+            DiffuseModel::Wolff(b) => LaneKernel::Wolff(WolffKernel::from_coefficients(first(c)?, b.normalization())),
+            DiffuseModel::Ginneken(b) => {
                 let [m] = first(c)?;
                 LaneKernel::GinnekenAxis(GinnekenAxisKernel::new(axis()?, m, b.shadowing()))
             }
@@ -132,18 +134,18 @@ impl Bsdf {
     pub fn lane_coefficients<T: Real>(&self, values: &[T]) -> Option<Vec<T>> {
         let v = |k: usize| values.get(k).copied();
         Some(match self {
-            Bsdf::Lambert(_) => vec![],
-            Bsdf::OrenNayar(b) => OrenNayarKernel::new(v(0)?.max(T::c(0.0)), b.model()).coefficients().to_vec(),
-            Bsdf::Eon(_) => EonKernel::new(v(0)?.clamp_to(0.0, 1.0)).coefficients().to_vec(),
-            Bsdf::RoughDiffuse(b) => {
+            DiffuseModel::Lambert(_) => vec![],
+            DiffuseModel::OrenNayar(b) => OrenNayarKernel::new(v(0)?.max(T::c(0.0)), b.model()).coefficients().to_vec(),
+            DiffuseModel::Eon(_) => EonKernel::new(v(0)?.clamp_to(0.0, 1.0)).coefficients().to_vec(),
+            DiffuseModel::RoughDiffuse(b) => {
                 let sigma = RoughDiffuse::sigma_of_alpha(v(0)?.max(T::c(0.0)));
                 OrenNayarKernel::new(sigma, b.oren_nayar().model()).coefficients().to_vec()
             }
-            Bsdf::Wolff(b) => {
+            DiffuseModel::Wolff(b) => {
                 let (int_ior, ext_ior) = (v(0)?, v(1)?.max(T::c(1.0)));
                 WolffKernel::per_lane(int_ior / ext_ior, b.normalization()).coefficients().to_vec()
             }
-            Bsdf::Ginneken(_) => vec![clamp_roughness(v(0)?)],
+            DiffuseModel::Ginneken(_) => vec![clamp_roughness(v(0)?)],
         })
     }
 }

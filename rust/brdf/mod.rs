@@ -1,5 +1,5 @@
 //! The diffuse BRDF kernels: one file per model, pure functions over local-frame directions,
-//! no renderer or FFI types. [`Bsdf`] is the closed set of models matte offers, constructed
+//! no renderer or FFI types. [`DiffuseModel`] is the closed set of models matte offers, constructed
 //! from the plugin names and parameters of the README's model table. Each model is written
 //! once over the scalar trait [`real::Real`] ([`kernel`]): f32 on the CPU, traced into Dr.Jit
 //! by the Mitsuba plugin (`crate::ffi::traced`).
@@ -22,12 +22,13 @@ pub mod real;
 pub mod rough_diffuse;
 pub mod sampling;
 pub mod simd;
+pub mod tabulated;
 pub mod wolff;
 
 pub use eon::Eon;
 pub use ginneken::Ginneken;
 pub use lambert::Lambert;
-pub use model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
+pub use model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 pub use oren_nayar::{OrenNayar, OrenNayarModel};
 pub use params::{ParamError, ParamValue, Params};
 pub use rough_diffuse::RoughDiffuse;
@@ -40,7 +41,7 @@ pub const BSDF_TYPES: &[&str] = &["lambert", "oren_nayar", "eon", "wolff", "ginn
 
 /// One of matte's diffuse models with its (validated) parameters.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Bsdf {
+pub enum DiffuseModel {
     Lambert(Lambert),
     OrenNayar(OrenNayar),
     Eon(Eon),
@@ -54,30 +55,32 @@ pub enum Bsdf {
 macro_rules! dispatch {
     ($self:expr, $b:ident => $e:expr) => {
         match $self {
-            $crate::brdf::Bsdf::Lambert($b) => $e,
-            $crate::brdf::Bsdf::OrenNayar($b) => $e,
-            $crate::brdf::Bsdf::Eon($b) => $e,
-            $crate::brdf::Bsdf::Wolff($b) => $e,
-            $crate::brdf::Bsdf::Ginneken($b) => $e,
-            $crate::brdf::Bsdf::RoughDiffuse($b) => $e,
+            $crate::brdf::DiffuseModel::Lambert($b) => $e,
+            $crate::brdf::DiffuseModel::OrenNayar($b) => $e,
+            $crate::brdf::DiffuseModel::Eon($b) => $e,
+            $crate::brdf::DiffuseModel::Wolff($b) => $e,
+            $crate::brdf::DiffuseModel::Ginneken($b) => $e,
+            $crate::brdf::DiffuseModel::RoughDiffuse($b) => $e,
         }
     };
 }
 pub(crate) use dispatch;
 
-impl Bsdf {
+impl DiffuseModel {
     /// Builds the model `kind` (a plugin name) from its parameters. `reflectance` is not a
     /// model parameter here: it is per channel and per call (textures). Unknown names,
     /// unknown parameters and out-of-range values are errors naming the parameter.
     pub fn from_params(kind: &str, mut params: Params) -> Result<Self, ParamError> {
-        let (bsdf, known): (Bsdf, &[&str]) = match kind {
-            "lambert" => (Bsdf::Lambert(Lambert), &[]),
-            "oren_nayar" => (Bsdf::OrenNayar(OrenNayar::from_params(&mut params)?), &["sigma", "model"]),
-            "eon" => (Bsdf::Eon(Eon::from_params(&mut params)?), &["roughness"]),
-            "wolff" => (Bsdf::Wolff(Wolff::from_params(&mut params)?), &["int_ior", "ext_ior", "normalization"]),
-            "ginneken" => (Bsdf::Ginneken(Ginneken::from_params(&mut params)?), &["roughness", "shadowing"]),
+        let (bsdf, known): (DiffuseModel, &[&str]) = match kind {
+            "lambert" => (DiffuseModel::Lambert(Lambert), &[]),
+            "oren_nayar" => (DiffuseModel::OrenNayar(OrenNayar::from_params(&mut params)?), &["sigma", "model"]),
+            "eon" => (DiffuseModel::Eon(Eon::from_params(&mut params)?), &["roughness"]),
+            "wolff" => {
+                (DiffuseModel::Wolff(Wolff::from_params(&mut params)?), &["int_ior", "ext_ior", "normalization"])
+            }
+            "ginneken" => (DiffuseModel::Ginneken(Ginneken::from_params(&mut params)?), &["roughness", "shadowing"]),
             "roughdiffuse" => {
-                (Bsdf::RoughDiffuse(RoughDiffuse::from_params(&mut params)?), &["alpha", "use_fast_approx"])
+                (DiffuseModel::RoughDiffuse(RoughDiffuse::from_params(&mut params)?), &["alpha", "use_fast_approx"])
             }
             other => {
                 return Err(ParamError::new(
@@ -93,12 +96,12 @@ impl Bsdf {
     /// The plugin name.
     pub fn kind(&self) -> &'static str {
         match self {
-            Bsdf::Lambert(_) => "lambert",
-            Bsdf::OrenNayar(_) => "oren_nayar",
-            Bsdf::Eon(_) => "eon",
-            Bsdf::Wolff(_) => "wolff",
-            Bsdf::Ginneken(_) => "ginneken",
-            Bsdf::RoughDiffuse(_) => "roughdiffuse",
+            DiffuseModel::Lambert(_) => "lambert",
+            DiffuseModel::OrenNayar(_) => "oren_nayar",
+            DiffuseModel::Eon(_) => "eon",
+            DiffuseModel::Wolff(_) => "wolff",
+            DiffuseModel::Ginneken(_) => "ginneken",
+            DiffuseModel::RoughDiffuse(_) => "roughdiffuse",
         }
     }
 
@@ -106,25 +109,27 @@ impl Bsdf {
     pub fn parameters(&self) -> Vec<(&'static str, ParamValue)> {
         use ParamValue::{Number, Text};
         match self {
-            Bsdf::Lambert(_) => vec![],
-            Bsdf::OrenNayar(b) => vec![("sigma", Number(b.sigma() as f64)), ("model", Text(b.model().as_str().into()))],
-            Bsdf::Eon(b) => vec![("roughness", Number(b.roughness() as f64))],
-            Bsdf::Wolff(b) => vec![
+            DiffuseModel::Lambert(_) => vec![],
+            DiffuseModel::OrenNayar(b) => {
+                vec![("sigma", Number(b.sigma() as f64)), ("model", Text(b.model().as_str().into()))]
+            }
+            DiffuseModel::Eon(b) => vec![("roughness", Number(b.roughness() as f64))],
+            DiffuseModel::Wolff(b) => vec![
                 ("int_ior", Number(b.int_ior() as f64)),
                 ("ext_ior", Number(b.ext_ior() as f64)),
                 ("normalization", Text(b.normalization().as_str().into())),
             ],
-            Bsdf::Ginneken(b) => {
+            DiffuseModel::Ginneken(b) => {
                 vec![("roughness", Number(b.roughness() as f64)), ("shadowing", Text(b.shadowing().as_str().into()))]
             }
-            Bsdf::RoughDiffuse(b) => {
+            DiffuseModel::RoughDiffuse(b) => {
                 vec![("alpha", Number(b.alpha() as f64)), ("use_fast_approx", Text(b.use_fast_approx().to_string()))]
             }
         }
     }
 }
 
-impl DiffuseBrdf for Bsdf {
+impl DiffuseBrdf for DiffuseModel {
     #[inline]
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
         dispatch!(self, b => b.eval(wi, wo, reflectance))
@@ -141,7 +146,7 @@ impl DiffuseBrdf for Bsdf {
     }
 
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         dispatch!(self, b => b.sample(wi, u, reflectance))
     }
 

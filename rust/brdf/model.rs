@@ -11,17 +11,17 @@ use glam::{DVec3, Vec2, Vec3};
 /// A sampled direction with its solid-angle density and the path weight
 /// `f(wi, wo) cos θo / pdf` per channel.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct BsdfSample<const N: usize> {
+pub struct BrdfSample<const N: usize> {
     pub wo: Vec3,
     pub pdf: f32,
     pub weight: [f32; N],
 }
 
-impl<const N: usize> BsdfSample<N> {
+impl<const N: usize> BrdfSample<N> {
     /// From [`super::kernel::sample`]'s `(wo, weight, pdf)`; `None` when nothing was drawn.
     #[inline(always)]
     pub fn from_kernel((wo, weight, pdf): (V3<f32>, [f32; N], f32)) -> Option<Self> {
-        (pdf > 0.0).then(|| BsdfSample { wo: wo.into(), pdf, weight })
+        (pdf > 0.0).then(|| BrdfSample { wo: wo.into(), pdf, weight })
     }
 }
 
@@ -75,11 +75,11 @@ pub trait DiffuseBrdf {
 
     /// Samples `wo` and returns the weight `f cos θo / pdf` per channel.
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         let (wo, pdf) = self.sample_direction(wi, u)?;
         let f = self.eval(wi, wo, reflectance);
         let scale = wo.z / pdf;
-        Some(BsdfSample { wo, pdf, weight: f.map(|x| x * scale) })
+        Some(BrdfSample { wo, pdf, weight: f.map(|x| x * scale) })
     }
 
     /// Directional albedo for a grey reflectance. Default: numerical quadrature of `eval`

@@ -5,7 +5,7 @@
 //! qualitative model; the default is the full one. Defaults as 0.6: α = 0.2, ρ = 0.5.
 //! So that scenes written for Mitsuba 0.6 render with the rough diffuse model they asked for.
 
-use super::model::{BsdfSample, DiffuseBrdf};
+use super::model::{BrdfSample, DiffuseBrdf};
 use super::oren_nayar::{OrenNayar, OrenNayarModel};
 use super::params::{ParamError, Params};
 use super::real::Real;
@@ -61,7 +61,7 @@ impl DiffuseBrdf for RoughDiffuse {
     }
 
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         self.oren_nayar.sample(wi, u, reflectance)
     }
 }

@@ -16,10 +16,10 @@
 //!   Lambert at normal incidence; the fair side-by-side comparison).
 //! * `raw`: `ρ / π`.
 
-use super::fresnel::{Transmittance, diffuse_fresnel_external, fresnel_dielectric};
+use super::fresnel::{Transmittance, dielectric_reflectance, diffuse_fresnel_external};
 use super::fresnel_fit::diffuse_fresnel_external_fit;
 use super::kernel::{self, Kernel};
-use super::model::{Albedo, AlbedoMethod, BsdfSample, DiffuseBrdf};
+use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
 use super::real::{Real, V3};
 use glam::{Vec2, Vec3};
@@ -205,8 +205,8 @@ impl DiffuseBrdf for Wolff {
     }
 
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
-        BsdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
     }
 
     /// `E(θi) = K T(θi) π (1 − F_dr,ext)`, since `∫ T(θo) cos θo dωo = π (1 − F_dr,ext)`.
@@ -214,7 +214,7 @@ impl DiffuseBrdf for Wolff {
         let value = if cos_theta_i <= 0.0 {
             0.0
         } else {
-            let t_i = 1.0 - fresnel_dielectric(cos_theta_i, self.eta as f64);
+            let t_i = 1.0 - dielectric_reflectance(cos_theta_i, self.eta as f64);
             self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64)
         };
         Albedo { value, method: AlbedoMethod::ClosedForm }

@@ -1,7 +1,7 @@
 //! `matte brdf` and `matte albedo`: one model, evaluated by the kernels, printed as JSON.
 //! Schema in README.md ("Command line").
 
-use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params, frame::spherical_direction};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use clap::Args;
 use serde::Serialize;
 use std::collections::BTreeMap;
@@ -17,13 +17,13 @@ pub struct BsdfSpec {
 }
 
 impl BsdfSpec {
-    pub fn build(&self) -> Result<Bsdf, String> {
+    pub fn build(&self) -> Result<DiffuseModel, String> {
         let mut params = Params::new();
         for p in &self.params {
             let (name, value) = p.split_once('=').ok_or_else(|| format!("--param \"{p}\": expected NAME=VALUE"))?;
             params.push(name.trim(), ParamValue::parse(value));
         }
-        Bsdf::from_params(&self.kind, params).map_err(|e| format!("bsdf \"{}\": {e}", self.kind))
+        DiffuseModel::from_params(&self.kind, params).map_err(|e| format!("bsdf \"{}\": {e}", self.kind))
     }
 }
 
@@ -84,7 +84,7 @@ struct Header {
     reflectance: f64,
 }
 
-fn header(bsdf: &Bsdf, reflectance: f64) -> Header {
+fn header(bsdf: &DiffuseModel, reflectance: f64) -> Header {
     Header { bsdf: bsdf.kind(), params: bsdf.parameters().into_iter().collect(), reflectance }
 }
 

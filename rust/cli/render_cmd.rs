@@ -2,6 +2,7 @@
 //! an RGB float EXR (and optionally a tone-mapped sRGB PNG), and prints what it measured
 //! (samples/s, rays/s) as JSON.
 
+use crate::render::film::SplatWeights;
 use crate::render::image_io;
 use crate::render::load;
 use crate::render::renderer;
@@ -27,6 +28,11 @@ pub struct RenderArgs {
     /// Scene parameter, as Mitsuba's `-D name=value` (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE")]
     pub define: Vec<String>,
+    /// How the film weights samples: `discretized` (the filter's step table, as Mitsuba's
+    /// scalar variants) or `exact` (the kernel itself, as its llvm/cuda variants); they differ
+    /// at sharp edges (docs/validation.md).
+    #[arg(long, value_name = "WEIGHTS", default_value = "discretized", value_parser = SplatWeights::parse)]
+    pub splat_weights: SplatWeights,
     /// Also write a tone-mapped sRGB PNG next to the EXR (same name, .png).
     #[arg(long)]
     pub png: bool,
@@ -102,8 +108,15 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
         bar.set_length(total);
         bar.set_position(done);
     };
-    let (image, stats) =
-        renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film, spp, seed, &progress);
+    let (image, stats) = renderer::render(
+        &loaded.scene,
+        &loaded.integrator,
+        &loaded.camera,
+        loaded.film.with_splat_weights(a.splat_weights),
+        spp,
+        seed,
+        &progress,
+    );
     bar.finish_and_clear();
     image_io::write_exr(&output, &image).map_err(|e| format!("{}: {e}", output.display()))?;
     let png = a.png.then(|| output.with_extension("png"));

@@ -4,7 +4,7 @@
 
 use super::render_cmd::parse_defines;
 use crate::study::{self, Options, Study, convergence, variants};
-use crate::validate::Reference;
+use crate::validate::passes::Renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -56,8 +56,8 @@ pub struct StudyArgs {
 
 pub fn run(a: &StudyArgs) -> Result<(), String> {
     let renderer = match a.renderer.as_str() {
-        "matte" => Reference::Matte,
-        "mitsuba" => Reference::Mitsuba(a.variant.clone()),
+        "matte" => Renderer::Matte,
+        "mitsuba" => Renderer::Mitsuba(a.variant.clone()),
         other => return Err(format!("--renderer must be matte or mitsuba, got \"{other}\"")),
     };
     if a.passes < 2 || a.spp < a.passes {
@@ -131,8 +131,8 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     }
     bar.finish_and_clear();
     let label = match &opts.renderer {
-        Reference::Matte => "matte".to_string(),
-        Reference::Mitsuba(v) => format!("mitsuba {v}"),
+        Renderer::Matte => "matte".to_string(),
+        Renderer::Mitsuba(v) => format!("mitsuba {v}"),
     };
     let study = Study {
         renderer: label,

@@ -4,7 +4,7 @@
 //! measured error against the reference integral.
 
 use crate::brdf::ginneken::accuracy::fast_path_error;
-use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params, frame::spherical_direction};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use clap::Args;
 
 #[derive(Args, Debug)]
@@ -51,16 +51,16 @@ const TABLE1_COLUMNS: &[(f64, f64, f64)] = &[
 
 const TABLE2_ANGLES: &[f64] = &[0.0, 30.0, 60.0, 80.0, 89.0];
 
-fn build(kind: &str, params: &[(&str, &str)]) -> Result<Bsdf, String> {
+fn build(kind: &str, params: &[(&str, &str)]) -> Result<DiffuseModel, String> {
     let mut p = Params::new();
     for (n, v) in params {
         p.push(n, ParamValue::parse(v));
     }
-    Bsdf::from_params(kind, p).map_err(|e| e.to_string())
+    DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
 }
 
 pub fn run(args: &TablesArgs) -> Result<(), String> {
-    let models: Vec<(&str, Bsdf)> =
+    let models: Vec<(&str, DiffuseModel)> =
         ROWS.iter().map(|(l, k, p)| build(k, p).map(|b| (*l, b))).collect::<Result<_, _>>()?;
 
     println!("Table 1: f(wi, wo) in 1/sr, reflectance 0.8 (columns: θi/θo/Δφ in degrees)");
@@ -102,7 +102,7 @@ pub fn run(args: &TablesArgs) -> Result<(), String> {
             args.error_samples
         );
         for (label, bsdf) in &models {
-            if let Bsdf::Ginneken(g) = bsdf {
+            if let DiffuseModel::Ginneken(g) = bsdf {
                 for max_theta in [80.0, 85.0, 89.0] {
                     let e = fast_path_error(g, max_theta, args.error_samples);
                     println!(

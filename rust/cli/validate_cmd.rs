@@ -2,7 +2,8 @@
 //! report. Exit status 1 and the failing scenes on stderr when any scene disagrees.
 
 use super::render_cmd::parse_defines;
-use crate::validate::{self, Options, Reference, SceneResult};
+use crate::validate::passes::Renderer;
+use crate::validate::{self, Options, SceneResult};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -109,10 +110,10 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
         power_replicates: a.power.then_some(a.replicates),
     };
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    let references: Vec<Reference> = if a.self_check {
-        vec![Reference::Matte]
+    let references: Vec<Renderer> = if a.self_check {
+        vec![Renderer::Matte]
     } else {
-        a.variants.iter().map(|v| Reference::Mitsuba(v.clone())).collect()
+        a.variants.iter().map(|v| Renderer::Mitsuba(v.clone())).collect()
     };
     let show = !a.quiet && std::io::stderr().is_terminal();
     let mut results: Vec<SceneResult> = Vec::new();
@@ -148,7 +149,7 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     }
     validate::report::write_run(&a.out, &results)?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&validate::report::summary_json(&results)).expect("json"));
+        println!("{}", validate::summary::Summary::new(&results).to_json());
     }
     let failed: Vec<String> = results
         .iter()
@@ -192,10 +193,15 @@ fn one_line(name: &str, r: &SceneResult) -> String {
         c.global.ci99.y,
         c.global.ci99.z
     );
+    let d = validate::report::percent;
+    line += &format!(
+        "; predicted 80% power at {} uniform, {} in a 16×16 patch",
+        d(r.predicted_power.uniform),
+        d(r.predicted_power.patch)
+    );
     if let Some(p) = &r.power {
-        let d = |x: Option<f64>| x.map(|d| format!("{:.2}%", d * 100.0)).unwrap_or_else(|| "> 30%".into());
         line += &format!(
-            "; 80% power at {} uniform, {} in a 16×16 patch; identical inputs rejected {}/{} (matte), {}/{} (reference)",
+            "; measured 80% power at {} uniform, {} in a 16×16 patch; identical inputs rejected {}/{} (matte), {}/{} (reference)",
             d(p.uniform.detected),
             d(p.patch.detected),
             p.identical_matte.rejected,

@@ -15,7 +15,7 @@ pub mod traced;
 mod traced_entry;
 
 use crate::brdf::kernel;
-use crate::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use bridge::ffi::{Channels, Param, Vec3f};
 use glam::{Vec2, Vec3};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -24,7 +24,7 @@ pub use bridge::ffi;
 
 /// A constructed model as the plugin holds it.
 pub struct Model {
-    bsdf: Bsdf,
+    bsdf: DiffuseModel,
 }
 
 /// Largest number of spectral channels a variant uses (Mitsuba's spectral variants: 4).
@@ -43,7 +43,7 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
                 if param.is_number { ParamValue::Number(param.number) } else { ParamValue::Text(param.text.clone()) };
             p.push(&param.name, value);
         }
-        Bsdf::from_params(kind, p).map_err(|e| e.to_string())
+        DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
     }));
     match built {
         Ok(Ok(bsdf)) => Ok(Box::new(Model { bsdf })),
@@ -71,7 +71,7 @@ fn used(c: &Channels) -> &[f32] {
 
 /// Evaluates `bsdf` for 1, 3 or 4 channels (Mitsuba's mono, RGB and spectral variants).
 #[inline]
-fn eval_channels(bsdf: &Bsdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; MAX_CHANNELS] {
+fn eval_channels(bsdf: &DiffuseModel, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; MAX_CHANNELS] {
     match *rho {
         [a] => {
             let [x] = bsdf.eval(wi, wo, [a]);

@@ -18,7 +18,7 @@ use crate::brdf::lane::LaneKernel;
 use crate::brdf::oren_nayar::OrenNayarKernel;
 use crate::brdf::real::V3;
 use crate::brdf::wolff::WolffKernel;
-use crate::brdf::{Bsdf, RoughDiffuse};
+use crate::brdf::{DiffuseModel, RoughDiffuse};
 
 /// One model's kernel with traced constants.
 type TracedKernel<'a> = LaneKernel<'a, Traced<'a>>;
@@ -49,7 +49,7 @@ macro_rules! by_channels {
 impl Model {
     pub(super) fn table_count(&self) -> usize {
         match &self.bsdf {
-            Bsdf::Ginneken(_) => 4,
+            DiffuseModel::Ginneken(_) => 4,
             _ => 0,
         }
     }
@@ -58,7 +58,7 @@ impl Model {
     /// `μΛ`, `∂(μΛ)/∂m`.
     pub(super) fn table(&self, k: usize) -> &[f32] {
         match &self.bsdf {
-            Bsdf::Ginneken(g) => {
+            DiffuseModel::Ginneken(g) => {
                 let t = g.table();
                 match k {
                     0 => t.slope_nodes(),
@@ -85,18 +85,18 @@ impl Model {
     pub(super) fn traced_coefficients(&self, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32> {
         let p = |k: usize| params.get(k).map(|&i| Traced::node(arena, i));
         match &self.bsdf {
-            Bsdf::Lambert(_) => vec![],
-            Bsdf::OrenNayar(b) => {
+            DiffuseModel::Lambert(_) => vec![],
+            DiffuseModel::OrenNayar(b) => {
                 p(0).map_or(vec![], |sigma| ids(arena, OrenNayarKernel::new(sigma, b.model()).coefficients()))
             }
-            Bsdf::Eon(_) => p(0).map_or(vec![], |r| ids(arena, EonKernel::new(r).coefficients())),
-            Bsdf::RoughDiffuse(b) => p(0).map_or(vec![], |alpha| {
+            DiffuseModel::Eon(_) => p(0).map_or(vec![], |r| ids(arena, EonKernel::new(r).coefficients())),
+            DiffuseModel::RoughDiffuse(b) => p(0).map_or(vec![], |alpha| {
                 ids(
                     arena,
                     OrenNayarKernel::new(RoughDiffuse::sigma_of_alpha(alpha), b.oren_nayar().model()).coefficients(),
                 )
             }),
-            Bsdf::Wolff(b) => match (p(0), p(1)) {
+            DiffuseModel::Wolff(b) => match (p(0), p(1)) {
                 (Some(int_ior), Some(ext_ior)) => {
                     ids(arena, WolffKernel::new(int_ior / ext_ior, b.normalization()).coefficients())
                 }
@@ -104,7 +104,7 @@ impl Model {
             },
             // m − m₀: zero in value (the tables were built at the parameter's value m₀), the
             // roughness's gradient in derivative.
-            Bsdf::Ginneken(b) => match p(0) {
+            DiffuseModel::Ginneken(b) => match p(0) {
                 Some(m) if differentiable => ids(arena, [m - Traced::Lit(b.roughness())]),
                 _ => vec![],
             },
@@ -130,11 +130,11 @@ impl Model {
     fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32], lane: bool) -> Option<TracedKernel<'a>> {
         let table = |id| TracedTable { arena, id };
         match &self.bsdf {
-            Bsdf::Ginneken(_) if lane => {
+            DiffuseModel::Ginneken(_) if lane => {
                 let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
                 self.bsdf.kernel_from_coefficients(&c, || Some([table(0), table(1), table(2), table(3)]))
             }
-            Bsdf::Ginneken(b) => {
+            DiffuseModel::Ginneken(b) => {
                 let roughness_derivative = nodes::<1>(arena, coefficients).map(|[dm]| (table(1), table(3), dm));
                 Some(LaneKernel::Ginneken(GinnekenKernel {
                     slope: table(0),

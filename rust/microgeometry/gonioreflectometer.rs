@@ -62,59 +62,75 @@ const CHUNK: u64 = 1 << 14;
 
 /// Measures `surface` under `setup`.
 pub fn measure<S: MicroSurface>(surface: &S, setup: &Setup) -> Result<Measurement, String> {
-    if !(0.0..=1.0).contains(&setup.reflectance) {
-        return Err(format!("reflectance must be in [0, 1], got {}", setup.reflectance));
+    Ok(measure_reflectances(surface, setup, &[setup.reflectance])?.remove(0))
+}
+
+/// Measures `surface` under `setup` for several facet albedos at once (`setup.reflectance` is
+/// not used): a path's geometry does not depend on ρ (no photon is absorbed; its throughput is
+/// ρᵏ after k bounces), so each path is traced once and weighted for every ρ. One
+/// [`Measurement`] per entry of `reflectances`.
+pub fn measure_reflectances<S: MicroSurface>(
+    surface: &S,
+    setup: &Setup,
+    reflectances: &[f64],
+) -> Result<Vec<Measurement>, String> {
+    if reflectances.is_empty() || reflectances.iter().any(|r| !(0.0..=1.0).contains(r)) {
+        return Err(format!("reflectance must be in [0, 1], got {reflectances:?}"));
     }
     if !(setup.wi.z > 0.0) || setup.wo.iter().any(|w| !(w.z > 0.0)) {
         return Err("wi and every wo must point above the surface (z > 0)".into());
     }
     let chunks = setup.photons.div_ceil(CHUNK);
-    let partial: Vec<(Vec<RunningMean>, RunningMean, u64)> = (0..chunks)
+    let partial: Vec<(Vec<Vec<RunningMean>>, Vec<RunningMean>, u64)> = (0..chunks)
         .into_par_iter()
         .map(|c| {
             let n = CHUNK.min(setup.photons - c * CHUNK);
             let mut rng = Pcg64Mcg::seed_from_u64(setup.seed ^ (c + 1).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-            trace_photons(surface, setup, n, &mut rng)
+            trace_photons(surface, setup, reflectances, n, &mut rng)
         })
         .collect();
-    let mut f = vec![RunningMean::default(); setup.wo.len()];
-    let mut albedo = RunningMean::default();
-    let mut truncated = 0;
-    for (pf, pa, pt) in &partial {
-        f.iter_mut().zip(pf).for_each(|(a, b)| a.merge(b));
-        albedo.merge(pa);
-        truncated += pt;
-    }
-    Ok(Measurement {
-        f: f.iter().map(RunningMean::estimate).collect(),
-        albedo: albedo.estimate(),
-        truncated: truncated as f64 / setup.photons.max(1) as f64,
-    })
+    let truncated = partial.iter().map(|p| p.2).sum::<u64>() as f64 / setup.photons.max(1) as f64;
+    Ok((0..reflectances.len())
+        .map(|r| {
+            let mut f = vec![RunningMean::default(); setup.wo.len()];
+            let mut albedo = RunningMean::default();
+            for (pf, pa, _) in &partial {
+                f.iter_mut().zip(&pf[r]).for_each(|(a, b)| a.merge(b));
+                albedo.merge(&pa[r]);
+            }
+            Measurement { f: f.iter().map(RunningMean::estimate).collect(), albedo: albedo.estimate(), truncated }
+        })
+        .collect())
 }
 
 fn trace_photons<S: MicroSurface>(
     surface: &S,
     setup: &Setup,
+    reflectances: &[f64],
     photons: u64,
     rng: &mut impl Rng,
-) -> (Vec<RunningMean>, RunningMean, u64) {
-    let rho = setup.reflectance;
-    let mut f = vec![RunningMean::default(); setup.wo.len()];
-    let mut albedo = RunningMean::default();
+) -> (Vec<Vec<RunningMean>>, Vec<RunningMean>, u64) {
+    let nr = reflectances.len();
+    let nw = setup.wo.len();
+    let mut f = vec![vec![RunningMean::default(); nw]; nr];
+    let mut albedo = vec![RunningMean::default(); nr];
     let mut truncated = 0;
-    let mut sum = vec![0.0; setup.wo.len()];
+    // Per-photon sums, reflectance-major.
+    let mut sum = vec![0.0; nr * nw];
+    let mut weight = vec![0.0; nr];
+    let mut escaped = vec![0.0; nr];
     for _ in 0..photons {
         sum.iter_mut().for_each(|x| *x = 0.0);
+        weight.iter_mut().for_each(|w| *w = 1.0);
+        escaped.iter_mut().for_each(|e| *e = 0.0);
         let patch = surface.sample_patch(rng);
         let mut direction = -setup.wi;
         let mut origin = surface.entry_point(&patch, direction, rng);
-        let mut weight = 1.0;
-        let mut escaped = 0.0;
         let mut bounce = 0;
         loop {
             let Some(hit) = surface.intersect(&patch, origin, direction) else {
                 if bounce > 0 {
-                    escaped = weight;
+                    escaped.copy_from_slice(&weight);
                 }
                 break;
             };
@@ -122,23 +138,29 @@ fn trace_photons<S: MicroSurface>(
                 truncated += 1;
                 break;
             }
-            for (wo, acc) in setup.wo.iter().zip(sum.iter_mut()) {
+            for (j, wo) in setup.wo.iter().enumerate() {
                 let c = hit.normal.dot(*wo);
                 if c > 0.0 && surface.intersect(&patch, hit.point, *wo).is_none() {
-                    *acc += weight * rho * FRAC_1_PI * c / wo.z;
+                    let geometry = FRAC_1_PI * c / wo.z;
+                    for (r, rho) in reflectances.iter().enumerate() {
+                        sum[r * nw + j] += weight[r] * rho * geometry;
+                    }
                 }
             }
-            weight *= rho;
+            weight.iter_mut().zip(reflectances).for_each(|(w, rho)| *w *= rho);
             bounce += 1;
             direction = cosine_around(hit.normal, rng);
             origin = hit.point;
             if setup.bounces == Bounces::First {
-                escaped = if surface.intersect(&patch, origin, direction).is_none() { weight } else { 0.0 };
+                let out = surface.intersect(&patch, origin, direction).is_none();
+                escaped.iter_mut().zip(&weight).for_each(|(e, w)| *e = if out { *w } else { 0.0 });
                 break;
             }
         }
-        f.iter_mut().zip(&sum).for_each(|(m, x)| m.push(*x));
-        albedo.push(escaped);
+        for r in 0..nr {
+            f[r].iter_mut().zip(&sum[r * nw..(r + 1) * nw]).for_each(|(m, x)| m.push(*x));
+            albedo[r].push(escaped[r]);
+        }
     }
     (f, albedo, truncated)
 }

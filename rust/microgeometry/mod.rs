@@ -9,18 +9,24 @@
 //!   Lambertian triangles with per-axis rms slope m.
 //! * [`gonioreflectometer`]: photons from a distant source, next-event estimates of f toward
 //!   every sensor direction, all bounces or the first only, and the directional albedo.
-//! * [`comparison`]: the Oren–Nayar-family kernels against their simulated surface.
+//! * [`comparison`]: every rough model against both simulated surfaces.
+//! * [`realisations`]: one measurement pooled over independent realisations of a random surface.
+//! * [`eon_fit`]: EON's roughness that fits a simulated surface best.
+//! * [`tabulation`]: the simulated BRDF as a tabulated BSDF file (`crate::brdf::tabulated`).
 //! * [`estimate`]: running means with 99 % intervals.
 
 pub mod comparison;
+pub mod eon_fit;
 pub mod estimate;
 pub mod gonioreflectometer;
 pub mod height_field;
+pub mod realisations;
 pub mod surface;
+pub mod tabulation;
 pub mod v_cavity;
 
 pub use estimate::{Estimate, RunningMean};
-pub use gonioreflectometer::{Bounces, Measurement, Setup, measure};
+pub use gonioreflectometer::{Bounces, Measurement, Setup, measure, measure_reflectances};
 pub use height_field::HeightField;
 pub use surface::{Hit, MicroSurface};
 pub use v_cavity::VCavities;

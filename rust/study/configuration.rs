@@ -170,7 +170,7 @@ mod tests {
         // property is in it only when that property is the plugin's default.
         for c in MAIN_RUN {
             if let Some((name, value)) = c.property() {
-                let bsdf = crate::brdf::Bsdf::from_params(c.bsdf(), crate::brdf::Params::default()).unwrap();
+                let bsdf = crate::brdf::DiffuseModel::from_params(c.bsdf(), crate::brdf::Params::default()).unwrap();
                 let default = bsdf.parameters().into_iter().find(|(n, _)| *n == name).map(|(_, v)| v);
                 assert_eq!(default, Some(crate::brdf::ParamValue::Text(value.into())), "{c:?}");
             }

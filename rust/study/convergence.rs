@@ -18,6 +18,7 @@ use super::configuration::{Configuration, SERIES};
 use super::ratio::Ratio;
 use super::variant_scene::{self, Derivation, Property};
 use super::{Lighting, Options, Region, metrics};
+use crate::render::film::SplatWeights;
 use crate::render::load;
 use crate::validate::crop::{PixelBox, pixel_box};
 use crate::validate::passes::{self, Budget, PassPlan, Side};
@@ -164,7 +165,9 @@ pub fn run(
                 let plan = PassPlan { defines: super::image_defines(opts, m.bsdf(), Lighting::Global), ..plan.clone() };
                 let what = format!("{name} convergence {spp} spp {renderer} {}", m.label());
                 let side = if renderer == "matte" {
-                    passes::rust_side(file, &plan, &|k| progress(&what, k))
+                    passes::rust_side(file, &plan, SplatWeights::of_mitsuba_variant(&opts.mitsuba_variant), &|k| {
+                        progress(&what, k)
+                    })
                 } else {
                     passes::mitsuba_side_in_venv(file, &opts.mitsuba_variant, &plan, &dir.join("work"), &|k| {
                         progress(&what, k)

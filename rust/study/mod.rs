@@ -23,9 +23,9 @@ pub mod strip;
 pub mod variant_scene;
 pub mod variants;
 
-use crate::render::film::Image;
+use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
-use crate::validate::Reference;
+use crate::validate::passes::Renderer;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
 use configuration::{Configuration, MAIN_RUN};
 use ratio::{Ratio, RegionRatio};
@@ -56,7 +56,7 @@ pub struct Options {
     pub seed: u64,
     /// Film width override (`-D res=…`), if any.
     pub res: Option<u32>,
-    pub renderer: Reference,
+    pub renderer: Renderer,
     /// Extra `-D` parameters.
     pub defines: Vec<(String, String)>,
     /// Scene names (file stems) whose model variants are rendered; `all` = every scene.
@@ -208,8 +208,8 @@ pub(crate) fn render_side(
         regions,
     };
     match &opts.renderer {
-        Reference::Matte => passes::rust_side(scene, &plan, progress),
-        Reference::Mitsuba(variant) => passes::mitsuba_side_in_venv(scene, variant, &plan, work, progress),
+        Renderer::Matte => passes::rust_side(scene, &plan, SplatWeights::default(), progress),
+        Renderer::Mitsuba(variant) => passes::mitsuba_side_in_venv(scene, variant, &plan, work, progress),
     }
 }
 

@@ -9,22 +9,16 @@ pub mod crop;
 pub mod heatmap;
 pub mod passes;
 pub mod power;
+pub mod predicted_power;
 pub mod report;
 pub mod scales;
 pub mod stats;
+pub mod summary;
 
+use crate::render::film::SplatWeights;
 use crate::render::image_io;
-use passes::{Budget, PassPlan, Side};
+use passes::{Budget, PassPlan, Renderer, Side};
 use std::path::{Path, PathBuf};
-
-/// Which renderer the Rust renderer is compared with.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Reference {
-    /// Mitsuba in this variant.
-    Mitsuba(String),
-    /// The Rust renderer itself with other seeds (a size check of the test).
-    Matte,
-}
 
 #[derive(Clone, Debug)]
 pub struct Options {
@@ -56,22 +50,24 @@ pub struct SceneResult {
     pub seconds_reference: f64,
     pub passes: u32,
     pub spp_per_pass: u32,
-    /// `--power`: what this budget detects.
+    /// `--power`: what this budget detects, measured by injection over replicates.
     pub power: Option<power::Calibration>,
+    /// What this budget detects, predicted from this run's variances (a lower bound on power).
+    pub predicted_power: predicted_power::Prediction,
     /// Files, relative to the output folder.
     pub files: report::Files,
 }
 
 pub fn validate_scene(
     scene: &Path,
-    reference: &Reference,
+    reference: &Renderer,
     opts: &Options,
     progress: &dyn Fn(&str, u32, u32),
 ) -> Result<SceneResult, String> {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
     let ref_label = match reference {
-        Reference::Mitsuba(v) => v.clone(),
-        Reference::Matte => "matte".into(),
+        Renderer::Mitsuba(v) => v.clone(),
+        Renderer::Matte => "matte".into(),
     };
     let rel_dir = PathBuf::from(&name).join(&ref_label);
     let dir = opts.out.join(&rel_dir);
@@ -91,18 +87,24 @@ pub fn validate_scene(
         Ok(PassPlan { passes: k * reps, spp, ..one })
     };
     let n = k * reps;
-    let a: Side = passes::rust_side(matte_scene, &plan(matte_scene, &opts.matte_defines, opts.seed)?, &|i| {
+    // The Rust renderer's film weights samples as the reference does (Mitsuba's scalar and JIT
+    // variants differ at sharp edges; `docs/validation.md`).
+    let splat = match reference {
+        Renderer::Mitsuba(variant) => SplatWeights::of_mitsuba_variant(variant),
+        Renderer::Matte => SplatWeights::default(),
+    };
+    let a: Side = passes::rust_side(matte_scene, &plan(matte_scene, &opts.matte_defines, opts.seed)?, splat, &|i| {
         progress("matte", i, n)
     })?;
     let ref_plan = plan(scene, &opts.reference_defines, opts.seed + 1_000_003)?;
     let b: Side = match reference {
-        Reference::Mitsuba(variant) => {
+        Renderer::Mitsuba(variant) => {
             passes::mitsuba_side_in_venv(scene, variant, &ref_plan, &dir.join("mitsuba_work"), &|i| {
                 progress(variant, i, n)
             })?
         }
-        Reference::Matte => {
-            let mut s = passes::rust_side(scene, &ref_plan, &|i| progress("matte (reference)", i, n))?;
+        Renderer::Matte => {
+            let mut s = passes::rust_side(scene, &ref_plan, splat, &|i| progress("matte (reference)", i, n))?;
             s.label = "matte (other seeds)".into();
             s
         }
@@ -115,6 +117,7 @@ pub fn validate_scene(
     } else {
         None
     };
+    let predicted_power = predicted_power::predict(&a.images, &b.images, opts.alpha)?;
     let files = report::write_scene_files(&opts.out, &rel_dir, &a, &b, &comparison)?;
     Ok(SceneResult {
         scene: scene.to_path_buf(),
@@ -126,6 +129,7 @@ pub fn validate_scene(
         passes: opts.passes,
         spp_per_pass: a.spp,
         power,
+        predicted_power,
         files,
     })
 }

@@ -5,7 +5,7 @@
 
 use super::crop::pixel_box;
 use super::stats::Moments;
-use crate::render::film::Image;
+use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
 use crate::render::load;
 use crate::render::renderer;
@@ -14,6 +14,15 @@ use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Instant;
+
+/// The renderer of one side: the Rust renderer (in validation's reference role: itself with
+/// other seeds, a size check of the test), or Mitsuba in a variant.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Renderer {
+    Matte,
+    /// Mitsuba 3.9.1 in this variant (`scalar_rgb`, `llvm_ad_rgb`, …).
+    Mitsuba(String),
+}
 
 /// Samples per pixel of each pass.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -100,8 +109,10 @@ pub fn spp_per_pass(scene: &Path, plan: &PassPlan) -> Result<u32, String> {
     }
 }
 
-/// K passes of the Rust renderer. `progress(k)` after each pass.
-pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Result<Side, String> {
+/// K passes of the Rust renderer, its film weighting samples by `splat` (that of the Mitsuba
+/// variant it is compared with: [`SplatWeights::of_mitsuba_variant`]). `progress(k)` after
+/// each pass.
+pub fn rust_side(scene: &Path, plan: &PassPlan, splat: SplatWeights, progress: &dyn Fn(u32)) -> Result<Side, String> {
     let mut seconds = 0.0;
     // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
     let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
@@ -113,7 +124,7 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, progress: &dyn Fn(u32)) -> Resul
             &loaded.scene,
             &loaded.integrator,
             &loaded.camera,
-            loaded.film.clone(),
+            loaded.film.clone().with_splat_weights(splat),
             spp_used,
             plan.seed + k as u64,
             &|_, _| {},
@@ -170,16 +181,20 @@ pub fn mitsuba_side(
     let images = (0..plan.passes)
         .map(|k| image_io::read_exr(&work.join(pass_file_name(k))))
         .collect::<Result<Vec<_>, String>>()?;
-    let info: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(work.join("passes.json")).map_err(|e| e.to_string())?)
-            .map_err(|e| e.to_string())?;
-    side_from_images(
-        images,
-        &plan.regions,
-        info["render_seconds"].as_f64().unwrap_or(f64::NAN),
-        spp,
-        format!("mitsuba {variant}"),
+    let info_path = work.join("passes.json");
+    let info: DriverInfo = serde_json::from_str(
+        &std::fs::read_to_string(&info_path).map_err(|e| format!("{}: {e}", info_path.display()))?,
     )
+    .map_err(|e| format!("{}: {e}", info_path.display()))?;
+    side_from_images(images, &plan.regions, info.render_seconds, spp, format!("mitsuba {variant}"))
+}
+
+/// What the Mitsuba driver reports about its run in `passes.json` (it writes the variant,
+/// passes, spp, seed and load time too; only the render time is used here).
+#[derive(serde::Deserialize)]
+struct DriverInfo {
+    /// Seconds spent rendering all passes.
+    render_seconds: f64,
 }
 
 /// The file the Mitsuba driver writes pass `k` to (`validation/mitsuba_passes.py`).

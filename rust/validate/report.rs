@@ -5,14 +5,14 @@
 use super::crop::PixelBox;
 use super::heatmap;
 use super::passes::Side;
-use super::power::{Calibration, PowerCurve, Rate};
+use super::power::Calibration;
+use super::predicted_power::Prediction;
 use super::scales::Rejection;
 use super::stats::Comparison;
 use super::{SceneResult, write_mean};
 use crate::markup::escape;
 use crate::render::film::Image;
 use crate::render::image_io;
-use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -136,77 +136,6 @@ pub fn write_scene_files(out: &Path, rel_dir: &Path, a: &Side, b: &Side, c: &Com
     })
 }
 
-fn v3(v: glam::DVec3) -> serde_json::Value {
-    json!([v.x, v.y, v.z])
-}
-
-fn place_json(b: &PixelBox) -> serde_json::Value {
-    json!({"x0": b.x0, "y0": b.y0, "x1": b.x1, "y1": b.y1})
-}
-
-fn rejection_json(r: &Rejection) -> serde_json::Value {
-    json!({"scale": r.scale.key(), "place": place_json(&r.place), "p": r.p, "t": v3(r.t), "rel_diff": r.rel_diff})
-}
-
-fn curve_json(c: &PowerCurve) -> serde_json::Value {
-    json!({"detected_80": c.detected, "curve": c.curve.iter().map(|(d, p)| json!([d, p])).collect::<Vec<_>>()})
-}
-
-fn rate_json(r: &Rate) -> serde_json::Value {
-    json!({"rejected": r.rejected, "pairs": r.pairs, "by_scale": r.by_scale.iter().map(|(k, n)| json!([k, n])).collect::<Vec<_>>()})
-}
-
-fn power_json(p: &Calibration) -> serde_json::Value {
-    json!({
-        "replicates": p.replicates,
-        "unchanged": rate_json(&p.unchanged),
-        "identical_matte": rate_json(&p.identical_matte),
-        "identical_reference": rate_json(&p.identical_reference),
-        "uniform": curve_json(&p.uniform),
-        "patch": curve_json(&p.patch),
-        "patch_place": place_json(&p.patch_place),
-    })
-}
-
-pub fn summary_json(results: &[SceneResult]) -> serde_json::Value {
-    let scenes: Vec<_> = results
-        .iter()
-        .map(|r| {
-            let c = &r.comparison;
-            json!({
-                "scene": r.scene.display().to_string(),
-                "reference": r.reference,
-                "passed": c.passed(),
-                "width": c.width, "height": c.height,
-                "passes": r.passes, "spp_per_pass": r.spp_per_pass,
-                "alpha": c.alpha, "alpha_pixel": c.alpha_pixel,
-                "rejected_pixels": c.rejected_pixels,
-                "rejected_fraction": c.rejected_fraction(),
-                "uncorrected_rejection_rate": c.uncorrected_rejection_rate,
-                "scales": c.scales.iter().map(|s| json!({
-                    "scale": s.scale.key(), "blocks": s.blocks, "alpha_test": s.alpha_test,
-                    "rejected": s.rejected, "min_p": s.min_p,
-                    "worst": s.worst.iter().map(rejection_json).collect::<Vec<_>>(),
-                })).collect::<Vec<_>>(),
-                "power": r.power.as_ref().map(power_json),
-                "global": {
-                    "mean_matte": v3(c.global.mean_a), "mean_reference": v3(c.global.mean_b),
-                    "difference": v3(c.global.diff), "ci99_half_width": v3(c.global.ci99),
-                    "p": v3(c.global.p), "rejected": c.global.rejected,
-                },
-                "seconds_matte": r.seconds_matte, "seconds_reference": r.seconds_reference,
-                "files": {
-                    "matte_exr": r.files.matte_exr, "matte_png": r.files.matte_png,
-                    "reference_exr": r.files.reference_exr, "reference_png": r.files.reference_png,
-                    "difference_png": r.files.difference_png, "pvalues_png": r.files.pvalues_png,
-                    "difference_range": r.files.difference_range,
-                },
-            })
-        })
-        .collect();
-    json!({ "passed": results.iter().all(|r| r.comparison.passed()), "scenes": scenes })
-}
-
 fn rgb(v: glam::DVec3) -> String {
     format!("{:.5} {:.5} {:.5}", v.x, v.y, v.z)
 }
@@ -236,7 +165,7 @@ scale rejects anything (docs/validation.md).</p>"#,
         let p = |p: &PathBuf| escape(&p.display().to_string());
         let _ = write!(
             h,
-            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{power}</p>
+            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{predicted}</p><p>{power}</p>
 <div class="imgs">
 <figure><img class="r" src="{mp}"><figcaption>matte (<a href="{me}">EXR</a>)</figcaption></figure>
 <figure><img class="r" src="{rp}"><figcaption>{reference} (<a href="{re}">EXR</a>)</figcaption></figure>
@@ -250,6 +179,7 @@ scale rejects anything (docs/validation.md).</p>"#,
 <tr><th>passes × spp</th><td>{passes} × {spp} per renderer</td></tr>
 <tr><th>render time</th><td>matte {ta:.2} s, {reference} {tb:.2} s</td></tr>
 </table>{extra}</div>"#,
+            predicted = predicted_power_html(&r.predicted_power),
             power = power_html(r.power.as_ref()),
             extra = scales_html(r) + &crops_html(r),
             name = escape(&r.name),
@@ -286,11 +216,36 @@ scale rejects anything (docs/validation.md).</p>"#,
     h
 }
 
+/// A detectable relative change as a percentage with two significant digits (changes far
+/// below 0.01 % are detectable where both renderers are exact, e.g. directly seen emitters);
+/// `None`: not detectable by any change tried.
+pub fn percent(x: Option<f64>) -> String {
+    match x {
+        Some(d) => {
+            let p = d * 100.0;
+            let decimals = if p > 0.0 { (1.0 - p.log10().floor()).clamp(0.0, 12.0) as usize } else { 2 };
+            format!("{p:.decimals$} %")
+        }
+        None => "more than 30 %".into(),
+    }
+}
+
+fn predicted_power_html(p: &Prediction) -> String {
+    format!(
+        "Predicted from this run's own variances (a lower bound on power; docs/validation.md#power): \
+         80 % power for a uniform relative change of <b>{}</b>, or of <b>{}</b> confined to the 16×16 patch at ({}, {}).",
+        percent(p.uniform),
+        percent(p.patch),
+        p.patch_place.x0,
+        p.patch_place.y0,
+    )
+}
+
 fn power_html(p: Option<&Calibration>) -> String {
     let Some(p) = p else {
-        return "Power not calibrated (run with <code>--power</code> to measure what this budget detects).".into();
+        return "Not measured by injection (run with <code>--power</code>).".into();
     };
-    let d = |x: Option<f64>| x.map(|d| format!("{:.2} %", d * 100.0)).unwrap_or_else(|| "more than 30 %".into());
+    let d = percent;
     // Injection measures power on top of the existing difference: meaningless when that
     // difference alone is already rejected in most replicates.
     let note = if p.unchanged.fraction() > 0.5 {
@@ -374,7 +329,7 @@ fn crops_html(r: &SceneResult) -> String {
 /// summary.json, report.html and the colour bars in `out`.
 pub fn write_run(out: &Path, results: &[SceneResult]) -> Result<(), String> {
     heatmap::write_colorbars(&out.join("colorbar_difference.png"), &out.join("colorbar_pvalues.png"))?;
-    let json = serde_json::to_string_pretty(&summary_json(results)).expect("json");
+    let json = super::summary::Summary::new(results).to_json();
     std::fs::write(out.join("summary.json"), json).map_err(|e| e.to_string())?;
     std::fs::write(out.join("report.html"), html(results)).map_err(|e| e.to_string())
 }

@@ -155,12 +155,19 @@ pub fn welch(mean_a: f64, var_a: f64, ka: u32, mean_b: f64, var_b: f64, kb: u32)
     let floor = (1e-6 * mean_a.abs().max(mean_b.abs())).powi(2) + 1e-24;
     let se2 = var_a + var_b + floor;
     let t = (mean_a - mean_b) / se2.sqrt();
-    let (na, nb) = ((ka as f64 - 1.0).max(1.0), (kb as f64 - 1.0).max(1.0));
-    let df = se2 * se2 / (var_a * var_a / na + var_b * var_b / nb + floor * floor).max(1e-300);
-    let df = df.clamp(1.0, 1e6);
-    let dist = StudentsT::new(0.0, 1.0, df).expect("valid t distribution");
+    let dist = StudentsT::new(0.0, 1.0, welch_df(var_a, ka, var_b, kb, floor)).expect("valid t distribution");
     let p = 2.0 * dist.sf(t.abs());
     (t, p.clamp(0.0, 1.0))
+}
+
+/// Welch–Satterthwaite degrees of freedom of the difference of two means whose variances
+/// (of the mean) are `var_a` and `var_b` from `ka` and `kb` passes; `floor` is added to the
+/// variance as in [`welch`]. Clamped to [1, 10⁶].
+pub fn welch_df(var_a: f64, ka: u32, var_b: f64, kb: u32, floor: f64) -> f64 {
+    let se2 = var_a + var_b + floor;
+    let (na, nb) = ((ka as f64 - 1.0).max(1.0), (kb as f64 - 1.0).max(1.0));
+    let df = se2 * se2 / (var_a * var_a / na + var_b * var_b / nb + floor * floor).max(1e-300);
+    df.clamp(1.0, 1e6)
 }
 
 /// Šidák's per-test level for a family of `n` tests at family level `alpha`.

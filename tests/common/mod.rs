@@ -7,7 +7,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use glam::{Vec2, Vec3};
-use matte::brdf::{Bsdf, DiffuseBrdf, ParamValue, Params};
+use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
 
@@ -56,16 +56,16 @@ impl Pcg32 {
 }
 
 /// Builds a model from `(name, value)` pairs, panicking on rejection (test inputs are valid).
-pub fn model(kind: &str, params: &[(&str, &str)]) -> Bsdf {
+pub fn model(kind: &str, params: &[(&str, &str)]) -> DiffuseModel {
     let mut p = Params::new();
     for (n, v) in params {
         p.push(n, ParamValue::parse(v));
     }
-    Bsdf::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
+    DiffuseModel::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
 }
 
 /// Every model with defaults and with low / high roughness (and each option).
-pub fn catalogue() -> Vec<(String, Bsdf)> {
+pub fn catalogue() -> Vec<(String, DiffuseModel)> {
     let cfgs: &[(&str, &[(&str, &str)])] = &[
         ("lambert", &[]),
         ("oren_nayar", &[]),
@@ -199,4 +199,17 @@ pub fn chi2_sampling_ires<B: DiffuseBrdf>(bsdf: &B, wi: Vec3, seed: u64, ires: u
 /// Šidák-corrected significance level for `test_count` tests at overall level 0.01.
 pub fn sidak(test_count: usize) -> f64 {
     1.0 - (1.0 - 0.01f64).powf(1.0 / test_count as f64)
+}
+
+/// The project's `.venv` Python (Mitsuba 3.9.1, as `make venv` installs it), if this checkout
+/// has one; checks against Mitsuba itself are skipped (with a note) where it does not. `make
+/// test` builds the venv first, so the suite always runs them.
+pub fn mitsuba_python() -> Option<std::path::PathBuf> {
+    let python = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
+    if python.exists() {
+        Some(python)
+    } else {
+        println!("note: {} not found; skipping a check against Mitsuba itself", python.display());
+        None
+    }
 }

@@ -69,3 +69,7 @@ def test_fit_errors_are_one_line(scenes, tmp_path):
     assert "plane.bsdf.nope" in p.stderr and "plane.bsdf.sigma" in p.stderr, p.stderr
     p = run("--target", str(tmp_path / "missing.exr"), "--param", "plane.bsdf.sigma")
     assert p.returncode == 2 and "missing.exr: no such target image" in p.stderr, p.stderr
+    p = run("--target-scene", str(truth), "--param", "plane.bsdf.sigma", "--lr-factor", "plane.bsdf.sigma=-1")
+    assert p.returncode == 2 and "--lr-factor plane.bsdf.sigma=-1: must be a positive number" in p.stderr, p.stderr
+    p = run("--target-scene", str(truth), "--param", "plane.bsdf.sigma", "--init", "plane.bsdf.sigma=0.1,0.2,0.3")
+    assert p.returncode == 2 and "3 values for a parameter of another size" in p.stderr, p.stderr

@@ -18,6 +18,10 @@ with Mitsuba's ``prb`` integrator and ``mi.ad.Adam`` so that renders match the t
   value (a texture is filled with it). After every step the values are clamped to their valid
   range, chosen from the key's parameter name (``RANGES``; ``--range KEY=LO,HI`` overrides).
 * **Loss**: mean squared error per pixel and channel, averaged over configurations.
+* **Learning rate**: ``--lr``, constant, or decaying geometrically to ``--lr-final`` at the last
+  iteration (Adam's steps keep a size of about the learning rate while the gradients are
+  noisy, so a decay lets the parameters settle instead of jittering around the optimum);
+  ``--lr-factor KEY=F`` scales one key's (e.g. small reflectances next to a roughness).
 * **Outputs** in ``-o``: ``fit.json`` (settings, loss and parameter-error history, fitted
   values), per freed texture its fitted EXR and PNG (and truth and |error| PNGs when known),
   ``loss.png``, ``param_error.png`` (when the truth is known), final render / target PNGs per
@@ -61,10 +65,15 @@ def parse_args(argv):
     p.add_argument("--target-scene", metavar="XML", help="render the targets from this scene (the truth is then known)")
     p.add_argument("--config", action="append", default=[], metavar="NAME=V,...",
                    help="a configuration: defines for the scene (and the target scene); repeatable")
-    p.add_argument("--init", action="append", default=[], metavar="KEY=VALUE", help="start value of a freed key")
+    p.add_argument("--init", action="append", default=[], metavar="KEY=VALUE",
+                   help="start value of a freed key (a colour: R,G,B)")
     p.add_argument("--range", action="append", default=[], metavar="KEY=LO,HI", help="clamp range of a freed key")
     p.add_argument("--iterations", type=int, default=200)
     p.add_argument("--lr", type=float, default=0.02, help="Adam's learning rate (default 0.02)")
+    p.add_argument("--lr-final", type=float, metavar="LR",
+                   help="learning rate of the last iteration: geometric decay from --lr (default: constant --lr)")
+    p.add_argument("--lr-factor", action="append", default=[], metavar="KEY=F",
+                   help="this key's learning rate is F times the others' (repeatable)")
     p.add_argument("--spp", type=int, default=16, help="samples per pixel of each optimisation render")
     p.add_argument("--target-spp", type=int, default=256, help="samples per pixel of target renders")
     p.add_argument("--max-depth", type=int, default=3, help="prb's max_depth (default 3: direct + one bounce)")
@@ -181,6 +190,13 @@ def plot_curves(path, series, ylabel, title):
     plt.close(fig)
 
 
+def learning_rate(args, it):
+    """Adam's learning rate at iteration `it`: --lr, decaying geometrically to --lr-final."""
+    if args.lr_final is None or args.iterations < 2:
+        return args.lr
+    return args.lr * (args.lr_final / args.lr) ** (it / (args.iterations - 1))
+
+
 def safe_name(key):
     return key.replace("/", "_")
 
@@ -252,19 +268,38 @@ def fit(args):
     ranges_over = parse_pairs(args.range, "--range")
     ranges = {k: range_for(k, ranges_over) for k in args.param}
 
+    if not (args.lr > 0 and math.isfinite(args.lr)):
+        raise FitError(f"--lr {args.lr}: must be a positive number")
+    if args.lr_final is not None and not (args.lr_final > 0 and math.isfinite(args.lr_final)):
+        raise FitError(f"--lr-final {args.lr_final}: must be a positive number")
     opt = mi.ad.Adam(lr=args.lr)
     for k in args.param:
         v = params[0][k]
         if k in inits:
             try:
-                x = float(inits[k])
+                xs = [float(x) for x in inits[k].split(",")]
             except ValueError:
-                raise FitError(f"--init {k}={inits[k]}: not a number")
-            v = dr.full(type(v), x, dr.shape(v)) if isinstance(v, mi.TensorXf) else type(v)(x)
+                raise FitError(f"--init {k}={inits[k]}: not a number (or R,G,B for a colour)")
+            if len(xs) == 1:
+                v = dr.full(type(v), xs[0], dr.shape(v)) if isinstance(v, mi.TensorXf) else type(v)(xs[0])
+            elif len(xs) == 3 and not isinstance(v, mi.TensorXf) and dr.size_v(v) == 3:
+                v = type(v)(*xs)
+            else:
+                raise FitError(f"--init {k}={inits[k]}: {len(xs)} values for a parameter of another size")
         opt[k] = v
     for k in inits:
         if k not in args.param:
             raise FitError(f"--init {k}: not one of the freed --param keys")
+    lr_factors = {}
+    for k, f in parse_pairs(args.lr_factor, "--lr-factor").items():
+        if k not in args.param:
+            raise FitError(f"--lr-factor {k}: not one of the freed --param keys")
+        try:
+            lr_factors[k] = float(f)
+        except ValueError:
+            raise FitError(f"--lr-factor {k}={f}: not a number")
+        if not (lr_factors[k] > 0 and math.isfinite(lr_factors[k])):
+            raise FitError(f"--lr-factor {k}={f}: must be a positive number")
 
     def clamp_and_share():
         for k in args.param:
@@ -288,6 +323,10 @@ def fit(args):
     started = time.time()
     param_errors()
     for it in range(args.iterations):
+        lr = learning_rate(args, it)
+        opt.set_learning_rate(lr)
+        if lr_factors:
+            opt.set_learning_rate({k: lr * f for k, f in lr_factors.items()})
         total = 0.0
         for c, (scene, p, target) in enumerate(zip(scenes, params, targets)):
             img = mi.render(scene, p, integrator=integrator, spp=args.spp, seed=args.seed + it * len(scenes) + c)
@@ -315,7 +354,7 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
     for k in args.param:
         v = as_numpy(opt[k])
         lo, hi = ranges[k]
-        if v.ndim >= 2:  # a texture's data: EXR + PNG (+ truth and error)
+        if isinstance(opt[k], mi.TensorXf):  # a texture's data: EXR + PNG (+ truth and error); a colour is a value
             name = safe_name(k)
             mi.Bitmap(mi.TensorXf(np.asarray(v, dtype=np.float32))).write(os.path.join(out, f"{name}.exr"))
             vmin = float(v.min()) if not math.isfinite(lo) else lo
@@ -365,7 +404,8 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
         "configs": configs,
         "params": args.param,
         "ranges": {k: list(v) for k, v in ranges.items()},
-        "settings": {"iterations": args.iterations, "lr": args.lr, "spp": args.spp, "target_spp": args.target_spp,
+        "settings": {"iterations": args.iterations, "lr": args.lr, "lr_final": args.lr_final,
+                     "lr_factors": parse_pairs(args.lr_factor, "--lr-factor"), "spp": args.spp, "target_spp": args.target_spp,
                      "max_depth": args.max_depth, "variant": args.variant, "seed": args.seed},
         "seconds": history.get("seconds"),
         "loss": history["loss"],
@@ -401,13 +441,15 @@ def write_html(out, s, figures):
         for r in s["renders"])
     curves = "<img src='loss.png'>" + ("<img src='param_error.png'>" if s["param_error"] else "")
     final = s["loss"][-1] if s["loss"] else float("nan")
+    lr_final = s["settings"].get("lr_final")
+    lr_decay = f" decaying to {lr_final}" if lr_final is not None else ""
     page = f"""<!doctype html><meta charset=utf-8><title>matte fit</title>
 <style>body{{font:14px sans-serif;margin:2em;max-width:1100px}}td,th{{border:1px solid #ccc;padding:4px 8px}}
 table{{border-collapse:collapse}}.row{{display:flex;gap:1em;flex-wrap:wrap}}img.px{{width:256px;image-rendering:pixelated}}
 figure{{margin:0}}</style>
 <h1>matte fit</h1>
 <p>Scene <code>{e(s['scene'])}</code>; targets {e(s['target_scene'] or ', '.join(s['targets']))};
-{len(s['configs'])} configuration(s); {s['settings']['iterations']} iterations of Adam (lr {s['settings']['lr']}),
+{len(s['configs'])} configuration(s); {s['settings']['iterations']} iterations of Adam (lr {s['settings']['lr']}{lr_decay}),
 prb max_depth {s['settings']['max_depth']}, {s['settings']['spp']} spp, variant {e(s['settings']['variant'])}.
 Final loss {final:.4e}.</p>
 <h2>Parameters</h2><table><tr><th>key</th><th>fitted</th><th>truth</th><th>|fitted − truth|</th></tr>{''.join(rows)}</table>

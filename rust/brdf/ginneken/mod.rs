@@ -18,7 +18,7 @@ pub mod table;
 
 use super::approx;
 use super::kernel::{self, Kernel, azimuthal_dot};
-use super::model::{BsdfSample, DiffuseBrdf};
+use super::model::{BrdfSample, DiffuseBrdf};
 use super::params::{ParamError, Params};
 use super::real::{Nodes, Real, V3};
 use glam::{Vec2, Vec3};
@@ -195,8 +195,8 @@ impl DiffuseBrdf for Ginneken {
     }
 
     #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BsdfSample<N>> {
-        BsdfSample::from_kernel(kernel::sample(&self.kernel(), wi.into(), u.x, u.y, reflectance))
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(&self.kernel(), wi.into(), u.x, u.y, reflectance))
     }
 }
 

@@ -2,8 +2,8 @@
 //! reflectance is the complex-index Fresnel term times `specular_reflectance` (§10).
 
 use super::fresnel::fresnel_conductor;
+use super::parameter_checks::{check_colour, check_finite};
 use super::sample::BsdfSample;
-use super::validate::{check_colour, check_finite};
 use glam::{Vec2, Vec3};
 
 /// Smooth conductor. Mitsuba's default `material` "none" (η = 0, k = 1) is a perfect mirror.

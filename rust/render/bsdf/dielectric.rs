@@ -3,8 +3,8 @@
 //! (docs/renderer-semantics.md §10). Two-sided: the interior is the side opposite the normal.
 
 use super::fresnel::fresnel_dielectric;
+use super::parameter_checks::check_colour;
 use super::sample::BsdfSample;
-use super::validate::check_colour;
 use glam::{Vec2, Vec3};
 
 /// Smooth dielectric interface (radiance transport).

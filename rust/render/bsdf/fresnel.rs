@@ -3,7 +3,7 @@
 //! interface (it also gives the refracted cosine and the relative indices the caller needs),
 //! and the conductor version with a complex index `η + i·k`, per RGB channel.
 //!
-//! `brdf::fresnel::fresnel_dielectric` is one-sided (light always arrives from the side of
+//! `brdf::fresnel::dielectric_reflectance` is one-sided (light always arrives from the side of
 //! index 1, `cos θ` clamped to [0, 1]), so the renderer's glass uses [`fresnel_dielectric`]
 //! instead; the two agree where both apply (`tests/specular_bsdfs.rs`).
 

@@ -6,13 +6,13 @@
 use super::BsdfSample;
 use super::texture::Texture;
 use crate::brdf::kernel;
-use crate::brdf::{Bsdf as Model, DiffuseBrdf, dispatch};
+use crate::brdf::{DiffuseBrdf, DiffuseModel, dispatch};
 use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// `(f·cos θo, pdf)`.
 #[inline]
-pub fn eval_pdf(model: &Model, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+pub fn eval_pdf(model: &DiffuseModel, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
     if wi.z <= 0.0 || wo.z <= 0.0 {
         return (Vec3::ZERO, 0.0);
     }
@@ -23,7 +23,7 @@ pub fn eval_pdf(model: &Model, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
 }
 
 #[inline]
-pub fn sample(model: &Model, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
+pub fn sample(model: &DiffuseModel, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
     if wi.z <= 0.0 {
         return None;
     }
@@ -42,7 +42,7 @@ pub fn sample(model: &Model, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample>
 /// constant parameters stay [`super::Bsdf::Matte`], whose constants are computed once.
 #[derive(Clone, Debug)]
 pub struct TexturedMatte {
-    pub model: Model,
+    pub model: DiffuseModel,
     pub reflectance: Texture,
     /// One per numeric parameter, in the order of the model's parameters (constants as
     /// constant textures).

@@ -17,6 +17,7 @@ pub mod matte;
 pub mod microfacet;
 pub mod microfacet_albedo;
 pub mod normal_map;
+mod parameter_checks;
 pub mod plastic;
 pub mod principled;
 pub mod principled_helpers;
@@ -25,10 +26,10 @@ pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sample;
+pub mod tabulated_brdf;
 pub mod texture;
 pub mod textured_roughness;
 pub mod thin_dielectric;
-mod validate;
 pub mod vndf;
 
 pub use blend::Blend;
@@ -48,6 +49,7 @@ pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
 pub use sample::BsdfSample;
+pub use tabulated_brdf::TabulatedBrdf;
 pub use texture::Texture;
 pub use textured_roughness::{RoughLobe, TexturedRoughness};
 pub use thin_dielectric::ThinDielectric;
@@ -62,7 +64,7 @@ pub enum Bsdf {
         reflectance: Texture,
     },
     Matte {
-        model: crate::brdf::Bsdf,
+        model: crate::brdf::DiffuseModel,
         reflectance: Texture,
     },
     /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` (the same BSDF when only one is
@@ -92,6 +94,8 @@ pub enum Bsdf {
     TexturedRoughness(Box<TexturedRoughness>),
     /// A matte model with textured numeric parameters.
     TexturedMatte(Box<TexturedMatte>),
+    /// A BRDF read from a table file (`tabulated_brdf`).
+    Tabulated(TabulatedBrdf),
 }
 
 impl Bsdf {
@@ -101,6 +105,7 @@ impl Bsdf {
         match self {
             Bsdf::Diffuse { reflectance } => diffuse::eval_pdf(reflectance.eval(si), wi, wo),
             Bsdf::Matte { model, reflectance } => matte::eval_pdf(model, reflectance.eval(si), wi, wo),
+            Bsdf::Tabulated(t) => tabulated_brdf::eval_pdf(&t.table, t.reflectance.eval(si), wi, wo),
             Bsdf::TwoSided { front, back } => {
                 if wi.z > 0.0 {
                     front.eval_pdf(si, wi, wo)
@@ -130,6 +135,7 @@ impl Bsdf {
         match self {
             Bsdf::Diffuse { reflectance } => diffuse::sample(reflectance.eval(si), wi, u),
             Bsdf::Matte { model, reflectance } => matte::sample(model, reflectance.eval(si), wi, u),
+            Bsdf::Tabulated(t) => tabulated_brdf::sample(&t.table, t.reflectance.eval(si), wi, u),
             Bsdf::TwoSided { front, back } => {
                 if wi.z > 0.0 {
                     front.sample(si, wi, u_lobe, u)
@@ -163,6 +169,7 @@ impl Bsdf {
         match self {
             Bsdf::Diffuse { .. }
             | Bsdf::Matte { .. }
+            | Bsdf::Tabulated(_)
             | Bsdf::RoughConductor(_)
             | Bsdf::RoughDielectric(_)
             | Bsdf::Plastic(_)

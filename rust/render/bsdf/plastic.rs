@@ -56,7 +56,7 @@ impl Plastic {
             return Err(format!("plastic: int_ior/ext_ior must be a positive finite ratio, got {eta}"));
         }
         if let Some(s) = specular {
-            super::validate::check_colour("plastic", "specular_reflectance", s)?;
+            super::parameter_checks::check_colour("plastic", "specular_reflectance", s)?;
         }
         let s_mean = specular.map_or(1.0, |s| (s.x + s.y + s.z) / 3.0);
         let d_mean = diffuse.mean();

@@ -9,8 +9,8 @@
 
 use super::fresnel::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
+use super::parameter_checks::{check_colour, check_finite};
 use super::sample::BsdfSample;
-use super::validate::{check_colour, check_finite};
 use glam::{Vec2, Vec3};
 
 /// Rough conductor (radiance transport).

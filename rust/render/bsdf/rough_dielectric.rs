@@ -16,8 +16,8 @@
 
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
+use super::parameter_checks::check_colour;
 use super::sample::BsdfSample;
-use super::validate::check_colour;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]

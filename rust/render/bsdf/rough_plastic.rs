@@ -58,7 +58,7 @@ impl RoughPlastic {
             return Err(format!("roughplastic: alpha must be a finite non-negative roughness, got {alpha}"));
         }
         if let Some(s) = specular {
-            super::validate::check_colour("roughplastic", "specular_reflectance", s)?;
+            super::parameter_checks::check_colour("roughplastic", "specular_reflectance", s)?;
         }
         let distr = Microfacet::new(kind, alpha, alpha);
         let s_mean = specular.map_or(1.0, |s| (s.x + s.y + s.z) / 3.0);

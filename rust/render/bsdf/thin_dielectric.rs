@@ -4,8 +4,8 @@
 //! (`wo = −wi`, Mitsuba's "null" lobe: no refraction, no η change). Two-sided; no smooth part.
 
 use super::fresnel::fresnel_dielectric;
+use super::parameter_checks::check_colour;
 use super::sample::BsdfSample;
-use super::validate::check_colour;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,12 +1,13 @@
-//! Per-thread accumulation tile: Mitsuba's `ImageBlock` in scalar mode with `normalize =
-//! false`, `border = true` (`src/render/imageblock.cpp`, `ImageBlock::put`; §6).
+//! Per-thread accumulation tile: Mitsuba's `ImageBlock` with `normalize = false`,
+//! `border = true` (`src/render/imageblock.cpp`, `ImageBlock::put`; §6), weighting samples
+//! as its scalar or its JIT variants do ([`SplatWeights`]).
 //!
 //! A block covers its tile plus the filter border on every side, so a sample taken inside the
 //! tile can splat its full footprint without synchronisation. The film later adds the block
 //! into its crop-sized storage and drops whatever falls outside the crop ([`super::Film`]).
 
 use super::Tile;
-use super::filter::{FilterTable, ReconstructionFilter};
+use super::filter::{FilterTable, ReconstructionFilter, SplatWeights};
 use glam::{Vec2, Vec3};
 
 /// Weighted sums (Σw·R, Σw·G, Σw·B, Σw) for the pixels of one tile and its border.
@@ -23,16 +24,19 @@ pub struct ImageBlock {
     kernel: Option<Kernel>,
 }
 
-/// Discretised filter plus scratch space for one sample's weights (so `put` never allocates).
+/// The filter (exact and discretised) plus scratch space for one sample's weights (so `put`
+/// never allocates).
 #[derive(Clone, Debug)]
 struct Kernel {
+    filter: ReconstructionFilter,
     table: FilterTable,
+    weights: SplatWeights,
     weights_x: Vec<f32>,
     weights_y: Vec<f32>,
 }
 
 impl ImageBlock {
-    pub(crate) fn new(tile: Tile, filter: &ReconstructionFilter) -> ImageBlock {
+    pub(crate) fn new(tile: Tile, filter: &ReconstructionFilter, weights: SplatWeights) -> ImageBlock {
         let border = filter.border_size();
         let size = [tile.size[0] + 2 * border, tile.size[1] + 2 * border];
         let origin = [tile.offset[0] as i64 - border as i64, tile.offset[1] as i64 - border as i64];
@@ -42,7 +46,7 @@ impl ImageBlock {
                 let table = filter.table();
                 // A footprint spans at most floor(2r) + 1 pixels per axis.
                 let n = (2.0 * table.radius()).ceil() as usize + 2;
-                Some(Kernel { table, weights_x: vec![0.0; n], weights_y: vec![0.0; n] })
+                Some(Kernel { filter: *filter, table, weights, weights_x: vec![0.0; n], weights_y: vec![0.0; n] })
             }
         };
         let pixels = vec![[0.0; 4]; size[0] as usize * size[1] as usize];
@@ -66,8 +70,8 @@ impl ImageBlock {
     /// position here rather than px + ξ (`SamplingIntegrator::render_sample`), because in f32
     /// px + ξ can round up to px + 1 for large px; a renderer using the box filter should
     /// likewise pass the pixel's own coordinates (e.g. px + 0.5). Other filters: every pixel i with
-    /// `|i + 0.5 − f| ≤ r` on both axes gets weight `table(i + 0.5 − f_x) · table(j + 0.5 − f_y)`,
-    /// clipped to the block. The offsets are formed as in Mitsuba (first offset, then +1 per
+    /// `|i + 0.5 − f| ≤ r` on both axes gets weight `k(i + 0.5 − f_x) · k(j + 0.5 − f_y)`,
+    /// clipped to the block, with `k` the step table or the exact kernel ([`SplatWeights`]). The offsets are formed as in Mitsuba (first offset, then +1 per
     /// pixel, in f32) so table bins are picked identically. A non-finite position is ignored;
     /// a NaN radiance is accumulated (and poisons the pixel) exactly as in Mitsuba, which only
     /// warns about it.
@@ -104,12 +108,16 @@ impl ImageBlock {
         let ny = ((hi.y - lo.y) as usize + 1).min(kernel.weights_y.len());
         let (wx, wy) = (&mut kernel.weights_x[..nx], &mut kernel.weights_y[..ny]);
         let mut rel = lo - pos;
+        let weight_at = |x: f32| match kernel.weights {
+            SplatWeights::Discretized => kernel.table.eval(x),
+            SplatWeights::Exact => kernel.filter.eval(x),
+        };
         for v in wx.iter_mut() {
-            *v = kernel.table.eval(rel.x);
+            *v = weight_at(rel.x);
             rel.x += 1.0;
         }
         for v in wy.iter_mut() {
-            *v = kernel.table.eval(rel.y);
+            *v = weight_at(rel.y);
             rel.y += 1.0;
         }
         for (j, &fy) in wy.iter().enumerate() {

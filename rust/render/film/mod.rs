@@ -1,4 +1,5 @@
-//! The film: Mitsuba's `hdrfilm` in `scalar_rgb` with `pixel_format = "rgb"`
+//! The film: Mitsuba's `hdrfilm` with `pixel_format = "rgb"`, weighting samples as `scalar_rgb` does
+//! by default or as its JIT variants do ([`SplatWeights`])
 //! (`src/films/hdrfilm.cpp`, `src/render/film.cpp`, `src/render/imageblock.cpp`; §6, §12).
 //!
 //! Rendering goes tile by tile: [`Film::tiles`] cuts the crop window into tiles,
@@ -14,7 +15,7 @@ mod filter;
 mod image;
 
 pub use block::ImageBlock;
-pub use filter::{FILTER_RESOLUTION, FilterTable, GAUSSIAN_FIT, ReconstructionFilter};
+pub use filter::{FILTER_RESOLUTION, FilterTable, GAUSSIAN_FIT, ReconstructionFilter, SplatWeights};
 pub use image::Image;
 
 use glam::Vec3;
@@ -41,6 +42,7 @@ pub struct Film {
     height: u32,
     crop: CropWindow,
     filter: ReconstructionFilter,
+    weights: SplatWeights,
     pixels: Vec<[f32; 4]>,
 }
 
@@ -67,7 +69,7 @@ impl Film {
         }
         filter.validate()?;
         let pixels = vec![[0.0; 4]; (cw * ch) as usize];
-        Ok(Film { width, height, crop, filter, pixels })
+        Ok(Film { width, height, crop, filter, weights: SplatWeights::default(), pixels })
     }
 
     /// Full film width (the camera's aspect uses it, not the crop).
@@ -87,6 +89,17 @@ impl Film {
         self.filter
     }
 
+    /// How samples are weighted: the step table (the default, as Mitsuba's scalar variants)
+    /// or the exact kernel (as its JIT variants).
+    pub fn splat_weights(&self) -> SplatWeights {
+        self.weights
+    }
+
+    /// This film weighting its samples by `weights`.
+    pub fn with_splat_weights(self, weights: SplatWeights) -> Film {
+        Film { weights, ..self }
+    }
+
     /// Rectangles of at most `tile_size`² pixels (full-film coordinates) that cover the crop
     /// window exactly once, row by row. A `tile_size` of 0 is treated as 1.
     pub fn tiles(&self, tile_size: u32) -> Vec<Tile> {
@@ -104,7 +117,7 @@ impl Film {
 
     /// A zeroed block for `tile`, with room for the filter border around it.
     pub fn new_block(&self, tile: &Tile) -> ImageBlock {
-        ImageBlock::new(*tile, &self.filter)
+        ImageBlock::new(*tile, &self.filter, self.weights)
     }
 
     /// Adds a block's sums into the film; the parts outside the crop window are dropped.

@@ -1,6 +1,6 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
 //! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`,
-//! `principledthin` and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
+//! `principledthin`, `tabulated_brdf` (a table file, `docs/microgeometry.md`) and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
 //! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
 //! plugin uses).
 
@@ -9,10 +9,10 @@ use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
-    RoughPlastic, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
+    RoughPlastic, TabulatedBrdf, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
 };
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject, Value};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
 /// The BSDF index for this XML object, building it the first time it is seen.
@@ -95,13 +95,22 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 let v = crate::brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
                 params.push(name, ParamValue::Number(v));
             }
-            let model =
-                crate::brdf::Bsdf::from_params(kind, params).map_err(|e| values::prop_err(obj, &e.param, e.message))?;
+            let model = crate::brdf::DiffuseModel::from_params(kind, params)
+                .map_err(|e| values::prop_err(obj, &e.param, e.message))?;
             if textured.is_empty() {
                 Bsdf::Matte { model, reflectance }
             } else {
                 textured_matte(obj, model, reflectance, textured)?
             }
+        }
+        "tabulated_brdf" => {
+            let reflectance = texture::get(b, obj, "reflectance", ColorUse::Bounded, Vec3::splat(0.5))?;
+            let filename =
+                obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+            let path = b.resolve(&filename);
+            let table = crate::brdf::tabulated::TabulatedBrdf::read(&path)
+                .map_err(|e| values::prop_err(obj, "filename", values::one_line(&e)))?;
+            Bsdf::Tabulated(TabulatedBrdf { table: std::sync::Arc::new(table), reflectance })
         }
         "twosided" => {
             let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
@@ -278,7 +287,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 obj,
                 format!(
                     "unsupported bsdf type \"{other}\" (matte renders: diffuse, twosided, dielectric, thindielectric, roughdielectric, \
-                     conductor, roughconductor, plastic, roughplastic, normalmap, bumpmap, mask, blendbsdf, principled, principledthin, {})",
+                     conductor, roughconductor, plastic, roughplastic, normalmap, bumpmap, mask, blendbsdf, principled, principledthin, tabulated_brdf, {})",
                     BSDF_TYPES.join(", ")
                 ),
             ));
@@ -313,7 +322,7 @@ fn numeric_parameter(kind: &str, name: &str) -> bool {
 /// parameter becomes a constant texture of its value.
 fn textured_matte(
     obj: &SceneObject,
-    model: crate::brdf::Bsdf,
+    model: crate::brdf::DiffuseModel,
     reflectance: Texture,
     mut textured: Vec<(String, Texture)>,
 ) -> Result<Bsdf, SceneError> {

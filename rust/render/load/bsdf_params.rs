@@ -4,8 +4,8 @@
 
 use super::{Builder, err, texture, values};
 use crate::render::bsdf::{MicrofacetDistribution, Texture};
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject, Value};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
 pub use crate::brdf::params::{MAX_MAGNITUDE, too_large};

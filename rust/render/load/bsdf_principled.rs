@@ -6,8 +6,8 @@
 use super::bsdf_params::MAX_MAGNITUDE;
 use super::{Builder, err, texture, values};
 use crate::render::bsdf::{Principled, Texture, principled_thin::PrincipledThin};
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject, Value};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
 
 /// A parameter texture; constants beyond [`MAX_MAGNITUDE`] are rejected (Mitsuba takes them,

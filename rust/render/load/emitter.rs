@@ -7,8 +7,8 @@ use crate::render::bsdf::Texture;
 use crate::render::camera::x_half_tan;
 use crate::render::emitter::{self, Emitter, EnvMap};
 use crate::render::texture::{BitmapOptions, BitmapTexture};
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject};
 use glam::Vec3;
 use std::sync::Arc;
 

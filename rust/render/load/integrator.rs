@@ -7,8 +7,8 @@
 
 use super::{err, values};
 use crate::render::integrator::{DirectIntegrator, Integrator, ParticleTracer, PathIntegrator};
-use crate::scene::SceneError;
-use crate::scene::xml::SceneObject;
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::SceneObject;
 
 pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
     let integrator = match obj.plugin.as_str() {

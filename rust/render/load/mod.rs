@@ -1,4 +1,4 @@
-//! Mitsuba XML object tree (`crate::scene::xml`) → a renderable scene. One file per plugin
+//! Mitsuba XML object tree (`crate::scene_file::xml`) → a renderable scene. One file per plugin
 //! family, each reading exactly the properties Mitsuba 3.9.1's plugin reads, with its
 //! defaults; whatever is left unread is an error naming file, line and property (Mitsuba
 //! does the same: `unused_properties = Error`).
@@ -19,8 +19,8 @@ use crate::render::emitter::Emitter;
 use crate::render::film::Film;
 use crate::render::integrator::Integrator;
 use crate::render::scene::Scene;
-use crate::scene::SceneError;
-use crate::scene::xml::{self, SceneObject};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{self, SceneObject};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -76,7 +76,7 @@ pub(crate) struct ShapeContext {
     /// A triangle mesh (`obj`, `ply`, `rectangle`, `cube`), which has ∂p/∂u, ∂p/∂v and
     /// attributes in matte; the analytic shapes have neither.
     pub is_mesh: bool,
-    pub attributes: Vec<std::sync::Arc<crate::scene::mesh::MeshAttribute>>,
+    pub attributes: Vec<std::sync::Arc<crate::scene_file::mesh::MeshAttribute>>,
     pub triangles: std::sync::Arc<Vec<[u32; 3]>>,
 }
 

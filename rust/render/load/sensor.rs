@@ -7,8 +7,8 @@ use super::{err, values};
 use crate::render::camera::{Camera, FovAxis, PerspectiveCamera};
 use crate::render::film::{CropWindow, Film, ReconstructionFilter};
 use crate::render::orthographic::OrthographicCamera;
-use crate::scene::SceneError;
-use crate::scene::xml::SceneObject;
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::SceneObject;
 use glam::Vec2;
 
 pub struct Sensor {

@@ -6,9 +6,9 @@
 use super::{Builder, ShapeContext, bsdf, emitter, err, values};
 use crate::render::geometry::Frame;
 use crate::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use crate::scene::SceneError;
-use crate::scene::mesh::{self, MeshOptions};
-use crate::scene::xml::SceneObject;
+use crate::scene_file::SceneError;
+use crate::scene_file::mesh::{self, MeshOptions};
+use crate::scene_file::xml::SceneObject;
 use glam::{Affine3A, Mat3, Mat4, Vec3};
 use std::sync::Arc;
 

@@ -4,8 +4,8 @@
 use super::{Builder, err, values};
 use crate::render::bsdf::Texture;
 use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject, Value};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::{Affine2, Mat2, Vec2, Vec3};
 use std::sync::Arc;
 

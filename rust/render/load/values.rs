@@ -1,8 +1,8 @@
 //! Typed property access with Mitsuba's defaults and range checks, shared by the plugin
 //! builders: every error names the property's own line.
 
-use crate::scene::SceneError;
-use crate::scene::xml::{ColorUse, SceneObject};
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::{ColorUse, SceneObject};
 use glam::{Affine3A, DMat4, Mat3, Vec3};
 
 pub fn float(obj: &SceneObject, name: &str, default: f64) -> Result<f64, SceneError> {

@@ -6,7 +6,7 @@
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::render::geometry::{Frame, warp};
-use crate::scene::mesh::TriangleMesh;
+use crate::scene_file::mesh::TriangleMesh;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]

@@ -9,7 +9,7 @@
 //!
 //! docs/renderer-semantics.md §11 (mesh attributes).
 
-use crate::scene::mesh::MeshAttribute;
+use crate::scene_file::mesh::MeshAttribute;
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 

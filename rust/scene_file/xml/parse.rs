@@ -13,7 +13,7 @@ use super::raw::{RawChild, RawNode, RawScene, Target};
 use super::substitute::Params;
 use super::transform::build_transform;
 use super::values::{is_value_tag, property_value};
-use crate::scene::error::{SceneError, SourcePos};
+use crate::scene_file::error::{SceneError, SourcePos};
 
 /// Includes nest at most this deep (Mitsuba's `ParserConfig::max_include_depth`).
 pub(crate) const MAX_INCLUDE_DEPTH: usize = 15;

@@ -1,0 +1,249 @@
+//! An isotropic BRDF given as a table (`docs/microgeometry.md#the-tabulated-ground-truth-brdf`):
+//! `f/ρ` on nodes of the facet reflectance ρ, the zenith angles θi and θo and the azimuth
+//! difference Δφ ∈ [0°, 180°], multilinear interpolation between nodes (clamped at the ends),
+//! cosine-weighted sampling (the trait's default) and the albedo by quadrature of the
+//! interpolant. Built from a simulated microsurface by `matte microgeometry --table`, or from
+//! any function (a closed-form model, for tests).
+//!
+//! `f/ρ` rather than `f` is stored because a microsurface's BRDF is not linear in its facet
+//! albedo (interreflections go as ρ², ρ³ …) but `f/ρ` is smooth and finite down to ρ = 0
+//! (where it is the single-scattering BRDF of a white surface), so a few ρ nodes interpolate it.
+
+use super::DiffuseBrdf;
+use glam::Vec3;
+use serde::{Deserialize, Serialize};
+
+/// The file's `format` value.
+pub const FORMAT: &str = "matte-tabulated-brdf";
+/// The file format's version.
+pub const VERSION: u32 = 1;
+
+/// The table and its file format (JSON; `docs/microgeometry.md#file-format`).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct TabulatedBrdf {
+    /// Always [`FORMAT`].
+    pub format: String,
+    /// Always [`VERSION`].
+    pub version: u32,
+    /// What the table is (free text, e.g. the surface and the photon count).
+    pub description: String,
+    /// Zenith-angle nodes in degrees, increasing, within [0, 90); shared by θi and θo.
+    pub theta_deg: Vec<f64>,
+    /// Azimuth-difference nodes in degrees, increasing, within [0, 180] (0: wo on the side of wi).
+    pub delta_phi_deg: Vec<f64>,
+    /// Facet-reflectance nodes, increasing, within [0, 1].
+    pub reflectance: Vec<f64>,
+    /// `f/ρ` (1/sr), flattened with Δφ fastest: index `((r·Nθ + i)·Nθ + o)·NΔφ + p` for
+    /// reflectance node r, θi node i, θo node o, Δφ node p.
+    pub f_over_reflectance: Vec<f32>,
+    /// Optional 99 % half-widths of `f_over_reflectance` (same layout), from the simulation.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub half_width_over_reflectance: Vec<f32>,
+}
+
+/// Where `x` falls between `nodes`: the lower index and the weight of the upper node, clamped
+/// to the first and last node.
+fn locate(nodes: &[f64], x: f64) -> (usize, f32) {
+    let n = nodes.len();
+    if n == 1 || x <= nodes[0] {
+        return (0, 0.0);
+    }
+    if x >= nodes[n - 1] {
+        return (n - 2, 1.0);
+    }
+    let k = nodes.partition_point(|&v| v <= x).clamp(1, n - 1) - 1;
+    (k, ((x - nodes[k]) / (nodes[k + 1] - nodes[k])) as f32)
+}
+
+fn increasing_within(name: &str, v: &[f64], lo: f64, hi: f64, hi_open: bool) -> Result<(), String> {
+    if v.is_empty() {
+        return Err(format!("`{name}` is empty"));
+    }
+    if v.iter().any(|x| !x.is_finite() || *x < lo || *x > hi || (hi_open && *x >= hi)) {
+        return Err(format!("`{name}` must lie within [{lo}, {hi}{}", if hi_open { ")" } else { "]" }));
+    }
+    if v.windows(2).any(|w| w[1] <= w[0]) {
+        return Err(format!("`{name}` must be strictly increasing"));
+    }
+    Ok(())
+}
+
+impl TabulatedBrdf {
+    /// A table of `f(wi, wo, ρ)/ρ` for a function `f` of (θi, θo, Δφ in radians, ρ), sampled on
+    /// the nodes. At ρ = 0 the function is called with ρ = 1e-6.
+    pub fn from_fn(
+        description: &str,
+        theta_deg: Vec<f64>,
+        delta_phi_deg: Vec<f64>,
+        reflectance: Vec<f64>,
+        f: impl Fn(f64, f64, f64, f64) -> f64,
+    ) -> Result<Self, String> {
+        let mut values = Vec::with_capacity(reflectance.len() * theta_deg.len().pow(2) * delta_phi_deg.len());
+        for &rho in &reflectance {
+            let rho = rho.max(1e-6);
+            for &ti in &theta_deg {
+                for &to in &theta_deg {
+                    for &p in &delta_phi_deg {
+                        values.push((f(ti.to_radians(), to.to_radians(), p.to_radians(), rho) / rho) as f32);
+                    }
+                }
+            }
+        }
+        Self::new(description, theta_deg, delta_phi_deg, reflectance, values, Vec::new())
+    }
+
+    /// A checked table (`f_over_reflectance` in the documented layout).
+    pub fn new(
+        description: &str,
+        theta_deg: Vec<f64>,
+        delta_phi_deg: Vec<f64>,
+        reflectance: Vec<f64>,
+        f_over_reflectance: Vec<f32>,
+        half_width_over_reflectance: Vec<f32>,
+    ) -> Result<Self, String> {
+        let t = TabulatedBrdf {
+            format: FORMAT.into(),
+            version: VERSION,
+            description: description.into(),
+            theta_deg,
+            delta_phi_deg,
+            reflectance,
+            f_over_reflectance,
+            half_width_over_reflectance,
+        };
+        t.check()?;
+        Ok(t)
+    }
+
+    /// Reads and checks a table file.
+    pub fn read(path: &std::path::Path) -> Result<Self, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let t: TabulatedBrdf =
+            serde_json::from_str(&text).map_err(|e| format!("{}:{}: {e}", path.display(), e.line()))?;
+        t.check().map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(t)
+    }
+
+    /// Writes the table as JSON.
+    pub fn write(&self, path: &std::path::Path) -> Result<(), String> {
+        let text = serde_json::to_string(self).map_err(|e| format!("tabulated BRDF: {e}"))?;
+        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    fn check(&self) -> Result<(), String> {
+        if self.format != FORMAT || self.version != VERSION {
+            return Err(format!(
+                "not a {FORMAT} file of version {VERSION} (format \"{}\", version {})",
+                self.format, self.version
+            ));
+        }
+        increasing_within("theta_deg", &self.theta_deg, 0.0, 90.0, true)?;
+        increasing_within("delta_phi_deg", &self.delta_phi_deg, 0.0, 180.0, false)?;
+        increasing_within("reflectance", &self.reflectance, 0.0, 1.0, false)?;
+        let n = self.reflectance.len() * self.theta_deg.len().pow(2) * self.delta_phi_deg.len();
+        if self.f_over_reflectance.len() != n {
+            return Err(format!(
+                "`f_over_reflectance` has {} values, the nodes need {n}",
+                self.f_over_reflectance.len()
+            ));
+        }
+        if !self.half_width_over_reflectance.is_empty() && self.half_width_over_reflectance.len() != n {
+            return Err(format!(
+                "`half_width_over_reflectance` has {} values, expected 0 or {n}",
+                self.half_width_over_reflectance.len()
+            ));
+        }
+        if let Some(k) = self.f_over_reflectance.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(format!(
+                "`f_over_reflectance`[{k}] = {} is not a finite value ≥ 0",
+                self.f_over_reflectance[k]
+            ));
+        }
+        Ok(())
+    }
+
+    fn index(&self, r: usize, i: usize, o: usize, p: usize) -> usize {
+        let nt = self.theta_deg.len();
+        ((r * nt + i) * nt + o) * self.delta_phi_deg.len() + p
+    }
+
+    /// Interpolated `f/ρ` at reflectance node `r`.
+    fn at_node(&self, r: usize, ti: (usize, f32), to: (usize, f32), dp: (usize, f32)) -> f32 {
+        let last =
+            |n: usize, (k, w): (usize, f32)| if n == 1 { [(0, 1.0), (0, 0.0)] } else { [(k, 1.0 - w), (k + 1, w)] };
+        let nt = self.theta_deg.len();
+        let mut sum = 0.0;
+        for (i, wi) in last(nt, ti) {
+            for (o, wo) in last(nt, to) {
+                for (p, wp) in last(self.delta_phi_deg.len(), dp) {
+                    let w = wi * wo * wp;
+                    if w != 0.0 {
+                        sum += w * self.f_over_reflectance[self.index(r, i, o, p)];
+                    }
+                }
+            }
+        }
+        sum
+    }
+
+    /// `f` for zenith angles and azimuth difference in degrees and one reflectance.
+    pub fn eval_angles(&self, theta_i: f64, theta_o: f64, delta_phi: f64, rho: f32) -> f32 {
+        let (ti, to, dp) = (
+            locate(&self.theta_deg, theta_i),
+            locate(&self.theta_deg, theta_o),
+            locate(&self.delta_phi_deg, delta_phi),
+        );
+        let (r, w) = locate(&self.reflectance, rho as f64);
+        let lo = self.at_node(r, ti, to, dp);
+        let per_rho = if self.reflectance.len() == 1 || w == 0.0 {
+            lo
+        } else {
+            (1.0 - w) * lo + w * self.at_node(r + 1, ti, to, dp)
+        };
+        rho * per_rho
+    }
+
+    /// The largest `E(θi)/ρ` over the θi and reflectance nodes (quadrature of the interpolant):
+    /// at most 1 for a surface whose light leaves after at least one facet bounce.
+    pub fn max_albedo_over_reflectance(&self) -> f64 {
+        let mut worst: f64 = 0.0;
+        for &rho in &self.reflectance {
+            let rho = rho.max(1e-3) as f32;
+            for &t in &self.theta_deg {
+                worst = worst.max(self.albedo(t.to_radians().cos(), rho).value / rho as f64);
+            }
+        }
+        worst
+    }
+
+    /// Multiplies every entry by `s` (the half-widths too).
+    pub fn scale(&mut self, s: f32) {
+        self.f_over_reflectance.iter_mut().for_each(|v| *v *= s);
+        self.half_width_over_reflectance.iter_mut().for_each(|v| *v *= s);
+    }
+}
+
+/// Zenith angle of a unit vector in degrees.
+fn theta_deg(w: Vec3) -> f64 {
+    (w.z as f64).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// Azimuth difference of two directions in degrees within [0, 180]; 0 when either is the normal.
+fn delta_phi_deg(a: Vec3, b: Vec3) -> f64 {
+    let (ax, ay, bx, by) = (a.x as f64, a.y as f64, b.x as f64, b.y as f64);
+    let (la, lb) = ((ax * ax + ay * ay).sqrt(), (bx * bx + by * by).sqrt());
+    if la < 1e-7 || lb < 1e-7 {
+        return 0.0;
+    }
+    ((ax * bx + ay * by) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+impl DiffuseBrdf for TabulatedBrdf {
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        if wi.z <= 0.0 || wo.z <= 0.0 {
+            return [0.0; N];
+        }
+        let (ti, to, dp) = (theta_deg(wi), theta_deg(wo), delta_phi_deg(wi, wo));
+        reflectance.map(|rho| self.eval_angles(ti, to, dp, rho))
+    }
+}
