@@ -44,11 +44,13 @@ pub fn square_to_uniform_disk_concentric(u: Vec2) -> Vec2 {
 pub fn sincos_cephes(x: f32) -> (f32, f32) {
     let xa = x.abs();
     // Octant index, rounded up to even so that y ∈ [−π/4, π/4].
-    let j = ((xa * 1.273_239_5) as i32 + 1) & !1;
+    // Wrapping: for |x| beyond the range (∞, NaN) the saturated index must not trap in debug
+    // builds; the result there is NaN either way.
+    let j = ((xa * 1.273_239_5) as i32).wrapping_add(1) & !1;
     let y = j as f32;
     // Sign bits: sin flips for octants 4–7 and negative x; cos for octants 2–5.
     let sign_sin = ((j << 29) as u32 ^ x.to_bits()) & 0x8000_0000;
-    let sign_cos = ((!(j - 2)) << 29) as u32 & 0x8000_0000;
+    let sign_cos = ((!j.wrapping_sub(2)) << 29) as u32 & 0x8000_0000;
     // Cody–Waite: π/4 = 0.78515625 + 2.4187564849853515625e-4 + 3.77489497744594108e-8.
     let y = xa - y * 0.785_156_25 - y * 2.418_756_5e-4 - y * 3.774_895e-8;
     let z = y * y;
