@@ -215,13 +215,15 @@ unsafe fn soa_ray(base: *const f32, n: usize, i: usize) -> Ray {
     Ray::new(Vec3::new(f(0), f(1), f(2)), Vec3::new(f(4), f(5), f(6)), f(8))
 }
 
-/// Embree's intersect callback for an analytic shape: the shape's exact hit distance in
-/// `(tnear, tfar)`; a hit shortens `tfar` and records the ids (no barycentrics).
-unsafe extern "C" fn analytic_intersect(args: *const UserQueryArgs) {
-    // SAFETY: Embree passes `n` valid lanes of a ray-hit block and a live context; the user
-    // pointer is a `Geometry` owned by `EmbreeScene`.
+/// Calls `hit(i, t)` for every valid lane `i` of Embree's ray block that the analytic shape
+/// hits at a distance `t` beyond the lane's `tnear`.
+///
+/// # Safety
+/// `args` is what Embree passes to a user-geometry callback: `n` lanes of a ray (or ray-hit)
+/// block, and a user pointer to a `Geometry` owned by `EmbreeScene`.
+unsafe fn for_each_analytic_hit(args: &UserQueryArgs, mut hit: impl FnMut(usize, f32)) {
+    // SAFETY: as the function's contract says.
     unsafe {
-        let args = &*args;
         let geometry = &*(args.geometry_user_ptr as *const Geometry);
         let n = args.n as usize;
         for i in 0..n {
@@ -233,16 +235,30 @@ unsafe extern "C" fn analytic_intersect(args: *const UserQueryArgs) {
             if let Some(t) = geometry.intersect_analytic(&ray)
                 && t > tnear
             {
-                let put = |k: usize, v: f32| *args.rayhit.add(k * n + i) = v;
-                let put_u = |k: usize, v: u32| *(args.rayhit.add(k * n + i) as *mut u32) = v;
-                put(8, t);
-                put(15, 0.0);
-                put(16, 0.0);
-                put_u(17, args.prim_id);
-                put_u(18, args.geom_id);
-                put_u(19, (*args.context).inst_id[0]);
+                hit(i, t);
             }
         }
+    }
+}
+
+/// Embree's intersect callback for an analytic shape: the shape's exact hit distance in
+/// `(tnear, tfar)`; a hit shortens `tfar` and records the ids (no barycentrics).
+unsafe extern "C" fn analytic_intersect(args: *const UserQueryArgs) {
+    // SAFETY: Embree passes `n` valid lanes of a ray-hit block and a live context; the user
+    // pointer is a `Geometry` owned by `EmbreeScene`.
+    unsafe {
+        let args = &*args;
+        let n = args.n as usize;
+        for_each_analytic_hit(args, |i, t| {
+            let put = |k: usize, v: f32| *args.rayhit.add(k * n + i) = v;
+            let put_u = |k: usize, v: u32| *(args.rayhit.add(k * n + i) as *mut u32) = v;
+            put(8, t);
+            put(15, 0.0);
+            put(16, 0.0);
+            put_u(17, args.prim_id);
+            put_u(18, args.geom_id);
+            put_u(19, (*args.context).inst_id[0]);
+        });
     }
 }
 
@@ -251,18 +267,8 @@ unsafe extern "C" fn analytic_occluded(args: *const UserQueryArgs) {
     // SAFETY: as in `analytic_intersect`, with a ray block (no hits).
     unsafe {
         let args = &*args;
-        let geometry = &*(args.geometry_user_ptr as *const Geometry);
         let n = args.n as usize;
-        for i in 0..n {
-            if *args.valid.add(i) == 0 {
-                continue;
-            }
-            let ray = soa_ray(args.rayhit, n, i);
-            let tnear = *args.rayhit.add(3 * n + i);
-            if geometry.intersect_analytic(&ray).is_some_and(|t| t > tnear) {
-                *args.rayhit.add(8 * n + i) = f32::NEG_INFINITY;
-            }
-        }
+        for_each_analytic_hit(args, |i, _| *args.rayhit.add(8 * n + i) = f32::NEG_INFINITY);
     }
 }
 
