@@ -42,13 +42,13 @@ fn compare_backends(name: &str, loaded: &load::LoadedScene) {
                 _ => differ += 1,
             }
         }
-        // Eight rays per call (Embree's rtcIntersect8 with `embree`) give the one-ray answers.
-        for c in rays.chunks_exact(8) {
+        // Eight rays per call (Embree's rtcIntersect8 with `embree`) give the one-ray answers;
+        // inactive lanes (every fifth ray) give no hit.
+        for (k, c) in rays.chunks_exact(8).enumerate() {
             let packet: [matte::render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
-            for (r, (a, b)) in c
-                .iter()
-                .zip(accel.intersect8(&packet, shapes).into_iter().zip(c.iter().map(|r| accel.intersect(r, shapes))))
-            {
+            let active: [bool; 8] = std::array::from_fn(|i| (8 * k + i) % 5 != 0);
+            let one_ray = c.iter().zip(active).map(|(r, a)| if a { accel.intersect(r, shapes) } else { None });
+            for (r, (a, b)) in c.iter().zip(accel.intersect8(&packet, active, shapes).into_iter().zip(one_ray)) {
                 match (a, b) {
                     (Some(a), Some(b)) => {
                         assert!(
@@ -65,6 +65,17 @@ fn compare_backends(name: &str, loaded: &load::LoadedScene) {
         }
         let blocked_differ =
             shadow.iter().filter(|r| accel.occluded(r, shapes) != reference.occluded(r, shapes)).count();
+        // Eight shadow rays per call (rtcOccluded8) give the one-ray answers; inactive lanes
+        // (every third ray) are unblocked.
+        for (k, c) in shadow.chunks_exact(8).enumerate() {
+            let packet: [matte::render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
+            let active: [bool; 8] = std::array::from_fn(|i| (8 * k + i) % 3 != 0);
+            let blocked8 = accel.occluded8(&packet, active, shapes);
+            for i in 0..8 {
+                let one = active[i] && accel.occluded(&c[i], shapes);
+                assert_eq!(blocked8[i], one, "{name} {}: occluded8 lane {i} on {:?}", backend.name(), c[i]);
+            }
+        }
         let (n, m) = (rays.len(), shadow.len());
         eprintln!(
             "{name} {}: {differ} of {n} closest hits, {blocked_differ} of {m} shadow rays differ",

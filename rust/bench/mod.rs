@@ -1,7 +1,8 @@
 //! `matte bench`: the speed targets (README "Speed") measured in one run on this machine: matte's
 //! renderer against Mitsuba 3.9.1 (`scalar_rgb`, `llvm_ad_rgb` with a warm kernel cache) on
-//! the same scenes at the same spp, samples/s against spp, BVH build share, kernel ns/eval
-//! against Lambert, and each traced plugin's render time against Mitsuba's `diffuse` (llvm_ad_rgb).
+//! the same scenes at the same spp (and with matte's two tile drivers), samples/s against spp,
+//! BVH build share, each diffuse model's render time against Lambert's, kernel ns/eval against
+//! Lambert, and each traced plugin's render time against Mitsuba's `diffuse` (llvm_ad_rgb).
 
 pub mod kernels;
 pub mod mitsuba;
@@ -54,6 +55,8 @@ pub struct Measurements {
     pub wide_kernels: Vec<kernels::WideKernelTime>,
     /// Per scene: ns per ray of each mesh backend on the same rays.
     pub traversal: Vec<(String, Vec<traversal::TraversalTime>)>,
+    /// The room's render seconds with each diffuse model ([`render::time_models`]).
+    pub models: Vec<(String, f64)>,
 }
 
 pub const MITSUBA_VARIANTS: [&str; 2] = ["scalar_rgb", "llvm_ad_rgb"];
@@ -70,6 +73,8 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
         progress(&format!("matte {}", job.name));
         timed.push((job.clone(), render::time_matte(job, repeats)?));
     }
+    progress("matte: each diffuse model against Lambert (room)");
+    let models = if opts.quick { render::time_models(16, 2, 1)? } else { render::time_models(128, 64, repeats)? };
     progress("traversal: Embree and CWBVH on the same rays");
     let mut traversal = Vec::new();
     for job in &jobs {
@@ -88,5 +93,5 @@ pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, Stri
     } else {
         None
     };
-    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels, wide_kernels, traversal })
+    Ok(Measurements { jobs: timed, mitsuba, scaling, kernels, wide_kernels, traversal, models })
 }

@@ -1,8 +1,10 @@
 //! matte's side of the renderer comparison: wall time of the render alone (scene loaded and
 //! its BVH built beforehand, as Mitsuba's side times `mi.render` on a loaded scene), best of
-//! several runs, with the BVH build time and traced rays.
+//! several runs, with the BVH build time and traced rays; and the render time of each
+//! diffuse model against Lambert's on the same scene.
 
 use crate::render::accel::Backend;
+use crate::render::integrator::Driver;
 use crate::render::{load, renderer};
 use std::path::PathBuf;
 
@@ -25,39 +27,91 @@ pub struct MatteTime {
     pub threads: usize,
     /// The structure that traced the meshes.
     pub backend: Backend,
+    /// Best render time with one path per thread ([`Driver::OnePath`]).
+    pub one_path_seconds: f64,
     /// Best render time with everything in the CWBVH instead (the renderer before Embree),
     /// when the main run used Embree.
     pub cwbvh_seconds: Option<f64>,
 }
 
-/// Loads `job` once and renders it `repeats` times (after one warm-up render).
+/// Loads `job` once and times its render in three arrangements taking turns, each `repeats`
+/// times after one warm-up render (so that the machine's load hits them alike): the default
+/// (wavefront driver, Embree), one path per thread (the driver before the wavefront), and
+/// everything in the CWBVH (the ray queries before Embree).
 pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
     let mut loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
-    let best_of = |loaded: &load::LoadedScene| {
-        let run = || {
+    let backend = loaded.scene.accel_backend();
+    let mut configs = vec![(backend, Driver::Wavefront), (backend, Driver::OnePath)];
+    if backend != Backend::CwBvh {
+        configs.push((Backend::CwBvh, Driver::Wavefront));
+    }
+    let mut best: Vec<Option<renderer::RenderStats>> = vec![None; configs.len()];
+    let mut accel_build_seconds = loaded.scene.accel_build_seconds();
+    for round in 0..=repeats.max(1) {
+        for (k, &(b, driver)) in configs.iter().enumerate() {
+            if loaded.scene.accel_backend() != b {
+                loaded.scene.set_accel_backend(b)?;
+            }
+            if b == backend {
+                accel_build_seconds = loaded.scene.accel_build_seconds();
+            }
             let film = loaded.film.clone();
-            renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, job.spp, 0, &|_, _| {}).1
-        };
-        run();
-        (0..repeats.max(1)).map(|_| run()).min_by(|a, b| a.seconds.total_cmp(&b.seconds)).expect("at least one run")
-    };
-    let best = best_of(&loaded);
-    let (backend, accel_build_seconds) = (loaded.scene.accel_backend(), loaded.scene.accel_build_seconds());
-    let cwbvh_seconds = if backend == Backend::CwBvh {
-        None
-    } else {
-        loaded.scene.set_accel_backend(Backend::CwBvh)?;
-        Some(best_of(&loaded).seconds)
-    };
+            let stats = renderer::render_with(
+                &loaded.scene,
+                &loaded.integrator,
+                &loaded.camera,
+                film,
+                job.spp,
+                0,
+                driver,
+                &|_, _| {},
+            )
+            .1;
+            // Round 0 warms up (caches, page faults, thread pool).
+            if round > 0 && best[k].is_none_or(|s| stats.seconds < s.seconds) {
+                best[k] = Some(stats);
+            }
+        }
+    }
+    let best: Vec<renderer::RenderStats> = best.into_iter().map(|s| s.expect("at least one timed round")).collect();
     Ok(MatteTime {
-        seconds: best.seconds,
+        seconds: best[0].seconds,
         accel_build_seconds,
-        samples: best.samples,
-        rays: best.rays,
+        samples: best[0].samples,
+        rays: best[0].rays,
         threads: rayon::current_num_threads(),
         backend,
-        cwbvh_seconds,
+        one_path_seconds: best[1].seconds,
+        cwbvh_seconds: best.get(2).map(|s| s.seconds),
     })
+}
+
+/// The diffuse models whose render time `matte bench` compares with Lambert's.
+pub const MODELS: [&str; 6] = ["lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse"];
+
+/// Render time of the study's room with every diffuse surface as each of [`MODELS`] (its
+/// `$bsdf` parameter; the model's default parameters), at `res`² and `spp`, the models taking
+/// turns, best of `repeats` after a warm-up round. Returns `(model, seconds)`.
+pub fn time_models(res: u32, spp: u32, repeats: u32) -> Result<Vec<(String, f64)>, String> {
+    let file = crate::validate::passes::repo_root().join("mitsuba_scenes/study/room.xml");
+    let scenes = MODELS
+        .iter()
+        .map(|m| {
+            let defines = vec![("res".to_string(), res.to_string()), ("bsdf".to_string(), m.to_string())];
+            load::load_file(&file, &defines).map_err(|e| e.to_string())
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut best = vec![f64::INFINITY; MODELS.len()];
+    for round in 0..=repeats.max(1) {
+        for (k, loaded) in scenes.iter().enumerate() {
+            let film = loaded.film.clone();
+            let s = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, spp, 0, &|_, _| {}).1;
+            if round > 0 {
+                best[k] = best[k].min(s.seconds);
+            }
+        }
+    }
+    Ok(MODELS.iter().map(|m| m.to_string()).zip(best).collect())
 }
 
 /// Samples/s of `job` at each of `spp` (best of `repeats` renders each, after a warm-up):

@@ -48,6 +48,11 @@ pub fn targets(m: &Measurements) -> Vec<Target> {
             at_least: true,
         });
     }
+    if let Some((_, lambert)) = m.models.iter().find(|(k, _)| k == "lambert") {
+        for (model, sec) in m.models.iter().filter(|(k, _)| k != "lambert") {
+            t.push(le(format!("room: render with {model} / with lambert"), sec / lambert, 1.1));
+        }
+    }
     if let Some((job, mt)) = m.jobs.iter().find(|(j, _)| j.name == "bunny") {
         t.push(le(format!("{}: BVH build / render time", job.name), mt.accel_build_seconds / mt.seconds, 0.10));
     }
@@ -92,21 +97,22 @@ pub fn table(m: &Measurements) -> String {
     let _ = writeln!(s, "machine: {}", machine());
     let _ = writeln!(
         s,
-        "\n| scene | res, spp | matte s | Mrays/s | matte s, all in CWBVH | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
+        "\n| scene | res, spp | matte s | Mrays/s | matte s, one path per thread | matte s, all in CWBVH | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
     );
-    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|");
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
     for (job, mt) in &m.jobs {
         let res = job.defines.iter().find(|d| d.0 == "res").map_or("?", |d| d.1.as_str());
         let mi = |v: &str| m.mitsuba.as_ref().and_then(|mi| mi.seconds(&job.name, v));
         let cell = |x: Option<f64>, f: &dyn Fn(f64) -> String| x.map_or("—".to_string(), f);
         let _ = writeln!(
             s,
-            "| {} | {res}², {} | {:.3} ({}) | {:.2} | {} | {} | {} | {} | {} |",
+            "| {} | {res}², {} | {:.3} ({}) | {:.2} | {:.3} | {} | {} | {} | {} | {} |",
             job.name,
             job.spp,
             mt.seconds,
             mt.backend.name(),
             mt.rays as f64 / mt.seconds / 1e6,
+            mt.one_path_seconds,
             cell(mt.cwbvh_seconds, &|x| format!("{x:.3}")),
             cell(mi("scalar_rgb"), &|x| format!("{x:.3}")),
             cell(mi("llvm_ad_rgb"), &|x| format!("{x:.3}")),
@@ -131,6 +137,13 @@ pub fn table(m: &Measurements) -> String {
                 t.rays,
                 t.shadow_rays
             );
+        }
+    }
+    if let Some((_, lambert)) = m.models.iter().find(|(k, _)| k == "lambert") {
+        let _ = writeln!(s, "\n| room 128², 64 spp, every diffuse surface as | s | / Lambert |");
+        let _ = writeln!(s, "|---|---|---|");
+        for (model, sec) in &m.models {
+            let _ = writeln!(s, "| {model} | {sec:.3} | {:.3}× |", sec / lambert);
         }
     }
     let _ = writeln!(s, "\n| kernel | ns/eval (RGB) | / Lambert |");
@@ -178,6 +191,8 @@ pub struct BenchJson {
     pub kernels: Vec<KernelJson>,
     pub traversal: Vec<TraversalJson>,
     pub wide_kernels: Vec<WideKernelJson>,
+    /// The room (128², 64 spp) rendered with every diffuse surface as each model: best seconds.
+    pub model_render_seconds: BTreeMap<String, f64>,
     /// Best seconds per plugin type (`diffuse` and matte's), Cornell box, llvm_ad_rgb.
     pub plugin_seconds_llvm_ad_rgb: Option<BTreeMap<String, f64>>,
     pub targets: Vec<TargetJson>,
@@ -197,6 +212,8 @@ pub struct RenderJson {
     pub threads: usize,
     /// The structure that traced the meshes (`embree` or `cwbvh`).
     pub accel: &'static str,
+    /// Best seconds with one path per thread (the driver before the wavefront).
+    pub matte_seconds_one_path: f64,
     /// Best seconds with the meshes in the CWBVH (when `accel` is `embree`).
     pub matte_seconds_cwbvh: Option<f64>,
     /// Best seconds per Mitsuba variant (none when Mitsuba did not run).
@@ -259,6 +276,7 @@ pub fn json(m: &Measurements) -> BenchJson {
                 accel_build_seconds: mt.accel_build_seconds,
                 threads: mt.threads,
                 accel: mt.backend.name(),
+                matte_seconds_one_path: mt.one_path_seconds,
                 matte_seconds_cwbvh: mt.cwbvh_seconds,
                 mitsuba_seconds: super::MITSUBA_VARIANTS
                     .iter()
@@ -288,6 +306,7 @@ pub fn json(m: &Measurements) -> BenchJson {
             .iter()
             .map(|k| WideKernelJson { model: k.model, f32_ns_per_pair: k.f32_ns, f32x8_ns_per_pair: k.f32x8_ns })
             .collect(),
+        model_render_seconds: m.models.iter().cloned().collect(),
         plugin_seconds_llvm_ad_rgb: m.mitsuba.as_ref().map(|mi| mi.plugin.iter().cloned().collect()),
         targets: targets(m)
             .into_iter()

@@ -85,7 +85,7 @@ pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<Tra
             let occluded = t0.elapsed().as_secs_f64() * 1e9 / shadow.len().max(1) as f64;
             let t0 = Instant::now();
             for p in &packets {
-                black_box(accel.intersect8(black_box(p), shapes));
+                black_box(accel.intersect8(black_box(p), [true; 8], shapes));
             }
             let packet = t0.elapsed().as_secs_f64() * 1e9 / (8 * packets.len()).max(1) as f64;
             *best = (best.0.min(closest), best.1.min(occluded), best.2.min(packet));

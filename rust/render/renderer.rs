@@ -1,14 +1,14 @@
 //! The render loop: the film's crop window is cut into tiles rendered in parallel (rayon
-//! work stealing); each pixel has its own sampler stream, so the image depends only on the
-//! seed, not on threads or tiling. Every sample goes to the tile's image block, which the
-//! film accumulates (Mitsuba `SamplingIntegrator::render`).
+//! work stealing), each tile with many paths in flight
+//! ([`crate::render::integrator::wavefront`]); each pixel has its
+//! own sampler stream, so the image depends only on the seed, not on threads or tiling.
+//! Every sample goes to the tile's image block, which the film accumulates (Mitsuba
+//! `SamplingIntegrator::render`).
 
 use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
-use crate::render::integrator::Integrator;
-use crate::render::sampler::Sampler;
+use crate::render::integrator::{Driver, Integrator};
 use crate::render::scene::Scene;
-use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -39,6 +39,22 @@ pub fn render(
     seed: u64,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> (Image, RenderStats) {
+    render_with(scene, integrator, camera, film, spp, seed, Driver::default(), progress)
+}
+
+/// [`render`] with the tile driver `driver` (the image is the same estimator with either:
+/// each pixel's samples draw the same numbers).
+#[allow(clippy::too_many_arguments)]
+pub fn render_with(
+    scene: &Scene,
+    integrator: &Integrator,
+    camera: &Camera,
+    film: Film,
+    spp: u32,
+    seed: u64,
+    driver: Driver,
+    progress: &(dyn Fn(u64, u64) + Sync),
+) -> (Image, RenderStats) {
     let start = Instant::now();
     if let Integrator::ParticleTracer(pt) = integrator {
         crate::render::accel::take_ray_count();
@@ -60,23 +76,8 @@ pub fn render(
     let film = Mutex::new(film);
     tiles.par_iter().for_each(|tile| {
         let mut block = film.lock().expect("film lock").new_block(tile);
-        let mut bad = 0u64;
         crate::render::accel::take_ray_count();
-        for py in tile.offset[1]..tile.offset[1] + tile.size[1] {
-            for px in tile.offset[0]..tile.offset[0] + tile.size[0] {
-                let mut sampler = Sampler::for_pixel(seed, py as u64 * width + px as u64);
-                let pixel = Vec2::new(px as f32, py as f32);
-                for _ in 0..spp {
-                    let pos = pixel + sampler.next_2d();
-                    let mut l = integrator.li(scene, &mut sampler, camera.ray(pos));
-                    if !l.is_finite() {
-                        l = Vec3::ZERO;
-                        bad += 1;
-                    }
-                    block.put(pos, l);
-                }
-            }
-        }
+        let bad = integrator.render_tile(driver, scene, camera, &mut block, spp, seed, width);
         rays.fetch_add(crate::render::accel::take_ray_count(), Ordering::Relaxed);
         invalid.fetch_add(bad, Ordering::Relaxed);
         film.lock().expect("film lock").put_block(&block);

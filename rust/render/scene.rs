@@ -2,7 +2,7 @@
 //! and the queries integrators need (Mitsuba `Scene`: intersection, emitter selection with
 //! the `sampling_weight` pmf, light sampling with a visibility test, emitter densities).
 
-use crate::render::accel::Accel;
+use crate::render::accel::{Accel, Hit};
 use crate::render::bsdf::Bsdf;
 use crate::render::emitter::{Emitter, EmitterSample};
 use crate::render::geometry::{Ray, ray};
@@ -69,13 +69,35 @@ impl Scene {
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceInteraction> {
         let hit = self.accel.intersect(ray, &self.shapes)?;
-        let shape = &self.shapes[hit.shape as usize];
-        Some(shape.geometry.interaction(ray, hit.t, hit.prim, hit.bary, hit.shape))
+        Some(self.interaction(ray, hit))
     }
 
     #[inline]
     pub fn occluded(&self, ray: &Ray) -> bool {
         self.accel.occluded(ray, &self.shapes)
+    }
+
+    /// The closest hits of the `active` ones of eight rays in one batched query (inactive
+    /// lanes: `None`); [`Self::interaction`] turns each into what [`Self::intersect`] gives.
+    #[inline]
+    pub fn intersect8(&self, rays: &[Ray; 8], active: [bool; 8]) -> [Option<Hit>; 8] {
+        self.accel.intersect8(rays, active, &self.shapes)
+    }
+
+    pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
+        self.accel.intersect(ray, &self.shapes)
+    }
+    /// The surface interaction of `ray`'s hit `hit`.
+    #[inline]
+    pub fn interaction(&self, ray: &Ray, hit: Hit) -> SurfaceInteraction {
+        self.shapes[hit.shape as usize].geometry.interaction(ray, hit.t, hit.prim, hit.bary, hit.shape)
+    }
+
+    /// [`Self::occluded`] for the `active` ones of eight rays in one batched query; inactive
+    /// lanes give `false`.
+    #[inline]
+    pub fn occluded8(&self, rays: &[Ray; 8], active: [bool; 8]) -> [bool; 8] {
+        self.accel.occluded8(rays, active, &self.shapes)
     }
 
     #[inline]
@@ -91,8 +113,8 @@ impl Scene {
 
     /// Picks an emitter with `u` ∈ [0,1) and samples it from the surface point `si`. Returns
     /// the sample with `pdf` and `weight` including the selection pmf, or `None` if the light
-    /// emits nothing towards `si`. Visibility is *not* tested: integrators call
-    /// [`Self::emitter_visible`] only when the BSDF lets the light contribute, which saves the
+    /// emits nothing towards `si`. Visibility is *not* tested: integrators trace the
+    /// [`Self::shadow_ray`] only when the BSDF lets the light contribute, which saves the
     /// shadow rays towards lights behind the surface. Mitsuba traces the shadow ray first
     /// (`Scene::sample_emitter_direction(.., test_visibility=true)`); the estimate is the same.
     #[inline]
@@ -120,13 +142,12 @@ impl Scene {
         Some((idx, pmf, ((u - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0)))
     }
 
-    /// Whether nothing blocks the segment from `si` to the emitter sample `es` (a shadow ray
-    /// spawned as Mitsuba does, towards `es.p`, or along `es.d` for lights at infinity).
+    /// The shadow ray from `si` to the emitter sample `es`, spawned as Mitsuba does: towards
+    /// `es.p`, or along `es.d` for lights at infinity. Nothing blocks the segment iff
+    /// [`Self::occluded`] is false for it.
     #[inline]
-    pub fn emitter_visible(&self, si: &SurfaceInteraction, es: &EmitterSample) -> bool {
-        let shadow =
-            if es.dist.is_finite() { ray::spawn_ray_to(si.p, si.n, es.p) } else { ray::spawn_ray(si.p, si.n, es.d) };
-        !self.occluded(&shadow)
+    pub fn shadow_ray(&self, si: &SurfaceInteraction, es: &EmitterSample) -> Ray {
+        if es.dist.is_finite() { ray::spawn_ray_to(si.p, si.n, es.p) } else { ray::spawn_ray(si.p, si.n, es.d) }
     }
 
     /// Density (with the selection pmf) with which light sampling would have picked the

@@ -152,31 +152,45 @@ impl EmbreeScene {
         })
     }
 
-    /// The closest hits of eight rays in one `rtcIntersect8` call (Embree's packet query).
+    /// The closest hits of the `active` ones of eight rays in one `rtcIntersect8` call
+    /// (Embree's packet query); inactive lanes get `None`.
     #[inline]
-    pub fn intersect8(&self, rays: &[Ray; 8]) -> [Option<Hit>; 8] {
+    pub fn intersect8(&self, rays: &[Ray; 8], active: [bool; 8]) -> [Option<Hit>; 8] {
         let mut p = rtc::RtcRayHit8 { f: [[0.0; 8]; 20] };
-        let valid: [i32; 8] = std::array::from_fn(|i| if traceable(&rays[i]) { -1 } else { 0 });
+        let valid = valid_lanes(rays, active);
         for (i, r) in rays.iter().enumerate() {
-            let fields = [r.o.x, r.o.y, r.o.z, 0.0, r.d.x, r.d.y, r.d.z, 0.0, r.maxt, f32::from_bits(u32::MAX)];
-            for (k, v) in fields.into_iter().enumerate() {
-                p.f[k][i] = v;
-            }
+            put_soa_ray(&mut p.f, i, r);
             p.f[18][i] = f32::from_bits(rtc::INVALID_GEOMETRY_ID);
         }
         let mut ctx = IntersectContext::incoherent();
         // SAFETY: a committed scene, an initialised context, a 32-byte aligned RTCRayHit8 and
-        // eight valid lanes.
+        // a valid mask for its lanes.
         unsafe { (self.api.intersect8)(valid.as_ptr(), self.scene, &mut ctx, &mut p) };
         std::array::from_fn(|i| {
             let geom = p.f[18][i].to_bits();
-            (geom != rtc::INVALID_GEOMETRY_ID).then(|| Hit {
+            (valid[i] != 0 && geom != rtc::INVALID_GEOMETRY_ID).then(|| Hit {
                 t: p.f[8][i],
                 shape: self.shape_of_geometry[geom as usize],
                 prim: p.f[17][i].to_bits(),
                 bary: Vec2::new(p.f[15][i], p.f[16][i]),
             })
         })
+    }
+
+    /// Whether a mesh blocks each of the `active` ones of eight rays, in one `rtcOccluded8`
+    /// call; inactive lanes give `false`.
+    #[inline]
+    pub fn occluded8(&self, rays: &[Ray; 8], active: [bool; 8]) -> [bool; 8] {
+        let mut p = rtc::RtcRay8 { f: [[0.0; 8]; 12] };
+        let valid = valid_lanes(rays, active);
+        for (i, r) in rays.iter().enumerate() {
+            put_soa_ray(&mut p.f, i, r);
+        }
+        let mut ctx = IntersectContext::incoherent();
+        // SAFETY: as in `intersect8`, with a 32-byte aligned RTCRay8; Embree sets `tfar` to
+        // −∞ for the blocked lanes.
+        unsafe { (self.api.occluded8)(valid.as_ptr(), self.scene, &mut ctx, &mut p) };
+        std::array::from_fn(|i| valid[i] != 0 && p.f[8][i] == f32::NEG_INFINITY)
     }
 
     /// Whether a mesh blocks `ray` before `maxt`.
@@ -291,6 +305,22 @@ fn traceable(ray: &Ray) -> bool {
     // `cmple` is false for NaN (where `max_element` would skip it).
     let bound = Vec3::splat(FLT_LARGE);
     ray.o.abs().cmple(bound).all() && ray.d.abs().cmple(bound).all() && ray.maxt > 0.0
+}
+
+/// Embree's valid mask (−1 valid, 0 not) for the active lanes it may be asked about.
+#[inline(always)]
+fn valid_lanes(rays: &[Ray; 8], active: [bool; 8]) -> [i32; 8] {
+    std::array::from_fn(|i| if active[i] && traceable(&rays[i]) { -1 } else { 0 })
+}
+
+/// Writes `r` into lane `i` of Embree's structure-of-arrays ray fields (origin, tnear = 0,
+/// direction, time = 0, tfar = `maxt`, mask = all).
+#[inline(always)]
+fn put_soa_ray<const K: usize>(f: &mut [[f32; 8]; K], i: usize, r: &Ray) {
+    let fields = [r.o.x, r.o.y, r.o.z, 0.0, r.d.x, r.d.y, r.d.z, 0.0, r.maxt, f32::from_bits(u32::MAX)];
+    for (k, v) in fields.into_iter().enumerate() {
+        f[k][i] = v;
+    }
 }
 
 /// The Embree ray for `ray`: `tnear` = 0 and `tfar` = `maxt`, as Mitsuba passes them.

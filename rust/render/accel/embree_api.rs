@@ -79,6 +79,14 @@ pub struct RtcRayHit8 {
     pub f: [[f32; 8]; 20],
 }
 
+/// `struct RTCRay8`: eight rays in structure-of-arrays layout (the first 12 fields of
+/// [`RtcRayHit8`]).
+#[repr(C, align(32))]
+#[derive(Clone, Copy, Debug)]
+pub struct RtcRay8 {
+    pub f: [[f32; 8]; 12],
+}
+
 /// `struct RTCIntersectContext` as `rtcInitIntersectContext` fills it.
 #[repr(C)]
 pub struct IntersectContext {
@@ -154,6 +162,7 @@ pub struct Api {
     pub intersect1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRayHit),
     pub occluded1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRay),
     pub intersect8: unsafe extern "C" fn(*const c_int, Scene, *mut IntersectContext, *mut RtcRayHit8),
+    pub occluded8: unsafe extern "C" fn(*const c_int, Scene, *mut IntersectContext, *mut RtcRay8),
     /// One device for the process (Embree's thread pool is per device); never released.
     pub device: Device,
 }
@@ -223,6 +232,7 @@ fn load() -> Result<Api, String> {
         intersect1: f!(c"rtcIntersect1"),
         occluded1: f!(c"rtcOccluded1"),
         intersect8: f!(c"rtcIntersect8"),
+        occluded8: f!(c"rtcOccluded8"),
         device,
     })
 }
@@ -251,6 +261,8 @@ mod tests {
         assert_eq!(std::mem::size_of::<IntersectContext>(), 24);
         assert_eq!(std::mem::size_of::<RtcBounds>(), 32);
         assert_eq!(std::mem::size_of::<RtcRayHit8>(), 640);
+        assert_eq!(std::mem::size_of::<RtcRay8>(), 384);
+        assert_eq!(std::mem::align_of::<RtcRay8>(), 32);
         assert_eq!(std::mem::size_of::<BoundsArgs>(), 24);
         assert_eq!(std::mem::size_of::<UserQueryArgs>(), 48);
     }

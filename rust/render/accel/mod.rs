@@ -144,18 +144,17 @@ impl Accel {
         self.bvh.intersect(&Ray::new(ray.o, ray.d, maxt), shapes).or(mesh_hit)
     }
 
-    /// The closest hits of eight rays: one Embree packet query with `embree`, else one query
-    /// per ray. Same answers as [`Self::intersect`] (`tests/accel_backends.rs`).
+    /// The closest hits of the `active` ones of eight rays (inactive lanes: `None`): one
+    /// Embree packet query with `embree`, else one query per ray. Same answers as
+    /// [`Self::intersect`] (`tests/accel_backends.rs`).
     #[inline]
-    pub fn intersect8(&self, rays: &[Ray; 8], shapes: &[Shape]) -> [Option<Hit>; 8] {
+    pub fn intersect8(&self, rays: &[Ray; 8], active: [bool; 8], shapes: &[Shape]) -> [Option<Hit>; 8] {
         match &self.embree {
             Some(e) if self.bvh.is_empty() => {
-                for _ in rays {
-                    count_ray();
-                }
-                e.intersect8(rays)
+                active.iter().filter(|&&a| a).for_each(|_| count_ray());
+                e.intersect8(rays, active)
             }
-            _ => std::array::from_fn(|i| self.intersect(&rays[i], shapes)),
+            _ => std::array::from_fn(|i| if active[i] { self.intersect(&rays[i], shapes) } else { None }),
         }
     }
 
@@ -164,6 +163,19 @@ impl Accel {
     pub fn occluded(&self, ray: &Ray, shapes: &[Shape]) -> bool {
         count_ray();
         self.embree.as_ref().is_some_and(|e| e.occluded(ray)) || self.bvh.occluded(ray, shapes)
+    }
+
+    /// [`Self::occluded`] for the `active` ones of eight rays (inactive lanes: `false`), one
+    /// Embree packet query with `embree`.
+    #[inline]
+    pub fn occluded8(&self, rays: &[Ray; 8], active: [bool; 8], shapes: &[Shape]) -> [bool; 8] {
+        match &self.embree {
+            Some(e) if self.bvh.is_empty() => {
+                active.iter().filter(|&&a| a).for_each(|_| count_ray());
+                e.occluded8(rays, active)
+            }
+            _ => std::array::from_fn(|i| active[i] && self.occluded(&rays[i], shapes)),
+        }
     }
 
     /// Triangles and analytic shapes in the structures.

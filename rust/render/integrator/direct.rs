@@ -5,11 +5,18 @@
 //! Quirk copied on purpose (docs/renderer-semantics.md §7): a light sample from a **delta** light gets MIS
 //! weight exactly 1 without the 1/Ne factor, so `emitter_samples = 4` makes point, spot and
 //! directional lights 4× brighter in Mitsuba, and must here too for `validate` to agree.
+//!
+//! Like [`super::path`], a state machine advanced once per ray query: the camera ray's hit
+//! gives every light sample's shadow ray and the first BSDF sample's probe ray, each probe's
+//! hit gives the next probe.
 
+use super::ShadowTest;
 use super::mis::power_heuristic;
+use crate::render::bsdf::BsdfSample;
 use crate::render::geometry::{Ray, ray};
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
+use crate::render::shape::SurfaceInteraction;
 use glam::Vec3;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -19,55 +26,150 @@ pub struct DirectIntegrator {
     pub hide_emitters: bool,
 }
 
+/// One camera sample between two ray queries.
+#[derive(Clone, Copy, Debug)]
+pub struct DirectState {
+    /// Radiance gathered so far.
+    pub l: Vec3,
+    /// The ray whose hit [`DirectIntegrator::advance`] receives next.
+    ray: Ray,
+    /// The camera ray's hit, once found.
+    first: Option<SurfaceInteraction>,
+    /// The BSDF sample whose probe ray is pending.
+    probe: Option<BsdfSample>,
+    /// BSDF samples not drawn yet.
+    bsdf_left: u32,
+}
+
 impl DirectIntegrator {
+    /// Radiance along a camera ray, one query at a time.
     #[inline]
     pub fn li(&self, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
-        let Some(si) = super::first_hit(scene, camera_ray, self.hide_emitters) else {
-            return match scene.environment {
-                Some(env) if !self.hide_emitters => scene.emitters[env as usize].eval_environment(camera_ray.d),
-                _ => Vec3::ZERO,
-            };
-        };
-        let mut l = Vec3::ZERO;
-        if !self.hide_emitters
-            && let Some(em) = scene.surface_emitter(&si)
-        {
-            l += scene.emitters[em as usize].eval_surface(&si);
+        let (mut state, mut ray) = self.start(camera_ray);
+        let mut shadows = Vec::new();
+        loop {
+            let next = self.advance(scene, sampler, &mut state, scene.intersect(&ray), &mut shadows);
+            for test in shadows.drain(..) {
+                if !scene.occluded(&test.ray) {
+                    state.l += test.contribution;
+                }
+            }
+            match next {
+                Some(r) => ray = r,
+                None => return state.l,
+            }
         }
+    }
+
+    /// The state for a camera ray and the ray to trace first.
+    #[inline]
+    pub fn start(&self, camera_ray: Ray) -> (DirectState, Ray) {
+        let state =
+            DirectState { l: Vec3::ZERO, ray: camera_ray, first: None, probe: None, bsdf_left: self.bsdf_samples };
+        (state, camera_ray)
+    }
+
+    /// Consumes the hit of the pending ray (`None`: it escaped); pushes shadow rays onto
+    /// `shadows` (the caller adds each unblocked one's contribution to `l` before the next
+    /// call) and returns the next ray, `None` when the sample is done.
+    #[inline]
+    pub fn advance(
+        &self,
+        scene: &Scene,
+        sampler: &mut Sampler,
+        s: &mut DirectState,
+        hit: Option<SurfaceInteraction>,
+        shadows: &mut Vec<ShadowTest>,
+    ) -> Option<Ray> {
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
         let n = ne + nb;
         let (frac_lum, frac_bsdf) = (ne / n, nb / n);
-        let bsdf = scene.bsdf(&si);
+        let Some(si) = s.first else {
+            return self.at_camera_hit(scene, sampler, s, hit, shadows, frac_lum, frac_bsdf);
+        };
+        // The pending probe's hit: emission found by BSDF sampling.
+        let bs = s.probe.take().expect("a probe ray is pending after the camera hit");
+        let wo = s.ray.d;
+        let le_pdf = match hit {
+            Some(hit) => scene.surface_emitter(&hit).map(|em| {
+                let le = scene.emitters[em as usize].eval_surface(&hit);
+                (le, if bs.delta { 0.0 } else { scene.pdf_emitter_direction(si.p, em, Some(&hit)) })
+            }),
+            None => scene.environment.map(|env| {
+                let le = scene.emitters[env as usize].eval_environment(wo);
+                (le, if bs.delta { 0.0 } else { scene.pdf_environment(env, wo) })
+            }),
+        };
+        if let Some((le, pdf_e)) = le_pdf {
+            s.l += bs.weight * le * (power_heuristic(bs.pdf * frac_bsdf, pdf_e * frac_lum) / nb);
+        }
+        self.next_probe(scene, sampler, s, &si)
+    }
 
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    fn at_camera_hit(
+        &self,
+        scene: &Scene,
+        sampler: &mut Sampler,
+        s: &mut DirectState,
+        hit: Option<SurfaceInteraction>,
+        shadows: &mut Vec<ShadowTest>,
+        frac_lum: f32,
+        frac_bsdf: f32,
+    ) -> Option<Ray> {
+        let Some(si) = hit else {
+            if let Some(env) = scene.environment
+                && !self.hide_emitters
+            {
+                s.l += scene.emitters[env as usize].eval_environment(s.ray.d);
+            }
+            return None;
+        };
+        if let Some(em) = scene.surface_emitter(&si) {
+            if self.hide_emitters {
+                // A hidden emitter seen by the camera: the camera ray continues through it.
+                let mut next = ray::spawn_ray(si.p, si.n, s.ray.d);
+                next.maxt = s.ray.maxt - si.t;
+                s.ray = next;
+                return Some(next);
+            }
+            s.l += scene.emitters[em as usize].eval_surface(&si);
+        }
+        s.first = Some(si);
+        let ne = self.emitter_samples as f32;
+        let bsdf = scene.bsdf(&si);
         if bsdf.has_smooth() {
             for _ in 0..self.emitter_samples {
                 let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d()) else { continue };
                 let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
-                if f != Vec3::ZERO && scene.emitter_visible(&si, &es) {
+                if f != Vec3::ZERO {
                     let w = if es.delta { 1.0 } else { power_heuristic(es.pdf * frac_lum, pdf_b * frac_bsdf) / ne };
-                    l += f * es.weight * w;
+                    shadows.push(ShadowTest { ray: scene.shadow_ray(&si, &es), contribution: f * es.weight * w });
                 }
             }
         }
+        self.next_probe(scene, sampler, s, &si)
+    }
 
-        for _ in 0..self.bsdf_samples {
+    /// Draws BSDF samples until one gives a direction (its probe ray) or none are left.
+    #[inline]
+    fn next_probe(
+        &self,
+        scene: &Scene,
+        sampler: &mut Sampler,
+        s: &mut DirectState,
+        si: &SurfaceInteraction,
+    ) -> Option<Ray> {
+        let bsdf = scene.bsdf(si);
+        while s.bsdf_left > 0 {
+            s.bsdf_left -= 1;
             let u_lobe = sampler.next_1d();
-            let Some(bs) = bsdf.sample(&si, si.wi, u_lobe, sampler.next_2d()) else { continue };
-            let wo = si.to_world(bs.wo);
-            let le_pdf = match scene.intersect(&ray::spawn_ray(si.p, si.n, wo)) {
-                Some(hit) => scene.surface_emitter(&hit).map(|em| {
-                    let le = scene.emitters[em as usize].eval_surface(&hit);
-                    (le, if bs.delta { 0.0 } else { scene.pdf_emitter_direction(si.p, em, Some(&hit)) })
-                }),
-                None => scene.environment.map(|env| {
-                    let le = scene.emitters[env as usize].eval_environment(wo);
-                    (le, if bs.delta { 0.0 } else { scene.pdf_environment(env, wo) })
-                }),
-            };
-            if let Some((le, pdf_e)) = le_pdf {
-                l += bs.weight * le * (power_heuristic(bs.pdf * frac_bsdf, pdf_e * frac_lum) / nb);
-            }
+            let Some(bs) = bsdf.sample(si, si.wi, u_lobe, sampler.next_2d()) else { continue };
+            s.ray = ray::spawn_ray(si.p, si.n, si.to_world(bs.wo));
+            s.probe = Some(bs);
+            return Some(s.ray);
         }
-        l
+        None
     }
 }

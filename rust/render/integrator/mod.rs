@@ -1,19 +1,46 @@
 //! Integrators: Mitsuba's `path` and `direct`, both with multiple importance sampling
 //! (power heuristic) exactly where Mitsuba applies it (docs/renderer-semantics.md §7).
+//!
+//! Both are state machines advanced once per ray query (`start`, then `advance` with each
+//! hit), so that they can be driven one path at a time ([`Integrator::li`]) or many paths
+//! per thread with batched ray queries ([`wavefront`], what the renderer uses).
 
 pub mod direct;
 pub mod mis;
+pub mod one_path;
 pub mod path;
 pub mod ptracer;
+pub mod wavefront;
 
 pub use direct::DirectIntegrator;
 pub use path::PathIntegrator;
 pub use ptracer::ParticleTracer;
 
+use crate::render::camera::Camera;
+use crate::render::film::ImageBlock;
 use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
 use glam::Vec3;
+
+/// How the renderer runs an integrator over a tile.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Driver {
+    /// Many paths in flight per thread with batched ray queries ([`wavefront`]).
+    #[default]
+    Wavefront,
+    /// One path at a time ([`one_path`]).
+    OnePath,
+}
+
+impl Driver {
+    pub fn name(self) -> &'static str {
+        match self {
+            Driver::Wavefront => "wavefront",
+            Driver::OnePath => "one path",
+        }
+    }
+}
 
 #[derive(Clone, Debug)]
 pub enum Integrator {
@@ -35,23 +62,38 @@ impl Integrator {
             Integrator::ParticleTracer(_) => Vec3::ZERO,
         }
     }
+
+    /// Renders `spp` samples of every pixel of `block`'s tile with `driver` (the same numbers
+    /// per sample with either); returns how many samples were not finite (splatted as zero).
+    /// `width` is the film's width. Not for `ptracer`, which renders in its own loop.
+    #[allow(clippy::too_many_arguments)]
+    pub fn render_tile(
+        &self,
+        driver: Driver,
+        scene: &Scene,
+        camera: &Camera,
+        block: &mut ImageBlock,
+        spp: u32,
+        seed: u64,
+        width: u64,
+    ) -> u64 {
+        match (driver, self) {
+            (Driver::OnePath, _) => one_path::render_tile(self, scene, camera, block, spp, seed, width),
+            (Driver::Wavefront, Integrator::Path(p)) => {
+                wavefront::render_tile(p, scene, camera, block, spp, seed, width)
+            }
+            (Driver::Wavefront, Integrator::Direct(d)) => {
+                wavefront::render_tile(d, scene, camera, block, spp, seed, width)
+            }
+            (Driver::Wavefront, Integrator::ParticleTracer(_)) => 0,
+        }
+    }
 }
 
-/// The camera ray's first hit; with `hide_emitters`, area emitters are skipped (the ray is
-/// continued through them, as Mitsuba does).
-#[inline]
-pub(crate) fn first_hit(
-    scene: &Scene,
-    mut ray: Ray,
-    hide_emitters: bool,
-) -> Option<crate::render::shape::SurfaceInteraction> {
-    loop {
-        let si = scene.intersect(&ray)?;
-        if !(hide_emitters && scene.surface_emitter(&si).is_some()) {
-            return Some(si);
-        }
-        let remaining = ray.maxt - si.t;
-        ray = crate::render::geometry::ray::spawn_ray(si.p, si.n, ray.d);
-        ray.maxt = remaining;
-    }
+/// A shadow ray an integrator asks its driver to test: if nothing blocks `ray`, the driver
+/// adds `contribution` to the sample's radiance.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadowTest {
+    pub ray: Ray,
+    pub contribution: Vec3,
 }

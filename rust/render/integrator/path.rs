@@ -2,11 +2,18 @@
 //! sampling combined with the power heuristic; `max_depth` counts path segments (1 = visible
 //! emitters only, 2 = direct lighting, −1 = unbounded); Russian roulette from `rr_depth` with
 //! survival `min(max(β)·η², 0.95)`; no light sampling at purely specular surfaces.
+//!
+//! The integrator is a state machine ([`PathState`]) advanced once per ray query, so that
+//! the one-path driver ([`PathIntegrator::li`]) and the renderer's many-paths-per-thread
+//! driver ([`super::wavefront`]) run the same rules and draw the same numbers from each
+//! pixel's sampler in the same order.
 
+use super::ShadowTest;
 use super::mis::power_heuristic;
 use crate::render::geometry::{Ray, ray};
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
+use crate::render::shape::SurfaceInteraction;
 use glam::Vec3;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -17,79 +24,137 @@ pub struct PathIntegrator {
     pub hide_emitters: bool,
 }
 
+/// One path between two ray queries.
+#[derive(Clone, Copy, Debug)]
+pub struct PathState {
+    /// Radiance gathered so far.
+    pub l: Vec3,
+    beta: Vec3,
+    eta: f32,
+    /// Path segments traced before the pending ray (0: the camera ray).
+    depth: u32,
+    prev_p: Vec3,
+    prev_pdf: f32,
+    prev_delta: bool,
+    /// The ray whose hit [`PathIntegrator::advance`] receives next.
+    ray: Ray,
+}
+
 impl PathIntegrator {
+    /// Radiance along a camera ray, one query at a time.
     #[inline]
     pub fn li(&self, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
-        if self.max_depth == 0 {
-            return Vec3::ZERO;
-        }
-        let mut l = Vec3::ZERO;
-        let mut beta = Vec3::ONE;
-        let mut eta = 1.0f32;
-        let mut depth = 0u32;
-        let mut prev_p = camera_ray.o;
-        let mut prev_pdf = 1.0f32;
-        let mut prev_delta = true;
-        let mut ray_d = camera_ray.d;
-        let mut hit = super::first_hit(scene, camera_ray, self.hide_emitters);
+        let Some((mut state, mut ray)) = self.start(camera_ray) else { return Vec3::ZERO };
+        let mut shadows = Vec::new();
         loop {
-            let Some(si) = hit else {
-                // Escaped: the environment (hidden only for the camera ray).
-                if let Some(env) = scene.environment
-                    && !(depth == 0 && self.hide_emitters)
-                {
-                    let w = if prev_delta { 1.0 } else { power_heuristic(prev_pdf, scene.pdf_environment(env, ray_d)) };
-                    l += beta * scene.emitters[env as usize].eval_environment(ray_d) * w;
-                }
-                break;
-            };
-            if let Some(em) = scene.surface_emitter(&si) {
-                let le = scene.emitters[em as usize].eval_surface(&si);
-                if le != Vec3::ZERO {
-                    let w = if prev_delta {
-                        1.0
-                    } else {
-                        power_heuristic(prev_pdf, scene.pdf_emitter_direction(prev_p, em, Some(&si)))
-                    };
-                    l += beta * le * w;
+            let next = self.advance(scene, sampler, &mut state, scene.intersect(&ray), &mut shadows);
+            for test in shadows.drain(..) {
+                if !scene.occluded(&test.ray) {
+                    state.l += test.contribution;
                 }
             }
-            if depth + 1 >= self.max_depth {
-                break;
+            match next {
+                Some(r) => ray = r,
+                None => return state.l,
             }
-            let bsdf = scene.bsdf(&si);
-            if bsdf.has_smooth()
-                && let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d())
-            {
-                let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
-                if f != Vec3::ZERO && scene.emitter_visible(&si, &es) {
-                    let w = if es.delta { 1.0 } else { power_heuristic(es.pdf, pdf_b) };
-                    l += beta * f * es.weight * w;
-                }
-            }
-            let u_lobe = sampler.next_1d();
-            let u = sampler.next_2d();
-            let Some(bs) = bsdf.sample(&si, si.wi, u_lobe, u) else { break };
-            beta *= bs.weight;
-            eta *= bs.eta;
-            prev_p = si.p;
-            prev_pdf = bs.pdf;
-            prev_delta = bs.delta;
-            depth += 1;
-            if depth >= self.rr_depth {
-                let q = (beta.max_element() * eta * eta).min(0.95);
-                if !(sampler.next_1d() < q) {
-                    break;
-                }
-                beta /= q;
-            }
-            if !(beta.max_element() > 0.0) {
-                break;
-            }
-            let wo = si.to_world(bs.wo);
-            ray_d = wo;
-            hit = scene.intersect(&ray::spawn_ray(si.p, si.n, wo));
         }
-        l
+    }
+
+    /// The state for a camera ray and the ray to trace first; `None` if `max_depth` = 0
+    /// (the radiance is then zero).
+    #[inline]
+    pub fn start(&self, camera_ray: Ray) -> Option<(PathState, Ray)> {
+        (self.max_depth > 0).then(|| {
+            let state = PathState {
+                l: Vec3::ZERO,
+                beta: Vec3::ONE,
+                eta: 1.0,
+                depth: 0,
+                prev_p: camera_ray.o,
+                prev_pdf: 1.0,
+                prev_delta: true,
+                ray: camera_ray,
+            };
+            (state, camera_ray)
+        })
+    }
+
+    /// Consumes the hit of the pending ray (`None`: it escaped): adds emission, samples the
+    /// emitters (pushing the shadow ray to test onto `shadows`; the caller adds its
+    /// contribution to `l` if nothing blocks it, before the next call) and the BSDF (returning
+    /// the next ray, `None` when the path ends).
+    #[inline]
+    pub fn advance(
+        &self,
+        scene: &Scene,
+        sampler: &mut Sampler,
+        s: &mut PathState,
+        hit: Option<SurfaceInteraction>,
+        shadows: &mut Vec<ShadowTest>,
+    ) -> Option<Ray> {
+        let Some(si) = hit else {
+            // Escaped: the environment (hidden only for the camera ray).
+            if let Some(env) = scene.environment
+                && !(s.depth == 0 && self.hide_emitters)
+            {
+                let w =
+                    if s.prev_delta { 1.0 } else { power_heuristic(s.prev_pdf, scene.pdf_environment(env, s.ray.d)) };
+                s.l += s.beta * scene.emitters[env as usize].eval_environment(s.ray.d) * w;
+            }
+            return None;
+        };
+        let emitter = scene.surface_emitter(&si);
+        if s.depth == 0 && self.hide_emitters && emitter.is_some() {
+            // A hidden emitter seen by the camera: the camera ray continues through it.
+            let mut next = ray::spawn_ray(si.p, si.n, s.ray.d);
+            next.maxt = s.ray.maxt - si.t;
+            s.ray = next;
+            return Some(next);
+        }
+        if let Some(em) = emitter {
+            let le = scene.emitters[em as usize].eval_surface(&si);
+            if le != Vec3::ZERO {
+                let w = if s.prev_delta {
+                    1.0
+                } else {
+                    power_heuristic(s.prev_pdf, scene.pdf_emitter_direction(s.prev_p, em, Some(&si)))
+                };
+                s.l += s.beta * le * w;
+            }
+        }
+        if s.depth + 1 >= self.max_depth {
+            return None;
+        }
+        let bsdf = scene.bsdf(&si);
+        if bsdf.has_smooth()
+            && let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d())
+        {
+            let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
+            if f != Vec3::ZERO {
+                let w = if es.delta { 1.0 } else { power_heuristic(es.pdf, pdf_b) };
+                shadows.push(ShadowTest { ray: scene.shadow_ray(&si, &es), contribution: s.beta * f * es.weight * w });
+            }
+        }
+        let u_lobe = sampler.next_1d();
+        let u = sampler.next_2d();
+        let bs = bsdf.sample(&si, si.wi, u_lobe, u)?;
+        s.beta *= bs.weight;
+        s.eta *= bs.eta;
+        s.prev_p = si.p;
+        s.prev_pdf = bs.pdf;
+        s.prev_delta = bs.delta;
+        s.depth += 1;
+        if s.depth >= self.rr_depth {
+            let q = (s.beta.max_element() * s.eta * s.eta).min(0.95);
+            if !(sampler.next_1d() < q) {
+                return None;
+            }
+            s.beta /= q;
+        }
+        if !(s.beta.max_element() > 0.0) {
+            return None;
+        }
+        s.ray = ray::spawn_ray(si.p, si.n, si.to_world(bs.wo));
+        Some(s.ray)
     }
 }

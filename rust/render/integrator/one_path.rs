@@ -1,0 +1,40 @@
+//! The reference driver: one path at a time, every query on its own (the renderer before
+//! [`super::wavefront`]; `matte bench` times both on the same scenes).
+
+use super::Integrator;
+use crate::render::camera::Camera;
+use crate::render::film::ImageBlock;
+use crate::render::sampler::Sampler;
+use crate::render::scene::Scene;
+use glam::{Vec2, Vec3};
+
+/// Renders `spp` samples of every pixel of `block`'s tile into `block`, pixel by pixel with
+/// each pixel's sampler stream; returns how many samples were not finite (splatted as zero).
+pub fn render_tile(
+    integrator: &Integrator,
+    scene: &Scene,
+    camera: &Camera,
+    block: &mut ImageBlock,
+    spp: u32,
+    seed: u64,
+    width: u64,
+) -> u64 {
+    let tile = block.tile();
+    let mut bad = 0;
+    for py in tile.offset[1]..tile.offset[1] + tile.size[1] {
+        for px in tile.offset[0]..tile.offset[0] + tile.size[0] {
+            let mut sampler = Sampler::for_pixel(seed, py as u64 * width + px as u64);
+            let pixel = Vec2::new(px as f32, py as f32);
+            for _ in 0..spp {
+                let pos = pixel + sampler.next_2d();
+                let mut l = integrator.li(scene, &mut sampler, camera.ray(pos));
+                if !l.is_finite() {
+                    l = Vec3::ZERO;
+                    bad += 1;
+                }
+                block.put(pos, l);
+            }
+        }
+    }
+    bad
+}
