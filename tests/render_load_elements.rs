@@ -503,13 +503,13 @@ fn bundled_element_scenes_render() {
         .intersect(&Ray::new(Vec3::new(-0.8, 0.0, 0.5), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY))
         .expect("ground");
     let es = light.sample_direction(below.p, Vec2::ZERO, &s.scene.shapes).unwrap();
-    assert!(!s.scene.emitter_visible(&below, &es), "the ground below the sphere is lit");
+    assert!(s.scene.occluded(&s.scene.shadow_ray(&below, &es)), "the ground below the sphere is lit");
     let open = s
         .scene
         .intersect(&Ray::new(Vec3::new(0.2, -1.5, 0.5), Vec3::new(0.0, 0.0, -1.0), f32::INFINITY))
         .expect("ground");
     let es = light.sample_direction(open.p, Vec2::ZERO, &s.scene.shapes).unwrap();
-    assert!(s.scene.emitter_visible(&open, &es), "open ground is shadowed");
+    assert!(!s.scene.occluded(&s.scene.shadow_ray(&open, &es)), "open ground is shadowed");
 }
 
 /// `src/spectra/rawconstant.cpp`: `value` as a float (every channel) or a vector, unconverted.
