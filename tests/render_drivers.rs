@@ -31,6 +31,7 @@ fn assert_same_image(name: &str, loaded: &LoadedScene, spp: u32) {
         let d = (*x - *y).abs() / x.abs().max(glam::Vec3::splat(1e-3));
         worst = worst.max(d.max_element());
     }
+    eprintln!("{name}: largest relative difference {worst:e}");
     assert!(worst <= 1e-4, "{name}: drivers differ by {worst} (relative) somewhere");
     let mean = a.pixels.iter().map(|v| v.element_sum() as f64 / 3.0).sum::<f64>() / a.pixels.len() as f64;
     assert!(mean > 1e-4, "{name}: black image ({mean}), the comparison says nothing");
