@@ -17,7 +17,15 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
         assert_eq!(t.samples, pixels * job.spp as u64, "{}", job.name);
         // At least the camera ray of every sample is traced.
         assert!(t.rays >= t.samples, "{}: {} rays for {} samples", job.name, t.rays, t.samples);
+        assert!(t.one_path_seconds > 0.0, "{}", job.name);
+        // The profiled render split its time into the stages (path and direct scenes).
+        let f = t.stage_fractions.unwrap_or_else(|| panic!("{}: no stage split", job.name));
+        assert!((f.iter().sum::<f64>() - 1.0).abs() < 1e-9 && f.iter().all(|&x| x > 0.0), "{}: {f:?}", job.name);
     }
+    // Every model's render time against Lambert's, as targets.
+    let models: Vec<&str> = m.models.iter().map(|(k, _)| k.as_str()).collect();
+    assert_eq!(models, matte::bench::render::MODELS.to_vec());
+    assert!(m.models.iter().all(|(_, s)| *s > 0.0 && s.is_finite()));
     let models: Vec<&str> = m.kernels.iter().map(|k| k.model).collect();
     assert_eq!(models, matte::brdf::BSDF_TYPES.to_vec());
     assert!(m.kernels.iter().all(|k| k.ns_per_eval.is_finite() && k.ns_per_eval > 0.0));
@@ -36,6 +44,7 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
     let t = targets(&m);
     assert!(t.iter().all(|t| !t.what.contains("scalar_rgb") && !t.what.contains("llvm")));
     assert!(t.iter().any(|t| t.what.starts_with("bunny: BVH build")));
+    assert_eq!(t.iter().filter(|t| t.what.contains("/ with lambert")).count(), matte::bench::render::MODELS.len() - 1);
     assert_eq!(t.iter().filter(|t| t.what.starts_with("kernel ")).count(), matte::brdf::BSDF_TYPES.len() - 1);
     let json = matte::bench::report::json(&m);
     assert_eq!(json.renders.len(), 3);

@@ -2,10 +2,11 @@
 //! batched ray queries) and one path at a time draw the same numbers for every sample, so the
 //! images differ only by the order in which the samples reach the film (float sums: a few
 //! ulps). The one-path driver is the integrators' plain loop (`Integrator::li`), the oracle
-//! here; the scenes cover `path` (bounded and unbounded, hidden emitters, an environment),
+//! here (and the profiled wavefront is checked the same way); the scenes cover `path` (bounded and unbounded, hidden emitters, an environment),
 //! `direct` (several light and BSDF samples, delta lights), matte's models, textures and
 //! analytic shapes.
 
+use matte::render::film::Image;
 use matte::render::integrator::{Driver, Integrator};
 use matte::render::load::{LoadedScene, load_file};
 use matte::render::renderer::render_with;
@@ -17,6 +18,17 @@ fn load(file: &str, defines: &[(&str, &str)]) -> LoadedScene {
     load_file(&path, &defines).unwrap_or_else(|e| panic!("{file}: {e}"))
 }
 
+/// The largest per-channel difference between two images, relative to the first (floored at
+/// 1e-3). Two renders with the same driver differ too: tiles reach the film in the order
+/// threads finish them, and neighbouring tiles' borders overlap.
+fn largest_relative_difference(a: &Image, b: &Image) -> f32 {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(x, y)| ((*x - *y).abs() / x.abs().max(glam::Vec3::splat(1e-3))).max_element())
+        .fold(0.0, f32::max)
+}
+
 /// Renders `loaded` with both drivers and compares pixel by pixel.
 fn assert_same_image(name: &str, loaded: &LoadedScene, spp: u32) {
     let run = |driver| {
@@ -24,13 +36,16 @@ fn assert_same_image(name: &str, loaded: &LoadedScene, spp: u32) {
     };
     let (a, sa) = run(Driver::OnePath);
     let (b, sb) = run(Driver::Wavefront);
+    // Counting the stages changes nothing in the image, and counts every stage.
+    let (c, sc) = run(Driver::WavefrontProfiled);
+    let profiled = largest_relative_difference(&b, &c);
+    assert!(profiled <= 1e-4, "{name}: the profiled wavefront differs by {profiled} (relative)");
+    let ticks = sc.stage_ticks.unwrap_or_else(|| panic!("{name}: no stage ticks"));
+    assert!(ticks.trace > 0 && ticks.shading > 0 && ticks.film > 0, "{name}: {ticks:?}");
+    assert!(sb.stage_ticks.is_none(), "{name}: the plain wavefront counted stages");
     assert_eq!((sa.samples, sa.rays, sa.invalid_samples), (sb.samples, sb.rays, sb.invalid_samples), "{name}");
     assert_eq!((a.width, a.height), (b.width, b.height), "{name}");
-    let mut worst = 0.0f32;
-    for (x, y) in a.pixels.iter().zip(&b.pixels) {
-        let d = (*x - *y).abs() / x.abs().max(glam::Vec3::splat(1e-3));
-        worst = worst.max(d.max_element());
-    }
+    let worst = largest_relative_difference(&a, &b);
     eprintln!("{name}: largest relative difference {worst:e}");
     assert!(worst <= 1e-4, "{name}: drivers differ by {worst} (relative) somewhere");
     let mean = a.pixels.iter().map(|v| v.element_sum() as f64 / 3.0).sum::<f64>() / a.pixels.len() as f64;

@@ -29,6 +29,10 @@ pub struct MatteTime {
     pub backend: Backend,
     /// Best render time with one path per thread ([`Driver::OnePath`]).
     pub one_path_seconds: f64,
+    /// Share of each stage of the default arrangement's render, in the order of
+    /// [`StageTicks::NAMES`](crate::render::integrator::wavefront::StageTicks::NAMES) (`None`
+    /// for integrators the wavefront does not drive).
+    pub stage_fractions: Option<[f64; 5]>,
     /// Best render time with everything in the CWBVH instead (the renderer before Embree),
     /// when the main run used Embree.
     pub cwbvh_seconds: Option<f64>,
@@ -37,7 +41,8 @@ pub struct MatteTime {
 /// Loads `job` once and times its render in three arrangements taking turns, each `repeats`
 /// times after one warm-up render (so that the machine's load hits them alike): the default
 /// (wavefront driver, Embree), one path per thread (the driver before the wavefront), and
-/// everything in the CWBVH (the ray queries before Embree).
+/// everything in the CWBVH (the ray queries before Embree); then renders it once more with
+/// the stages counted ([`Driver::WavefrontProfiled`], not timed).
 pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
     let mut loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
     let backend = loaded.scene.accel_backend();
@@ -74,6 +79,21 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
         }
     }
     let best: Vec<renderer::RenderStats> = best.into_iter().map(|s| s.expect("at least one timed round")).collect();
+    // Where the default arrangement's time goes: one more render, counting each stage.
+    if loaded.scene.accel_backend() != backend {
+        loaded.scene.set_accel_backend(backend)?;
+    }
+    let profiled = renderer::render_with(
+        &loaded.scene,
+        &loaded.integrator,
+        &loaded.camera,
+        loaded.film.clone(),
+        job.spp,
+        0,
+        Driver::WavefrontProfiled,
+        &|_, _| {},
+    )
+    .1;
     Ok(MatteTime {
         seconds: best[0].seconds,
         accel_build_seconds,
@@ -82,6 +102,7 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
         threads: rayon::current_num_threads(),
         backend,
         one_path_seconds: best[1].seconds,
+        stage_fractions: profiled.stage_ticks.map(|t| t.fractions()),
         cwbvh_seconds: best.get(2).map(|s| s.seconds),
     })
 }

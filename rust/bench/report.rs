@@ -139,6 +139,15 @@ pub fn table(m: &Measurements) -> String {
             );
         }
     }
+    let names = crate::render::integrator::wavefront::StageTicks::NAMES;
+    let _ = writeln!(s, "\n| where matte's time goes (share of thread time) | {} |", names.join(" | "));
+    let _ = writeln!(s, "|---|{}", "---|".repeat(names.len()));
+    for (job, mt) in &m.jobs {
+        if let Some(f) = mt.stage_fractions {
+            let cells: Vec<String> = f.iter().map(|x| format!("{:.1} %", 100.0 * x)).collect();
+            let _ = writeln!(s, "| {} | {} |", job.name, cells.join(" | "));
+        }
+    }
     if let Some((_, lambert)) = m.models.iter().find(|(k, _)| k == "lambert") {
         let _ = writeln!(s, "\n| room 128², 64 spp, every diffuse surface as | s | / Lambert |");
         let _ = writeln!(s, "|---|---|---|");
@@ -214,6 +223,8 @@ pub struct RenderJson {
     pub accel: &'static str,
     /// Best seconds with one path per thread (the driver before the wavefront).
     pub matte_seconds_one_path: f64,
+    /// Share of each stage of matte's render (stage name → fraction of thread time).
+    pub matte_stage_fractions: Option<BTreeMap<&'static str, f64>>,
     /// Best seconds with the meshes in the CWBVH (when `accel` is `embree`).
     pub matte_seconds_cwbvh: Option<f64>,
     /// Best seconds per Mitsuba variant (none when Mitsuba did not run).
@@ -277,6 +288,9 @@ pub fn json(m: &Measurements) -> BenchJson {
                 threads: mt.threads,
                 accel: mt.backend.name(),
                 matte_seconds_one_path: mt.one_path_seconds,
+                matte_stage_fractions: mt
+                    .stage_fractions
+                    .map(|f| crate::render::integrator::wavefront::StageTicks::NAMES.into_iter().zip(f).collect()),
                 matte_seconds_cwbvh: mt.cwbvh_seconds,
                 mitsuba_seconds: super::MITSUBA_VARIANTS
                     .iter()

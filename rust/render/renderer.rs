@@ -7,6 +7,7 @@
 
 use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
+use crate::render::integrator::wavefront::StageTicks;
 use crate::render::integrator::{Driver, Integrator};
 use crate::render::scene::Scene;
 use rayon::prelude::*;
@@ -26,6 +27,8 @@ pub struct RenderStats {
     pub seconds: f64,
     /// Samples whose radiance was NaN or infinite and was replaced by zero.
     pub invalid_samples: u64,
+    /// Time per stage, all threads together ([`Driver::WavefrontProfiled`] only).
+    pub stage_ticks: Option<StageTicks>,
 }
 
 /// Renders `spp` samples per pixel with seed `seed` into `film` (which must be fresh).
@@ -64,6 +67,7 @@ pub fn render_with(
             rays: 0,
             seconds: start.elapsed().as_secs_f64(),
             invalid_samples,
+            stage_ticks: None,
         };
         return (image, stats);
     }
@@ -74,10 +78,15 @@ pub fn render_with(
     let rays = AtomicU64::new(0);
     let width = film.width() as u64;
     let film = Mutex::new(film);
+    let stage_ticks = Mutex::new(StageTicks::default());
     tiles.par_iter().for_each(|tile| {
         let mut block = film.lock().expect("film lock").new_block(tile);
         crate::render::accel::take_ray_count();
-        let bad = integrator.render_tile(driver, scene, camera, &mut block, spp, seed, width);
+        let mut ticks = StageTicks::default();
+        let bad = integrator.render_tile(driver, scene, camera, &mut block, spp, seed, width, &mut ticks);
+        if driver == Driver::WavefrontProfiled {
+            stage_ticks.lock().expect("profile lock").add(&ticks);
+        }
         rays.fetch_add(crate::render::accel::take_ray_count(), Ordering::Relaxed);
         invalid.fetch_add(bad, Ordering::Relaxed);
         film.lock().expect("film lock").put_block(&block);
@@ -90,6 +99,7 @@ pub fn render_with(
         rays: rays.into_inner(),
         seconds: start.elapsed().as_secs_f64(),
         invalid_samples: invalid.into_inner(),
+        stage_ticks: (driver == Driver::WavefrontProfiled).then(|| stage_ticks.into_inner().expect("profile lock")),
     };
     (film.develop(), stats)
 }

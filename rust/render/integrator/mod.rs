@@ -31,6 +31,9 @@ pub enum Driver {
     Wavefront,
     /// One path at a time ([`one_path`]).
     OnePath,
+    /// [`Driver::Wavefront`] counting each stage's time ([`wavefront::StageTicks`]), for
+    /// `matte bench`'s profile split (the count costs a few percent).
+    WavefrontProfiled,
 }
 
 impl Driver {
@@ -38,6 +41,7 @@ impl Driver {
         match self {
             Driver::Wavefront => "wavefront",
             Driver::OnePath => "one path",
+            Driver::WavefrontProfiled => "wavefront, profiled",
         }
     }
 }
@@ -64,8 +68,9 @@ impl Integrator {
     }
 
     /// Renders `spp` samples of every pixel of `block`'s tile with `driver` (the same numbers
-    /// per sample with either); returns how many samples were not finite (splatted as zero).
-    /// `width` is the film's width. Not for `ptracer`, which renders in its own loop.
+    /// per sample with any); returns how many samples were not finite (splatted as zero).
+    /// `width` is the film's width; [`Driver::WavefrontProfiled`] adds to `profile`. Not for
+    /// `ptracer`, which renders in its own loop.
     #[allow(clippy::too_many_arguments)]
     pub fn render_tile(
         &self,
@@ -76,16 +81,24 @@ impl Integrator {
         spp: u32,
         seed: u64,
         width: u64,
+        profile: &mut wavefront::StageTicks,
     ) -> u64 {
+        use wavefront::render_tile as wave;
+        let p = profile;
         match (driver, self) {
-            (Driver::OnePath, _) => one_path::render_tile(self, scene, camera, block, spp, seed, width),
-            (Driver::Wavefront, Integrator::Path(p)) => {
-                wavefront::render_tile(p, scene, camera, block, spp, seed, width)
+            (Driver::OnePath, _) | (_, Integrator::ParticleTracer(_)) => {
+                one_path::render_tile(self, scene, camera, block, spp, seed, width)
             }
-            (Driver::Wavefront, Integrator::Direct(d)) => {
-                wavefront::render_tile(d, scene, camera, block, spp, seed, width)
+            (Driver::Wavefront, Integrator::Path(i)) => wave::<_, false>(i, scene, camera, block, spp, seed, width, p),
+            (Driver::Wavefront, Integrator::Direct(i)) => {
+                wave::<_, false>(i, scene, camera, block, spp, seed, width, p)
             }
-            (Driver::Wavefront, Integrator::ParticleTracer(_)) => 0,
+            (Driver::WavefrontProfiled, Integrator::Path(i)) => {
+                wave::<_, true>(i, scene, camera, block, spp, seed, width, p)
+            }
+            (Driver::WavefrontProfiled, Integrator::Direct(i)) => {
+                wave::<_, true>(i, scene, camera, block, spp, seed, width, p)
+            }
         }
     }
 }

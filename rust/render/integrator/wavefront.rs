@@ -142,11 +142,63 @@ impl PixelQueue {
     }
 }
 
+/// Where a thread's time went in the wavefront's steps, in timestamp-counter ticks (`rdtsc`),
+/// counted only with `PROFILE` ([`super::Driver::WavefrontProfiled`], `matte bench`'s profile
+/// split). Light sampling, BSDF evaluation and sampling and the path logic are all in
+/// `shading` (the integrators' `advance`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StageTicks {
+    /// Closest-hit queries, with the packing into Embree's packets.
+    pub trace: u64,
+    /// Surface interactions built from the hits.
+    pub hit_points: u64,
+    /// The integrators' `advance`.
+    pub shading: u64,
+    /// Shadow-ray queries and adding the unblocked contributions.
+    pub shadow_rays: u64,
+    /// Splatting finished samples, camera rays and sampler streams of the next samples.
+    pub film: u64,
+}
+
+impl StageTicks {
+    pub const NAMES: [&'static str; 5] = ["trace", "hit points", "shading", "shadow rays", "film & camera"];
+
+    pub fn add(&mut self, o: &StageTicks) {
+        self.trace += o.trace;
+        self.hit_points += o.hit_points;
+        self.shading += o.shading;
+        self.shadow_rays += o.shadow_rays;
+        self.film += o.film;
+    }
+
+    /// Each stage's share of the total, in the order of [`Self::NAMES`].
+    pub fn fractions(&self) -> [f64; 5] {
+        let v = [self.trace, self.hit_points, self.shading, self.shadow_rays, self.film];
+        let total = v.iter().sum::<u64>().max(1) as f64;
+        v.map(|x| x as f64 / total)
+    }
+}
+
+/// The timestamp counter (x86-64), or nanoseconds since the first call elsewhere.
+#[inline(always)]
+fn ticks() -> u64 {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SAFETY: `rdtsc` has no preconditions on x86-64.
+        unsafe { core::arch::x86_64::_rdtsc() }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        static EPOCH: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+        EPOCH.get_or_init(std::time::Instant::now).elapsed().as_nanos() as u64
+    }
+}
+
 /// Renders `spp` samples of every pixel of `block`'s tile into `block`. `width` is the film's
 /// width (the pixel index of the sampler streams). Returns how many samples were not finite
-/// (splatted as zero).
+/// (splatted as zero). With `PROFILE`, adds each stage's ticks to `profile`.
 #[allow(clippy::too_many_arguments)]
-pub fn render_tile<I: SampleIntegrator>(
+pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
     integrator: &I,
     scene: &Scene,
     camera: &Camera,
@@ -154,7 +206,9 @@ pub fn render_tile<I: SampleIntegrator>(
     spp: u32,
     seed: u64,
     width: u64,
+    profile: &mut StageTicks,
 ) -> u64 {
+    let clock = || if PROFILE { ticks() } else { 0 };
     let mut pixels = PixelQueue { tile: block.tile(), next: 0, width, seed };
     let mut bad = 0u64;
     let placeholder = Ray::new(Vec3::ZERO, Vec3::Z, 0.0);
@@ -163,6 +217,7 @@ pub fn render_tile<I: SampleIntegrator>(
     let mut shadows: Vec<ShadowTest> = Vec::with_capacity(4 * LANES);
     let mut shadow_owner: Vec<usize> = Vec::with_capacity(4 * LANES);
     while live.iter().any(Option::is_some) {
+        let t0 = clock();
         let mut hits = [None; LANES];
         for (c, chunk) in live.chunks(PACKET).enumerate() {
             let rays: [Ray; PACKET] = std::array::from_fn(|k| chunk[k].as_ref().map_or(placeholder, |l| l.ray));
@@ -174,12 +229,23 @@ pub fn render_tile<I: SampleIntegrator>(
         shadows.clear();
         shadow_owner.clear();
         let mut next: [Option<Ray>; LANES] = [None; LANES];
+        let mut t = clock();
+        if PROFILE {
+            profile.trace += t - t0;
+        }
         for i in 0..LANES {
             let Some(lane) = live[i].as_mut() else { continue };
             let state = lane.state.as_mut().expect("a live lane has a sample in flight");
             let si = hits[i].map(|hit| scene.interaction(&lane.ray, hit));
+            let t_hit = clock();
             next[i] = integrator.advance(scene, &mut lane.sampler, state, si, &mut shadows);
             shadow_owner.resize(shadows.len(), i);
+            if PROFILE {
+                let t_end = ticks();
+                profile.hit_points += t_hit - t;
+                profile.shading += t_end - t_hit;
+                t = t_end;
+            }
         }
         for (tests, owners) in shadows.chunks(PACKET).zip(shadow_owner.chunks(PACKET)) {
             let rays: [Ray; PACKET] = std::array::from_fn(|k| tests.get(k).map_or(placeholder, |t| t.ray));
@@ -192,12 +258,17 @@ pub fn render_tile<I: SampleIntegrator>(
                 }
             }
         }
+        let t_film = clock();
         for i in 0..LANES {
             let Some(lane) = live[i].as_mut() else { continue };
             match next[i] {
                 Some(ray) => lane.ray = ray,
                 None => live[i] = next_sample(integrator, camera, &mut pixels, live[i].take(), spp, block, &mut bad),
             }
+        }
+        if PROFILE {
+            profile.shadow_rays += t_film - t;
+            profile.film += ticks() - t_film;
         }
     }
     bad
