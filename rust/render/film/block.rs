@@ -8,7 +8,7 @@
 
 use super::Tile;
 use super::filter::{FilterTable, ReconstructionFilter, SplatWeights};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// Weighted sums (Σw·R, Σw·G, Σw·B, Σw) for the pixels of one tile and its border.
 #[derive(Clone, Debug)]
@@ -107,24 +107,25 @@ impl ImageBlock {
         let nx = ((hi.x - lo.x) as usize + 1).min(kernel.weights_x.len());
         let ny = ((hi.y - lo.y) as usize + 1).min(kernel.weights_y.len());
         let (wx, wy) = (&mut kernel.weights_x[..nx], &mut kernel.weights_y[..ny]);
-        let mut rel = lo - pos;
-        let weight_at = |x: f32| match kernel.weights {
-            SplatWeights::Discretized => kernel.table.eval(x),
-            SplatWeights::Exact => kernel.filter.eval(x),
-        };
-        for v in wx.iter_mut() {
-            *v = weight_at(rel.x);
-            rel.x += 1.0;
+        let rel = lo - pos;
+        // The choice of weights is made once per sample, not per weight.
+        match kernel.weights {
+            SplatWeights::Discretized => {
+                fill_weights(wx, rel.x, |x| kernel.table.eval(x));
+                fill_weights(wy, rel.y, |x| kernel.table.eval(x));
+            }
+            SplatWeights::Exact => {
+                fill_weights(wx, rel.x, |x| kernel.filter.eval(x));
+                fill_weights(wy, rel.y, |x| kernel.filter.eval(x));
+            }
         }
-        for v in wy.iter_mut() {
-            *v = weight_at(rel.y);
-            rel.y += 1.0;
-        }
+        // (R, G, B, 1)·w added as one 4-wide operation per pixel: the same products and sums
+        // as channel by channel.
+        let rgbw = Vec4::new(rgb.x, rgb.y, rgb.z, 1.0);
         for (j, &fy) in wy.iter().enumerate() {
             let row = (y0 + j) * w as usize + x0;
             for (p, &fx) in self.pixels[row..row + nx].iter_mut().zip(wx.iter()) {
-                let weight = fx * fy;
-                *p = [p[0] + rgb.x * weight, p[1] + rgb.y * weight, p[2] + rgb.z * weight, p[3] + weight];
+                *p = (Vec4::from_array(*p) + rgbw * (fx * fy)).to_array();
             }
         }
     }
@@ -136,5 +137,15 @@ impl ImageBlock {
 
     pub(crate) fn pixels(&self) -> &[[f32; 4]] {
         &self.pixels
+    }
+}
+
+/// The weights `k(first)`, `k(first + 1)`, … (offsets formed by adding 1 in f32, as Mitsuba).
+#[inline(always)]
+fn fill_weights(out: &mut [f32], first: f32, k: impl Fn(f32) -> f32) {
+    let mut x = first;
+    for v in out {
+        *v = k(x);
+        x += 1.0;
     }
 }
