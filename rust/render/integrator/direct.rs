@@ -10,8 +10,8 @@
 //! gives every light sample's shadow ray and the first BSDF sample's probe ray, each probe's
 //! hit gives the next probe.
 
-use super::ShadowTest;
 use super::mis::power_heuristic;
+use super::{SampleIntegrator, ShadowTest};
 use crate::render::bsdf::BsdfSample;
 use crate::render::geometry::{Ray, ray};
 use crate::render::sampler::Sampler;
@@ -41,39 +41,27 @@ pub struct DirectState {
     bsdf_left: u32,
 }
 
-impl DirectIntegrator {
-    /// Radiance along a camera ray, one query at a time.
-    #[inline]
-    pub fn li(&self, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
-        let (mut state, mut ray) = self.start(camera_ray);
-        let mut shadows = Vec::new();
-        loop {
-            let next = self.advance(scene, sampler, &mut state, scene.intersect(&ray), &mut shadows);
-            for test in shadows.drain(..) {
-                if !scene.occluded(&test.ray) {
-                    state.l += test.contribution;
-                }
-            }
-            match next {
-                Some(r) => ray = r,
-                None => return state.l,
-            }
-        }
-    }
+impl SampleIntegrator for DirectIntegrator {
+    type State = DirectState;
 
     /// The state for a camera ray and the ray to trace first.
     #[inline]
-    pub fn start(&self, camera_ray: Ray) -> (DirectState, Ray) {
+    fn start(&self, camera_ray: Ray) -> Option<(DirectState, Ray)> {
         let state =
             DirectState { l: Vec3::ZERO, ray: camera_ray, first: None, probe: None, bsdf_left: self.bsdf_samples };
-        (state, camera_ray)
+        Some((state, camera_ray))
+    }
+
+    #[inline]
+    fn radiance(state: &mut DirectState) -> &mut Vec3 {
+        &mut state.l
     }
 
     /// Consumes the hit of the pending ray (`None`: it escaped); pushes shadow rays onto
     /// `shadows` (the caller adds each unblocked one's contribution to `l` before the next
     /// call) and returns the next ray, `None` when the sample is done.
     #[inline]
-    pub fn advance(
+    fn advance(
         &self,
         scene: &Scene,
         sampler: &mut Sampler,
@@ -105,7 +93,9 @@ impl DirectIntegrator {
         }
         self.next_probe(scene, sampler, s, &si)
     }
+}
 
+impl DirectIntegrator {
     #[allow(clippy::too_many_arguments)]
     #[inline]
     fn at_camera_hit(

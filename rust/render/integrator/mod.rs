@@ -21,6 +21,7 @@ use crate::render::film::ImageBlock;
 use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
+use crate::render::shape::SurfaceInteraction;
 use glam::Vec3;
 
 /// How the renderer runs an integrator over a tile.
@@ -60,8 +61,8 @@ impl Integrator {
     #[inline]
     pub fn li(&self, scene: &Scene, sampler: &mut Sampler, ray: Ray) -> Vec3 {
         match self {
-            Integrator::Path(p) => p.li(scene, sampler, ray),
-            Integrator::Direct(d) => d.li(scene, sampler, ray),
+            Integrator::Path(p) => one_path::li(p, scene, sampler, ray),
+            Integrator::Direct(d) => one_path::li(d, scene, sampler, ray),
             // The renderer sends ptracer to its own loop (renderer::render).
             Integrator::ParticleTracer(_) => Vec3::ZERO,
         }
@@ -101,6 +102,30 @@ impl Integrator {
             }
         }
     }
+}
+
+/// An integrator written as a state machine advanced once per ray query, which the drivers
+/// ([`one_path`], [`wavefront`]) run.
+pub trait SampleIntegrator {
+    type State: Copy;
+
+    /// The state for a camera ray and the first ray to trace; `None` if the radiance is zero
+    /// without tracing.
+    fn start(&self, camera_ray: Ray) -> Option<(Self::State, Ray)>;
+
+    /// Consumes the pending ray's hit; pushes shadow rays onto `shadows` and returns the next
+    /// ray (`None`: the sample is done).
+    fn advance(
+        &self,
+        scene: &Scene,
+        sampler: &mut Sampler,
+        state: &mut Self::State,
+        hit: Option<SurfaceInteraction>,
+        shadows: &mut Vec<ShadowTest>,
+    ) -> Option<Ray>;
+
+    /// The radiance gathered so far.
+    fn radiance(state: &mut Self::State) -> &mut Vec3;
 }
 
 /// A shadow ray an integrator asks its driver to test: if nothing blocks `ray`, the driver

@@ -1,9 +1,10 @@
 //! The reference driver: one path at a time, every query on its own (the renderer before
 //! [`super::wavefront`]; `matte bench` times both on the same scenes).
 
-use super::Integrator;
+use super::{Integrator, SampleIntegrator};
 use crate::render::camera::Camera;
 use crate::render::film::ImageBlock;
+use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
 use glam::{Vec2, Vec3};
@@ -37,4 +38,24 @@ pub fn render_tile(
         }
     }
     bad
+}
+
+/// Radiance along a camera ray, one query at a time: `integrator`'s state machine with each
+/// shadow ray tested as soon as it is asked for.
+#[inline]
+pub fn li<I: SampleIntegrator>(integrator: &I, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
+    let Some((mut state, mut ray)) = integrator.start(camera_ray) else { return Vec3::ZERO };
+    let mut shadows = Vec::new();
+    loop {
+        let next = integrator.advance(scene, sampler, &mut state, scene.intersect(&ray), &mut shadows);
+        for test in shadows.drain(..) {
+            if !scene.occluded(&test.ray) {
+                *I::radiance(&mut state) += test.contribution;
+            }
+        }
+        match next {
+            Some(r) => ray = r,
+            None => return *I::radiance(&mut state),
+        }
+    }
 }

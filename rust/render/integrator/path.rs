@@ -4,12 +4,12 @@
 //! survival `min(max(β)·η², 0.95)`; no light sampling at purely specular surfaces.
 //!
 //! The integrator is a state machine ([`PathState`]) advanced once per ray query, so that
-//! the one-path driver ([`PathIntegrator::li`]) and the renderer's many-paths-per-thread
+//! the one-path driver ([`super::one_path::li`]) and the renderer's many-paths-per-thread
 //! driver ([`super::wavefront`]) run the same rules and draw the same numbers from each
 //! pixel's sampler in the same order.
 
-use super::ShadowTest;
 use super::mis::power_heuristic;
+use super::{SampleIntegrator, ShadowTest};
 use crate::render::geometry::{Ray, ray};
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
@@ -40,30 +40,18 @@ pub struct PathState {
     ray: Ray,
 }
 
-impl PathIntegrator {
-    /// Radiance along a camera ray, one query at a time.
+impl SampleIntegrator for PathIntegrator {
+    type State = PathState;
+
     #[inline]
-    pub fn li(&self, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
-        let Some((mut state, mut ray)) = self.start(camera_ray) else { return Vec3::ZERO };
-        let mut shadows = Vec::new();
-        loop {
-            let next = self.advance(scene, sampler, &mut state, scene.intersect(&ray), &mut shadows);
-            for test in shadows.drain(..) {
-                if !scene.occluded(&test.ray) {
-                    state.l += test.contribution;
-                }
-            }
-            match next {
-                Some(r) => ray = r,
-                None => return state.l,
-            }
-        }
+    fn radiance(state: &mut PathState) -> &mut Vec3 {
+        &mut state.l
     }
 
     /// The state for a camera ray and the ray to trace first; `None` if `max_depth` = 0
     /// (the radiance is then zero).
     #[inline]
-    pub fn start(&self, camera_ray: Ray) -> Option<(PathState, Ray)> {
+    fn start(&self, camera_ray: Ray) -> Option<(PathState, Ray)> {
         (self.max_depth > 0).then(|| {
             let state = PathState {
                 l: Vec3::ZERO,
@@ -84,7 +72,7 @@ impl PathIntegrator {
     /// contribution to `l` if nothing blocks it, before the next call) and the BSDF (returning
     /// the next ray, `None` when the path ends).
     #[inline]
-    pub fn advance(
+    fn advance(
         &self,
         scene: &Scene,
         sampler: &mut Sampler,

@@ -11,13 +11,12 @@
 //! whose sample ends splats it and starts its next sample (or its next pixel) at once, so the
 //! lanes stay full until the tile runs out of pixels.
 
-use super::{DirectIntegrator, PathIntegrator, ShadowTest};
+use super::{SampleIntegrator, ShadowTest};
 use crate::render::camera::Camera;
 use crate::render::film::{ImageBlock, Tile};
 use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
-use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// Paths in flight per thread. Each step runs Embree's packet traversal, then every lane's
@@ -30,81 +29,6 @@ pub const LANES: usize = 32;
 
 /// Rays per batched query (Embree's `rtcIntersect8`/`rtcOccluded8`).
 const PACKET: usize = 8;
-
-/// An integrator written as a state machine advanced once per ray query.
-pub trait SampleIntegrator {
-    type State: Copy;
-
-    /// The state for a camera ray and the first ray to trace; `None` if the radiance is zero
-    /// without tracing.
-    fn start(&self, camera_ray: Ray) -> Option<(Self::State, Ray)>;
-
-    /// Consumes the pending ray's hit; pushes shadow rays onto `shadows` and returns the next
-    /// ray (`None`: the sample is done).
-    fn advance(
-        &self,
-        scene: &Scene,
-        sampler: &mut Sampler,
-        state: &mut Self::State,
-        hit: Option<SurfaceInteraction>,
-        shadows: &mut Vec<ShadowTest>,
-    ) -> Option<Ray>;
-
-    /// The radiance gathered so far.
-    fn radiance(state: &mut Self::State) -> &mut Vec3;
-}
-
-impl SampleIntegrator for PathIntegrator {
-    type State = super::path::PathState;
-
-    #[inline]
-    fn start(&self, camera_ray: Ray) -> Option<(Self::State, Ray)> {
-        PathIntegrator::start(self, camera_ray)
-    }
-
-    #[inline]
-    fn advance(
-        &self,
-        scene: &Scene,
-        sampler: &mut Sampler,
-        state: &mut Self::State,
-        hit: Option<SurfaceInteraction>,
-        shadows: &mut Vec<ShadowTest>,
-    ) -> Option<Ray> {
-        PathIntegrator::advance(self, scene, sampler, state, hit, shadows)
-    }
-
-    #[inline]
-    fn radiance(state: &mut Self::State) -> &mut Vec3 {
-        &mut state.l
-    }
-}
-
-impl SampleIntegrator for DirectIntegrator {
-    type State = super::direct::DirectState;
-
-    #[inline]
-    fn start(&self, camera_ray: Ray) -> Option<(Self::State, Ray)> {
-        Some(DirectIntegrator::start(self, camera_ray))
-    }
-
-    #[inline]
-    fn advance(
-        &self,
-        scene: &Scene,
-        sampler: &mut Sampler,
-        state: &mut Self::State,
-        hit: Option<SurfaceInteraction>,
-        shadows: &mut Vec<ShadowTest>,
-    ) -> Option<Ray> {
-        DirectIntegrator::advance(self, scene, sampler, state, hit, shadows)
-    }
-
-    #[inline]
-    fn radiance(state: &mut Self::State) -> &mut Vec3 {
-        &mut state.l
-    }
-}
 
 /// One lane: the pixel it renders, its sampler and the sample in flight.
 struct Lane<S> {
