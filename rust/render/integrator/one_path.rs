@@ -1,7 +1,7 @@
 //! The reference driver: one path at a time, every query on its own (the renderer before
 //! [`super::wavefront`]; `matte bench` times both on the same scenes).
 
-use super::{Integrator, SampleIntegrator};
+use super::{Integrator, SampleIntegrator, ShadowTest};
 use crate::render::camera::Camera;
 use crate::render::film::ImageBlock;
 use crate::render::geometry::Ray;
@@ -11,6 +11,7 @@ use glam::{Vec2, Vec3};
 
 /// Renders `spp` samples of every pixel of `block`'s tile into `block`, pixel by pixel with
 /// each pixel's sampler stream; returns how many samples were not finite (splatted as zero).
+/// `ptracer` renders in its own loop and gets nothing here.
 pub fn render_tile(
     integrator: &Integrator,
     scene: &Scene,
@@ -20,15 +21,33 @@ pub fn render_tile(
     seed: u64,
     width: u64,
 ) -> u64 {
+    match integrator {
+        Integrator::Path(p) => render_tile_with(p, scene, camera, block, spp, seed, width),
+        Integrator::Direct(d) => render_tile_with(d, scene, camera, block, spp, seed, width),
+        Integrator::ParticleTracer(_) => 0,
+    }
+}
+
+fn render_tile_with<I: SampleIntegrator>(
+    integrator: &I,
+    scene: &Scene,
+    camera: &Camera,
+    block: &mut ImageBlock,
+    spp: u32,
+    seed: u64,
+    width: u64,
+) -> u64 {
     let tile = block.tile();
     let mut bad = 0;
+    // One buffer for the shadow rays of every sample of the tile (no allocation per sample).
+    let mut shadows = Vec::new();
     for py in tile.offset[1]..tile.offset[1] + tile.size[1] {
         for px in tile.offset[0]..tile.offset[0] + tile.size[0] {
             let mut sampler = Sampler::for_pixel(seed, py as u64 * width + px as u64);
             let pixel = Vec2::new(px as f32, py as f32);
             for _ in 0..spp {
                 let pos = pixel + sampler.next_2d();
-                let mut l = integrator.li(scene, &mut sampler, camera.ray(pos));
+                let mut l = li_with(integrator, scene, &mut sampler, camera.ray(pos), &mut shadows);
                 if !l.is_finite() {
                     l = Vec3::ZERO;
                     bad += 1;
@@ -44,10 +63,21 @@ pub fn render_tile(
 /// shadow ray tested as soon as it is asked for.
 #[inline]
 pub fn li<I: SampleIntegrator>(integrator: &I, scene: &Scene, sampler: &mut Sampler, camera_ray: Ray) -> Vec3 {
+    li_with(integrator, scene, sampler, camera_ray, &mut Vec::new())
+}
+
+/// [`li`] with a caller's (empty) buffer for the shadow rays.
+#[inline]
+fn li_with<I: SampleIntegrator>(
+    integrator: &I,
+    scene: &Scene,
+    sampler: &mut Sampler,
+    camera_ray: Ray,
+    shadows: &mut Vec<ShadowTest>,
+) -> Vec3 {
     let Some((mut state, mut ray)) = integrator.start(camera_ray) else { return Vec3::ZERO };
-    let mut shadows = Vec::new();
     loop {
-        let next = integrator.advance(scene, sampler, &mut state, scene.intersect(&ray), &mut shadows);
+        let next = integrator.advance(scene, sampler, &mut state, scene.intersect(&ray), shadows);
         for test in shadows.drain(..) {
             if !scene.occluded(&test.ray) {
                 *I::radiance(&mut state) += test.contribution;

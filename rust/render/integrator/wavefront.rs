@@ -4,7 +4,8 @@
 //! Each of the [`LANES`] lanes renders whole pixels of a tile, one after the other, every
 //! sample of a pixel in turn with the pixel's own sampler stream: the numbers drawn, and so
 //! each sample's radiance, are exactly those of the one-path driver ([`super::Integrator::li`]);
-//! only the order in which samples reach the image block changes (`tests/wavefront.rs`).
+//! only the order in which samples reach the image block changes
+//! (`tests/render_drivers.rs`).
 //! Every step traces the lanes' pending rays eight at a time ([`Scene::intersect8`]: Embree's
 //! `rtcIntersect8`), advances each lane's state machine with its hit, and tests all the
 //! shadow rays those advances asked for eight at a time ([`Scene::occluded8`]). A lane
@@ -24,7 +25,7 @@ use glam::{Vec2, Vec3};
 /// instruction cache, so the step's cost depends on how many lanes share it. Measured with
 /// callgrind's cache and branch simulation (README "Speed"): with 8 lanes, 9× the L1i misses
 /// of one path per thread and no gain; with 32, 2.4× and 8–9 % fewer estimated cycles on the
-/// room and the bunny (the Cornell box even).
+/// room and the bunny, +2 % on the Cornell box.
 pub const LANES: usize = 32;
 
 /// Rays per batched query (Embree's `rtcIntersect8`/`rtcOccluded8`).
@@ -39,8 +40,8 @@ struct Lane<S> {
     pos: Vec2,
     /// Samples of the pixel not started yet.
     samples_left: u32,
-    /// The sample's integrator state (`None` between samples).
-    state: Option<S>,
+    /// The sample's integrator state.
+    state: S,
     /// The ray whose hit the state waits for.
     ray: Ray,
 }
@@ -159,10 +160,9 @@ pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
         }
         for i in 0..LANES {
             let Some(lane) = live[i].as_mut() else { continue };
-            let state = lane.state.as_mut().expect("a live lane has a sample in flight");
             let si = hits[i].map(|hit| scene.interaction(&lane.ray, hit));
             let t_hit = clock();
-            next[i] = integrator.advance(scene, &mut lane.sampler, state, si, &mut shadows);
+            next[i] = integrator.advance(scene, &mut lane.sampler, &mut lane.state, si, &mut shadows);
             shadow_owner.resize(shadows.len(), i);
             if PROFILE {
                 let t_end = ticks();
@@ -178,7 +178,7 @@ pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
             for (k, test) in tests.iter().enumerate() {
                 if !blocked[k] {
                     let lane = live[owners[k]].as_mut().expect("shadow rays belong to live lanes");
-                    *I::radiance(lane.state.as_mut().expect("in flight")) += test.contribution;
+                    *I::radiance(&mut lane.state) += test.contribution;
                 }
             }
         }
@@ -212,35 +212,31 @@ fn next_sample<I: SampleIntegrator>(
     block: &mut ImageBlock,
     bad: &mut u64,
 ) -> Option<Lane<I::State>> {
-    let mut lane = match done {
+    let (mut pixel, mut sampler, mut samples_left) = match done {
         Some(mut lane) => {
-            let mut l = lane.state.take().map_or(Vec3::ZERO, |mut s| *I::radiance(&mut s));
+            let mut l = *I::radiance(&mut lane.state);
             if !l.is_finite() {
                 l = Vec3::ZERO;
                 *bad += 1;
             }
             block.put(lane.pos, l);
-            lane
+            (lane.pixel, lane.sampler, lane.samples_left)
         }
         None => {
             let (pixel, sampler) = pixels.pop()?;
-            Lane { sampler, pixel, pos: pixel, samples_left: spp, state: None, ray: Ray::new(Vec3::ZERO, Vec3::Z, 0.0) }
+            (pixel, sampler, spp)
         }
     };
     loop {
-        if lane.samples_left == 0 {
-            (lane.pixel, lane.sampler) = pixels.pop()?;
-            lane.samples_left = spp;
+        if samples_left == 0 {
+            (pixel, sampler) = pixels.pop()?;
+            samples_left = spp;
         }
-        lane.samples_left -= 1;
-        lane.pos = lane.pixel + lane.sampler.next_2d();
-        match integrator.start(camera.ray(lane.pos)) {
-            Some((state, ray)) => {
-                lane.state = Some(state);
-                lane.ray = ray;
-                return Some(lane);
-            }
-            None => block.put(lane.pos, Vec3::ZERO),
+        samples_left -= 1;
+        let pos = pixel + sampler.next_2d();
+        match integrator.start(camera.ray(pos)) {
+            Some((state, ray)) => return Some(Lane { sampler, pixel, pos, samples_left, state, ray }),
+            None => block.put(pos, Vec3::ZERO),
         }
     }
 }
