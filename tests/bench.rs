@@ -17,7 +17,7 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
         assert_eq!(t.samples, pixels * job.spp as u64, "{}", job.name);
         // At least the camera ray of every sample is traced.
         assert!(t.rays >= t.samples, "{}: {} rays for {} samples", job.name, t.rays, t.samples);
-        assert!(t.one_path_seconds > 0.0, "{}", job.name);
+        assert!(t.other_driver_seconds > 0.0, "{}", job.name);
         // The profiled render split its time into the stages (path and direct scenes).
         let f = t.stage_fractions.unwrap_or_else(|| panic!("{}: no stage split", job.name));
         assert!((f.iter().sum::<f64>() - 1.0).abs() < 1e-9 && f.iter().all(|&x| x > 0.0), "{}: {f:?}", job.name);

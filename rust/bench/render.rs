@@ -27,8 +27,9 @@ pub struct MatteTime {
     pub threads: usize,
     /// The structure that traced the meshes.
     pub backend: Backend,
-    /// Best render time with one path per thread ([`Driver::OnePath`]).
-    pub one_path_seconds: f64,
+    /// Best render time with the other tile driver: [`Driver::Wavefront`] when the default is
+    /// [`Driver::OnePath`], and the reverse.
+    pub other_driver_seconds: f64,
     /// Share of each stage of the default arrangement's render, in the order of
     /// [`StageTicks::NAMES`](crate::render::integrator::wavefront::StageTicks::NAMES) (`None`
     /// for integrators the wavefront does not drive).
@@ -40,15 +41,15 @@ pub struct MatteTime {
 
 /// Loads `job` once and times its render in three arrangements taking turns, each `repeats`
 /// times after one warm-up render (so that the machine's load hits them alike): the default
-/// (wavefront driver, Embree), one path per thread (the driver before the wavefront), and
-/// everything in the CWBVH (the ray queries before Embree); then renders it once more with
-/// the stages counted ([`Driver::WavefrontProfiled`], not timed).
+/// (the default tile driver, Embree), the other tile driver, and everything in the CWBVH (the
+/// ray queries before Embree); then renders it once more with the wavefront's stages counted
+/// ([`Driver::WavefrontProfiled`], not timed).
 pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
     let mut loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
     let backend = loaded.scene.accel_backend();
-    let mut configs = vec![(backend, Driver::Wavefront), (backend, Driver::OnePath)];
+    let mut configs = vec![(backend, Driver::default()), (backend, other_driver())];
     if backend != Backend::CwBvh {
-        configs.push((Backend::CwBvh, Driver::Wavefront));
+        configs.push((Backend::CwBvh, Driver::default()));
     }
     let mut best: Vec<Option<renderer::RenderStats>> = vec![None; configs.len()];
     let mut accel_build_seconds = loaded.scene.accel_build_seconds();
@@ -101,10 +102,15 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
         rays: best[0].rays,
         threads: rayon::current_num_threads(),
         backend,
-        one_path_seconds: best[1].seconds,
+        other_driver_seconds: best[1].seconds,
         stage_fractions: profiled.stage_ticks.map(|t| t.fractions()),
         cwbvh_seconds: best.get(2).map(|s| s.seconds),
     })
+}
+
+/// The tile driver that is not the default (timed beside it).
+pub fn other_driver() -> Driver {
+    if Driver::default() == Driver::OnePath { Driver::Wavefront } else { Driver::OnePath }
 }
 
 /// The diffuse models whose render time `matte bench` compares with Lambert's.

@@ -97,7 +97,9 @@ pub fn table(m: &Measurements) -> String {
     let _ = writeln!(s, "machine: {}", machine());
     let _ = writeln!(
         s,
-        "\n| scene | res, spp | matte s | Mrays/s | matte s, one path per thread | matte s, all in CWBVH | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |"
+        "\n| scene | res, spp | matte s ({} driver) | Mrays/s | matte s, {} driver | matte s, all in CWBVH | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |",
+        crate::render::integrator::Driver::default().name(),
+        super::render::other_driver().name()
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
     for (job, mt) in &m.jobs {
@@ -112,7 +114,7 @@ pub fn table(m: &Measurements) -> String {
             mt.seconds,
             mt.backend.name(),
             mt.rays as f64 / mt.seconds / 1e6,
-            mt.one_path_seconds,
+            mt.other_driver_seconds,
             cell(mt.cwbvh_seconds, &|x| format!("{x:.3}")),
             cell(mi("scalar_rgb"), &|x| format!("{x:.3}")),
             cell(mi("llvm_ad_rgb"), &|x| format!("{x:.3}")),
@@ -221,8 +223,11 @@ pub struct RenderJson {
     pub threads: usize,
     /// The structure that traced the meshes (`embree` or `cwbvh`).
     pub accel: &'static str,
-    /// Best seconds with one path per thread (the driver before the wavefront).
-    pub matte_seconds_one_path: f64,
+    /// The tile driver of `matte_seconds` (`one path` or `wavefront`).
+    pub driver: &'static str,
+    /// The other tile driver, and its best seconds.
+    pub other_driver: &'static str,
+    pub matte_seconds_other_driver: f64,
     /// Share of each stage of matte's render (stage name → fraction of thread time).
     pub matte_stage_fractions: Option<BTreeMap<&'static str, f64>>,
     /// Best seconds with the meshes in the CWBVH (when `accel` is `embree`).
@@ -287,7 +292,9 @@ pub fn json(m: &Measurements) -> BenchJson {
                 accel_build_seconds: mt.accel_build_seconds,
                 threads: mt.threads,
                 accel: mt.backend.name(),
-                matte_seconds_one_path: mt.one_path_seconds,
+                driver: crate::render::integrator::Driver::default().name(),
+                other_driver: super::render::other_driver().name(),
+                matte_seconds_other_driver: mt.other_driver_seconds,
                 matte_stage_fractions: mt
                     .stage_fractions
                     .map(|f| crate::render::integrator::wavefront::StageTicks::NAMES.into_iter().zip(f).collect()),

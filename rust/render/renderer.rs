@@ -1,7 +1,7 @@
 //! The render loop: the film's crop window is cut into tiles rendered in parallel (rayon
-//! work stealing), each tile with many paths in flight
-//! ([`crate::render::integrator::wavefront`]); each pixel has its
-//! own sampler stream, so the image depends only on the seed, not on threads or tiling.
+//! work stealing), each by a tile driver ([`Driver`]: one path at a time by default, or many
+//! in flight); each pixel has its own sampler stream, so the image depends only on the seed,
+//! not on threads, tiling or the driver.
 //! Every sample goes to the tile's image block, which the film accumulates (Mitsuba
 //! `SamplingIntegrator::render`).
 

@@ -1,5 +1,5 @@
-//! Many paths in flight per thread: the renderer's driver for the `path` and `direct`
-//! integrators (README "Speed").
+//! Many paths in flight per thread: a tile driver for the `path` and `direct` integrators
+//! ([`super::Driver::Wavefront`]; README "Speed").
 //!
 //! Each of the [`LANES`] lanes renders whole pixels of a tile, one after the other, every
 //! sample of a pixel in turn with the pixel's own sampler stream: the numbers drawn, and so
