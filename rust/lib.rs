@@ -4,7 +4,7 @@
 //! * [`brdf`]: the kernels, one pure implementation per model, used by everything else.
 //! * [`cli`]: the `matte` command line (`brdf`, `albedo`, `tables`, `render`, `validate`, `study`, `bench`).
 //! * [`ffi`]: the `cxx` bridge the Mitsuba plugin (`cpp/`) calls.
-//! * [`scene`]: Mitsuba XML scenes → typed description (parser, properties, meshes).
+//! * [`scene_file`]: Mitsuba XML scenes → typed description (parser, properties, meshes).
 //! * [`render`]: the CPU path tracer that renders them.
 //! * [`validate`]: per-pixel statistical comparison of the Rust renderer with Mitsuba.
 //! * [`study`]: the seed paper's experiment (scenes × models, strips, measured ratios).

@@ -8,7 +8,7 @@
 use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
 use crate::render::integrator::wavefront::StageTicks;
-use crate::render::integrator::{Driver, Integrator};
+use crate::render::integrator::{Driver, Integrator, TileJob};
 use crate::render::scene::Scene;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -76,14 +76,14 @@ pub fn render_with(
     let done = AtomicU64::new(0);
     let invalid = AtomicU64::new(0);
     let rays = AtomicU64::new(0);
-    let width = film.width() as u64;
+    let job = TileJob { scene, camera, spp, seed, width: film.width() as u64 };
     let film = Mutex::new(film);
     let stage_ticks = Mutex::new(StageTicks::default());
     tiles.par_iter().for_each(|tile| {
         let mut block = film.lock().expect("film lock").new_block(tile);
         crate::render::accel::take_ray_count();
         let mut ticks = StageTicks::default();
-        let bad = integrator.render_tile(driver, scene, camera, &mut block, spp, seed, width, &mut ticks);
+        let bad = integrator.render_tile(driver, &job, &mut block, &mut ticks);
         if driver == Driver::WavefrontProfiled {
             stage_ticks.lock().expect("profile lock").add(&ticks);
         }

@@ -84,9 +84,6 @@ impl Scene {
         self.accel.intersect8(rays, active, &self.shapes)
     }
 
-    pub fn intersect_hit(&self, ray: &Ray) -> Option<Hit> {
-        self.accel.intersect(ray, &self.shapes)
-    }
     /// The surface interaction of `ray`'s hit `hit`.
     #[inline]
     pub fn interaction(&self, ray: &Ray, hit: Hit) -> SurfaceInteraction {

@@ -69,12 +69,9 @@ impl SampleIntegrator for DirectIntegrator {
         hit: Option<SurfaceInteraction>,
         shadows: &mut Vec<ShadowTest>,
     ) -> Option<Ray> {
-        let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
-        let n = ne + nb;
-        let (frac_lum, frac_bsdf) = (ne / n, nb / n);
-        let Some(si) = s.first else {
-            return self.at_camera_hit(scene, sampler, s, hit, shadows, frac_lum, frac_bsdf);
-        };
+        let Some(si) = s.first else { return self.at_camera_hit(scene, sampler, s, hit, shadows) };
+        let (frac_lum, frac_bsdf) = self.sample_fractions();
+        let nb = self.bsdf_samples as f32;
         // The pending probe's hit: emission found by BSDF sampling.
         let bs = s.probe.take().expect("a probe ray is pending after the camera hit");
         let wo = s.ray.d;
@@ -96,7 +93,13 @@ impl SampleIntegrator for DirectIntegrator {
 }
 
 impl DirectIntegrator {
-    #[allow(clippy::too_many_arguments)]
+    /// Ne/N and Nb/N, the weights of the light and BSDF densities in the power heuristic.
+    #[inline]
+    fn sample_fractions(&self) -> (f32, f32) {
+        let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
+        (ne / (ne + nb), nb / (ne + nb))
+    }
+
     #[inline]
     fn at_camera_hit(
         &self,
@@ -105,8 +108,6 @@ impl DirectIntegrator {
         s: &mut DirectState,
         hit: Option<SurfaceInteraction>,
         shadows: &mut Vec<ShadowTest>,
-        frac_lum: f32,
-        frac_bsdf: f32,
     ) -> Option<Ray> {
         let Some(si) = hit else {
             if let Some(env) = scene.environment
@@ -128,6 +129,7 @@ impl DirectIntegrator {
         }
         s.first = Some(si);
         let ne = self.emitter_samples as f32;
+        let (frac_lum, frac_bsdf) = self.sample_fractions();
         let bsdf = scene.bsdf(&si);
         if bsdf.has_smooth() {
             for _ in 0..self.emitter_samples {

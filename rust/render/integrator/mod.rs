@@ -71,39 +71,48 @@ impl Integrator {
         }
     }
 
-    /// Renders `spp` samples of every pixel of `block`'s tile with `driver` (the same numbers
-    /// per sample with any); returns how many samples were not finite (splatted as zero).
-    /// `width` is the film's width; [`Driver::WavefrontProfiled`] adds to `profile`. Not for
-    /// `ptracer`, which renders in its own loop.
-    #[allow(clippy::too_many_arguments)]
+    /// Renders every pixel of `block`'s tile with `driver` (the same numbers per sample with
+    /// any); returns how many samples were not finite (splatted as zero).
+    /// [`Driver::WavefrontProfiled`] adds to `profile`. `ptracer` renders in its own loop and
+    /// gets nothing here.
     pub fn render_tile(
         &self,
         driver: Driver,
-        scene: &Scene,
-        camera: &Camera,
+        job: &TileJob,
         block: &mut ImageBlock,
-        spp: u32,
-        seed: u64,
-        width: u64,
         profile: &mut wavefront::StageTicks,
     ) -> u64 {
-        use wavefront::render_tile as wave;
-        let p = profile;
-        match (driver, self) {
-            (Driver::OnePath, _) | (_, Integrator::ParticleTracer(_)) => {
-                one_path::render_tile(self, scene, camera, block, spp, seed, width)
-            }
-            (Driver::Wavefront, Integrator::Path(i)) => wave::<_, false>(i, scene, camera, block, spp, seed, width, p),
-            (Driver::Wavefront, Integrator::Direct(i)) => {
-                wave::<_, false>(i, scene, camera, block, spp, seed, width, p)
-            }
-            (Driver::WavefrontProfiled, Integrator::Path(i)) => {
-                wave::<_, true>(i, scene, camera, block, spp, seed, width, p)
-            }
-            (Driver::WavefrontProfiled, Integrator::Direct(i)) => {
-                wave::<_, true>(i, scene, camera, block, spp, seed, width, p)
-            }
+        match self {
+            Integrator::Path(p) => drive(p, driver, job, block, profile),
+            Integrator::Direct(d) => drive(d, driver, job, block, profile),
+            Integrator::ParticleTracer(_) => 0,
         }
+    }
+}
+
+/// What every tile of one render shares: the scene, the camera, the samples per pixel, the
+/// seed and the film's width (the pixel index of the sampler streams).
+#[derive(Clone, Copy)]
+pub struct TileJob<'a> {
+    pub scene: &'a Scene,
+    pub camera: &'a Camera,
+    pub spp: u32,
+    pub seed: u64,
+    pub width: u64,
+}
+
+/// Runs `integrator` over `block`'s tile with `driver`.
+fn drive<I: SampleIntegrator>(
+    integrator: &I,
+    driver: Driver,
+    job: &TileJob,
+    block: &mut ImageBlock,
+    profile: &mut wavefront::StageTicks,
+) -> u64 {
+    match driver {
+        Driver::OnePath => one_path::render_tile(integrator, job, block),
+        Driver::Wavefront => wavefront::render_tile::<I, false>(integrator, job, block, profile),
+        Driver::WavefrontProfiled => wavefront::render_tile::<I, true>(integrator, job, block, profile),
     }
 }
 

@@ -1,53 +1,28 @@
 //! The reference driver: one path at a time, every query on its own (the renderer before
 //! [`super::wavefront`]; `matte bench` times both on the same scenes).
 
-use super::{Integrator, SampleIntegrator, ShadowTest};
-use crate::render::camera::Camera;
+use super::{SampleIntegrator, ShadowTest, TileJob};
 use crate::render::film::ImageBlock;
 use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
 use glam::{Vec2, Vec3};
 
-/// Renders `spp` samples of every pixel of `block`'s tile into `block`, pixel by pixel with
-/// each pixel's sampler stream; returns how many samples were not finite (splatted as zero).
-/// `ptracer` renders in its own loop and gets nothing here.
-pub fn render_tile(
-    integrator: &Integrator,
-    scene: &Scene,
-    camera: &Camera,
-    block: &mut ImageBlock,
-    spp: u32,
-    seed: u64,
-    width: u64,
-) -> u64 {
-    match integrator {
-        Integrator::Path(p) => render_tile_with(p, scene, camera, block, spp, seed, width),
-        Integrator::Direct(d) => render_tile_with(d, scene, camera, block, spp, seed, width),
-        Integrator::ParticleTracer(_) => 0,
-    }
-}
-
-fn render_tile_with<I: SampleIntegrator>(
-    integrator: &I,
-    scene: &Scene,
-    camera: &Camera,
-    block: &mut ImageBlock,
-    spp: u32,
-    seed: u64,
-    width: u64,
-) -> u64 {
+/// Renders `job.spp` samples of every pixel of `block`'s tile into `block`, pixel by pixel
+/// with each pixel's sampler stream; returns how many samples were not finite (splatted as
+/// zero).
+pub fn render_tile<I: SampleIntegrator>(integrator: &I, job: &TileJob, block: &mut ImageBlock) -> u64 {
     let tile = block.tile();
     let mut bad = 0;
     // One buffer for the shadow rays of every sample of the tile (no allocation per sample).
     let mut shadows = Vec::new();
     for py in tile.offset[1]..tile.offset[1] + tile.size[1] {
         for px in tile.offset[0]..tile.offset[0] + tile.size[0] {
-            let mut sampler = Sampler::for_pixel(seed, py as u64 * width + px as u64);
+            let mut sampler = Sampler::for_pixel(job.seed, py as u64 * job.width + px as u64);
             let pixel = Vec2::new(px as f32, py as f32);
-            for _ in 0..spp {
+            for _ in 0..job.spp {
                 let pos = pixel + sampler.next_2d();
-                let mut l = li_with(integrator, scene, &mut sampler, camera.ray(pos), &mut shadows);
+                let mut l = li_with(integrator, job.scene, &mut sampler, job.camera.ray(pos), &mut shadows);
                 if !l.is_finite() {
                     l = Vec3::ZERO;
                     bad += 1;

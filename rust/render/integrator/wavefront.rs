@@ -6,18 +6,18 @@
 //! each sample's radiance, are exactly those of the one-path driver ([`super::Integrator::li`]);
 //! only the order in which samples reach the image block changes
 //! (`tests/render_drivers.rs`).
-//! Every step traces the lanes' pending rays eight at a time ([`Scene::intersect8`]: Embree's
-//! `rtcIntersect8`), advances each lane's state machine with its hit, and tests all the
-//! shadow rays those advances asked for eight at a time ([`Scene::occluded8`]). A lane
-//! whose sample ends splats it and starts its next sample (or its next pixel) at once, so the
+//! Every step traces the lanes' pending rays eight at a time
+//! ([`Scene::intersect8`](crate::render::scene::Scene::intersect8): Embree's `rtcIntersect8`),
+//! advances each lane's state machine with its hit, and tests all the shadow rays those
+//! advances asked for eight at a time
+//! ([`Scene::occluded8`](crate::render::scene::Scene::occluded8)). A lane whose sample ends
+//! splats it and starts its next sample (or its next pixel) at once, so the
 //! lanes stay full until the tile runs out of pixels.
 
-use super::{SampleIntegrator, ShadowTest};
-use crate::render::camera::Camera;
+use super::{SampleIntegrator, ShadowTest, TileJob};
 use crate::render::film::{ImageBlock, Tile};
 use crate::render::geometry::Ray;
 use crate::render::sampler::Sampler;
-use crate::render::scene::Scene;
 use glam::{Vec2, Vec3};
 
 /// Paths in flight per thread. Each step runs Embree's packet traversal, then every lane's
@@ -119,26 +119,22 @@ fn ticks() -> u64 {
     }
 }
 
-/// Renders `spp` samples of every pixel of `block`'s tile into `block`. `width` is the film's
-/// width (the pixel index of the sampler streams). Returns how many samples were not finite
-/// (splatted as zero). With `PROFILE`, adds each stage's ticks to `profile`.
-#[allow(clippy::too_many_arguments)]
+/// Renders `job.spp` samples of every pixel of `block`'s tile into `block`. Returns how many
+/// samples were not finite (splatted as zero). With `PROFILE`, adds each stage's ticks to
+/// `profile`.
 pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
     integrator: &I,
-    scene: &Scene,
-    camera: &Camera,
+    job: &TileJob,
     block: &mut ImageBlock,
-    spp: u32,
-    seed: u64,
-    width: u64,
     profile: &mut StageTicks,
 ) -> u64 {
+    let scene = job.scene;
     let clock = || if PROFILE { ticks() } else { 0 };
-    let mut pixels = PixelQueue { tile: block.tile(), next: 0, width, seed };
+    let mut pixels = PixelQueue { tile: block.tile(), next: 0, width: job.width, seed: job.seed };
     let mut bad = 0u64;
     let placeholder = Ray::new(Vec3::ZERO, Vec3::Z, 0.0);
     let mut live: [Option<Lane<I::State>>; LANES] =
-        std::array::from_fn(|_| next_sample(integrator, camera, &mut pixels, None, spp, block, &mut bad));
+        std::array::from_fn(|_| next_sample(integrator, job, &mut pixels, None, block, &mut bad));
     let mut shadows: Vec<ShadowTest> = Vec::with_capacity(4 * LANES);
     let mut shadow_owner: Vec<usize> = Vec::with_capacity(4 * LANES);
     while live.iter().any(Option::is_some) {
@@ -187,7 +183,7 @@ pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
             let Some(lane) = live[i].as_mut() else { continue };
             match next[i] {
                 Some(ray) => lane.ray = ray,
-                None => live[i] = next_sample(integrator, camera, &mut pixels, live[i].take(), spp, block, &mut bad),
+                None => live[i] = next_sample(integrator, job, &mut pixels, live[i].take(), block, &mut bad),
             }
         }
         if PROFILE {
@@ -201,14 +197,12 @@ pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
 /// Splats the finished sample of `done` (if any) and starts the lane's next sample: the
 /// pixel's next one, or the first of the queue's next pixel. `None` when the tile is done.
 /// Samples whose radiance is zero without tracing are splatted here directly.
-#[allow(clippy::too_many_arguments)]
 #[inline]
 fn next_sample<I: SampleIntegrator>(
     integrator: &I,
-    camera: &Camera,
+    job: &TileJob,
     pixels: &mut PixelQueue,
     done: Option<Lane<I::State>>,
-    spp: u32,
     block: &mut ImageBlock,
     bad: &mut u64,
 ) -> Option<Lane<I::State>> {
@@ -224,17 +218,17 @@ fn next_sample<I: SampleIntegrator>(
         }
         None => {
             let (pixel, sampler) = pixels.pop()?;
-            (pixel, sampler, spp)
+            (pixel, sampler, job.spp)
         }
     };
     loop {
         if samples_left == 0 {
             (pixel, sampler) = pixels.pop()?;
-            samples_left = spp;
+            samples_left = job.spp;
         }
         samples_left -= 1;
         let pos = pixel + sampler.next_2d();
-        match integrator.start(camera.ray(pos)) {
+        match integrator.start(job.camera.ray(pos)) {
             Some((state, ray)) => return Some(Lane { sampler, pixel, pos, samples_left, state, ray }),
             None => block.put(pos, Vec3::ZERO),
         }
