@@ -85,3 +85,12 @@ fn direct_integrator_scenes() {
     loaded.integrator = Integrator::Direct(integrator);
     assert_same_image("cornell direct 3+2 hidden", &loaded, 4);
 }
+
+/// `matte render --driver` names: the two drivers, and a clear error for anything else.
+#[test]
+fn driver_names_parse() {
+    assert_eq!(Driver::parse("one-path"), Ok(Driver::OnePath));
+    assert_eq!(Driver::parse("wavefront"), Ok(Driver::Wavefront));
+    let err = Driver::parse("wave").unwrap_err();
+    assert!(err.contains("\"wave\"") && err.contains("one-path or wavefront"), "{err}");
+}

@@ -4,6 +4,7 @@
 
 use crate::render::film::SplatWeights;
 use crate::render::image_io;
+use crate::render::integrator::Driver;
 use crate::render::load;
 use crate::render::renderer;
 use clap::Args;
@@ -33,6 +34,11 @@ pub struct RenderArgs {
     /// at sharp edges (docs/validation.md).
     #[arg(long, value_name = "WEIGHTS", default_value = "discretized", value_parser = SplatWeights::parse)]
     pub splat_weights: SplatWeights,
+    /// How each thread runs the integrator over its tiles: `one-path` (one path at a time, the
+    /// default) or `wavefront` (32 paths in flight, rays traced eight per query); the image is
+    /// the same estimator (README "Speed").
+    #[arg(long, value_name = "DRIVER", value_parser = Driver::parse)]
+    pub driver: Option<Driver>,
     /// Also write a tone-mapped sRGB PNG next to the EXR (same name, .png).
     #[arg(long)]
     pub png: bool,
@@ -108,13 +114,14 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
         bar.set_length(total);
         bar.set_position(done);
     };
-    let (image, stats) = renderer::render(
+    let (image, stats) = renderer::render_with(
         &loaded.scene,
         &loaded.integrator,
         &loaded.camera,
         loaded.film.with_splat_weights(a.splat_weights),
         spp,
         seed,
+        a.driver.unwrap_or_default(),
         &progress,
     );
     bar.finish_and_clear();

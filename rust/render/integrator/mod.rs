@@ -48,6 +48,15 @@ impl Driver {
             Driver::WavefrontProfiled => "wavefront, profiled",
         }
     }
+
+    /// `matte render --driver`: `one-path` or `wavefront`.
+    pub fn parse(name: &str) -> Result<Driver, String> {
+        match name {
+            "one-path" => Ok(Driver::OnePath),
+            "wavefront" => Ok(Driver::Wavefront),
+            other => Err(format!("unknown driver {other:?} (expected one-path or wavefront)")),
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
