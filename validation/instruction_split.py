@@ -53,40 +53,45 @@ def classify(name):
     return "rest"
 
 
-def split(out_file):
-    """Instructions per class in a callgrind output file (self cost of every function)."""
-    text = subprocess.run(
-        ["callgrind_annotate", "--threshold=100", "--inclusive=no", "--auto=no", str(out_file)],
+def annotate(out_file, inclusive):
+    """`callgrind_annotate`'s function listing of a callgrind output file."""
+    return subprocess.run(
+        ["callgrind_annotate", "--threshold=100", f"--inclusive={'yes' if inclusive else 'no'}", "--auto=no",
+         str(out_file)],
         capture_output=True, text=True, check=True,
     ).stdout
-    return split_listing(text)
+
+
+def listing(text):
+    """(instructions, file:function) of each function line of `callgrind_annotate` output."""
+    for line in text.split("file:function", 1)[-1].splitlines():
+        m = LINE.match(line)
+        if m:
+            yield int(m.group(1).replace(",", "")), m.group(2)
+
+
+def split(out_file):
+    """Instructions per class in a callgrind output file (self cost of every function)."""
+    return split_listing(annotate(out_file, inclusive=False))
 
 
 def split_listing(text):
     """Instructions per class in `callgrind_annotate --inclusive=no --auto=no` output."""
     totals = {"embree": 0, "jit": 0, "rest": 0}
-    listing = text.split("file:function", 1)[-1]
-    for line in listing.splitlines():
-        m = LINE.match(line)
-        if m:
-            totals[classify(m.group(2))] += int(m.group(1).replace(",", ""))
+    for count, name in listing(text):
+        totals[classify(name)] += count
     return totals
 
 
 def bsdf_inclusive(out_file):
     """Instructions spent in matte's BSDF calls (`Bsdf::eval_pdf` and `Bsdf::sample` with
     everything they call): what 8-wide BSDF kernels could shorten."""
-    text = subprocess.run(
-        ["callgrind_annotate", "--threshold=100", "--inclusive=yes", "--auto=no", str(out_file)],
-        capture_output=True, text=True, check=True,
-    ).stdout
     # A function's inclusive total is its largest line (the others are its inlined parts).
     most = {"eval_pdf": 0, "sample": 0}
-    for line in text.split("file:function", 1)[-1].splitlines():
-        m = LINE.match(line)
-        f = m and re.search(r":matte::render::bsdf::Bsdf::(eval_pdf|sample)( \[.*\])?$", m.group(2))
+    for count, name in listing(annotate(out_file, inclusive=True)):
+        f = re.search(r":matte::render::bsdf::Bsdf::(eval_pdf|sample)( \[.*\])?$", name)
         if f:
-            most[f.group(1)] = max(most[f.group(1)], int(m.group(1).replace(",", "")))
+            most[f.group(1)] = max(most[f.group(1)], count)
     return sum(most.values())
 
 
