@@ -225,7 +225,11 @@ fn integrator_errors() {
         1,
         "at least one",
     );
-    assert_body_err("<integrator type=\"path\"/>\n<integrator type=\"path\"/>", 2, "more than one <integrator>");
+    assert_body_err(
+        "<integrator type=\"path\"/>\n<integrator type=\"path\"/>",
+        2,
+        "only one integrator can be specified per scene",
+    );
 }
 
 // ------------------------------------------------------------------------------------------
@@ -503,7 +507,20 @@ fn sensor_film_sampler_errors() {
     assert_err(load(&sampler("<float name=\"sample_count\" value=\"4\"/>")), 4, "wrong type");
     assert_err(load(&sampler("<integer name=\"seed\" value=\"-1\"/>")), 4, "seed");
     // Scene level.
-    assert_err(load(&scene(&format!("{SENSOR}\n{SENSOR}"))), 3, "more than one <sensor>");
+    // Several sensors: each is built (a bad one is an error), the first in document order is
+    // rendered (Mitsuba's `mi.render(scene)`), and a note says so.
+    let wide = SENSOR
+        .replace("<sensor type=\"perspective\">", "<sensor type=\"perspective\"><float name=\"fov\" value=\"80\"/>");
+    assert_ne!(wide, SENSOR, "the replacement must apply");
+    let two = ok(&scene(&format!("{SENSOR}\n{wide}")));
+    assert_eq!(two.notes.len(), 1, "{:?}", two.notes);
+    assert!(two.notes[0].contains("more than one <sensor>") && two.notes[0].contains(":3:"), "{:?}", two.notes);
+    let first_fov = tan_half_x_fov(&ok(&scene(SENSOR)));
+    assert!((tan_half_x_fov(&two) - first_fov).abs() < 1e-6, "the first sensor is rendered");
+    assert!((tan_half_x_fov(&ok(&scene(&format!("{wide}\n{SENSOR}")))) - tan_half_deg(80.0)).abs() < 1e-5);
+    let bad = SENSOR
+        .replace("<sensor type=\"perspective\">", "<sensor type=\"perspective\"><float name=\"fvo\" value=\"80\"/>");
+    assert_err(load(&scene(&format!("{SENSOR}\n{bad}"))), 3, "unreferenced property \"fvo\"");
     assert_err(load(&scene("<shape type=\"sphere\"/>")), 1, "no <sensor>");
 }
 
@@ -1168,7 +1185,7 @@ fn bitmap_reflectance_nested_and_referenced() {
 
 #[test]
 fn bsdf_errors() {
-    assert_body_err("<bsdf type=\"hair\"/>", 1, "unsupported bsdf type \"hair\"");
+    assert_body_err("<bsdf type=\"hair\"/>", 1, "<bsdf type=\"hair\">: hair is outside matte's scope");
     assert_body_err(
         "<bsdf type=\"diffuse\">\n<float name=\"roughness\" value=\"0.1\"/>\n</bsdf>",
         2,
@@ -1308,13 +1325,13 @@ fn texture_errors() {
         4,
         "unreferenced property \"gamma\"",
     );
-    // Unknown texture type, both nested and at the top level.
+    // Out of scope nested, unknown at the top level.
     assert_body_err(
         "<bsdf type=\"diffuse\">\n<texture type=\"volume\" name=\"reflectance\"/>\n</bsdf>",
         2,
-        "unsupported texture type \"volume\"",
+        "<texture type=\"volume\">: volume textures belong to participating media",
     );
-    assert_body_err("<texture type=\"volume\"/>", 1, "unsupported texture type");
+    assert_body_err("<texture type=\"voronoi\"/>", 1, "unsupported texture type \"voronoi\"");
     // Given twice: as a property and as a texture (the parser rejects the duplicate name).
     let both = tex("<string name=\"filename\" value=\"ok.png\"/>")
         .replace("<bsdf type=\"diffuse\">\n", "<bsdf type=\"diffuse\">\n<float name=\"reflectance\" value=\"0.5\"/>");
@@ -1333,8 +1350,34 @@ fn malformed_xml_unknown_tags_and_parameters() {
         3,
         "malformed XML",
     );
-    assert_body_err("<rfilter type=\"box\"/>", 1, "not allowed at the top level");
-    assert_body_err("<medium type=\"homogeneous\"/>", 1, "not allowed at the top level");
+    // Any object may stand at the top level (Mitsuba's `Scene` constructor): it is built, so
+    // its properties are checked, and otherwise unused.
+    ok(&with_sensor("<rfilter type=\"box\"/>\n<sampler type=\"independent\"/>\n<film type=\"hdrfilm\"/>"));
+    assert_body_err(
+        "<rfilter type=\"box\">\n<float name=\"radius\" value=\"2\"/>\n</rfilter>",
+        2,
+        "unreferenced property \"radius\"",
+    );
+    assert_body_err(
+        "<sampler type=\"independent\">\n<integer name=\"sample_count\" value=\"0\"/>\n</sampler>",
+        2,
+        "sample_count",
+    );
+    // Out of scope, wherever it appears: one line naming the element.
+    assert_body_err(
+        "<medium type=\"homogeneous\"/>",
+        1,
+        "<medium type=\"homogeneous\">: participating media are outside matte's scope",
+    );
+    assert_body_err(
+        "<shape type=\"sphere\">\n<medium type=\"homogeneous\" name=\"interior\"/>\n</shape>",
+        2,
+        "participating media are outside matte's scope",
+    );
+    assert_body_err("<shape type=\"sphere\">\n<bsdf type=\"polarizer\"/>\n</shape>", 2, "polarisation-only BSDFs");
+    assert_body_err("<shape type=\"linearcurve\"/>", 1, "curves are outside matte's scope");
+    assert_body_err("<shape type=\"sdfgrid\"/>", 1, "SDF grids are outside matte's scope");
+    assert_body_err("<shape type=\"sphere\"><bsdf type=\"hair\"/></shape>", 1, "hair is outside matte's scope");
     assert_body_err("<shape type=\"$kind\"/>", 1, "undefined parameter $kind");
     // -D parameters: used ones substitute, an unused one is an error naming the file.
     let xml = with_sensor("<shape type=\"sphere\"><float name=\"radius\" value=\"$r\"/></shape>");

@@ -71,6 +71,44 @@ fn path_adds_a_search_folder() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Mitsuba's `<include>` and `<path>` in nested files (`src/core/parser.cpp`,
+/// `TagType::Include` and `TagType::Resource`, checked against Mitsuba 3.9.1's `load_file` on
+/// this layout): an include's `<path>` that is missing next to it is resolved through the
+/// resolver, whose first folder is the including file's; a nested `<include>` is found through
+/// that `<path>`; but a `<path>` in an included file lasts only while that file is parsed, so
+/// it does not find the scene's assets.
+#[test]
+fn nested_includes_resolve_paths_like_mitsuba() {
+    let dir = temp_dir("nested_paths");
+    for d in ["x/y/include", "common", "meshes"] {
+        std::fs::create_dir_all(dir.join(d)).unwrap();
+    }
+    std::fs::write(dir.join("meshes/tri.obj"), TRIANGLE_OBJ).unwrap();
+    let main = |mesh: &str| {
+        scene(&format!(
+            "{SENSOR}\n<include filename=\"include/inc.xml\"/>\n\
+             <shape type=\"obj\"><string name=\"filename\" value=\"{mesh}\"/><ref id=\"m\"/></shape>"
+        ))
+    };
+    // `../../common` is not next to include/inc.xml (x/common); it is found from x/y/.
+    let inc = "<scene version=\"3.0.0\">\n<path value=\"../../common\"/>\n<include filename=\"mat.xml\"/>\n</scene>";
+    std::fs::write(dir.join("x/y/include/inc.xml"), inc).unwrap();
+    let mat = "<scene version=\"3.0.0\">\n<path value=\"../meshes\"/>\n<bsdf type=\"diffuse\" id=\"m\"/>\n</scene>";
+    std::fs::write(dir.join("common/mat.xml"), mat).unwrap();
+    let file = dir.join("x/y/main.xml");
+    std::fs::write(&file, main("../../meshes/tri.obj")).unwrap();
+    let s = load_file(&file, &[]).expect("the includes and the mesh resolve as in Mitsuba");
+    assert!(s.scene.intersect(&Ray::new(Vec3::new(0.0, 0.0, 1.0), Vec3::NEG_Z, f32::INFINITY)).is_some());
+    // mat.xml's `<path value="../meshes"/>` does not outlive mat.xml: Mitsuba reports
+    // `OBJ file "tri.obj": file not found` here.
+    std::fs::write(&file, main("tri.obj")).unwrap();
+    assert_err_at(load_file(&file, &[]), &file, 4, "tri.obj");
+    // An include that is nowhere: the error names the file the resolver fell back to.
+    std::fs::write(dir.join("x/y/include/inc.xml"), inc.replace("mat.xml", "nothing.xml")).unwrap();
+    assert_err_at(load_file(&file, &[]), &dir.join("x/y/include/inc.xml"), 3, "nothing.xml");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 /// `src/integrators/moment.cpp`: the image is the first nested integrator's.
 #[test]
 fn moment_renders_its_nested_integrator() {

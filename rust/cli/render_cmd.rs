@@ -89,6 +89,9 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
     let t0 = std::time::Instant::now();
     let loaded = load::load_file(&a.scene, &defines).map_err(|e| e.to_string())?;
     let load_seconds = t0.elapsed().as_secs_f64();
+    for note in &loaded.notes {
+        eprintln!("note: {note}");
+    }
     let spp = a.spp.unwrap_or(loaded.spp);
     if spp == 0 {
         return Err("--spp must be at least 1".into());

@@ -9,6 +9,7 @@ mod bsdf_principled;
 mod emitter;
 mod instance;
 mod integrator;
+pub mod scope;
 mod sensor;
 mod shape;
 mod texture;
@@ -36,6 +37,9 @@ pub struct LoadedScene {
     pub spp: u32,
     /// `seed` of the sensor's sampler.
     pub seed: u64,
+    /// What the user should know about how the scene was read (one line each, for stderr):
+    /// e.g. which of several sensors is rendered.
+    pub notes: Vec<String>,
 }
 
 /// Parses and builds the scene at `path` with `-D name=value` overrides.
@@ -81,15 +85,24 @@ pub(crate) struct ShapeContext {
 }
 
 impl Builder {
-    /// An asset path: absolute, or the first existing one relative to a `<path>` folder,
-    /// else relative to the scene file's folder (Mitsuba `FileResolver::resolve`, with the
-    /// scene's folder prepended before parsing and `<path>` folders in front of it).
+    /// An asset path: absolute, or the first existing one relative to a `<path>` folder of the
+    /// main file, the scene file's folder or the working directory (Mitsuba's
+    /// `FileResolver::resolve` with the resolver `load_file` sets up: the scene's folder
+    /// prepended, `<path>` folders in front of it); when none exists, the scene folder's one
+    /// (for the error message).
     pub fn resolve(&self, file: &str) -> PathBuf {
         let p = Path::new(file);
         if p.is_absolute() {
             return p.to_path_buf();
         }
-        self.search_paths.iter().map(|d| d.join(p)).find(|c| c.exists()).unwrap_or_else(|| self.base_dir.join(p))
+        let in_base = self.base_dir.join(p);
+        self.search_paths
+            .iter()
+            .map(|d| d.join(p))
+            .chain([in_base.clone()])
+            .chain(std::env::current_dir().ok().map(|d| d.join(p)))
+            .find(|c| c.exists())
+            .unwrap_or(in_base)
     }
 }
 
@@ -106,28 +119,38 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         shape_dependent: std::cell::Cell::new(false),
         shape_dependent_bsdfs: std::collections::HashSet::new(),
     };
+    scope::check_tree(root)?;
     let mut integrator = None;
     let mut integrator_obj = None;
     let mut sensor = None;
+    let mut notes = Vec::new();
+    // Mitsuba's `Scene` constructor (`src/render/scene.cpp`) takes any object at the top
+    // level: shapes, emitters, sensors and the integrator make the scene; every other object
+    // (a BSDF, texture, sampler, film, filter declared with an id for `<ref>`s) is
+    // instantiated, so its properties are checked, and otherwise unused.
     for child in &root.children {
         child.mark_used();
         let obj = &child.object;
         match obj.tag.as_str() {
             "integrator" => {
                 if integrator.is_some() {
-                    return Err(SceneError::at(&obj.pos, "more than one <integrator>"));
+                    return Err(SceneError::at(&obj.pos, "only one integrator can be specified per scene"));
                 }
                 integrator = Some(integrator::build(obj)?);
                 integrator_obj = Some(obj.clone());
             }
             "sensor" => {
-                if sensor.is_some() {
-                    return Err(SceneError::at(
-                        &obj.pos,
-                        "more than one <sensor> (matte renders the first sensor only; remove the others)",
+                // Every sensor is built (and so checked); `mi.render(scene)` renders the first
+                // in document order, and so does matte.
+                let built = sensor::build(obj)?;
+                if sensor.is_none() {
+                    sensor = Some(built);
+                } else {
+                    notes.push(format!(
+                        "{}: the scene has more than one <sensor>; matte renders the first, as mi.render(scene) does",
+                        obj.pos
                     ));
                 }
-                sensor = Some(sensor::build(obj)?);
             }
             "shape" => shape::build(&mut b, obj)?,
             "emitter" => {
@@ -143,6 +166,15 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             }
             "texture" => {
                 texture::build(&b, obj)?;
+            }
+            "sampler" => {
+                sensor::build_sampler(obj)?;
+            }
+            "film" => {
+                sensor::build_film(obj)?;
+            }
+            "rfilter" => {
+                sensor::build_rfilter(obj)?;
             }
             other => {
                 return Err(SceneError::at(&obj.pos, format!("<{other}> is not allowed at the top level of a scene")));
@@ -164,7 +196,15 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         particle_tracer_limits(&b, &sensor, obj)?;
     }
     let scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
-    Ok(LoadedScene { scene, camera: sensor.camera, film: sensor.film, integrator, spp: sensor.spp, seed: sensor.seed })
+    Ok(LoadedScene {
+        scene,
+        camera: sensor.camera,
+        film: sensor.film,
+        integrator,
+        spp: sensor.spp,
+        seed: sensor.seed,
+        notes,
+    })
 }
 
 /// What matte's `ptracer` does not support, as load errors at the integrator: other sensors

@@ -160,7 +160,7 @@ fn principal_point_offset(obj: &SceneObject, name: &str) -> Result<f32, SceneErr
     Ok(v as f32)
 }
 
-fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
+pub(super) fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     if obj.plugin != "hdrfilm" {
         return Err(err(obj, format!("unsupported film type \"{}\" (matte renders: hdrfilm)", obj.plugin)));
     }
@@ -199,16 +199,22 @@ fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
             // Mitsuba: "A film can only have one reconstruction filter" (src/render/film.cpp).
             return Err(SceneError::at(&child.pos, "a film can only have one reconstruction filter"));
         }
-        filter = Some(match c.plugin.as_str() {
-            "box" => ReconstructionFilter::Box,
-            "tent" => ReconstructionFilter::Tent { radius: filter_size(c, "radius", 1.0, 1.0)? },
-            "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(c, "stddev", 0.5, 4.0)? },
-            other => return Err(err(c, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
-        });
-        c.check_all_used()?;
+        filter = Some(build_rfilter(c)?);
     }
     obj.check_all_used()?;
     Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
+}
+
+/// `<rfilter>`: `box`, `tent` (radius), `gaussian` (stddev).
+pub(super) fn build_rfilter(obj: &SceneObject) -> Result<ReconstructionFilter, SceneError> {
+    let filter = match obj.plugin.as_str() {
+        "box" => ReconstructionFilter::Box,
+        "tent" => ReconstructionFilter::Tent { radius: filter_size(obj, "radius", 1.0, 1.0)? },
+        "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(obj, "stddev", 0.5, 4.0)? },
+        other => return Err(err(obj, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
+    };
+    obj.check_all_used()?;
+    Ok(filter)
 }
 
 /// Widest reconstruction filter matte accepts, in pixels. Mitsuba has no limit, but every
@@ -232,7 +238,7 @@ fn filter_size(obj: &SceneObject, name: &str, default: f64, radius_per_unit: f64
     Ok(v as f32)
 }
 
-fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
+pub(super) fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
     if obj.plugin != "independent" {
         return Err(err(obj, format!("unsupported sampler type \"{}\" (matte renders: independent)", obj.plugin)));
     }

@@ -56,6 +56,21 @@ impl FileCtx<'_, '_> {
 pub(crate) struct Parser {
     pub scene: RawScene,
     pub params: Params,
+    /// The folders Mitsuba's `FileResolver` holds while this file is parsed, first searched
+    /// first: the main scene's folder and the working directory at the start (`load_file`
+    /// prepends the scene's folder), `<path>` folders prepended as they come, and while an
+    /// `<include>`d file is parsed, a copy with the including file's folder in front (thrown
+    /// away afterwards, with any `<path>` the included file added).
+    resolver: Vec<PathBuf>,
+}
+
+/// Mitsuba's `FileResolver::resolve`: the first folder in `resolver` where `name` exists,
+/// else `name` unchanged (so relative to the working directory).
+fn resolve_in(resolver: &[PathBuf], name: &Path) -> PathBuf {
+    if name.is_absolute() {
+        return name.to_path_buf();
+    }
+    resolver.iter().map(|d| d.join(name)).find(|p| p.exists()).unwrap_or_else(|| name.to_path_buf())
 }
 
 /// Parses `text` (malformed XML → error at the position roxmltree reports).
@@ -85,7 +100,7 @@ fn parse_version(s: &str, pos: &SourcePos) -> Result<[u32; 3], SceneError> {
 
 impl Parser {
     pub(crate) fn new(overrides: &[(String, String)]) -> Self {
-        Parser { scene: RawScene::default(), params: Params::new(overrides) }
+        Parser { scene: RawScene::default(), params: Params::new(overrides), resolver: Vec::new() }
     }
 
     /// The attributes of `el` after `$` substitution, in document order.
@@ -105,6 +120,8 @@ impl Parser {
     /// The main file: its root must be `<scene version="...">`; it becomes node 0.
     pub(crate) fn parse_main(&mut self, text: &str, path: &Path) -> Result<(), SceneError> {
         let path = Arc::new(path.to_path_buf());
+        self.resolver = vec![path.parent().unwrap_or(Path::new("")).to_path_buf()];
+        self.resolver.extend(std::env::current_dir().ok());
         let doc = parse_xml(text, &path)?;
         let root = doc.root_element();
         let mut ctx = FileCtx { doc: &doc, path, version: [3, 0, 0], depth: 0 };
@@ -225,9 +242,11 @@ impl Parser {
     }
 
     /// `<path value="..."/>` (Mitsuba `src/core/parser.cpp`, `TagType::Resource`): only
-    /// directly under the root; a relative folder is tried against the folder of the XML
-    /// file it appears in, then against the folders added so far; it must exist. Added in
-    /// front of the search list, as Mitsuba's `FileResolver::prepend`.
+    /// directly under the root of its file; a relative folder is tried against the folder of
+    /// the XML file it appears in, then through the file resolver; it must exist. It is put
+    /// in front of the resolver (`FileResolver::prepend`). In the main file it also stays for
+    /// the scene's asset files; in an included file it lasts until the end of that file
+    /// (Mitsuba parses an include with a copy of the resolver and restores the original).
     fn search_path(&mut self, ctx: &FileCtx, a: &Attrs, parent: usize) -> Result<(), SceneError> {
         a.check(&["!value"])?;
         if parent != 0 {
@@ -237,16 +256,17 @@ impl Parser {
         let mut folder = PathBuf::from(value);
         if !folder.is_absolute() {
             folder = ctx.path.parent().unwrap_or(Path::new("")).join(value);
-            if !folder.exists()
-                && let Some(found) = self.scene.search_paths.iter().map(|d| d.join(value)).find(|p| p.exists())
-            {
-                folder = found;
+            if !folder.exists() {
+                folder = resolve_in(&self.resolver, Path::new(value));
             }
         }
         if !folder.is_dir() {
             return Err(a.err(format!("<path>: folder \"{}\" not found", folder.display())));
         }
-        self.scene.search_paths.insert(0, folder);
+        if ctx.depth == 0 {
+            self.scene.search_paths.insert(0, folder.clone());
+        }
+        self.resolver.insert(0, folder);
         Ok(())
     }
 
@@ -285,20 +305,30 @@ impl Parser {
         Ok(index)
     }
 
-    /// `<include filename name>`: the file is resolved against the including file's folder.
-    /// A `<scene>` root has its children spliced into `parent`; any other object root becomes
-    /// one child of `parent` (named by the include's `name`). Parameters are shared both ways.
+    /// `<include filename name>`: the file is resolved with the including file's folder in
+    /// front of the resolver, then the resolver's folders (Mitsuba's `TagType::Include`); it
+    /// is parsed with that resolver, restored afterwards. A `<scene>` root has its children
+    /// spliced into `parent`; any other object root becomes one child of `parent` (named by
+    /// the include's `name`). Parameters are shared both ways.
     fn include(&mut self, ctx: &FileCtx, a: Attrs, parent: usize) -> Result<(), SceneError> {
         a.check(&["!filename", "name"])?;
         if ctx.depth + 1 >= MAX_INCLUDE_DEPTH {
             return Err(a.err(format!("exceeded the maximum include depth of {MAX_INCLUDE_DEPTH}")));
         }
         let filename = a.required("filename")?;
-        let path = ctx.path.parent().unwrap_or(Path::new("")).join(filename);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| a.err(format!("cannot read included file \"{}\": {e}", path.display())))?;
-        self.include_text(&text, Arc::new(path), ctx.depth + 1, &a, parent)
-            .map_err(|e| SceneError { message: format!("{} (in a file included at {})", e.message, a.pos), ..e })
+        let saved = self.resolver.clone();
+        self.resolver.insert(0, ctx.path.parent().unwrap_or(Path::new("")).to_path_buf());
+        let path = resolve_in(&self.resolver, Path::new(filename));
+        let result = std::fs::read_to_string(&path)
+            .map_err(|e| a.err(format!("cannot read included file \"{}\": {e}", path.display())))
+            .and_then(|text| {
+                self.include_text(&text, Arc::new(path), ctx.depth + 1, &a, parent).map_err(|e| SceneError {
+                    message: format!("{} (in a file included at {})", e.message, a.pos),
+                    ..e
+                })
+            });
+        self.resolver = saved;
+        result
     }
 
     fn include_text(
