@@ -55,6 +55,14 @@ pub enum ReconstructionFilter {
     /// fit, see [`ReconstructionFilter::eval`]); Mitsuba's default σ is 0.5 (the film's
     /// default filter).
     Gaussian { stddev: f32 },
+    /// Mitchell–Netravali cubic (`src/rfilters/mitchell.cpp`): radius 2, parameters `B`, `C`
+    /// (Mitsuba's defaults 1/3, 1/3); negative lobes.
+    Mitchell { b: f32, c: f32 },
+    /// Catmull–Rom (`src/rfilters/catmullrom.cpp`): the Mitchell–Netravali cubic with B = 0,
+    /// C = 1/2, radius 2, evaluated as Mitsuba evaluates it.
+    CatmullRom,
+    /// Lanczos-windowed sinc (`src/rfilters/lanczos.cpp`): radius = `lobes` (default 3).
+    Lanczos { lobes: u32 },
 }
 
 impl Default for ReconstructionFilter {
@@ -70,19 +78,30 @@ impl ReconstructionFilter {
     /// Mitsuba's default Gaussian (σ = 0.5, radius 2).
     pub const GAUSSIAN: ReconstructionFilter = ReconstructionFilter::Gaussian { stddev: 0.5 };
 
-    /// Support radius in pixels: box 0.5, tent `radius`, Gaussian 4σ.
+    /// Support radius in pixels: box 0.5, tent `radius`, Gaussian 4σ, the cubics 2, Lanczos
+    /// `lobes`.
     pub fn radius(&self) -> f32 {
         match *self {
             ReconstructionFilter::Box => 0.5,
             ReconstructionFilter::Tent { radius } => radius,
             ReconstructionFilter::Gaussian { stddev } => 4.0 * stddev,
+            ReconstructionFilter::Mitchell { .. } | ReconstructionFilter::CatmullRom => 2.0,
+            ReconstructionFilter::Lanczos { lobes } => lobes as f32,
         }
     }
 
     /// Parameters must be finite and positive (a zero radius would divide by zero).
     pub fn validate(&self) -> Result<(), String> {
         let (name, v) = match *self {
-            ReconstructionFilter::Box => return Ok(()),
+            ReconstructionFilter::Box | ReconstructionFilter::CatmullRom => return Ok(()),
+            ReconstructionFilter::Mitchell { b, c } => {
+                return if b.is_finite() && c.is_finite() {
+                    Ok(())
+                } else {
+                    Err(format!("invalid reconstruction filter: mitchell B and C must be finite, got {b}, {c}"))
+                };
+            }
+            ReconstructionFilter::Lanczos { lobes } => ("lanczos lobes", lobes as f32),
             ReconstructionFilter::Tent { radius } => ("tent radius", radius),
             ReconstructionFilter::Gaussian { stddev } => ("gaussian stddev", stddev),
         };
@@ -118,6 +137,20 @@ impl ReconstructionFilter {
                 }
                 estrin_fma(x * x, &gaussian_coefficients(stddev)).max(0.0)
             }
+            ReconstructionFilter::Mitchell { b, c } => mitchell_netravali(x, b, c),
+            ReconstructionFilter::CatmullRom => mitchell_netravali(x, 0.0, 0.5),
+            ReconstructionFilter::Lanczos { lobes } => {
+                let (x, r) = (x.abs(), lobes as f32);
+                if x < f32::EPSILON {
+                    return 1.0;
+                }
+                if x > r {
+                    return 0.0;
+                }
+                let x1 = std::f32::consts::PI * x;
+                let x2 = x1 / r;
+                (x1.sin() * x2.sin()) / (x1 * x2)
+            }
         }
     }
 
@@ -139,6 +172,17 @@ impl ReconstructionFilter {
         }
         FilterTable { values, scale: FILTER_RESOLUTION as f32 / radius, radius }
     }
+}
+
+/// The Mitchell–Netravali cubic with parameters (B, C) at |x|, 0 from 2 on, with Mitsuba's
+/// coefficients and operation order (`fmadd`s over x, x², x³).
+fn mitchell_netravali(x: f32, b: f32, c: f32) -> f32 {
+    let x = x.abs();
+    let (x2, x3) = (x * x, x * x * x);
+    let near = x3.mul_add(12.0 - 9.0 * b - 6.0 * c, x2.mul_add(-18.0 + 12.0 * b + 6.0 * c, 6.0 - 2.0 * b));
+    let far =
+        x3.mul_add(-b - 6.0 * c, x2.mul_add(6.0 * b + 30.0 * c, x.mul_add(-12.0 * b - 48.0 * c, 8.0 * b + 24.0 * c)));
+    if x >= 2.0 { 0.0 } else { (1.0 / 6.0) * if x < 1.0 { near } else { far } }
 }
 
 /// Coefficients (ascending powers of t) of the degree-9 polynomial p(t) that minimises the

@@ -1,4 +1,5 @@
-//! `<integrator>`: Mitsuba's `path` (max_depth −1, rr_depth 5, hide_emitters false) and
+//! `<integrator>`: Mitsuba's `path` (max_depth −1, rr_depth 5, hide_emitters false; also
+//! `volpath` and `volpathmis`, which equal it on surfaces), and
 //! `direct` (emitter_samples = bsdf_samples = shading_samples = 1), `ptracer` (max_depth −1,
 //! rr_depth 5, hide_emitters false, samples_per_pass read and ignored), and `moment`
 //! (`src/integrators/moment.cpp`): its image is the first nested integrator's, sample by
@@ -12,7 +13,14 @@ use crate::scene_file::xml::SceneObject;
 
 pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
     let integrator = match obj.plugin.as_str() {
-        "path" => {
+        // `volpath` and `volpathmis` on a scene without media (matte refuses media, see
+        // `scope.rs`) sample the same surface paths as `path`, with the same MIS weights and
+        // Russian roulette, so their expected image is `path`'s; `use_spectral_mis` only
+        // weighs wavelengths inside media.
+        "path" | "volpath" | "volpathmis" => {
+            if obj.plugin == "volpathmis" {
+                let _ = values::boolean(obj, "use_spectral_mis", true)?;
+            }
             let max_depth = values::integer(obj, "max_depth", -1, -1, u32::MAX as i64)?;
             let rr_depth = values::integer(obj, "rr_depth", 5, 1, u32::MAX as i64)?;
             Integrator::Path(PathIntegrator {
@@ -68,7 +76,9 @@ pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
         other => {
             return Err(err(
                 obj,
-                format!("unsupported integrator type \"{other}\" (matte renders: path, direct, ptracer, moment)"),
+                format!(
+                    "unsupported integrator type \"{other}\" (matte renders: path, volpath, volpathmis, direct, ptracer, moment)"
+                ),
             ));
         }
     };

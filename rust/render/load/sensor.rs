@@ -205,13 +205,27 @@ pub(super) fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
     Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
 }
 
-/// `<rfilter>`: `box`, `tent` (radius), `gaussian` (stddev).
+/// `<rfilter>`: `box`, `tent` (radius), `gaussian` (stddev), `mitchell` (B, C), `catmullrom`,
+/// `lanczos` (lobes), with Mitsuba 3.9.1's defaults (`src/rfilters/*.cpp`).
 pub(super) fn build_rfilter(obj: &SceneObject) -> Result<ReconstructionFilter, SceneError> {
     let filter = match obj.plugin.as_str() {
         "box" => ReconstructionFilter::Box,
         "tent" => ReconstructionFilter::Tent { radius: filter_size(obj, "radius", 1.0, 1.0)? },
         "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(obj, "stddev", 0.5, 4.0)? },
-        other => return Err(err(obj, format!("unsupported rfilter type \"{other}\" (box, tent, gaussian)"))),
+        "mitchell" => ReconstructionFilter::Mitchell {
+            b: values::finite(obj, "B", 1.0 / 3.0)? as f32,
+            c: values::finite(obj, "C", 1.0 / 3.0)? as f32,
+        },
+        "catmullrom" => ReconstructionFilter::CatmullRom,
+        "lanczos" => ReconstructionFilter::Lanczos {
+            lobes: values::integer(obj, "lobes", 3, 1, MAX_FILTER_RADIUS as i64)? as u32,
+        },
+        other => {
+            return Err(err(
+                obj,
+                format!("unsupported rfilter type \"{other}\" (box, tent, gaussian, mitchell, catmullrom, lanczos)"),
+            ));
+        }
     };
     obj.check_all_used()?;
     Ok(filter)

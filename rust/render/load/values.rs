@@ -30,6 +30,15 @@ pub fn integer(obj: &SceneObject, name: &str, default: i64, lo: i64, hi: i64) ->
     Ok(v)
 }
 
+/// A float that must be finite (NaN or ∞ would give NaN pixels).
+pub fn finite(obj: &SceneObject, name: &str, default: f64) -> Result<f64, SceneError> {
+    let v = float(obj, name, default)?;
+    if !v.is_finite() {
+        return Err(prop_err(obj, name, format!("must be a finite number, got {v}")));
+    }
+    Ok(v)
+}
+
 /// A float that must be finite and strictly positive.
 pub fn positive(obj: &SceneObject, name: &str, default: f64) -> Result<f64, SceneError> {
     let v = float(obj, name, default)?;
