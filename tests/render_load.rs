@@ -1029,6 +1029,27 @@ fn matte_models_with_documented_defaults() {
     assert_eq!(constant_reflectance(&b), Vec3::new(0.8, 0.3, 0.2));
 }
 
+/// `src/bsdfs/null.cpp`, checked against Mitsuba 3.9.1 (`scalar_rgb`): `sample` at
+/// wi = (0.3, 0, 0.954) gives wo = −wi, pdf 1, weight 1, sampled type Null; `twosided`
+/// refuses it ("Only materials without a transmission component can be nested!").
+#[test]
+fn null_bsdf_passes_rays_straight_through() {
+    let s = ok(&with_sensor("<shape type=\"sphere\"><bsdf type=\"null\"/></shape>"));
+    let b = shape_bsdf(&s, 0).clone();
+    assert!(matches!(b, Bsdf::Null), "{b:?}");
+    let si = hit(&s, Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z).expect("the sphere is hit");
+    let wi = Vec3::new(0.3, 0.0, 0.954);
+    let bs = b.sample(&si, wi, 0.3, Vec2::new(0.2, 0.7)).expect("a sample");
+    assert_eq!((bs.wo, bs.weight, bs.pdf, bs.delta, bs.eta), (-wi, Vec3::ONE, 1.0, true, 1.0));
+    assert_eq!(b.eval_pdf(&si, wi, -wi), (Vec3::ZERO, 0.0));
+    assert!(!b.has_smooth());
+    assert_body_err(
+        "<shape type=\"sphere\"><bsdf type=\"twosided\"><bsdf type=\"null\"/></bsdf></shape>",
+        1,
+        "cannot wrap a transmissive BSDF",
+    );
+}
+
 #[test]
 fn twosided_wraps_one_or_two_bsdfs() {
     let b = one_bsdf(

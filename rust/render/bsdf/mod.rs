@@ -1,5 +1,5 @@
 //! Renderer-side BSDFs: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`,
-//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`, `principledthin`, and the matte
+//! `roughdielectric`, `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`, `principledthin`, `null`, and the matte
 //! diffuse kernels, all in the local shading frame with
 //! Mitsuba's conventions (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 
@@ -96,6 +96,10 @@ pub enum Bsdf {
     TexturedMatte(Box<TexturedMatte>),
     /// A BRDF read from a table file (`tabulated_brdf`).
     Tabulated(TabulatedBrdf),
+    /// Mitsuba's `null` (`src/bsdfs/null.cpp`): no scattering; a sample continues the ray
+    /// straight through with weight 1 (a Dirac "null" lobe: no light sampling, no MIS). Like
+    /// every surface it still blocks shadow rays, as in Mitsuba.
+    Null,
 }
 
 impl Bsdf {
@@ -113,7 +117,7 @@ impl Bsdf {
                     back.eval_pdf(si, flip(wi), flip(wo))
                 }
             }
-            Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => (Vec3::ZERO, 0.0),
+            Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) | Bsdf::Null => (Vec3::ZERO, 0.0),
             Bsdf::RoughConductor(r) => (r.eval(wi, wo), r.pdf(wi, wo)),
             Bsdf::RoughDielectric(r) => r.eval_pdf(wi, wo),
             Bsdf::Plastic(p) => p.eval_pdf(si, wi, wo),
@@ -160,6 +164,7 @@ impl Bsdf {
             Bsdf::PrincipledThin(p) => p.sample(si, wi, u_lobe, u),
             Bsdf::TexturedRoughness(t) => t.sample(si, wi, u_lobe, u),
             Bsdf::TexturedMatte(t) => t.sample(si, wi, u),
+            Bsdf::Null => Some(BsdfSample { wo: -wi, weight: Vec3::ONE, pdf: 1.0, delta: true, eta: 1.0 }),
         }
     }
 
@@ -178,7 +183,7 @@ impl Bsdf {
             | Bsdf::PrincipledThin(_)
             | Bsdf::TexturedRoughness(_)
             | Bsdf::TexturedMatte(_) => true,
-            Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) => false,
+            Bsdf::Dielectric(_) | Bsdf::Conductor(_) | Bsdf::ThinDielectric(_) | Bsdf::Null => false,
             Bsdf::TwoSided { front, back } => front.has_smooth() || back.has_smooth(),
             Bsdf::NormalMap(n) => n.nested.has_smooth(),
             Bsdf::Mask(m) => m.nested.has_smooth(),

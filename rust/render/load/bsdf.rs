@@ -1,6 +1,6 @@
 //! `<bsdf>`: Mitsuba's `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`,
 //! `conductor`, `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `bumpmap`, `mask`, `blendbsdf`, `principled`,
-//! `principledthin`, `tabulated_brdf` (a table file, `docs/microgeometry.md`) and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
+//! `principledthin`, `null`, `tabulated_brdf` (a table file, `docs/microgeometry.md`) and matte's `lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
 //! `roughdiffuse` (parameters validated by the kernels' own parser, the same one the Mitsuba
 //! plugin uses).
 
@@ -201,6 +201,8 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
                 use_shadowing_function,
             })
         }
+        // `src/bsdfs/null.cpp`: no scattering, rays pass straight through (`Bsdf::Null`).
+        "null" => Bsdf::Null,
         "mask" => {
             let nested: Vec<_> = obj.children_with_tag("bsdf").map(|c| c.object.clone()).collect();
             let [inner] = nested.as_slice() else {
@@ -302,8 +304,8 @@ fn is_transmissive(bsdf: &Bsdf) -> bool {
     match bsdf {
         // principledthin always declares a diffuse transmission component.
         Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) | Bsdf::ThinDielectric(_) | Bsdf::PrincipledThin(_) => true,
-        // mask's null component is a transmission (`BSDFFlags::Null`).
-        Bsdf::Mask(_) => true,
+        // mask's null component and `null` itself are a transmission (`BSDFFlags::Null`).
+        Bsdf::Mask(_) | Bsdf::Null => true,
         Bsdf::Principled(p) => p.spec_trans.is_some(),
         Bsdf::TexturedRoughness(t) => matches!(t.lobe, RoughLobe::Dielectric(_)),
         Bsdf::Blend(b) => is_transmissive(&b.first) || is_transmissive(&b.second),
