@@ -60,6 +60,7 @@ pub fn build_area(b: &mut Builder, obj: &SceneObject, shape: u32) -> Result<u32,
     };
     let w = weight(obj)?;
     obj.check_all_used()?;
+    b.area_emitters.insert(obj as *const SceneObject);
     Ok(push(b, Emitter::Area { shape, radiance }, w))
 }
 

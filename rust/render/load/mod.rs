@@ -9,6 +9,9 @@ mod bsdf_principled;
 mod emitter;
 mod instance;
 mod integrator;
+#[allow(clippy::all)] // generated data
+pub mod mitsuba_plugins;
+pub mod no_effect;
 pub mod scope;
 mod sensor;
 mod shape;
@@ -25,6 +28,45 @@ use crate::scene_file::xml::{self, SceneObject};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
+
+/// The Mitsuba 3.9.1 plugins matte's renderer builds, by element tag (`"scene"`: the root's
+/// own properties). Every property each of them reads in Mitsuba's sources
+/// ([`mitsuba_plugins`]) is implemented by its builder here or accepted as one that cannot
+/// change the image ([`no_effect`]); `tests/render_load.rs` walks the list. matte's own BSDFs
+/// (`lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`, `roughdiffuse`, `tabulated_brdf`) come
+/// on top; what is refused by scope is in [`scope`].
+pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
+    ("scene", &["scene"]),
+    (
+        "bsdf",
+        &[
+            "blendbsdf",
+            "bumpmap",
+            "conductor",
+            "dielectric",
+            "diffuse",
+            "mask",
+            "normalmap",
+            "null",
+            "plastic",
+            "principled",
+            "principledthin",
+            "roughconductor",
+            "roughdielectric",
+            "roughplastic",
+            "thindielectric",
+            "twosided",
+        ],
+    ),
+    ("emitter", &["area", "constant", "directional", "envmap", "point", "projector", "spot"]),
+    ("film", &["hdrfilm"]),
+    ("integrator", &["direct", "moment", "path", "ptracer", "volpath", "volpathmis"]),
+    ("rfilter", &["box", "catmullrom", "gaussian", "lanczos", "mitchell", "tent"]),
+    ("sampler", &["independent"]),
+    ("sensor", &["orthographic", "perspective"]),
+    ("shape", &["cube", "cylinder", "disk", "instance", "obj", "ply", "rectangle", "shapegroup", "sphere"]),
+    ("texture", &["bitmap", "checkerboard", "mesh_attribute", "rawconstant"]),
+];
 
 /// Everything `matte render` needs.
 pub struct LoadedScene {
@@ -73,6 +115,8 @@ pub(crate) struct Builder {
     pub shape_dependent: std::cell::Cell<bool>,
     /// BSDF objects that depend on their shape (see [`Self::shape_dependent`]).
     pub shape_dependent_bsdfs: std::collections::HashSet<*const SceneObject>,
+    /// `area` emitter objects built for some shape.
+    pub area_emitters: std::collections::HashSet<*const SceneObject>,
 }
 
 /// What a BSDF may need to know of the shape it is built for.
@@ -118,12 +162,14 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         shape: None,
         shape_dependent: std::cell::Cell::new(false),
         shape_dependent_bsdfs: std::collections::HashSet::new(),
+        area_emitters: std::collections::HashSet::new(),
     };
     scope::check_tree(root)?;
+    let mut notes = no_effect::accept_tree(root)?;
     let mut integrator = None;
     let mut integrator_obj = None;
     let mut sensor = None;
-    let mut notes = Vec::new();
+    let mut top_level_area = Vec::new();
     // Mitsuba's `Scene` constructor (`src/render/scene.cpp`) takes any object at the top
     // level: shapes, emitters, sensors and the integrator make the scene; every other object
     // (a BSDF, texture, sampler, film, filter declared with an id for `<ref>`s) is
@@ -153,6 +199,8 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
                 }
             }
             "shape" => shape::build(&mut b, obj)?,
+            // An area emitter declared at the top level is built by the shapes that `<ref>` it.
+            "emitter" if obj.plugin == "area" => top_level_area.push(obj.clone()),
             "emitter" => {
                 if (obj.plugin == "constant" || obj.plugin == "envmap")
                     && b.emitters.iter().any(Emitter::is_environment)
@@ -179,6 +227,14 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             other => {
                 return Err(SceneError::at(&obj.pos, format!("<{other}> is not allowed at the top level of a scene")));
             }
+        }
+    }
+    // One that no shape uses emits nothing (as in Mitsuba); it is still checked.
+    for obj in top_level_area {
+        if !b.area_emitters.contains(&Rc::as_ptr(&obj)) {
+            emitter::build_area(&mut b, &obj, 0)?;
+            b.emitters.pop();
+            b.sampling_weights.pop();
         }
     }
     root.check_all_used()?;
