@@ -133,9 +133,12 @@ pub fn accept_tree(root: &SceneObject) -> Result<Vec<String>, SceneError> {
                 ));
             }
             o.properties.get(&p.name);
-            if p.name == "timeout" && matches!(p.value, Value::Float(t) if t > 0.0)
-                || p.name == "timeout" && matches!(p.value, Value::Integer(t) if t > 0)
-            {
+            let positive = match p.value {
+                Value::Float(t) => t > 0.0,
+                Value::Integer(t) => t > 0,
+                _ => false,
+            };
+            if p.name == "timeout" && positive {
                 notes.push(format!("{}: integrator timeout ignored: {}", p.pos, e.why));
             }
         }
