@@ -437,6 +437,30 @@ fn parse_str_resolves_includes_against_the_given_path() {
 // ------------------------------------------------------------------------------------------
 // <ref>, ids, <alias>
 
+/// `<spectrum filename>` (`Properties::Spectrum(const fs::path &)`, `src/core/properties.cpp`):
+/// `λ value` per line, `#` lines and empty lines skipped, resolved through the file resolver
+/// (here: the scene's folder); the same samples as given inline.
+#[test]
+fn spectrum_files_are_read_like_mitsuba() {
+    let dir = temp_dir("spectrum_file");
+    std::fs::write(dir.join("s.spd"), "# a comment\n400 0.25\n\n500\t0.5 trailing words\r\n600 0.75\n").unwrap();
+    std::fs::write(dir.join("one.spd"), "500 0.5\n").unwrap();
+    std::fs::write(dir.join("bad.spd"), "400 0.2\n500 x\n").unwrap();
+    let file = dir.join("scene.xml");
+    let body = |f: &str| {
+        scene(&format!("<bsdf type=\"diffuse\">\n<spectrum name=\"reflectance\" filename=\"{f}\"/>\n</bsdf>"))
+    };
+    std::fs::write(&file, body("s.spd")).unwrap();
+    let root = parse_file(&file, &[]).expect("the spectrum file is read");
+    let got = first(&root).properties.get("reflectance").map(|p| p.value.clone());
+    assert_eq!(got, Some(Value::Spectrum(Spectrum::Sampled(vec![(400.0, 0.25), (500.0, 0.5), (600.0, 0.75)]))));
+    for (f, needle) in [("one.spd", "at least two entries"), ("bad.spd", "could not extract value in line 2")] {
+        std::fs::write(&file, body(f)).unwrap();
+        assert_err_in(&parse_file(&file, &[]).expect_err("an error"), &file, 3, needle);
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn forward_references_share_one_object() {
     let s = ok(&scene(
@@ -775,7 +799,7 @@ fn element_level_errors() {
     assert_err(e("<point name=\"a\" value=\"1\" x=\"1\"/>"), 3, "cannot mix \"value\"");
     assert_err(e("<vector name=\"a\" value=\"1 2\"/>"), 3, "must have 1 or 3 numbers, got 2");
     assert_err(e("<vector name=\"a\" x=\"1\" y=\"b\" z=\"3\"/>"), 3, "could not parse y \"b\"");
-    assert_err(e("<spectrum name=\"a\" filename=\"x.spd\"/>"), 3, "spectrum files are not supported");
+    assert_err(e("<spectrum name=\"a\" filename=\"no_such_file_x.spd\"/>"), 3, "cannot read spectrum file");
     assert_err(e("<spectrum name=\"a\" value=\"1\" filename=\"x.spd\"/>"), 3, "but not both");
     assert_err(e("<spectrum name=\"a\"/>"), 3, "either a \"value\" or a \"filename\"");
     assert_err(e("<spectrum name=\"a\" value=\"500:0.5\"/>"), 3, "at least two wavelength:value pairs");

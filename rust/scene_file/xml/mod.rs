@@ -41,8 +41,9 @@
 //!   silently replace an earlier one of the same name).
 //! * A property or `<ref>` directly inside an included `<scene>` is an error (Mitsuba drops it).
 //! * A transform containing NaN or ∞ is an error (Mitsuba only checks `lookat`).
-//! * `<spectrum filename=...>` is not supported (error). `<path value>` folders end up in
-//!   the root's `search_paths`.
+//! * `<path value>` folders of the main file end up in the root's `search_paths` (for the
+//!   scene's assets); `<spectrum filename=...>` files are read at parse time through the
+//!   resolver of the moment, as Mitsuba does.
 //! * The root element must be `<scene>`; it takes only `version`.
 //!
 //! # For the builder

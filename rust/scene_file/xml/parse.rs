@@ -12,7 +12,7 @@ use super::properties::{Property, Value};
 use super::raw::{RawChild, RawNode, RawScene, Target};
 use super::substitute::Params;
 use super::transform::build_transform;
-use super::values::{is_value_tag, property_value};
+use super::values::{is_value_tag, property_value, spectrum_file};
 use crate::scene_file::error::{SceneError, SourcePos};
 
 /// Includes nest at most this deep (Mitsuba's `ParserConfig::max_include_depth`).
@@ -195,6 +195,12 @@ impl Parser {
                 }
                 let m = build_transform(ops)?;
                 self.property(parent, &a, Value::Transform(m))
+            }
+            // A spectrum file is resolved at parse time, with the resolver of the moment.
+            "spectrum" if a.get("filename").is_some_and(|f| !f.is_empty()) && a.get("value").is_none() => {
+                let path = resolve_in(&self.resolver, Path::new(a.get("filename").unwrap_or_default()));
+                let v = spectrum_file(&a, &path)?;
+                self.property(parent, &a, v)
             }
             _ if is_value => {
                 let v = property_value(&mut a)?;

@@ -73,7 +73,7 @@ fn rgb(a: &Attrs) -> Result<Value, SceneError> {
 }
 
 /// `value="v"` (constant) or `value="λ:v λ:v ..."` (≥ 2 pairs, wavelengths strictly
-/// increasing). Spectrum files (`filename=`) are not supported.
+/// increasing). Spectrum files (`filename=`): [`spectrum_file`].
 fn spectrum(a: &Attrs) -> Result<Value, SceneError> {
     let value = a.get("value").unwrap_or("");
     let filename = a.get("filename").unwrap_or("");
@@ -81,9 +81,9 @@ fn spectrum(a: &Attrs) -> Result<Value, SceneError> {
         return Err(a.err("<spectrum> requires either a \"value\" or a \"filename\" attribute (but not both)"));
     }
     if !filename.is_empty() {
-        return Err(a.err(format!(
-            "<spectrum filename=\"{filename}\">: spectrum files are not supported; give the samples inline as value=\"λ:v λ:v ...\""
-        )));
+        return Err(
+            a.err(format!("<spectrum filename=\"{filename}\">: internal: spectrum files are read by the parser"))
+        );
     }
     let tokens = tokenize(value);
     if tokens.len() == 1 && !tokens[0].contains(':') {
@@ -107,6 +107,42 @@ fn spectrum(a: &Attrs) -> Result<Value, SceneError> {
     }
     if samples.windows(2).any(|s| s[1].0.partial_cmp(&s[0].0) != Some(std::cmp::Ordering::Greater)) {
         return Err(a.err(format!("spectrum wavelengths must be strictly increasing (\"{value}\")")));
+    }
+    Ok(Value::Spectrum(Spectrum::Sampled(samples)))
+}
+
+/// `<spectrum name filename>` whose file was resolved to `path` (Mitsuba's
+/// `Properties::Spectrum(const fs::path &)`, `src/core/properties.cpp`): one `λ value` pair per
+/// line (anything after the two numbers is ignored), lines starting with `#` and empty lines
+/// skipped, at least two pairs, wavelengths strictly increasing.
+pub(crate) fn spectrum_file(a: &Attrs, path: &std::path::Path) -> Result<Value, SceneError> {
+    a.check(&["!name", "filename"])?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| a.err(format!("cannot read spectrum file \"{}\": {e}", path.display())))?;
+    let mut samples = Vec::new();
+    for (i, line) in text.split('\n').enumerate() {
+        if line.is_empty() || line.starts_with('#') || line.starts_with('\r') {
+            continue;
+        }
+        let mut numbers = line.split_whitespace();
+        let mut next = |what: &str| {
+            numbers.next().and_then(parse_f64).ok_or_else(|| {
+                a.err(format!(
+                    "could not extract {what} in line {} of spectrum file \"{}\": \"{}\"",
+                    i + 1,
+                    path.display(),
+                    line.trim_end()
+                ))
+            })
+        };
+        let w = next("wavelength")?;
+        samples.push((w, next("value")?));
+    }
+    if samples.len() < 2 {
+        return Err(a.err(format!("spectrum file \"{}\" must have at least two entries", path.display())));
+    }
+    if samples.windows(2).any(|s| s[1].0.partial_cmp(&s[0].0) != Some(std::cmp::Ordering::Greater)) {
+        return Err(a.err(format!("spectrum file \"{}\": wavelengths must be strictly increasing", path.display())));
     }
     Ok(Value::Spectrum(Spectrum::Sampled(samples)))
 }
