@@ -393,7 +393,14 @@ fn odd_values_never_panic_and_render_finite() {
             };
             accepted += 1;
             let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                matte::render::renderer::render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 4, 0, &|_, _| {})
+                matte::render::renderer::render(
+                    &s.scene,
+                    &s.integrator,
+                    &s.camera,
+                    s.film.clone(),
+                    s.sampling.with_spp(4).with_seed(0),
+                    &|_, _| {},
+                )
             }));
             match rendered {
                 Err(_) => failures.push(format!("{bsdf}: the renderer panicked")),

@@ -42,7 +42,7 @@ fn an_emitter_filling_the_view_renders_its_radiance() {
         6,
         4096,
     ));
-    let (img, stats) = render(&s.scene, &s.integrator, &s.camera, s.film, s.spp, 1, &|_, _| {});
+    let (img, stats) = render(&s.scene, &s.integrator, &s.camera, s.film, s.sampling.with_seed(1), &|_, _| {});
     assert_eq!(stats.invalid_samples, 0);
     let mut mean = Vec3::ZERO;
     for y in 0..6 {
@@ -70,7 +70,7 @@ fn a_plane_under_a_point_light_matches_the_closed_form() {
         h,
         32768,
     ));
-    let (img, _) = render(&s.scene, &s.integrator, &s.camera, s.film, s.spp, 3, &|_, _| {});
+    let (img, _) = render(&s.scene, &s.integrator, &s.camera, s.film, s.sampling.with_seed(3), &|_, _| {});
     let cam = &s.camera;
     let closed_form = |px: f32, py: f32| -> f32 {
         let r = cam.ray(glam::Vec2::new(px, py));

@@ -32,7 +32,15 @@ fn largest_relative_difference(a: &Image, b: &Image) -> f32 {
 /// Renders `loaded` with both drivers and compares pixel by pixel.
 fn assert_same_image(name: &str, loaded: &LoadedScene, spp: u32) {
     let run = |driver| {
-        render_with(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film.clone(), spp, 7, driver, &|_, _| {})
+        render_with(
+            &loaded.scene,
+            &loaded.integrator,
+            &loaded.camera,
+            loaded.film.clone(),
+            loaded.sampling.with_spp(spp).with_seed(7),
+            driver,
+            &|_, _| {},
+        )
     };
     let (a, sa) = run(Driver::OnePath);
     let (b, sb) = run(Driver::Wavefront);

@@ -406,18 +406,19 @@ fn film_defaults_size_crop_and_filters() {
 fn sampler_defaults_and_values() {
     // §5: sample_count 4, seed 0.
     let s = ok(&with_sensor(""));
-    assert_eq!((s.spp, s.seed), (4, 0));
+    assert_eq!((s.sampling.spp, s.sampling.seed), (4, 0));
     let s = ok(&scene(
         "<sensor type=\"perspective\"><sampler type=\"independent\"><integer name=\"sample_count\" value=\"16\"/>\
          <integer name=\"seed\" value=\"7\"/></sampler></sensor>",
     ));
-    assert_eq!((s.spp, s.seed), (16, 7));
+    assert_eq!((s.sampling.spp, s.sampling.seed), (16, 7));
 }
 
 #[test]
 fn sensor_film_sampler_errors() {
     let sensor = |inner: &str| scene(&format!("<sensor type=\"perspective\">\n{inner}\n</sensor>"));
-    assert_err(load(&scene("<sensor type=\"thinlens\"/>")), 2, "unsupported sensor type \"thinlens\"");
+    assert_err(load(&scene("<sensor type=\"radiancemeter\"/>")), 2, "unsupported sensor type \"radiancemeter\"");
+    assert_err(load(&scene("<sensor type=\"thinlens\"/>")), 2, "needs the property \"aperture_radius\"");
     assert_err(
         load(&sensor("<float name=\"fov\" value=\"45\"/>\n<string name=\"focal_length\" value=\"35mm\"/>")),
         2,
@@ -501,7 +502,12 @@ fn sensor_film_sampler_errors() {
     );
     assert_err(load(&film("<sampler type=\"independent\"/>")), 5, "cannot be nested in a film");
     // Sampler.
-    assert_err(load(&sensor("<sampler type=\"stratified\"/>")), 3, "unsupported sampler type \"stratified\"");
+    assert_err(load(&sensor("<sampler type=\"sobol\"/>")), 3, "unsupported sampler type \"sobol\"");
+    assert_err(
+        load(&sensor("<sampler type=\"orthogonal\">\n<integer name=\"strength\" value=\"0\"/>\n</sampler>")),
+        4,
+        "strength",
+    );
     let sampler = |inner: &str| sensor(&format!("<sampler type=\"independent\">\n{inner}\n</sampler>"));
     assert_err(load(&sampler("<integer name=\"sample_count\" value=\"0\"/>")), 4, "sample_count");
     assert_err(load(&sampler("<float name=\"sample_count\" value=\"4\"/>")), 4, "wrong type");
@@ -1626,7 +1632,14 @@ fn odd_values_never_panic_and_accepted_scenes_render_finite() {
                 assert!(r.o.is_finite() && r.d.is_finite() && !r.maxt.is_nan(), "{element}: camera ray {r:?}");
             }
             let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                matte::render::renderer::render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 4, 0, &|_, _| {})
+                matte::render::renderer::render(
+                    &s.scene,
+                    &s.integrator,
+                    &s.camera,
+                    s.film.clone(),
+                    s.sampling.with_spp(4).with_seed(0),
+                    &|_, _| {},
+                )
             }));
             match rendered {
                 Err(_) => failures.push(format!("{element}: the renderer panicked")),

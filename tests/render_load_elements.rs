@@ -524,8 +524,14 @@ fn bundled_element_scenes_render() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");
     for name in ["sun_straight_down.xml", "envmap_sky.xml", "orthographic_instances.xml"] {
         let s = load_file(&root.join(name), &[("res".into(), "8".into())]).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let (img, _) =
-            matte::render::renderer::render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 4, 0, &|_, _| {});
+        let (img, _) = matte::render::renderer::render(
+            &s.scene,
+            &s.integrator,
+            &s.camera,
+            s.film.clone(),
+            s.sampling.with_spp(4).with_seed(0),
+            &|_, _| {},
+        );
         assert!(img.pixels.iter().all(|p| p.is_finite()), "{name}: non-finite pixel");
         assert!(img.pixels.iter().any(|p| p.max_element() > 0.0), "{name}: black image");
     }

@@ -36,7 +36,14 @@ fn every_scene_renders_with_every_model() {
         for t in BSDF_TYPES {
             let s = load_file(&path, &defines(&[("bsdf", t), ("res", "32")]))
                 .unwrap_or_else(|e| panic!("{scene} with {t}: {e}"));
-            let (img, stats) = render(&s.scene, &s.integrator, &s.camera, s.film.clone(), 2, 0, &|_, _| {});
+            let (img, stats) = render(
+                &s.scene,
+                &s.integrator,
+                &s.camera,
+                s.film.clone(),
+                s.sampling.with_spp(2).with_seed(0),
+                &|_, _| {},
+            );
             assert_eq!((img.width, img.height), (32, 32), "{scene}: res sets a square film");
             assert_eq!(stats.invalid_samples, 0, "{scene} with {t}: non-finite samples");
             for p in &img.pixels {
@@ -58,7 +65,11 @@ fn defaults_and_direct_only_override() {
     for scene in SCENES {
         let path = study_dir().join(format!("{scene}.xml"));
         let s = load_file(&path, &[]).unwrap_or_else(|e| panic!("{scene}: {e}"));
-        assert_eq!((s.film.width(), s.film.height(), s.spp), (256, 256, 64), "{scene}: defaults res 256, spp 64");
+        assert_eq!(
+            (s.film.width(), s.film.height(), s.sampling.spp),
+            (256, 256, 64),
+            "{scene}: defaults res 256, spp 64"
+        );
         // The study renders "direct only" with max_depth 2, and full paths with -1.
         for depth in ["2", "-1"] {
             load_file(&path, &defines(&[("max_depth", depth)]))
@@ -129,15 +140,36 @@ fn bunny_default_is_direct_lighting() {
         let d = defines(&[("bsdf", t), ("res", "32")]);
         let a = load_file(&path, &d).unwrap();
         let b = load_str(&direct_text, &path, &d).unwrap_or_else(|e| panic!("{e}"));
-        let (ia, _) = render(&a.scene, &a.integrator, &a.camera, a.film.clone(), 256, 1, &|_, _| {});
-        let (ib, _) = render(&b.scene, &b.integrator, &b.camera, b.film.clone(), 256, 2, &|_, _| {});
+        let (ia, _) = render(
+            &a.scene,
+            &a.integrator,
+            &a.camera,
+            a.film.clone(),
+            a.sampling.with_spp(256).with_seed(1),
+            &|_, _| {},
+        );
+        let (ib, _) = render(
+            &b.scene,
+            &b.integrator,
+            &b.camera,
+            b.film.clone(),
+            b.sampling.with_spp(256).with_seed(2),
+            &|_, _| {},
+        );
         let (ma, mb) = (mean(&ia), mean(&ib));
         for c in 0..3 {
             assert!((ma[c] - mb[c]).abs() <= 0.01 * mb[c], "{t}: path(max_depth 2) {ma} vs direct {mb}");
         }
         // Full path tracing adds the bunny-ground interreflections: brighter.
         let c = load_file(&path, &defines(&[("bsdf", t), ("res", "32"), ("max_depth", "-1")])).unwrap();
-        let (ic, _) = render(&c.scene, &c.integrator, &c.camera, c.film.clone(), 256, 3, &|_, _| {});
+        let (ic, _) = render(
+            &c.scene,
+            &c.integrator,
+            &c.camera,
+            c.film.clone(),
+            c.sampling.with_spp(256).with_seed(3),
+            &|_, _| {},
+        );
         let mc = mean(&ic);
         for c in 0..3 {
             assert!(mc[c] > 1.02 * mb[c], "{t}: max_depth -1 gives {mc}, direct {mb}");

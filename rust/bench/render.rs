@@ -67,8 +67,7 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
                 &loaded.integrator,
                 &loaded.camera,
                 film,
-                job.spp,
-                0,
+                loaded.sampling.with_spp(job.spp).with_seed(0),
                 driver,
                 &|_, _| {},
             )
@@ -89,8 +88,7 @@ pub fn time_matte(job: &RenderJob, repeats: u32) -> Result<MatteTime, String> {
         &loaded.integrator,
         &loaded.camera,
         loaded.film.clone(),
-        job.spp,
-        0,
+        loaded.sampling.with_spp(job.spp).with_seed(0),
         Driver::WavefrontProfiled,
         &|_, _| {},
     )
@@ -132,7 +130,8 @@ pub fn time_models(res: u32, spp: u32, repeats: u32) -> Result<Vec<(String, f64)
     for round in 0..=repeats.max(1) {
         for (k, loaded) in scenes.iter().enumerate() {
             let film = loaded.film.clone();
-            let s = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, spp, 0, &|_, _| {}).1;
+            let sampling = loaded.sampling.with_spp(spp).with_seed(0);
+            let s = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, sampling, &|_, _| {}).1;
             if round > 0 {
                 best[k] = best[k].min(s.seconds);
             }
@@ -147,9 +146,9 @@ pub fn time_models(res: u32, spp: u32, repeats: u32) -> Result<Vec<(String, f64)
 pub fn spp_scaling(job: &RenderJob, spp: &[u32], repeats: u32) -> Result<Vec<(u32, f64)>, String> {
     let loaded = load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
     let run = |n: u32| {
-        let s =
-            renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, loaded.film.clone(), n, 0, &|_, _| {})
-                .1;
+        let sampling = loaded.sampling.with_spp(n).with_seed(0);
+        let film = loaded.film.clone();
+        let s = renderer::render(&loaded.scene, &loaded.integrator, &loaded.camera, film, sampling, &|_, _| {}).1;
         s.samples as f64 / s.seconds
     };
     run(spp[0]);

@@ -20,7 +20,8 @@ pub struct RenderArgs {
     /// Output EXR (default: the scene's name with .exr, in the current folder).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Samples per pixel (default: the scene sampler's sample_count).
+    /// Samples per pixel (default: the scene sampler's sample_count), rounded as the scene's
+    /// sampler rounds its sample_count.
     #[arg(long)]
     pub spp: Option<u32>,
     /// Sampler seed (default: the scene sampler's seed).
@@ -92,11 +93,18 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
     for note in &loaded.notes {
         eprintln!("note: {note}");
     }
-    let spp = a.spp.unwrap_or(loaded.spp);
-    if spp == 0 {
+    if a.spp == Some(0) {
         return Err("--spp must be at least 1".into());
     }
-    let seed = a.seed.unwrap_or(loaded.seed);
+    // --spp is rounded as the scene's sampler rounds it (Mitsuba's `render(spp=…)`).
+    let mut sampling = loaded.sampling;
+    if let Some(n) = a.spp {
+        sampling = sampling.with_spp(n);
+    }
+    if let Some(s) = a.seed {
+        sampling = sampling.with_seed(s);
+    }
+    let (spp, seed) = (sampling.spp, sampling.seed);
     let output = a.output.clone().unwrap_or_else(|| {
         PathBuf::from(a.scene.file_stem().map(|s| s.to_os_string()).unwrap_or_else(|| "render".into()))
             .with_extension("exr")
@@ -122,8 +130,7 @@ pub fn run(a: &RenderArgs) -> Result<(), String> {
         &loaded.integrator,
         &loaded.camera,
         loaded.film.with_splat_weights(a.splat_weights),
-        spp,
-        seed,
+        sampling,
         a.driver.unwrap_or_default(),
         &progress,
     );

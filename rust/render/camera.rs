@@ -1,24 +1,40 @@
 //! Mitsuba's `perspective` sensor (`src/sensors/perspective.cpp`, docs/renderer-semantics.md §4): x_fov from
 //! `fov_axis` with the full-film aspect; image x grows towards local −x and y downwards;
-//! the ray starts on the near plane.
+//! the ray starts on the near plane. [`Camera`] is any of the sensors.
 
 use crate::render::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
 
-/// The sensor: `perspective` or `orthographic`.
+/// The sensor: `perspective`, `orthographic` or `thinlens`.
 #[derive(Clone, Debug)]
 pub enum Camera {
     Perspective(PerspectiveCamera),
     Orthographic(super::orthographic::OrthographicCamera),
+    ThinLens(super::thinlens::ThinLensCamera),
 }
 
 impl Camera {
-    /// The primary ray through full-film pixel position `film_pos` (pixels, origin top-left).
+    /// The primary ray through full-film pixel position `film_pos` (pixels, origin top-left),
+    /// drawing the aperture sample from `sampler` if the sensor needs one (`thinlens`: the
+    /// 2-D dimension right after the film position's, as Mitsuba's
+    /// `SamplingIntegrator::render_sample` draws it).
+    #[inline]
+    pub fn sample_ray(&self, film_pos: Vec2, sampler: &mut crate::render::sampler::Sampler) -> Ray {
+        match self {
+            Camera::Perspective(c) => c.ray(film_pos),
+            Camera::Orthographic(c) => c.ray(film_pos),
+            Camera::ThinLens(c) => c.ray(film_pos, sampler.next_2d()),
+        }
+    }
+
+    /// The primary ray through `film_pos` for sensors without an aperture sample; a
+    /// `thinlens` traces from its aperture's centre.
     #[inline]
     pub fn ray(&self, film_pos: Vec2) -> Ray {
         match self {
             Camera::Perspective(c) => c.ray(film_pos),
             Camera::Orthographic(c) => c.ray(film_pos),
+            Camera::ThinLens(c) => c.ray(film_pos, Vec2::splat(0.5)),
         }
     }
 }

@@ -20,3 +20,4 @@ pub mod sampler;
 pub mod scene;
 pub mod shape;
 pub mod texture;
+pub mod thinlens;

@@ -1,6 +1,6 @@
 //! The render loop: the film's crop window is cut into tiles rendered in parallel (rayon
 //! work stealing), each by a tile driver ([`Driver`]: one path at a time by default, or many
-//! in flight); each pixel has its own sampler stream, so the image depends only on the seed,
+//! in flight); each pixel has its own sampler stream, so the image depends only on the sampler and seed,
 //! not on threads, tiling or the driver.
 //! Every sample goes to the tile's image block, which the film accumulates (Mitsuba
 //! `SamplingIntegrator::render`).
@@ -9,6 +9,7 @@ use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
 use crate::render::integrator::wavefront::StageTicks;
 use crate::render::integrator::{Driver, Integrator, TileJob};
+use crate::render::sampler::Sampling;
 use crate::render::scene::Scene;
 use rayon::prelude::*;
 use std::sync::Mutex;
@@ -31,39 +32,36 @@ pub struct RenderStats {
     pub stage_ticks: Option<StageTicks>,
 }
 
-/// Renders `spp` samples per pixel with seed `seed` into `film` (which must be fresh).
-/// `progress` is called with (tiles done, tiles total) after each tile.
+/// Renders `sampling.spp` samples per pixel with `sampling`'s sampler and seed into `film`
+/// (which must be fresh). `progress` is called with (tiles done, tiles total) after each tile.
 pub fn render(
     scene: &Scene,
     integrator: &Integrator,
     camera: &Camera,
     film: Film,
-    spp: u32,
-    seed: u64,
+    sampling: Sampling,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> (Image, RenderStats) {
-    render_with(scene, integrator, camera, film, spp, seed, Driver::default(), progress)
+    render_with(scene, integrator, camera, film, sampling, Driver::default(), progress)
 }
 
 /// [`render`] with the tile driver `driver` (the image is the same estimator with either:
 /// each pixel's samples draw the same numbers).
-#[allow(clippy::too_many_arguments)]
 pub fn render_with(
     scene: &Scene,
     integrator: &Integrator,
     camera: &Camera,
     film: Film,
-    spp: u32,
-    seed: u64,
+    sampling: Sampling,
     driver: Driver,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> (Image, RenderStats) {
     let start = Instant::now();
     if let Integrator::ParticleTracer(pt) = integrator {
         crate::render::accel::take_ray_count();
-        let (image, invalid_samples) = pt.render(scene, camera, &film, spp, seed);
+        let (image, invalid_samples) = pt.render(scene, camera, &film, sampling);
         let stats = RenderStats {
-            samples: film.width() as u64 * film.height() as u64 * spp as u64,
+            samples: film.width() as u64 * film.height() as u64 * sampling.spp as u64,
             rays: 0,
             seconds: start.elapsed().as_secs_f64(),
             invalid_samples,
@@ -76,7 +74,7 @@ pub fn render_with(
     let done = AtomicU64::new(0);
     let invalid = AtomicU64::new(0);
     let rays = AtomicU64::new(0);
-    let job = TileJob { scene, camera, spp, seed, width: film.width() as u64 };
+    let job = TileJob { scene, camera, sampling, width: film.width() as u64 };
     let film = Mutex::new(film);
     let stage_ticks = Mutex::new(StageTicks::default());
     tiles.par_iter().for_each(|tile| {
@@ -95,7 +93,7 @@ pub fn render_with(
     let film = film.into_inner().expect("film lock");
     let crop = film.crop();
     let stats = RenderStats {
-        samples: crop.size[0] as u64 * crop.size[1] as u64 * spp as u64,
+        samples: crop.size[0] as u64 * crop.size[1] as u64 * sampling.spp as u64,
         rays: rays.into_inner(),
         seconds: start.elapsed().as_secs_f64(),
         invalid_samples: invalid.into_inner(),

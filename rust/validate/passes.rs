@@ -104,7 +104,7 @@ pub fn spp_per_pass(scene: &Path, plan: &PassPlan) -> Result<u32, String> {
         Budget::PerPass(n) => Ok(n.max(1)),
         Budget::SceneMultiple(_) => {
             let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
-            Ok(plan.spp.per_pass(loaded.spp, plan.passes))
+            Ok(loaded.sampling.with_spp(plan.spp.per_pass(loaded.sampling.spp, plan.passes)).spp)
         }
     }
 }
@@ -116,7 +116,10 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, splat: SplatWeights, progress: &
     let mut seconds = 0.0;
     // Loaded once (meshes, BVH, BSDF tables); each pass renders into a copy of the fresh film.
     let loaded = load::load_file(scene, &plan.defines).map_err(|e| e.to_string())?;
-    let spp_used = plan.spp.per_pass(loaded.spp, plan.passes);
+    // Rounded as the scene's sampler rounds it, as Mitsuba's `render(spp=…)` rounds the spp
+    // it is given: both sides render the same number of samples.
+    let sampling = loaded.sampling.with_spp(plan.spp.per_pass(loaded.sampling.spp, plan.passes));
+    let spp_used = sampling.spp;
     let mut images = Vec::with_capacity(plan.passes as usize);
     for k in 0..plan.passes {
         let t = Instant::now();
@@ -125,8 +128,7 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, splat: SplatWeights, progress: &
             &loaded.integrator,
             &loaded.camera,
             loaded.film.clone().with_splat_weights(splat),
-            spp_used,
-            plan.seed + k as u64,
+            sampling.with_seed(plan.seed + k as u64),
             &|_, _| {},
         );
         seconds += t.elapsed().as_secs_f64();

@@ -19,7 +19,7 @@ pub use ptracer::ParticleTracer;
 use crate::render::camera::Camera;
 use crate::render::film::ImageBlock;
 use crate::render::geometry::Ray;
-use crate::render::sampler::Sampler;
+use crate::render::sampler::{Sampler, Sampling};
 use crate::render::scene::Scene;
 use crate::render::shape::SurfaceInteraction;
 use glam::Vec3;
@@ -99,14 +99,13 @@ impl Integrator {
     }
 }
 
-/// What every tile of one render shares: the scene, the camera, the samples per pixel, the
-/// seed and the film's width (the pixel index of the sampler streams).
+/// What every tile of one render shares: the scene, the camera, the sampler (kind, samples
+/// per pixel, seed) and the film's width (the pixel index of the sampler streams).
 #[derive(Clone, Copy)]
 pub struct TileJob<'a> {
     pub scene: &'a Scene,
     pub camera: &'a Camera,
-    pub spp: u32,
-    pub seed: u64,
+    pub sampling: Sampling,
     pub width: u64,
 }
 

@@ -8,9 +8,9 @@ use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
 use glam::{Vec2, Vec3};
 
-/// Renders `job.spp` samples of every pixel of `block`'s tile into `block`, pixel by pixel
-/// with each pixel's sampler stream; returns how many samples were not finite (splatted as
-/// zero).
+/// Renders `job.sampling.spp` samples of every pixel of `block`'s tile into `block`, pixel by
+/// pixel with each pixel's sampler stream (advanced after each sample); returns how many
+/// samples were not finite (splatted as zero).
 pub fn render_tile<I: SampleIntegrator>(integrator: &I, job: &TileJob, block: &mut ImageBlock) -> u64 {
     let tile = block.tile();
     let mut bad = 0;
@@ -18,11 +18,13 @@ pub fn render_tile<I: SampleIntegrator>(integrator: &I, job: &TileJob, block: &m
     let mut shadows = Vec::new();
     for py in tile.offset[1]..tile.offset[1] + tile.size[1] {
         for px in tile.offset[0]..tile.offset[0] + tile.size[0] {
-            let mut sampler = Sampler::for_pixel(job.seed, py as u64 * job.width + px as u64);
+            let mut sampler = job.sampling.sampler(py as u64 * job.width + px as u64);
             let pixel = Vec2::new(px as f32, py as f32);
-            for _ in 0..job.spp {
+            for _ in 0..job.sampling.spp {
                 let pos = pixel + sampler.next_2d();
-                let mut l = li_with(integrator, job.scene, &mut sampler, job.camera.ray(pos), &mut shadows);
+                let ray = job.camera.sample_ray(pos, &mut sampler);
+                let mut l = li_with(integrator, job.scene, &mut sampler, ray, &mut shadows);
+                sampler.advance();
                 if !l.is_finite() {
                     l = Vec3::ZERO;
                     bad += 1;

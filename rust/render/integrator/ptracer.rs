@@ -22,7 +22,7 @@
 use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
 use crate::render::geometry::ray;
-use crate::render::sampler::Sampler;
+use crate::render::sampler::{Sampler, Sampling};
 use crate::render::scene::Scene;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
@@ -62,9 +62,13 @@ impl Splats {
 }
 
 impl ParticleTracer {
-    /// Renders `spp`·(film pixels) light paths; returns the image and the number of
+    /// Renders `sampling.spp`·(film pixels) light paths; returns the image and the number of
     /// non-finite contributions dropped. The camera must be perspective (the loader checks).
-    pub fn render(&self, scene: &Scene, camera: &Camera, film: &Film, spp: u32, seed: u64) -> (Image, u64) {
+    /// Each work item of [`CHUNK`] light paths is one sampler stream whose sample index
+    /// advances per light path (Mitsuba seeds one sampler per work item and calls `advance`
+    /// per sample, `AdjointIntegrator::render`).
+    pub fn render(&self, scene: &Scene, camera: &Camera, film: &Film, sampling: Sampling) -> (Image, u64) {
+        let spp = sampling.spp;
         let crop = film.crop();
         let (w, h) = (crop.size[0], crop.size[1]);
         let film_pixels = film.width() as u64 * film.height() as u64;
@@ -85,9 +89,10 @@ impl ParticleTracer {
             (0..chunks)
                 .into_par_iter()
                 .fold(empty, |mut acc, c| {
-                    let mut sampler = Sampler::for_pixel(seed, c);
+                    let mut sampler = sampling.sampler(c);
                     for _ in c * CHUNK..((c + 1) * CHUNK).min(total) {
                         self.sample(scene, cam, &mut sampler, &mut acc, sample_scale);
+                        sampler.advance();
                     }
                     acc
                 })

@@ -17,7 +17,7 @@
 use super::{SampleIntegrator, ShadowTest, TileJob};
 use crate::render::film::{ImageBlock, Tile};
 use crate::render::geometry::Ray;
-use crate::render::sampler::Sampler;
+use crate::render::sampler::{Sampler, Sampling};
 use glam::{Vec2, Vec3};
 
 /// Paths in flight per thread. Each step runs Embree's packet traversal, then every lane's
@@ -51,7 +51,7 @@ struct PixelQueue {
     tile: Tile,
     next: u32,
     width: u64,
-    seed: u64,
+    sampling: Sampling,
 }
 
 impl PixelQueue {
@@ -62,7 +62,7 @@ impl PixelQueue {
         }
         let (px, py) = (self.tile.offset[0] + self.next % w, self.tile.offset[1] + self.next / w);
         self.next += 1;
-        let sampler = Sampler::for_pixel(self.seed, py as u64 * self.width + px as u64);
+        let sampler = self.sampling.sampler(py as u64 * self.width + px as u64);
         Some((Vec2::new(px as f32, py as f32), sampler))
     }
 }
@@ -119,7 +119,7 @@ fn ticks() -> u64 {
     }
 }
 
-/// Renders `job.spp` samples of every pixel of `block`'s tile into `block`. Returns how many
+/// Renders `job.sampling.spp` samples of every pixel of `block`'s tile into `block`. Returns how many
 /// samples were not finite (splatted as zero). With `PROFILE`, adds each stage's ticks to
 /// `profile`.
 pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
@@ -130,7 +130,7 @@ pub fn render_tile<I: SampleIntegrator, const PROFILE: bool>(
 ) -> u64 {
     let scene = job.scene;
     let clock = || if PROFILE { ticks() } else { 0 };
-    let mut pixels = PixelQueue { tile: block.tile(), next: 0, width: job.width, seed: job.seed };
+    let mut pixels = PixelQueue { tile: block.tile(), next: 0, width: job.width, sampling: job.sampling };
     let mut bad = 0u64;
     let placeholder = Ray::new(Vec3::ZERO, Vec3::Z, 0.0);
     let mut live: [Option<Lane<I::State>>; LANES] =
@@ -214,23 +214,28 @@ fn next_sample<I: SampleIntegrator>(
                 *bad += 1;
             }
             block.put(lane.pos, l);
+            lane.sampler.advance();
             (lane.pixel, lane.sampler, lane.samples_left)
         }
         None => {
             let (pixel, sampler) = pixels.pop()?;
-            (pixel, sampler, job.spp)
+            (pixel, sampler, job.sampling.spp)
         }
     };
     loop {
         if samples_left == 0 {
             (pixel, sampler) = pixels.pop()?;
-            samples_left = job.spp;
+            samples_left = job.sampling.spp;
         }
         samples_left -= 1;
         let pos = pixel + sampler.next_2d();
-        match integrator.start(job.camera.ray(pos)) {
+        let camera_ray = job.camera.sample_ray(pos, &mut sampler);
+        match integrator.start(camera_ray) {
             Some((state, ray)) => return Some(Lane { sampler, pixel, pos, samples_left, state, ray }),
-            None => block.put(pos, Vec3::ZERO),
+            None => {
+                block.put(pos, Vec3::ZERO);
+                sampler.advance();
+            }
         }
     }
 }

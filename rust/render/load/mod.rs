@@ -22,6 +22,7 @@ use crate::render::camera::Camera;
 use crate::render::emitter::Emitter;
 use crate::render::film::Film;
 use crate::render::integrator::Integrator;
+use crate::render::sampler::Sampling;
 use crate::render::scene::Scene;
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::{self, SceneObject};
@@ -62,8 +63,8 @@ pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("film", &["hdrfilm"]),
     ("integrator", &["direct", "moment", "path", "ptracer", "volpath", "volpathmis"]),
     ("rfilter", &["box", "catmullrom", "gaussian", "lanczos", "mitchell", "tent"]),
-    ("sampler", &["independent"]),
-    ("sensor", &["orthographic", "perspective"]),
+    ("sampler", &["independent", "ldsampler", "multijitter", "orthogonal", "stratified"]),
+    ("sensor", &["orthographic", "perspective", "thinlens"]),
     ("shape", &["cube", "cylinder", "disk", "instance", "obj", "ply", "rectangle", "shapegroup", "sphere"]),
     ("texture", &["bitmap", "checkerboard", "mesh_attribute", "rawconstant"]),
 ];
@@ -75,10 +76,9 @@ pub struct LoadedScene {
     /// A fresh film (size, crop, filter) to render into.
     pub film: Film,
     pub integrator: Integrator,
-    /// `sample_count` of the sensor's sampler.
-    pub spp: u32,
-    /// `seed` of the sensor's sampler.
-    pub seed: u64,
+    /// The sensor's sampler: its kind, `sample_count` (rounded as Mitsuba rounds it) and
+    /// `seed`.
+    pub sampling: Sampling,
     /// What the user should know about how the scene was read (one line each, for stderr):
     /// e.g. which of several sensors is rendered.
     pub notes: Vec<String>,
@@ -252,15 +252,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         particle_tracer_limits(&b, &sensor, obj)?;
     }
     let scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
-    Ok(LoadedScene {
-        scene,
-        camera: sensor.camera,
-        film: sensor.film,
-        integrator,
-        spp: sensor.spp,
-        seed: sensor.seed,
-        notes,
-    })
+    Ok(LoadedScene { scene, camera: sensor.camera, film: sensor.film, integrator, sampling: sensor.sampling, notes })
 }
 
 /// What matte's `ptracer` does not support, as load errors at the integrator: other sensors
@@ -270,7 +262,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
 fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObject) -> Result<(), SceneError> {
     use crate::render::bsdf::Bsdf;
     if !matches!(sensor.camera, Camera::Perspective(_)) {
-        return Err(err(obj, "matte's ptracer needs a perspective sensor"));
+        return Err(err(obj, "matte's ptracer needs a perspective sensor (not orthographic or thinlens)"));
     }
     if !matches!(sensor.film.filter(), crate::render::film::ReconstructionFilter::Box) {
         return Err(err(obj, "matte's ptracer needs the box reconstruction filter (rfilter type=\"box\")"));

@@ -1,12 +1,19 @@
-//! `<sensor type="perspective">` with its `hdrfilm` (and rfilter) and `independent` sampler
+//! `<sensor type="perspective">` with its `hdrfilm` (and rfilter) and sampler
 //! (docs/renderer-semantics.md §4–6): fov/fov_axis or focal_length (default "50mm"), near/far clip, principal
 //! point offsets, no scale in `to_world`. `<sensor type="orthographic">`
 //! (`src/sensors/orthographic.cpp`): near_clip, far_clip and `to_world`, which may scale.
+//! `<sensor type="thinlens">` (`src/sensors/thinlens.cpp`): as perspective without the
+//! principal point, plus `aperture_radius` (required) and `focus_distance`. All three read
+//! `focus_distance` (default far_clip, `ProjectiveCamera`); only `thinlens` uses it.
+//! Samplers: `independent`, `stratified`, `multijitter`, `orthogonal`, `ldsampler`
+//! (`src/samplers/*.cpp`) with `sample_count` rounded as each rounds it.
 
 use super::{err, values};
 use crate::render::camera::{Camera, FovAxis, PerspectiveCamera};
 use crate::render::film::{CropWindow, Film, ReconstructionFilter};
 use crate::render::orthographic::OrthographicCamera;
+use crate::render::sampler::{SamplerKind, Sampling};
+use crate::render::thinlens::ThinLensCamera;
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::SceneObject;
 use glam::Vec2;
@@ -14,27 +21,34 @@ use glam::Vec2;
 pub struct Sensor {
     pub camera: Camera,
     pub film: Film,
-    pub spp: u32,
-    pub seed: u64,
+    pub sampling: Sampling,
 }
 
 pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
     match obj.plugin.as_str() {
         "perspective" => build_perspective(obj),
         "orthographic" => build_orthographic(obj),
-        other => {
-            Err(err(obj, format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic)")))
-        }
+        "thinlens" => build_thinlens(obj),
+        other => Err(err(
+            obj,
+            format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic, thinlens)"),
+        )),
     }
 }
 
-fn clip_range(obj: &SceneObject) -> Result<(f32, f32), SceneError> {
+/// `ProjectiveCamera`'s properties (`src/render/sensor.cpp`): near_clip, far_clip and
+/// focus_distance (default far_clip; a positive finite distance).
+fn clip_range(obj: &SceneObject) -> Result<(f32, f32, f32), SceneError> {
     let near = values::positive(obj, "near_clip", 0.01)? as f32;
     let far = values::positive(obj, "far_clip", 10000.0)? as f32;
     if far <= near {
         return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
     }
-    Ok((near, far))
+    let focus = values::float(obj, "focus_distance", far as f64)?;
+    if !(focus > 0.0 && focus.is_finite()) {
+        return Err(values::prop_err(obj, "focus_distance", format!("must be a positive distance, got {focus}")));
+    }
+    Ok((near, far, focus as f32))
 }
 
 fn build_orthographic(obj: &SceneObject) -> Result<Sensor, SceneError> {
@@ -42,14 +56,15 @@ fn build_orthographic(obj: &SceneObject) -> Result<Sensor, SceneError> {
     if to_world.matrix3.determinant() == 0.0 || !to_world.is_finite() {
         return Err(values::prop_err(obj, "to_world", "must be an invertible transform"));
     }
-    let (near, far) = clip_range(obj)?;
-    let (film, spp, seed) = film_and_sampler(obj)?;
+    let (near, far, _) = clip_range(obj)?;
+    let (film, sampling) = film_and_sampler(obj)?;
     obj.check_all_used()?;
     let camera = Camera::Orthographic(OrthographicCamera::new(to_world, (film.width(), film.height()), near, far));
-    Ok(Sensor { camera, film, spp, seed })
+    Ok(Sensor { camera, film, sampling })
 }
 
-fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
+/// `to_world` of `perspective` and `thinlens`: a rotation and translation.
+fn rigid_to_world(obj: &SceneObject) -> Result<glam::Affine3A, SceneError> {
     let to_world = values::transform(obj, "to_world")?;
     if has_scale(&to_world) {
         return Err(values::prop_err(
@@ -58,16 +73,40 @@ fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
             "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)",
         ));
     }
+    Ok(to_world)
+}
+
+fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
+    let to_world = rigid_to_world(obj)?;
     let (fov_deg, axis) = field_of_view(obj)?;
-    let (near, far) = clip_range(obj)?;
+    let (near, far, _) = clip_range(obj)?;
     let ppo = Vec2::new(
         principal_point_offset(obj, "principal_point_offset_x")?,
         principal_point_offset(obj, "principal_point_offset_y")?,
     );
-    let (film, spp, seed) = film_and_sampler(obj)?;
+    let (film, sampling) = film_and_sampler(obj)?;
     obj.check_all_used()?;
     let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
-    Ok(Sensor { camera: Camera::Perspective(camera), film, spp, seed })
+    Ok(Sensor { camera: Camera::Perspective(camera), film, sampling })
+}
+
+/// `thinlens` (`src/sensors/thinlens.cpp`): `aperture_radius` has no default in Mitsuba
+/// (`props.get<float>`), 0 becomes 2⁻²⁴ there and here; matte also rejects a negative or
+/// non-finite radius.
+fn build_thinlens(obj: &SceneObject) -> Result<Sensor, SceneError> {
+    let to_world = rigid_to_world(obj)?;
+    let (fov_deg, axis) = field_of_view(obj)?;
+    let (near, far, focus) = clip_range(obj)?;
+    let radius = values::float_opt(obj, "aperture_radius")?
+        .ok_or_else(|| err(obj, "needs the property \"aperture_radius\" (as in Mitsuba, it has no default)"))?;
+    if !(radius >= 0.0 && radius.is_finite()) {
+        return Err(values::prop_err(obj, "aperture_radius", format!("must be a finite radius ≥ 0, got {radius}")));
+    }
+    let (film, sampling) = film_and_sampler(obj)?;
+    obj.check_all_used()?;
+    let size = (film.width(), film.height());
+    let camera = ThinLensCamera::new(to_world, fov_deg, axis, size, radius as f32, focus, near, far);
+    Ok(Sensor { camera: Camera::ThinLens(camera), film, sampling })
 }
 
 /// The field of view as `perspective` reads it (`src/sensors/perspective.cpp`), also used by
@@ -116,9 +155,9 @@ pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneEr
     }
 }
 
-/// The sensor's nested film (default: 768×576, gaussian) and sampler (default: 4 spp,
-/// seed 0).
-fn film_and_sampler(obj: &SceneObject) -> Result<(Film, u32, u64), SceneError> {
+/// The sensor's nested film (default: 768×576, gaussian) and sampler (default:
+/// independent, 4 spp, seed 0).
+fn film_and_sampler(obj: &SceneObject) -> Result<(Film, Sampling), SceneError> {
     let mut film = None;
     let mut sampler = None;
     for child in obj.children.iter() {
@@ -137,12 +176,12 @@ fn film_and_sampler(obj: &SceneObject) -> Result<(Film, u32, u64), SceneError> {
             _ => return Err(err(c, format!("a <{}> cannot be nested in a sensor", c.tag))),
         }
     }
-    let sampler = sampler.unwrap_or((4, 0));
+    let sampling = sampler.unwrap_or(Sampling::independent(4, 0));
     let film = match film {
         Some(f) => f,
         None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| err(obj, e))?,
     };
-    Ok((film, sampler.0, sampler.1))
+    Ok((film, sampling))
 }
 
 /// A principal point offset (a fraction of the film size). Mitsuba takes any float; a NaN or
@@ -252,14 +291,53 @@ fn filter_size(obj: &SceneObject, name: &str, default: f64, radius_per_unit: f64
     Ok(v as f32)
 }
 
-pub(super) fn build_sampler(obj: &SceneObject) -> Result<(u32, u64), SceneError> {
-    if obj.plugin != "independent" {
-        return Err(err(obj, format!("unsupported sampler type \"{}\" (matte renders: independent)", obj.plugin)));
-    }
-    let spp = values::integer(obj, "sample_count", 4, 1, u32::MAX as i64)? as u32;
+/// Largest `sample_count` of the stratified samplers (their rounded counts then fit in u32).
+const MAX_STRATIFIED_COUNT: i64 = 1 << 30;
+
+/// Every sampler reads `sample_count` (default 4) and `seed` (default 0) (`Sampler`,
+/// `src/render/sampler.cpp`); `stratified`, `multijitter` and `orthogonal` read `jitter`
+/// (default true), `orthogonal` `strength` (default 2). The sample count is rounded as the
+/// plugin's `set_sample_count` rounds it.
+pub(super) fn build_sampler(obj: &SceneObject) -> Result<Sampling, SceneError> {
+    let max_count = if obj.plugin == "independent" { u32::MAX as i64 } else { MAX_STRATIFIED_COUNT };
+    let kind = match obj.plugin.as_str() {
+        "independent" => SamplerKind::Independent,
+        "stratified" => SamplerKind::Stratified { jitter: values::boolean(obj, "jitter", true)? },
+        "multijitter" => SamplerKind::Multijitter { jitter: values::boolean(obj, "jitter", true)? },
+        "orthogonal" => {
+            let jitter = values::boolean(obj, "jitter", true)?;
+            let strength = values::integer(obj, "strength", 2, 1, 32)? as u32;
+            SamplerKind::Orthogonal { jitter, strength }
+        }
+        "ldsampler" => SamplerKind::LowDiscrepancy,
+        other => {
+            return Err(err(
+                obj,
+                format!(
+                    "unsupported sampler type \"{other}\" (matte renders: independent, stratified, multijitter, \
+                     orthogonal, ldsampler)"
+                ),
+            ));
+        }
+    };
+    let spp = values::integer(obj, "sample_count", 4, 1, max_count)? as u32;
     let seed = values::integer(obj, "seed", 0, 0, i64::MAX)? as u64;
     obj.check_all_used()?;
-    Ok((spp, seed))
+    let sampling = Sampling::new(kind, spp, seed);
+    if let SamplerKind::Orthogonal { strength, .. } = kind {
+        let r = (sampling.spp as f64).sqrt().round() as u32;
+        if strength != 2 && r.checked_pow(strength).is_none() {
+            return Err(values::prop_err(
+                obj,
+                "strength",
+                format!(
+                    "{strength} with sample_count {} needs {r}^{strength} array rows, more than 2^32",
+                    sampling.spp
+                ),
+            ));
+        }
+    }
+    Ok(sampling)
 }
 
 /// Mitsuba's `Transform::has_scale` (`include/mitsuba/core/transform.h`), used by the
