@@ -76,7 +76,7 @@ fn multijitter_resolution(spp: u32) -> (u32, u32) {
 
 /// Mitsuba `OrthogonalSampler::set_sample_count`: the smallest prime r ≥ 2 with r² ≥ spp.
 fn orthogonal_resolution(spp: u32) -> u32 {
-    let is_prime = |x: u64| (2..=x / 2).take_while(|i| i * i <= x).all(|i| x % i != 0);
+    let is_prime = |x: u64| (2..=x / 2).take_while(|i| i * i <= x).all(|i| !x.is_multiple_of(i));
     let mut r = 2u64;
     while r * r < spp as u64 || !is_prime(r) {
         r += 1;
@@ -367,7 +367,7 @@ impl Sampler {
         let i = permute_kensler(self.index % self.count, self.count, p);
         let a0 = i / r;
         let a1 = i - a0 * r;
-        let k = if j % 2 > 0 { j.wrapping_sub(1) } else { j.wrapping_add(1) };
+        let k = if !j.is_multiple_of(2) { j.wrapping_sub(1) } else { j.wrapping_add(1) };
         let (a_ij, a_ik) = match j {
             0 => (a0, a1),
             1 => (a1, a0),
