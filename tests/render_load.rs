@@ -1690,7 +1690,9 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
     let body = match (tag, plugin) {
         ("scene", _) => return format!("<scene version=\"3.0.0\">\n{props}\n{SENSOR}\n</scene>"),
         ("bsdf", "twosided" | "mask") => object(diffuse.into()),
-        ("bsdf", "blendbsdf") => object(format!("{diffuse}{diffuse}")),
+        ("bsdf", "blendbsdf") => {
+            object(format!("{}{diffuse}{diffuse}", req("weight", "<float name=\"weight\" value=\"0.5\"/>".into())))
+        }
         ("bsdf", "normalmap") => object(format!("{}{diffuse}", bitmap("normalmap", "bumps.png"))),
         ("bsdf", "bumpmap") => object(format!("{}{diffuse}", bitmap("texture", "bumps.png"))),
         ("bsdf", _) => format!("<shape type=\"rectangle\">{}</shape>", object(String::new())),
@@ -1723,9 +1725,21 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
         ),
         ("shape", _) => object(String::new()),
         ("integrator", "moment") => object("<integrator type=\"path\"/>".into()),
+        // matte's ptracer needs the box filter.
+        ("integrator", "ptracer") => {
+            return format!(
+                "<scene version=\"3.0.0\">\n{}\n{}\n</scene>",
+                sensor(&film("<rfilter type=\"box\"/>")),
+                object(String::new())
+            );
+        }
         ("integrator", _) => object(String::new()),
         ("sensor", _) => {
-            return format!("<scene version=\"3.0.0\">\n{}\n</scene>", object(film("")));
+            let aperture = match plugin {
+                "thinlens" => req("aperture_radius", "<float name=\"aperture_radius\" value=\"0.1\"/>".into()),
+                _ => String::new(),
+            };
+            return format!("<scene version=\"3.0.0\">\n{}\n</scene>", object(format!("{aperture}{}", film(""))));
         }
         ("film", _) => return format!("<scene version=\"3.0.0\">\n{}\n</scene>", sensor(&object(String::new()))),
         ("rfilter", _) => {
@@ -1751,6 +1765,14 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
             _ => asset("checker.png"),
         }),
         (_, _, "fov") => Some("45".into()),
+        (_, _, "distribution") => Some("beckmann".into()),
+        ("texture", "mesh_attribute", "name") => Some("vertex_color".into()),
+        ("emitter", "spot", "texture") => {
+            return format!(
+                "<texture type=\"bitmap\" name=\"texture\"><string name=\"filename\" value=\"{}\"/></texture>",
+                asset("checker.png")
+            );
+        }
         (_, _, "focal_length") => Some("35mm".into()),
         ("shape", "cylinder", "p1") => None,
         _ => None,
@@ -1777,7 +1799,14 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
         Kind::Texture | Kind::EmissiveTexture | Kind::UnboundedTexture | Kind::Volume => {
             format!("<float name=\"{n}\" value=\"{}\"/>", literal.unwrap_or("0.5"))
         }
-        Kind::Object | Kind::Any => format!("<float name=\"{n}\" value=\"{}\"/>", literal.unwrap_or("0.5")),
+        Kind::Any => match literal {
+            Some(v) if v.parse::<f64>().is_err() && v != "true" && v != "false" => {
+                format!("<string name=\"{n}\" value=\"{v}\"/>")
+            }
+            Some("true" | "false") => format!("<boolean name=\"{n}\" value=\"{}\"/>", literal.unwrap()),
+            _ => format!("<float name=\"{n}\" value=\"{}\"/>", literal.unwrap_or("0.5")),
+        },
+        Kind::Object => unreachable!("objects are skipped"),
     }
 }
 
@@ -1788,6 +1817,7 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
 /// (`load/no_effect.rs`). A property Mitsuba does not read stays an error.
 #[test]
 fn every_harvested_property_of_every_supported_plugin_is_accepted() {
+    use matte::render::load::no_effect::MITSUBA_REFUSES;
     use matte::render::load::{MITSUBA_PLUGINS, mitsuba_plugins};
     let mut checked = 0;
     let mut failures = Vec::new();
@@ -1807,10 +1837,41 @@ fn every_harvested_property_of_every_supported_plugin_is_accepted() {
                 other => failures.push(format!("<{tag} type=\"{plugin}\">: a made-up property gave {:?}", other.err())),
             }
             for p in h.properties {
-                let xml = scene_with_plugin(tag, plugin, &valid_property_xml(tag, plugin, p), &[p.name]);
+                // Python-only objects (a `Bitmap`, a tensor): no XML element can give them.
+                if p.kind == mitsuba_plugins::Kind::Object {
+                    continue;
+                }
+                // Properties Mitsuba reads only together with another (its checks or its
+                // branches): both are given.
+                let partner = match p.name {
+                    "alpha_u" => Some("alpha_v"),
+                    "alpha_v" => Some("alpha_u"),
+                    "fov_axis" => Some("fov"),
+                    _ => None,
+                };
+                let mut xml_props = valid_property_xml(tag, plugin, p);
+                let mut given = vec![p.name];
+                if let Some(q) = partner.and_then(|q| h.properties.iter().find(|x| x.name == q)) {
+                    xml_props += &valid_property_xml(tag, plugin, q);
+                    given.push(q.name);
+                }
+                let xml = scene_with_plugin(tag, plugin, &xml_props, &given);
                 checked += 1;
-                if let Err(e) = load(&xml) {
-                    failures.push(format!("<{tag} type=\"{plugin}\"> {} ({:?}, {}): {e}", p.name, p.kind, p.source));
+                // Mitsuba reads some only to refuse them (e.g. `srf` in RGB variants): matte
+                // must refuse them with Mitsuba's reason.
+                let refused = MITSUBA_REFUSES.iter().find(|r| {
+                    r.tag == tag && r.plugins.iter().any(|x| *x == "*" || *x == plugin) && r.names.contains(&p.name)
+                });
+                match (load(&xml), refused) {
+                    (Ok(_), None) => {}
+                    (Err(e), Some(r)) if e.to_string().contains(r.why) => {}
+                    (Ok(_), Some(r)) => failures.push(format!(
+                        "<{tag} type=\"{plugin}\"> {}: loads, but Mitsuba refuses it: {}",
+                        p.name, r.why
+                    )),
+                    (Err(e), _) => {
+                        failures.push(format!("<{tag} type=\"{plugin}\"> {} ({:?}, {}): {e}", p.name, p.kind, p.source))
+                    }
                 }
             }
         }

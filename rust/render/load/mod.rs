@@ -9,7 +9,8 @@ mod bsdf_principled;
 mod emitter;
 mod instance;
 mod integrator;
-#[allow(clippy::all)] // generated data
+#[allow(clippy::all)] // generated data (validation/harvest_mitsuba_properties.py)
+#[rustfmt::skip]
 pub mod mitsuba_plugins;
 pub mod no_effect;
 pub mod scope;

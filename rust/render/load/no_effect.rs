@@ -72,14 +72,61 @@ pub const NO_EFFECT: &[NoEffect] = &[
         names: &["timeout"],
         why: "a wall-clock limit on rendering; matte always renders every sample",
     },
+    NoEffect {
+        tag: "integrator",
+        plugins: &["moment"],
+        names: &["hide_emitters"],
+        why: "the moment integrator's own flag is unused; its nested integrators read theirs",
+    },
+    NoEffect {
+        tag: "film",
+        plugins: &["hdrfilm"],
+        names: &["banner", "compensate"],
+        why: "Mitsuba 3 marks both as read and ignores them (no banner; compensated accumulation was removed)",
+    },
+    NoEffect {
+        tag: "texture",
+        plugins: &["bitmap"],
+        names: &["accel"],
+        why: "hardware texture filtering on GPUs: the same interpolation, the same image",
+    },
+    NoEffect {
+        tag: "shape",
+        plugins: &["shapegroup"],
+        names: &["to_world"],
+        why: "a shape group is placed by its instances; Mitsuba's ShapeGroup does not apply its own to_world",
+    },
 ];
 
-/// The entry covering property `name` of `obj`, if any.
+/// Properties Mitsuba 3.9.1 reads only to refuse them (in its RGB variants, which matte's
+/// images are compared with, or always): matte refuses them with Mitsuba's reason.
+pub const MITSUBA_REFUSES: &[NoEffect] = &[
+    NoEffect {
+        tag: "sensor",
+        plugins: &["*"],
+        names: &["srf"],
+        why: "a spectral response function needs a spectral variant; Mitsuba's RGB variants refuse it too \
+              (Sensor(), src/render/sensor.cpp)",
+    },
+    NoEffect {
+        tag: "emitter",
+        plugins: &["area"],
+        names: &["to_world"],
+        why: "an area emitter inherits its shape's transformation; Mitsuba refuses a to_world on it too \
+              (src/emitters/area.cpp)",
+    },
+];
+
+/// The entry of `table` covering property `name` of `obj`, if any.
+fn find(table: &'static [NoEffect], obj: &SceneObject, name: &str) -> Option<&'static NoEffect> {
+    table.iter().find(|e| {
+        e.tag == obj.tag && e.plugins.iter().any(|p| *p == "*" || *p == obj.plugin) && e.names.contains(&name)
+    })
+}
+
+/// The [`NO_EFFECT`] entry covering property `name` of `obj`, if any.
 pub fn entry(obj: &SceneObject, name: &str) -> Option<&'static NoEffect> {
-    let tag = if obj.tag == "scene" { "scene" } else { obj.tag.as_str() };
-    NO_EFFECT
-        .iter()
-        .find(|e| e.tag == tag && e.plugins.iter().any(|p| *p == "*" || *p == obj.plugin) && e.names.contains(&name))
+    find(NO_EFFECT, obj, name)
 }
 
 /// Whether `value` is of a type Mitsuba accepts for a property it reads as `kind`
@@ -117,6 +164,12 @@ pub fn accept_tree(root: &SceneObject) -> Result<Vec<String>, SceneError> {
         let plugin_name = if o.tag == "scene" { "scene" } else { o.plugin.as_str() };
         let harvested = mitsuba_plugins::plugin(&o.tag, plugin_name);
         for p in o.properties.iter() {
+            if let Some(r) = find(MITSUBA_REFUSES, o, &p.name) {
+                return Err(SceneError::at(
+                    &p.pos,
+                    format!("property \"{}\" of {} \"{}\": {}", p.name, o.tag, o.plugin, r.why),
+                ));
+            }
             let Some(e) = entry(o, &p.name) else { continue };
             let kind = harvested.and_then(|h| h.properties.iter().find(|q| q.name == p.name)).map(|q| q.kind);
             if let Some(kind) = kind
