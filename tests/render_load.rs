@@ -1819,6 +1819,12 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
 fn every_harvested_property_of_every_supported_plugin_is_accepted() {
     use matte::render::load::no_effect::MITSUBA_REFUSES;
     use matte::render::load::{MITSUBA_PLUGINS, mitsuba_plugins};
+    // MATTE_DUMP_WALK=dir writes every scene of the walk there, for
+    // validation/check_harvest.py to load in Mitsuba (the same scenes, Mitsuba's verdict).
+    let dump = std::env::var_os("MATTE_DUMP_WALK").map(PathBuf::from);
+    if let Some(dir) = &dump {
+        std::fs::create_dir_all(dir).unwrap();
+    }
     let mut checked = 0;
     let mut failures = Vec::new();
     for &(tag, plugins) in MITSUBA_PLUGINS {
@@ -1857,6 +1863,10 @@ fn every_harvested_property_of_every_supported_plugin_is_accepted() {
                 }
                 let xml = scene_with_plugin(tag, plugin, &xml_props, &given);
                 checked += 1;
+                if let Some(dir) = &dump {
+                    let file = dir.join(format!("{tag}-{plugin}-{}.xml", p.name));
+                    std::fs::write(&file, &xml).unwrap();
+                }
                 // Mitsuba reads some only to refuse them (e.g. `srf` in RGB variants): matte
                 // must refuse them with Mitsuba's reason.
                 let refused = MITSUBA_REFUSES.iter().find(|r| {
