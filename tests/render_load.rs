@@ -1889,3 +1889,74 @@ fn every_harvested_property_of_every_supported_plugin_is_accepted() {
     assert!(failures.is_empty(), "{} of {checked} properties refused:\n{}", failures.len(), failures.join("\n"));
     assert!(checked > 150, "only {checked} properties checked");
 }
+
+/// The README's scope table ("Scope: what `matte render` reads") says what the loader does:
+/// each supported plugin (`MITSUBA_PLUGINS`) is in its row's "supported" cell and every name
+/// there loads; each no-effect property (`NO_EFFECT`) is in the "accepted" cell; each plugin
+/// refused for scope (`scope::refused_plugins`) and each property Mitsuba refuses
+/// (`MITSUBA_REFUSES`) is in the "refused" cell, and every plugin named there fails to load.
+#[test]
+fn readme_scope_table_matches_the_loader() {
+    use matte::render::load::no_effect::{MITSUBA_REFUSES, NO_EFFECT};
+    use matte::render::load::{MITSUBA_PLUGINS, mitsuba_plugins, scope};
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let start = readme.find("### Scope: what `matte render` reads").expect("scope section");
+    let rows: Vec<Vec<String>> = readme[start..]
+        .lines()
+        .skip_while(|l| !l.starts_with("| element"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| l.trim().trim_matches('|').split('|').map(|c| c.trim().to_string()).collect())
+        .collect();
+    assert!(rows.len() >= 10, "scope table not found");
+    let row_of = |tag: &str| -> &Vec<String> {
+        let label = match tag {
+            "film" | "rfilter" => "film, rfilter",
+            "medium" | "phase" | "volume" => "medium, phase, volume",
+            t => t,
+        };
+        rows.iter().find(|r| r[0] == label).unwrap_or_else(|| panic!("no row for {tag}"))
+    };
+    let names = |cell: &str| -> Vec<String> { cell.split('`').skip(1).step_by(2).map(str::to_string).collect() };
+    let in_cell = |cell: &str, name: &str| {
+        names(cell).iter().any(|n| n == name || (n.ends_with('*') && name.starts_with(n.trim_end_matches('*'))))
+    };
+    for &(tag, plugins) in MITSUBA_PLUGINS {
+        for &p in plugins.iter().filter(|_| tag != "scene") {
+            assert!(in_cell(&row_of(tag)[1], p), "README scope: {tag} {p} not listed as supported");
+        }
+    }
+    for e in NO_EFFECT {
+        for n in e.names {
+            assert!(in_cell(&row_of(e.tag)[2], n), "README scope: {} property {n} not listed as accepted", e.tag);
+        }
+    }
+    for (tag, p, _) in scope::refused_plugins() {
+        assert!(in_cell(&row_of(tag)[3], p) || row_of(tag)[3].contains("every plugin"), "README scope: {tag} {p}");
+    }
+    for e in MITSUBA_REFUSES {
+        for n in e.names {
+            assert!(in_cell(&row_of(e.tag)[3], n), "README scope: {} property {n} not listed as refused", e.tag);
+        }
+    }
+    // What the table says, the loader does.
+    for row in rows.iter().filter(|r| r[0] != "document" && r[0] != "scene" && !r[0].contains("medium")) {
+        let tags: Vec<&str> = if row[0] == "film, rfilter" { vec!["film", "rfilter"] } else { vec![row[0].as_str()] };
+        for name in names(&row[1]) {
+            if name == "tabulated_brdf" {
+                continue; // needs a table file: loaded in tests/tabulated_brdf.rs
+            }
+            let tag = tags.iter().copied().find(|t| mitsuba_plugins::plugin(t, &name).is_some()).unwrap_or(tags[0]);
+            if let Err(e) = load(&scene_with_plugin(tag, &name, "", &[])) {
+                panic!("README scope says <{tag} type=\"{name}\"> is supported, but: {e}");
+            }
+        }
+        for name in names(&row[3]) {
+            let Some(tag) = tags.iter().copied().find(|t| mitsuba_plugins::plugin(t, &name).is_some()) else {
+                continue; // a property (checked against MITSUBA_REFUSES above)
+            };
+            let xml = scene(&format!("{SENSOR}\n<{tag} type=\"{name}\"/>"));
+            assert!(load(&xml).is_err(), "README scope says <{tag} type=\"{name}\"> is refused, but it loads");
+        }
+    }
+}
