@@ -1,4 +1,5 @@
-//! Mesh loading (`rust/scene_file/mesh`): OBJ, PLY (ascii, binary LE/BE), rectangle, cube.
+//! Mesh loading (`rust/scene_file/mesh`): OBJ, PLY (ascii, binary LE/BE), `serialized`,
+//! rectangle, cube.
 //! Oracles: hand-written files with hand-derived expectations, closed forms (symmetry,
 //! inverse-transpose normals), the verified smooth-normal value of `docs/renderer-semantics.md` §8, and the vertex buffers /
 //! ray-query results of Mitsuba 3.9.1 `scalar_rgb` (`mi.traverse`, `scene.ray_intersect`).
@@ -6,7 +7,9 @@
 mod common;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
-use matte::scene_file::mesh::{MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, rectangle};
+use matte::scene_file::mesh::{
+    MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, load_serialized, rectangle,
+};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
@@ -647,4 +650,183 @@ json.dump(out, open(out_path, 'w'))
         check(&format!("obj-{}", if face_normals { "True" } else { "False" }), &m);
     }
     check("ply", &load_ply(&plyp, &MeshOptions::default()).unwrap());
+}
+
+// ---------------------------------------------------------------------------------------------
+// serialized, checked against Mitsuba 3.9.1 scalar_rgb (tests/serialized/make_reference.py)
+
+fn serialized_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/serialized")
+}
+
+#[test]
+fn serialized_meshes_match_mitsuba_buffers() {
+    let text = std::fs::read_to_string(serialized_dir().join("mitsuba_reference.json")).unwrap();
+    let j: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let cases = j["cases"].as_array().unwrap();
+    assert_eq!(cases.len(), 7);
+    for c in cases {
+        let key = format!("{} #{} face_normals={}", c["file"], c["shape_index"], c["face_normals"]);
+        let to_world = match c["to_world"].as_array() {
+            Some(rows) => {
+                let r: Vec<[f32; 4]> = rows.iter().map(|r| serde_json::from_value(r.clone()).unwrap()).collect();
+                Mat4::from_cols_array_2d(&[r[0], r[1], r[2], r[3]]).transpose()
+            }
+            None => Mat4::IDENTITY,
+        };
+        let face_normals = c["face_normals"].as_bool().unwrap();
+        let opts = MeshOptions { to_world, face_normals, ..Default::default() };
+        let path = serialized_dir().join(c["file"].as_str().unwrap());
+        let m = load_serialized(&path, c["shape_index"].as_i64().unwrap(), &opts).unwrap();
+        let get =
+            |k: &str| -> Vec<f32> { c.get(k).map(|v| serde_json::from_value(v.clone()).unwrap()).unwrap_or_default() };
+        let faces: Vec<u32> = serde_json::from_value(c["faces"].clone()).unwrap();
+        assert_eq!(m.triangles.concat(), faces, "{key}");
+        let (pos, nrm, uv) = (get("vertex_positions"), get("vertex_normals"), get("vertex_texcoords"));
+        assert_eq!(m.positions.len() * 3, pos.len(), "{key}");
+        assert_eq!(m.normals.len() * 3, nrm.len(), "{key}");
+        assert_eq!(m.uvs.len() * 2, uv.len(), "{key}");
+        for (i, p) in m.positions.iter().enumerate() {
+            assert_close3(*p, Vec3::from_slice(&pos[3 * i..]), 1e-5);
+        }
+        for (i, n) in m.normals.iter().enumerate() {
+            // Smooth normals (meshes without file normals) are summed in another order.
+            assert_close3(*n, Vec3::from_slice(&nrm[3 * i..]), 2e-5);
+        }
+        for (i, t) in m.uvs.iter().enumerate() {
+            assert_eq!(*t, Vec2::from_slice(&uv[2 * i..]), "{key}");
+        }
+    }
+}
+
+/// One version-4 mesh (header and zlib stream), f32 positions only, written here byte by byte
+/// from the format description.
+fn serialized_mesh(name: &str, pos: &[[f32; 3]], tris: &[[u32; 3]]) -> Vec<u8> {
+    use flate2::{Compression, write::ZlibEncoder};
+    use std::io::Write;
+    let mut body = Vec::new();
+    body.extend(0x1000u32.to_le_bytes());
+    body.extend(name.as_bytes());
+    body.push(0);
+    body.extend((pos.len() as u64).to_le_bytes());
+    body.extend((tris.len() as u64).to_le_bytes());
+    body.extend(pos.iter().flatten().flat_map(|c| c.to_le_bytes()));
+    body.extend(tris.iter().flatten().flat_map(|i| i.to_le_bytes()));
+    let mut z = ZlibEncoder::new(Vec::new(), Compression::default());
+    z.write_all(&body).unwrap();
+    let mut out = vec![0x1C, 0x04, 4, 0];
+    out.extend(z.finish().unwrap());
+    out
+}
+
+/// A valid file with two meshes (0 a triangle, 1 a quad) and the offset where mesh 1 starts.
+fn two_mesh_file() -> (Vec<u8>, usize) {
+    let mut file = serialized_mesh("tri", &[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]], &[[0, 1, 2]]);
+    let second = file.len();
+    file.extend(serialized_mesh(
+        "quad",
+        &[[0., 0., 1.], [1., 0., 1.], [1., 1., 1.], [0., 1., 1.]],
+        &[[0, 1, 2], [0, 2, 3]],
+    ));
+    file.extend(0u64.to_le_bytes());
+    file.extend((second as u64).to_le_bytes());
+    file.extend(2u32.to_le_bytes());
+    (file, second)
+}
+
+#[test]
+fn serialized_shape_index_selects_the_mesh_through_the_dictionary() {
+    let (bytes, _) = two_mesh_file();
+    let path = temp_file("two.serialized", &bytes);
+    let opts = MeshOptions::default();
+    let m0 = load_serialized(&path, 0, &opts).unwrap();
+    let m1 = load_serialized(&path, 1, &opts).unwrap();
+    assert_eq!((m0.positions.len(), m0.triangles.len()), (3, 1));
+    assert_eq!((m1.positions.len(), m1.triangles.len()), (4, 2));
+    assert_eq!(m1.positions[2], Vec3::new(1., 1., 1.));
+    // No file normals: smooth ones, here the flat +z of a planar mesh.
+    assert!(m1.normals.iter().all(|n| *n == Vec3::Z));
+}
+
+#[test]
+fn serialized_errors_name_the_file_and_problem() {
+    let (bytes, second) = two_mesh_file();
+    let err = |bytes: &[u8], index: i64| -> String {
+        let path = temp_file("bad.serialized", bytes);
+        let e = load_serialized(&path, index, &MeshOptions::default()).unwrap_err().to_string();
+        assert!(e.starts_with(&path.display().to_string()), "{e}");
+        assert!(!e.contains('\n'), "{e}");
+        e
+    };
+    assert!(err(&bytes, 2).contains("shape_index 2 is out of range: the file holds 2 meshes (0..1)"));
+    assert!(err(&bytes, -1).contains("shape_index must be nonnegative"));
+    let mut v = bytes.clone();
+    v[2] = 5;
+    assert!(err(&v, 0).contains("unsupported serialized file version 5"));
+    let mut v = bytes.clone();
+    v[0] = 0;
+    assert!(err(&v, 0).contains("not a serialized mesh file"));
+    assert!(err(&bytes[..second / 2], 0).contains("truncated serialized file"));
+    assert!(err(&bytes[..3], 0).contains("truncated serialized file"));
+    // The dictionary points into the middle of mesh 0.
+    let mut v = bytes.clone();
+    let at = v.len() - 12;
+    v[at..at + 8].copy_from_slice(&7u64.to_le_bytes());
+    assert!(err(&v, 1).contains("does not point at a mesh header"));
+    // A face index beyond the vertex count; a NaN position.
+    let mut v = serialized_mesh("bad", &[[0., 0., 0.], [1., 0., 0.], [0., 1., 0.]], &[[0, 1, 3]]);
+    v.extend(0u64.to_le_bytes());
+    v.extend(1u32.to_le_bytes());
+    assert!(err(&v, 0).contains("triangle 0: vertex index 3 out of range (mesh has 3 vertices)"));
+    let mut v = serialized_mesh("nan", &[[0., f32::NAN, 0.], [1., 0., 0.], [0., 1., 0.]], &[[0, 1, 2]]);
+    v.extend(0u64.to_le_bytes());
+    v.extend(1u32.to_le_bytes());
+    assert!(err(&v, 0).contains("vertex 0: invalid position data"));
+    assert!(
+        load_serialized(Path::new("/nonexistent/m.serialized"), 0, &MeshOptions::default())
+            .unwrap_err()
+            .to_string()
+            .contains("/nonexistent/m.serialized")
+    );
+}
+
+/// Every prefix of a valid file, and thousands of files with random bytes changed, load or
+/// fail with a one-line error: never a panic, a huge allocation or an index out of range.
+#[test]
+fn serialized_loader_survives_truncation_and_corruption() {
+    use rand::{Rng, SeedableRng};
+    let (bytes, second) = two_mesh_file();
+    for len in 0..bytes.len() {
+        let path = temp_file("prefix.serialized", &bytes[..len]);
+        for index in 0..3 {
+            let r = std::panic::catch_unwind(|| load_serialized(&path, index, &MeshOptions::default()));
+            let r = r.unwrap_or_else(|_| panic!("panic at prefix {len}, index {index}"));
+            if len + 4 < second || index > 0 {
+                // Mesh 0 cut short, or the dictionary gone: always an error.
+                assert!(r.is_err(), "prefix {len} index {index} loaded");
+            }
+        }
+    }
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(26);
+    let dir = temp_dir();
+    for trial in 0..3000 {
+        let mut v = bytes.clone();
+        for _ in 0..rng.random_range(1..6) {
+            let i = rng.random_range(0..v.len());
+            v[i] = rng.random();
+        }
+        let path = dir.join(format!("fuzz{}.serialized", trial % 8));
+        std::fs::write(&path, &v).unwrap();
+        for index in 0..3 {
+            let r = std::panic::catch_unwind(|| load_serialized(&path, index, &MeshOptions::default()));
+            match r.unwrap_or_else(|_| panic!("panic on trial {trial}, index {index}")) {
+                Ok(m) => {
+                    assert!(m.positions.iter().all(|p| p.is_finite()));
+                    assert!(m.triangles.iter().flatten().all(|&i| (i as usize) < m.positions.len()));
+                    assert!(m.normals.iter().all(|n| n.is_finite()));
+                }
+                Err(e) => assert!(!e.to_string().contains('\n'), "{e}"),
+            }
+        }
+    }
 }

@@ -735,6 +735,29 @@ fn shape_errors() {
     mesh_err("obj", "bad_number.obj", "bad_number.obj:2");
     mesh_err("ply", "short.ply", "cannot load mesh");
     mesh_err("ply", "garbage.ply", "cannot load mesh");
+    std::fs::write(dir.join("cut.serialized"), [0x1c, 0x04, 0x04, 0x00, 0x78]).unwrap();
+    mesh_err("serialized", "cut.serialized", "truncated serialized file");
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/assets/shapes.serialized");
+    let serialized = |extra: &str| {
+        with_sensor(&format!(
+            "<shape type=\"serialized\">\n<string name=\"filename\" value=\"{}\"/>\n{extra}\n</shape>",
+            assets.display()
+        ))
+    };
+    let Err(e) = load_str(&serialized("<integer name=\"shape_index\" value=\"2\"/>"), &path, &[]) else {
+        panic!("shape_index 2 loaded")
+    };
+    assert_error_at(&e, &path, 4, "shape_index 2 is out of range: the file holds 2 meshes (0..1)");
+    let Err(e) = load_str(&serialized("<integer name=\"shape_index\" value=\"-1\"/>"), &path, &[]) else {
+        panic!("shape_index -1 loaded")
+    };
+    assert_error_at(&e, &path, 5, "shape_index");
+    let Err(e) = load_str(&serialized("<boolean name=\"flip_tex_coords\" value=\"true\"/>"), &path, &[]) else {
+        panic!("flip_tex_coords accepted on serialized")
+    };
+    assert!(e.to_string().contains("flip_tex_coords"), "{e}");
+    let loaded = load_str(&serialized("<integer name=\"shape_index\" value=\"1\"/>"), &path, &[]).unwrap();
+    assert_eq!(loaded.scene.shapes.len(), 1);
 
     assert_body_err("<shape type=\"hair\"/>", 1, "unsupported shape type \"hair\"");
     assert_body_err("<shape type=\"obj\"/>", 1, "missing property \"filename\"");
@@ -1718,6 +1741,7 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
         ("emitter", _) => object(String::new()),
         ("shape", "obj") => object(string("filename", &asset("icosahedron.obj"))),
         ("shape", "ply") => object(string("filename", &asset("prism.ply"))),
+        ("shape", "serialized") => object(string("filename", &asset("shapes.serialized"))),
         ("shape", "shapegroup") => object("<shape type=\"sphere\"/>".into()),
         ("shape", "instance") => format!(
             "<shape type=\"shapegroup\" id=\"group\"><shape type=\"sphere\"/></shape>\n{}",
@@ -1761,6 +1785,7 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
         (_, _, "filename") => Some(match (tag, plugin) {
             ("shape", "ply") => asset("prism.ply"),
             ("shape", "obj") => asset("icosahedron.obj"),
+            ("shape", "serialized") => asset("shapes.serialized"),
             ("emitter", "envmap") | ("texture", "bitmap") => asset("sky.png"),
             _ => asset("checker.png"),
         }),
@@ -1959,4 +1984,52 @@ fn readme_scope_table_matches_the_loader() {
             assert!(load(&xml).is_err(), "README scope says <{tag} type=\"{name}\"> is refused, but it loads");
         }
     }
+}
+
+/// Every bundled scene with random edits (characters deleted, duplicated or replaced by XML
+/// syntax, digits or signs; a seeded stream): loading never panics, and an error is one line
+/// that starts with a file name.
+#[test]
+fn mutated_bundled_scenes_load_or_fail_with_one_line() {
+    use rand::{Rng, SeedableRng};
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(0x5eed);
+    let alphabet = b"<>/=\"' -0123456789.e$#&;abnrxyzIN";
+    let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    scenes.sort();
+    assert!(scenes.len() >= 20);
+    let (mut loaded, mut failed) = (0, 0);
+    for scene in &scenes {
+        let text = std::fs::read(scene).unwrap();
+        for trial in 0..40 {
+            let mut v = text.clone();
+            for _ in 0..rng.random_range(1..4) {
+                let i = rng.random_range(0..v.len());
+                match rng.random_range(0..3) {
+                    0 => drop(v.drain(i..(i + rng.random_range(1..6)).min(v.len()))),
+                    1 => {
+                        let piece: Vec<u8> = v[i..(i + rng.random_range(1..12)).min(v.len())].to_vec();
+                        v.splice(i..i, piece);
+                    }
+                    _ => v[i] = alphabet[rng.random_range(0..alphabet.len())],
+                }
+            }
+            let Ok(xml) = String::from_utf8(v) else { continue };
+            let r = std::panic::catch_unwind(|| load_str(&xml, scene, &[("spp".into(), "1".into())]));
+            match r.unwrap_or_else(|_| panic!("{} trial {trial}: the loader panicked on\n{xml}", scene.display())) {
+                Ok(_) => loaded += 1,
+                Err(e) => {
+                    let t = e.to_string();
+                    assert!(!t.trim_end().contains('\n') && t.starts_with('/'), "{}: {t}", scene.display());
+                    failed += 1;
+                }
+            }
+        }
+    }
+    // Both outcomes occur: the edits are neither all harmless nor all fatal.
+    assert!(loaded > 50 && failed > 200, "loaded {loaded}, failed {failed}");
 }

@@ -9,6 +9,10 @@ committed. Run from anywhere: `python3 mitsuba_scenes/assets/make_assets.py`.
   (`color_0..2` -> `vertex_color`) and a per-face weight (`weight_0` -> `face_weight`), for
   `mesh_attribute`.
 * bumps.png: 16x16 grey height map (soft bumps), 8-bit, for `bumpmap`.
+* shapes.serialized: Mitsuba's compressed mesh format (version 4), two meshes: 0 a torus
+  (24x12, f32, normals and uvs), 1 a twisted box without normals (so Mitsuba computes them)
+  and with vertex colours (which Mitsuba reads and skips). `serialized()` writes the format
+  from the description in Mitsuba's `src/shapes/serialized.cpp`.
 * sky.png: 32x16 latitude-longitude sky for `envmap` (Mitsuba's layout: row 0 is straight
   up, +y), a blue gradient with a warm sun patch, 8-bit sRGB.
 """
@@ -85,6 +89,59 @@ def wavy_grid(path):
     path.write_text("\n".join(out) + "\n")
 
 
+def serialized(path, meshes, version=4):
+    """Writes a `.serialized` file. Each mesh is a dict with `positions` (list of xyz), `faces`
+    (list of index triples) and optional `normals`, `uvs`, `colors`, `name`, `double` (f64
+    arrays). Version 3 has no name and 32-bit dictionary offsets."""
+    out, offsets = bytearray(), []
+    for m in meshes:
+        offsets.append(len(out))
+        flags = (0x1 if "normals" in m else 0) | (0x2 if "uvs" in m else 0) | (0x8 if "colors" in m else 0)
+        flags |= 0x2000 if m.get("double") else 0x1000
+        fmt = "<d" if m.get("double") else "<f"
+        body = struct.pack("<I", flags)
+        if version == 4:
+            body += m.get("name", "mesh").encode() + b"\0"
+        body += struct.pack("<QQ", len(m["positions"]), len(m["faces"]))
+        for key in ("positions", "normals", "uvs", "colors"):
+            for row in m.get(key, []):
+                body += b"".join(struct.pack(fmt, c) for c in row)
+        body += b"".join(struct.pack("<III", *f) for f in m["faces"])
+        out += struct.pack("<HH", 0x041C, version) + zlib.compress(body, 9)
+    out += b"".join(struct.pack("<Q" if version == 4 else "<I", o) for o in offsets)
+    out += struct.pack("<I", len(meshes))
+    path.write_bytes(bytes(out))
+
+
+def torus(nu=24, nv=12, big=1.0, small=0.35):
+    pos, nrm, uv, faces = [], [], [], []
+    for j in range(nv + 1):
+        for i in range(nu + 1):
+            u, v = 2 * math.pi * i / nu, 2 * math.pi * j / nv
+            n = (math.cos(v) * math.cos(u), math.cos(v) * math.sin(u), math.sin(v))
+            pos.append(((big + small * math.cos(v)) * math.cos(u), (big + small * math.cos(v)) * math.sin(u),
+                        small * math.sin(v)))
+            nrm.append(n)
+            uv.append((i / nu, j / nv))
+    for j in range(nv):
+        for i in range(nu):
+            a, b = j * (nu + 1) + i, (j + 1) * (nu + 1) + i
+            faces += [(a, a + 1, b + 1), (a, b + 1, b)]
+    return {"positions": pos, "normals": nrm, "uvs": uv, "faces": faces, "name": "torus"}
+
+
+def twisted_box():
+    pos = []
+    for z in (-1.0, 1.0):
+        t = 0.4 * z
+        for x, y in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            pos.append((x * math.cos(t) - y * math.sin(t), x * math.sin(t) + y * math.cos(t), z))
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    faces = [t for a, b, c, d in quads for t in ((a, b, c), (a, c, d))]
+    colors = [((i & 1) * 1.0, (i >> 1 & 1) * 1.0, (i >> 2) * 1.0) for i in range(8)]
+    return {"positions": pos, "faces": faces, "colors": colors, "name": "twisted box"}
+
+
 def bumps(x, y):
     h = 0.5 + 0.5 * math.sin(2 * math.pi * x / 8) * math.sin(2 * math.pi * y / 8)
     g = int(round(255 * h))
@@ -105,3 +162,4 @@ if __name__ == "__main__":
     png(HERE / "sky.png", 32, 16, sky)
     wavy_grid(HERE / "wavy_grid.ply")
     png(HERE / "bumps.png", 16, 16, bumps)
+    serialized(HERE / "shapes.serialized", [torus(), twisted_box()])

@@ -53,11 +53,20 @@ impl SceneError {
 }
 
 impl fmt::Display for SceneError {
+    /// One line: control characters in the message (a newline quoted from the file, say) are
+    /// written escaped.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match &self.pos {
-            Some(p) => write!(f, "{p}: {}", self.message),
-            None => write!(f, "{}", self.message),
+        if let Some(p) = &self.pos {
+            write!(f, "{p}: ")?;
         }
+        for c in self.message.chars() {
+            if c.is_control() {
+                write!(f, "{}", c.escape_default())?;
+            } else {
+                fmt::Write::write_char(f, c)?;
+            }
+        }
+        Ok(())
     }
 }
 

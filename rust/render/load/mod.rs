@@ -66,7 +66,10 @@ pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("rfilter", &["box", "catmullrom", "gaussian", "lanczos", "mitchell", "tent"]),
     ("sampler", &["independent", "ldsampler", "multijitter", "orthogonal", "stratified"]),
     ("sensor", &["orthographic", "perspective", "thinlens"]),
-    ("shape", &["cube", "cylinder", "disk", "instance", "obj", "ply", "rectangle", "shapegroup", "sphere"]),
+    (
+        "shape",
+        &["cube", "cylinder", "disk", "instance", "obj", "ply", "rectangle", "serialized", "shapegroup", "sphere"],
+    ),
     ("texture", &["bitmap", "checkerboard", "mesh_attribute", "rawconstant"]),
 ];
 

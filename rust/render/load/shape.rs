@@ -1,4 +1,4 @@
-//! `<shape>`: `obj`, `ply`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
+//! `<shape>`: `obj`, `ply`, `serialized`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
 //! `cylinder`, each with `to_world`, `flip_normals`, a nested or referenced `<bsdf>` and an
 //! optional nested `area` emitter (docs/renderer-semantics.md §8). A shape without a BSDF gets diffuse 0.5,
 //! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
@@ -31,17 +31,27 @@ pub(super) fn build_placed(
     let to_world = outer * values::transform(obj, "to_world")?;
     let flip_normals = values::boolean(obj, "flip_normals", false)?;
     let geometry = match obj.plugin.as_str() {
-        "obj" | "ply" => {
+        "obj" | "ply" | "serialized" => {
             let filename =
                 obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
             let opts = MeshOptions {
                 to_world: Mat4::from(to_world),
                 face_normals: values::boolean(obj, "face_normals", false)?,
                 flip_normals,
-                flip_tex_coords: obj.properties.boolean("flip_tex_coords")?,
+                flip_tex_coords: match obj.plugin.as_str() {
+                    "serialized" => None,
+                    _ => obj.properties.boolean("flip_tex_coords")?,
+                },
             };
             let path = b.resolve(&filename);
-            let loaded = if obj.plugin == "obj" { mesh::load_obj(&path, &opts) } else { mesh::load_ply(&path, &opts) };
+            let loaded = match obj.plugin.as_str() {
+                "obj" => mesh::load_obj(&path, &opts),
+                "ply" => mesh::load_ply(&path, &opts),
+                _ => {
+                    let index = values::integer(obj, "shape_index", 0, 0, i32::MAX as i64)?;
+                    mesh::load_serialized(&path, index, &opts)
+                }
+            };
             let m = loaded.map_err(|e| {
                 values::prop_err(obj, "filename", format!("cannot load mesh: {}", values::one_line(&e.to_string())))
             })?;
@@ -93,7 +103,7 @@ pub(super) fn build_placed(
             return Err(err(
                 obj,
                 format!(
-                    "unsupported shape type \"{other}\" (matte renders: obj, ply, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)"
+                    "unsupported shape type \"{other}\" (matte renders: obj, ply, serialized, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)"
                 ),
             ));
         }

@@ -1,5 +1,5 @@
-//! Triangle meshes in world space: the `obj`, `ply`, `rectangle` and `cube` shapes of Mitsuba
-//! 3.9.1 (`src/shapes/{obj,ply,rectangle,cube}.cpp`, `src/render/mesh.cpp`), loaded the way
+//! Triangle meshes in world space: the `obj`, `ply`, `serialized`, `rectangle` and `cube` shapes
+//! of Mitsuba 3.9.1 (`src/shapes/{obj,ply,serialized,rectangle,cube}.cpp`, `src/render/mesh.cpp`), loaded the way
 //! Mitsuba loads them (`docs/renderer-semantics.md` §8):
 //!
 //! 1. positions × `to_world` (affine: the bottom matrix row is ignored, as for Mitsuba's
@@ -33,6 +33,7 @@ mod obj;
 mod ply;
 mod ply_attributes;
 mod primitives;
+mod serialized;
 
 use glam::{Mat3, Mat4, Vec2, Vec3};
 use std::fmt;
@@ -43,6 +44,7 @@ pub use normals::smooth_vertex_normals;
 pub use obj::load_obj;
 pub use ply::load_ply;
 pub use primitives::{cube, rectangle};
+pub use serialized::load_serialized;
 
 /// An indexed triangle mesh in world space.
 #[derive(Clone, Debug, Default, PartialEq)]
