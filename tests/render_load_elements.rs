@@ -1,4 +1,4 @@
-//! Loader tests for the Mitsuba elements added for Mitsuba's own test scenes (README "Mitsuba's own render tests"):
+//! Loader tests for the Mitsuba elements added for Mitsuba's own test scenes (docs/validation.md, "Mitsuba's own render tests"):
 //! `<path>`, integrator `moment`, sensor `orthographic`, texture `checkerboard`. Expected
 //! values are Mitsuba 3.9.1's documented semantics (the source file is named at each test)
 //! worked out by hand; errors name `file:line`.

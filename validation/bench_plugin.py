@@ -42,7 +42,7 @@ _plugin_root_first()
 import matte_mitsuba  # noqa: E402
 from matte_mitsuba import BSDF_TYPES as TYPES  # noqa: E402  (the plugin names, as the build wrote them)
 
-# Each type's numeric parameter and its default (README, "Models and parameters").
+# Each type's numeric parameter and its default (README, "Models and parameters"; docs/models.md).
 SHAPE_PARAMETER = {
     "oren_nayar": ("sigma", 0.3),
     "eon": ("roughness", 0.3),

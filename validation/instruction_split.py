@@ -1,5 +1,5 @@
 """Where the instructions of one render go, in matte and in Mitsuba 3.9.1, counted by
-callgrind on the scenes of `matte bench` (README "Speed": "what bounds the rest").
+callgrind on the scenes of `matte bench` (docs/performance.md: "what bounds the rest").
 
     .venv/bin/python validation/instruction_split.py [--jobs bench_out/mitsuba_jobs.json]
         [--res 64] [--spp 16] [--scenes cornell bunny room] [--variants llvm_ad_rgb scalar_rgb]

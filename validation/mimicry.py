@@ -4,7 +4,7 @@
 
 For the paper's four models and EON (lambert, wolff, oren_nayar, eon, ginneken) at the study's
 parameters (the plugins' defaults: Wolff IOR 1.4, Oren–Nayar σ 0.3, EON r 0.3, van Ginneken
-m 0.3; README "The study"), the script renders a target with each model, then fits every model
+m 0.3; docs/study.md), the script renders a target with each model, then fits every model
 to every target with ``matte_mitsuba.fit`` (Adam on ``prb`` renders): the reflectance of every
 material and the model's own shape parameter (Wolff ``int_ior``, Oren–Nayar ``sigma``, EON and
 van Ginneken ``roughness``; Lambert has only the reflectance). What is left after the fit is
@@ -492,7 +492,7 @@ floor and above.</p>"""]
 
 
 def markdown(summary):
-    """The tables of every scene as Markdown (the README's): relative RMSE and worst region in
+    """The tables of every scene as Markdown (docs/experiments/mimicry.md's): relative RMSE and worst region in
     %, each row with its noise floor, and the fitted shape parameters."""
     lines = []
     for name, sc in summary["scenes"].items():

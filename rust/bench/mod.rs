@@ -1,4 +1,4 @@
-//! `matte bench`: the speed targets (README "Speed") measured in one run on this machine: matte's
+//! `matte bench`: the speed targets (docs/performance.md) measured in one run on this machine: matte's
 //! renderer against Mitsuba 3.9.1 (`scalar_rgb`, `llvm_ad_rgb` with a warm kernel cache) on
 //! the same scenes at the same spp (and with matte's two tile drivers), samples/s against spp,
 //! BVH build share, each diffuse model's render time against Lambert's, kernel ns/eval against

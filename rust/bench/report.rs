@@ -1,4 +1,4 @@
-//! The bench's table, its targets (README "Speed") with pass/fail, and the JSON record.
+//! The bench's table, its targets (docs/performance.md) with pass/fail, and the JSON record.
 
 use super::Measurements;
 use serde::Serialize;
@@ -21,7 +21,7 @@ impl Target {
     }
 }
 
-/// The speed targets (README "Speed") that the measurements can check.
+/// The speed targets (docs/performance.md) that the measurements can check.
 pub fn targets(m: &Measurements) -> Vec<Target> {
     let mut t = Vec::new();
     let le = |what: String, measured: f64, limit: f64| Target { what, measured, limit, at_least: false };
@@ -65,7 +65,7 @@ pub fn targets(m: &Measurements) -> Vec<Target> {
     t
 }
 
-/// The traced plugins' render-time limits against `diffuse` (README "Speed", plugins): the
+/// The traced plugins' render-time limits against `diffuse` (docs/performance.md, plugins): the
 /// extra operations each model records into the path tracer's kernel.
 fn plugin_limit(kind: &str) -> f64 {
     match kind {
@@ -90,7 +90,7 @@ pub fn machine() -> String {
     format!("{cpu}, {} threads", rayon::current_num_threads())
 }
 
-/// The human-readable table (also what the README shows).
+/// The human-readable table (also what docs/performance.md shows).
 pub fn table(m: &Measurements) -> String {
     use std::fmt::Write;
     let mut s = String::new();

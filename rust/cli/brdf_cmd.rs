@@ -1,5 +1,5 @@
 //! `matte brdf` and `matte albedo`: one model, evaluated by the kernels, printed as JSON.
-//! Schema in README.md ("Command line").
+//! Schema in docs/usage.md.
 
 use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use clap::Args;

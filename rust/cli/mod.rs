@@ -41,7 +41,7 @@ pub enum Command {
     /// Simulate a rough model's own microsurface (V-cavities, Gaussian height field) and compare
     /// the models with it (JSON).
     Microgeometry(microgeometry_cmd::MicrogeometryArgs),
-    /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (README "Speed").
+    /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (docs/performance.md).
     Bench(bench_cmd::BenchArgs),
     /// Inverse rendering: fit scene parameters (textured σ, reflectance, …) to target images
     /// with Mitsuba's prb and Adam (runs `python -m matte_mitsuba.fit`).

@@ -37,7 +37,7 @@ pub struct RenderArgs {
     pub splat_weights: SplatWeights,
     /// How each thread runs the integrator over its tiles: `one-path` (one path at a time, the
     /// default) or `wavefront` (32 paths in flight, rays traced eight per query); the image is
-    /// the same estimator (README "Speed").
+    /// the same estimator (docs/performance.md).
     #[arg(long, value_name = "DRIVER", value_parser = Driver::parse)]
     pub driver: Option<Driver>,
     /// Also write a tone-mapped sRGB PNG next to the EXR (same name, .png).

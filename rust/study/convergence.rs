@@ -1,4 +1,4 @@
-//! Convergence series (README "The study", convergence series): is the paper's Oren–Nayar "glow below the green
+//! Convergence series (docs/study.md, convergence series): is the paper's Oren–Nayar "glow below the green
 //! box" real or a bias? A real property of the model gives a region ratio ON / Lambert that
 //! is stable as the sample count grows and the same in both renderers (their 99 % intervals
 //! overlap). A bias or noise artefact drifts with spp or differs between renderers.

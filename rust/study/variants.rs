@@ -1,4 +1,4 @@
-//! Model variants (README "The study", model variants): how the results change with Wolff's normalisation
+//! Model variants (docs/study.md, model variants): how the results change with Wolff's normalisation
 //! and with the Oren–Nayar model. Each variant is one property in the `$bsdf` element, set
 //! through a derived scene ([`super::variant_scene`]) that both renderers load like any
 //! scene. The variants that are the plugins' defaults are the main run itself; the others

@@ -1,5 +1,5 @@
 """validation/instruction_split.py's reading of callgrind's listing (the profiling itself needs
-valgrind and minutes per scene: README "Speed")."""
+valgrind and minutes per scene: docs/performance.md)."""
 import sys
 from pathlib import Path
 

@@ -9,7 +9,7 @@
 //!
 //! `MATTE_ACCEL` picks one; without Embree (library missing) matte says so once and uses
 //! `cwbvh`, so every build of matte renders every scene. `matte bench` times all three on the
-//! same rays (README "Speed").
+//! same rays (docs/performance.md).
 
 pub mod cwbvh;
 pub mod embree;

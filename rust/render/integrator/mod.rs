@@ -29,7 +29,7 @@ use glam::Vec3;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Driver {
     /// One path at a time ([`one_path`]). The default: with scalar shading the wavefront is
-    /// not faster yet (README "Speed": 0.82–1.18× of this driver's time over four runs).
+    /// not faster yet (docs/performance.md).
     #[default]
     OnePath,
     /// Many paths in flight per thread with batched ray queries ([`wavefront`]), the structure

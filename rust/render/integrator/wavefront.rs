@@ -1,5 +1,5 @@
 //! Many paths in flight per thread: a tile driver for the `path` and `direct` integrators
-//! ([`super::Driver::Wavefront`]; README "Speed").
+//! ([`super::Driver::Wavefront`]; docs/performance.md).
 //!
 //! Each of the [`LANES`] lanes renders whole pixels of a tile, one after the other, every
 //! sample of a pixel in turn with the pixel's own sampler stream: the numbers drawn, and so
@@ -23,7 +23,7 @@ use glam::{Vec2, Vec3};
 /// Paths in flight per thread. Each step runs Embree's packet traversal, then every lane's
 /// shading, then the packet occlusion test: code that together overflows the 32 KB L1
 /// instruction cache, so the step's cost depends on how many lanes share it. Measured with
-/// callgrind's cache and branch simulation (README "Speed"): with 8 lanes, 9× the L1i misses
+/// callgrind's cache and branch simulation (docs/performance.md): with 8 lanes, 9× the L1i misses
 /// of one path per thread and no gain; with 32, 2.4× and 8–9 % fewer estimated cycles on the
 /// room and the bunny, +2 % on the Cornell box.
 pub const LANES: usize = 32;
