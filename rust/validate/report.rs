@@ -159,13 +159,14 @@ scale rejects anything (docs/validation.md).</p>"#,
         if all { "PASS" } else { "FAIL" },
         results.len()
     );
-    for r in results {
+    h.push_str(&summary_table(results));
+    for (i, r) in results.iter().enumerate() {
         let c = &r.comparison;
         let f = &r.files;
         let p = |p: &PathBuf| escape(&p.display().to_string());
         let _ = write!(
             h,
-            r#"<div class="scene"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{predicted}</p><p>{power}</p>
+            r#"<div class="scene" id="scene-{i}"><h2>{name} <small>vs {reference}</small> <span class="{cls}">{verdict}</span></h2><p>{predicted}</p><p>{power}</p>
 <div class="imgs">
 <figure><img class="r" src="{mp}"><figcaption>matte (<a href="{me}">EXR</a>)</figcaption></figure>
 <figure><img class="r" src="{rp}"><figcaption>{reference} (<a href="{re}">EXR</a>)</figcaption></figure>
@@ -214,6 +215,42 @@ scale rejects anything (docs/validation.md).</p>"#,
     }
     h.push_str("</body></html>\n");
     h
+}
+
+/// The scale that came closest to rejecting: the smallest ratio of its smallest p to its
+/// per-test level (below 1 = rejected there), with that ratio.
+fn worst_scale(r: &SceneResult) -> Option<(String, f64)> {
+    r.comparison.scales.iter().map(|s| (s.scale.label(), s.min_p / s.alpha_test)).min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// The overview on the first screen: one row per scene, linking to its section.
+fn summary_table(results: &[SceneResult]) -> String {
+    let mut h = String::from(
+        "<table class=\"summary\"><tr><th>scene</th><th>reference</th><th>verdict</th>\
+         <th>worst scale (smallest p ÷ its level)</th><th>detectable uniform change</th>\
+         <th>detectable 16×16 patch change</th><th>time matte / reference</th></tr>",
+    );
+    for (i, r) in results.iter().enumerate() {
+        let passed = r.comparison.passed();
+        let worst = worst_scale(r).map_or("–".into(), |(label, ratio)| format!("{label} ({ratio:.3})"));
+        // Measured by injection where the run calibrated power, else predicted.
+        let (uniform, patch) = match &r.power {
+            Some(p) => (format!("{} (measured)", percent(p.uniform.detected)), percent(p.patch.detected)),
+            None => (percent(r.predicted_power.uniform), percent(r.predicted_power.patch)),
+        };
+        let _ = write!(
+            h,
+            "<tr><td><a href=\"#scene-{i}\">{}</a></td><td>{}</td><td class=\"{}\">{}</td><td>{worst}</td>\
+             <td>{uniform}</td><td>{patch}</td><td>{:.2} s / {:.2} s</td></tr>",
+            escape(&r.name),
+            escape(&r.reference),
+            if passed { "pass" } else { "fail" },
+            if passed { "PASS" } else { "FAIL" },
+            r.seconds_matte,
+            r.seconds_reference,
+        );
+    }
+    h + "</table>"
 }
 
 /// A detectable relative change as a percentage with two significant digits (changes far

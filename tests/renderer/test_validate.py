@@ -59,6 +59,11 @@ def test_one_pixel_camera_shift_fails(tmp_path):
     assert worst and all({"scale", "place", "p"} <= set(w) for w in worst)
     html = (out / "report.html").read_text()
     assert "Where it differs" in html
+    summary = html[html.index('<table class="summary">'):html.index('<div class="scene"')]
+    assert ">FAIL<" in summary
+    # The worst scale rejected: its smallest p is below its level.
+    ratios = [float(x) for x in re.findall(r"(?:pixel|blocks|image) \(([0-9.e+-]+)\)", summary)]
+    assert len(ratios) == 1 and ratios[0] < 1, summary
     for ref in re.findall(r'src="([^"]*rejected_\d+_\w+\.png)"', html):
         assert (out / ref).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert len(re.findall(r'rejected_\d+_difference\.png', html)) >= 1
@@ -89,10 +94,18 @@ def test_outputs_are_valid_png_exr_and_html(tmp_path):
         assert img.shape[:2] == (RES, RES) and np.isfinite(img).all()
     html = (out / "report.html").read_text()
     assert html.startswith("<!doctype html>") and html.rstrip().endswith("</html>")
-    refs = re.findall(r'(?:src|href)="([^"]+)"', html)
+    refs = re.findall(r'(?:src|href)="([^"#][^"]*)"', html)
     assert len(refs) >= 8
     for ref in refs:
         assert (out / ref).is_file(), f"report.html references a missing file: {ref}"
+    # The summary table comes first, one row per scene linking to the scene's section.
+    summary_at, first_scene = html.index('<table class="summary">'), html.index('<div class="scene"')
+    assert summary_at < first_scene
+    anchors = re.findall(r'href="#(scene-\d+)"', html[summary_at:first_scene])
+    assert anchors == ["scene-0"]
+    assert all(f'id="{a}"' in html for a in anchors)
+    row = html[summary_at:first_scene].split("<tr>")[2]
+    assert "sphere_lambert" in row and ">PASS<" in row and " s / " in row
 
 
 def test_quiet_output_one_line_per_scene_and_json_on_request(tmp_path):
