@@ -2033,3 +2033,78 @@ fn mutated_bundled_scenes_load_or_fail_with_one_line() {
     // Both outcomes occur: the edits are neither all harmless nor all fatal.
     assert!(loaded > 50 && failed > 200, "loaded {loaded}, failed {failed}");
 }
+
+/// Emitter selection lays the emitters on [0, 1) in Mitsuba 3.9.1's `Scene::emitters()` order:
+/// top-level emitters and analytic shapes' area emitters as declared, then the meshes' area
+/// emitters in reverse (docs/renderer-semantics.md §5). Oracle: that list for this scene from
+/// `mi.load_string(..., parallel=False)`: e1, c, e2, p, a3, a2, a1.
+#[test]
+fn emitter_selection_follows_mitsubas_scene_order() {
+    let area = |shape: &str, extra: &str| format!("<shape type=\"{shape}\">{extra}<emitter type=\"area\"/></shape>");
+    let at_x = |x: i32| format!("<transform name=\"to_world\"><translate x=\"{x}\"/></transform>");
+    let body = [
+        area("sphere", &at_x(0)),
+        area("rectangle", &at_x(1)),
+        "<emitter type=\"constant\"/>".into(),
+        area("sphere", &at_x(2)),
+        area("rectangle", &at_x(3)),
+        "<emitter type=\"point\"/>".into(),
+        area("rectangle", &at_x(4)),
+    ]
+    .join("\n");
+    let scene = ok(&with_sensor(&body)).scene;
+    // Shapes in declaration order: 0 sphere, 1 rectangle, 2 sphere, 3 rectangle, 4 rectangle.
+    let name = |i: usize| match &scene.emitters[i] {
+        Emitter::Area { shape, .. } => format!("shape{shape}"),
+        Emitter::Constant { .. } => "constant".into(),
+        Emitter::Point { .. } => "point".into(),
+        other => panic!("{other:?}"),
+    };
+    let picked: Vec<String> = (0..7).map(|k| name(scene.sample_emitter((k as f32 + 0.5) / 7.0).unwrap().0)).collect();
+    assert_eq!(picked, ["shape0", "constant", "shape2", "point", "shape4", "shape3", "shape1"]);
+    // The reused sample spans [0, 1) within each emitter's interval.
+    let (_, pmf, reused) = scene.sample_emitter(1.0 / 7.0 + 0.25 / 7.0).unwrap();
+    assert!((pmf - 1.0 / 7.0).abs() < 1e-6 && (reused - 0.25).abs() < 1e-4, "{pmf} {reused}");
+}
+
+/// Emitter positions are drawn as Mitsuba maps the sample (§5): a rectangle maps u onto
+/// `to_world · (2u − 1, 2v − 1, 0)` (`src/shapes/rectangle.cpp`); a mesh picks its triangle ∝
+/// area with the second component (`Mesh::sample_position`).
+#[test]
+fn emitter_positions_map_the_sample_as_mitsuba() {
+    use matte::render::shape::Geometry;
+    let scene = ok(&with_sensor(
+        "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"2\" y=\"0.5\"/><rotate x=\"1\" angle=\"90\"/>\
+         <translate z=\"3\"/></transform></shape>\
+         <shape type=\"obj\"><string name=\"filename\" value=\"two.obj\"/></shape>"
+            .replace("two.obj", &{
+                let dir = temp_dir("mesh_sampling");
+                // Triangle 0 (z = 0) has area 1/2, triangle 1 (z = 1) area 3/2: the cdf
+                // splits at 1/4.
+                std::fs::write(
+                    dir.join("two.obj"),
+                    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 1\nv 8 0 1\nv 5 1 1\nf 1 2 3\nf 4 5 6\n",
+                )
+                    .unwrap();
+                dir.join("two.obj").display().to_string()
+            })
+            .as_str(),
+    ))
+    .scene;
+    let Geometry::Triangles(rect) = &scene.shapes[0].geometry else { panic!() };
+    for u in [Vec2::new(0.1, 0.7), Vec2::new(0.9, 0.2), Vec2::new(0.5, 0.5)] {
+        let (p, n, uv) = rect.sample_position(u).unwrap();
+        // scale, then +90° about x: (x, y, 0) → (2x, 0, 0.5y), then z + 3.
+        let want = Vec3::new(2.0 * (2.0 * u.x - 1.0), 0.0, 0.5 * (2.0 * u.y - 1.0) + 3.0);
+        assert!((p - want).abs().max_element() < 1e-5, "{p} {want}");
+        assert!((n - Vec3::NEG_Y).abs().max_element() < 1e-6, "{n}");
+        assert_eq!(uv, u);
+    }
+    let Geometry::Triangles(mesh) = &scene.shapes[1].geometry else { panic!() };
+    let on = |p: Vec3, tri: usize| (p.z - tri as f32).abs() < 1e-6;
+    // The first component alone never decides the triangle; the second does.
+    for x in [0.05, 0.95] {
+        assert!(on(mesh.sample_position(Vec2::new(x, 0.2)).unwrap().0, 0));
+        assert!(on(mesh.sample_position(Vec2::new(x, 0.3)).unwrap().0, 1));
+    }
+}

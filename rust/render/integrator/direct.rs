@@ -131,14 +131,19 @@ impl DirectIntegrator {
         let ne = self.emitter_samples as f32;
         let (frac_lum, frac_bsdf) = self.sample_fractions();
         let bsdf = scene.bsdf(&si);
-        if bsdf.has_smooth() {
-            for _ in 0..self.emitter_samples {
-                let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d()) else { continue };
-                let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
-                if f != Vec3::ZERO {
-                    let w = if es.delta { 1.0 } else { power_heuristic(es.pdf * frac_lum, pdf_b * frac_bsdf) / ne };
-                    shadows.push(ShadowTest { ray: scene.shadow_ray(&si, &es), contribution: f * es.weight * w });
-                }
+        // The emitter samples are drawn whether or not the BSDF is smooth, as Mitsuba's JIT
+        // variants draw them (the sample order matters with `ldsampler`; path.rs).
+        let smooth = bsdf.has_smooth();
+        for _ in 0..self.emitter_samples {
+            let u = sampler.next_2d();
+            if !smooth {
+                continue;
+            }
+            let Some(es) = scene.sample_emitter_direction(&si, u) else { continue };
+            let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
+            if f != Vec3::ZERO {
+                let w = if es.delta { 1.0 } else { power_heuristic(es.pdf * frac_lum, pdf_b * frac_bsdf) / ne };
+                shadows.push(ShadowTest { ray: scene.shadow_ray(&si, &es), contribution: f * es.weight * w });
             }
         }
         self.next_probe(scene, sampler, s, &si)

@@ -6,7 +6,8 @@
 //! The integrator is a state machine ([`PathState`]) advanced once per ray query, so that
 //! the one-path driver ([`super::one_path::li`]) and the renderer's many-paths-per-thread
 //! driver ([`super::wavefront`]) run the same rules and draw the same numbers from each
-//! pixel's sampler in the same order.
+//! pixel's sampler in the same order. That order is Mitsuba's: per vertex an emitter 2-D
+//! sample, the lobe 1-D and direction 2-D samples, the roulette 1-D sample.
 
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
@@ -114,8 +115,13 @@ impl SampleIntegrator for PathIntegrator {
             return None;
         }
         let bsdf = scene.bsdf(&si);
+        // Drawn at every vertex, smooth BSDF or not, as Mitsuba's JIT variants draw it (its
+        // scalar ones skip it at purely specular vertices): with `ldsampler`, whose
+        // dimensions are not independent, which dimension feeds which choice changes the
+        // expectation (docs/renderer-semantics.md §5).
+        let u_emitter = sampler.next_2d();
         if bsdf.has_smooth()
-            && let Some(es) = scene.sample_emitter_direction(&si, sampler.next_2d())
+            && let Some(es) = scene.sample_emitter_direction(&si, u_emitter)
         {
             let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));
             if f != Vec3::ZERO {
@@ -132,9 +138,11 @@ impl SampleIntegrator for PathIntegrator {
         s.prev_pdf = bs.pdf;
         s.prev_delta = bs.delta;
         s.depth += 1;
+        // Mitsuba draws the roulette number at every vertex, before and after `rr_depth`.
+        let u_roulette = sampler.next_1d();
         if s.depth >= self.rr_depth {
             let q = (s.beta.max_element() * s.eta * s.eta).min(0.95);
-            if !(sampler.next_1d() < q) {
+            if !(u_roulette < q) {
                 return None;
             }
             s.beta /= q;

@@ -112,6 +112,8 @@ pub(crate) struct Builder {
     pub shapes: Vec<crate::render::shape::Shape>,
     pub emitters: Vec<Emitter>,
     pub sampling_weights: Vec<f32>,
+    /// Per emitter: an `area` emitter on a mesh (see [`mitsuba_emitter_order`]).
+    pub emitter_on_mesh: Vec<bool>,
     /// The shape whose BSDF is being built (`None` at the top level).
     pub shape: Option<ShapeContext>,
     /// Set while building when something read [`Self::shape`] (a `mesh_attribute` texture, a
@@ -163,6 +165,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         shapes: Vec::new(),
         emitters: Vec::new(),
         sampling_weights: Vec::new(),
+        emitter_on_mesh: Vec::new(),
         shape: None,
         shape_dependent: std::cell::Cell::new(false),
         shape_dependent_bsdfs: std::collections::HashSet::new(),
@@ -239,6 +242,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             emitter::build_area(&mut b, &obj, 0)?;
             b.emitters.pop();
             b.sampling_weights.pop();
+            b.emitter_on_mesh.pop();
         }
     }
     root.check_all_used()?;
@@ -255,7 +259,9 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
     if let (Integrator::ParticleTracer(_), Some(obj)) = (&integrator, &integrator_obj) {
         particle_tracer_limits(&b, &sensor, obj)?;
     }
-    let scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
+    let order = mitsuba_emitter_order(&b.emitter_on_mesh);
+    let mut scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
+    scene.set_emitter_order(order);
     Ok(LoadedScene { scene, camera: sensor.camera, film: sensor.film, integrator, sampling: sensor.sampling, notes })
 }
 
@@ -296,4 +302,17 @@ fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObjec
 /// Error helper: `what` at the object's position.
 pub(crate) fn err(obj: &SceneObject, what: impl Into<String>) -> SceneError {
     SceneError::at(&obj.pos, format!("{} \"{}\": {}", obj.tag, obj.plugin, what.into()))
+}
+
+/// The order of Mitsuba 3.9.1's `Scene::emitters()`, which its emitter selection follows: the
+/// top-level emitters and the area emitters of analytic shapes in declaration order, then those
+/// of meshes (`obj`, `ply`, `serialized`, `rectangle`, `cube`) last, in reverse declaration
+/// order (its parser's mesh merging, `src/core/parser.cpp`, `src/shapes/merge.cpp`; measured with
+/// `load_file(..., parallel=False)`: with parallel loading, the default, the mesh emitters'
+/// order among themselves varies from run to run). It matters only with `ldsampler`.
+fn mitsuba_emitter_order(on_mesh: &[bool]) -> Vec<u32> {
+    let n = on_mesh.len() as u32;
+    let analytic = (0..n).filter(|&i| !on_mesh[i as usize]);
+    let meshes = (0..n).rev().filter(|&i| on_mesh[i as usize]);
+    analytic.chain(meshes).collect()
 }

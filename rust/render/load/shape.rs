@@ -62,8 +62,11 @@ pub(super) fn build_placed(
             // (both are flat per face; scene::mesh::primitives).
             let _ = values::boolean(obj, "face_normals", false)?;
             let opts = MeshOptions { to_world: Mat4::from(to_world), flip_normals, ..MeshOptions::default() };
-            let m = if obj.plugin == "rectangle" { mesh::rectangle(&opts) } else { mesh::cube(&opts) };
-            Geometry::Triangles(Triangles::new(m, flip_normals))
+            Geometry::Triangles(if obj.plugin == "rectangle" {
+                Triangles::rectangle(mesh::rectangle(&opts), flip_normals, to_world)
+            } else {
+                Triangles::new(mesh::cube(&opts), flip_normals)
+            })
         }
         "sphere" => {
             let center = obj.properties.point("center")?.unwrap_or_default().as_vec3();

@@ -7,7 +7,7 @@ use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::render::geometry::{Frame, warp};
 use crate::scene_file::mesh::TriangleMesh;
-use glam::{Vec2, Vec3};
+use glam::{Affine3A, Vec2, Vec3};
 
 #[derive(Clone, Debug)]
 pub struct Triangles {
@@ -20,6 +20,9 @@ pub struct Triangles {
     /// on the latency chain of every path vertex).
     face_normals: Vec<Vec3>,
     area: f32,
+    /// A `rectangle`'s `to_world`: its points are sampled as Mitsuba's analytic rectangle
+    /// samples them (`to_world · (2u − 1, 2v − 1, 0)`), not as a two-triangle mesh.
+    rectangle: Option<Affine3A>,
 }
 
 impl Triangles {
@@ -35,7 +38,13 @@ impl Triangles {
             let n = cross.normalize_or_zero();
             face_normals.push(if flip_normals { -n } else { n });
         }
-        Triangles { mesh, flip_normals, area: acc as f32, area_cdf, face_normals }
+        Triangles { mesh, flip_normals, area: acc as f32, area_cdf, face_normals, rectangle: None }
+    }
+
+    /// Mitsuba's `rectangle` with `to_world`: intersected as its two triangles, sampled as the
+    /// analytic shape (`src/shapes/rectangle.cpp`, `sample_position`).
+    pub fn rectangle(mesh: TriangleMesh, flip_normals: bool, to_world: Affine3A) -> Self {
+        Triangles { rectangle: Some(to_world), ..Triangles::new(mesh, flip_normals) }
     }
 
     pub fn surface_area(&self) -> f32 {
@@ -117,19 +126,28 @@ impl Triangles {
         area_sampling::direction_sample(ref_p, p, sh_n, uv, self.area)
     }
 
-    /// A uniform point on the surface (triangle ∝ area, then uniform inside it): position,
-    /// shading normal (after `flip_normals`) and uv; the area density is `1/area`.
+    /// A uniform point on the surface: position, shading normal (after `flip_normals`) and
+    /// uv; the area density is `1/area`. As Mitsuba maps the sample (which matters with its
+    /// `ldsampler`, whose dimensions are not independent): a mesh picks the triangle ∝ area
+    /// with `u.y` and reuses it, then warps `u` to the triangle (`Mesh::sample_position`); a
+    /// rectangle maps `u` straight onto itself.
     #[inline]
     pub fn sample_position(&self, u: Vec2) -> Option<(Vec3, Vec3, Vec2)> {
         if self.area <= 0.0 {
             return None;
         }
-        let target = u.x * self.area;
+        if let Some(m) = &self.rectangle {
+            let p = m.transform_point3(Vec3::new(2.0 * u.x - 1.0, 2.0 * u.y - 1.0, 0.0));
+            // The rectangle's normal (inverse transpose of `to_world`, after `flip_normals`).
+            let n = self.surface_point(0, Vec2::ZERO).2;
+            return Some((p, n, u));
+        }
+        let target = u.y * self.area;
         let tri = self.area_cdf.partition_point(|&c| c <= target).min(self.area_cdf.len() - 1);
         let lo = if tri == 0 { 0.0 } else { self.area_cdf[tri - 1] };
         let width = self.area_cdf[tri] - lo;
-        let ux = if width > 0.0 { ((target - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
-        let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
+        let uy = if width > 0.0 { ((target - lo) / width).clamp(0.0, 1.0 - f32::EPSILON / 2.0) } else { 0.0 };
+        let b = warp::square_to_uniform_triangle(Vec2::new(u.x, uy));
         let (p, _, sh_n, uv) = self.surface_point(tri as u32, b);
         Some((p, sh_n, uv))
     }
