@@ -2,9 +2,10 @@
 #   make main   the main job
 #   make test   every test (format and lint checks, Rust, then the Mitsuba plugin's pytest suite);
 #               .ci/run calls it
-# and one more for the speed record (not a set-up command; it needs the same things as main):
+# and two more (not set-up commands; they need the same things as main):
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
-.PHONY: main test bench venv plugin
+#   make dist   the release files in dist/: the sdist and the manylinux wheel (auditwheel)
+.PHONY: main test bench venv plugin dist
 
 PY     := .venv/bin/python
 # The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv.
@@ -18,7 +19,7 @@ main: plugin
 bench: plugin
 	./target/release/matte bench -o bench_out
 
-test: plugin
+test: plugin dist
 	cargo fmt --check
 	cargo clippy --quiet --all-targets -- -D warnings
 	cargo test --quiet
@@ -29,6 +30,19 @@ venv:
 	@validation/setup_venv.sh
 
 plugin: venv $(WHEEL)
+
+# The libraries the plugin loads from the mitsuba and drjit wheels it requires: not copied in.
+PROVIDED := libmitsuba.so libdrjit-core.so libdrjit-extra.so libnanothread.so
+
+# The sdist (python -m build, the PEP 517 front end; MANIFEST.in says what goes in) and the
+# wheel repaired by auditwheel to the lowest manylinux tag its symbols allow; twine checks both.
+dist: plugin
+	@rm -f dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
+	@mkdir -p target
+	@$(PY) -m build --sdist --no-isolation --outdir dist . > target/sdist.log 2>&1 || (cat target/sdist.log; false)
+	@PATH="$(CURDIR)/.venv/bin:$$PATH" auditwheel repair $(WHEEL) -w dist $(addprefix --exclude ,$(PROVIDED)) \
+		> target/auditwheel.log 2>&1 || (cat target/auditwheel.log; false)
+	.venv/bin/twine check --strict dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
 
 # `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.sh); here
 # against the venv's own Mitsuba (no build isolation), then installed into the venv.
