@@ -260,3 +260,61 @@ json.dump(out, open(sys.argv[2], 'w'))
         }
     }
 }
+
+#[test]
+fn other_file_formats_read_as_mitsuba_reads_them() {
+    // A random 5×3 image as Radiance RGBE (.hdr) and PFM (float RGB, linear) and as TGA and
+    // PPM (8-bit, sRGB), written by Mitsuba 3.9.1 (TGA by hand: Mitsuba only reads it), and
+    // Mitsuba's `bitmap` texture (nearest) at every texel centre. Skipped without the venv.
+    let Some(python) = common::mitsuba_python() else { return };
+    let script = r#"
+import sys, json, os, numpy as np, mitsuba as mi
+mi.set_variant('scalar_rgb')
+rng = np.random.default_rng(5)
+out = {}
+for ext, data in [('hdr', rng.uniform(0.01, 4.0, (3, 5, 3)).astype(np.float32)),
+                  ('pfm', rng.uniform(0.0, 4.0, (3, 5, 3)).astype(np.float32)),
+                  ('tga', rng.integers(0, 256, (3, 5, 3), dtype=np.uint8)),
+                  ('ppm', rng.integers(0, 256, (3, 5, 3), dtype=np.uint8))]:
+    path = os.path.join(sys.argv[1], 'image.' + ext)
+    if ext == 'tga':
+        # Mitsuba reads TGA (version 2, with its footer) but does not write it: uncompressed
+        # 24-bit BGR, top row first.
+        header = bytes([0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 5, 0, 3, 0, 24, 0x20])
+        footer = bytes(8) + b'TRUEVISION-XFILE.\0'
+        open(path, 'wb').write(header + data[..., ::-1].tobytes() + footer)
+    else:
+        mi.Bitmap(data, mi.Bitmap.PixelFormat.RGB).write(path)
+    t = mi.load_dict({'type': 'bitmap', 'filename': path, 'filter_type': 'nearest'})
+    si = mi.SurfaceInteraction3f()
+    vals = []
+    for y in range(3):
+        for x in range(5):
+            si.uv = [(x + 0.5) / 5, (y + 0.5) / 3]
+            vals.append(list(t.eval(si)))
+    out[ext] = vals
+json.dump(out, open(os.path.join(sys.argv[1], 'values.json'), 'w'))
+"#;
+    let dir = temp_path("formats");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = std::process::Command::new(python).arg("-c").arg(script).arg(&dir).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("values.json")).unwrap()).unwrap();
+    for ext in ["hdr", "pfm", "tga", "ppm"] {
+        let t = load(&dir.join(format!("image.{ext}")), nearest(WrapMode::Clamp));
+        let want: Vec<[f32; 3]> = serde_json::from_value(j[ext].clone()).unwrap();
+        assert_eq!(want.len(), 15);
+        for (i, w) in want.iter().enumerate() {
+            let uv = Vec2::new(((i % 5) as f32 + 0.5) / 5.0, ((i / 5) as f32 + 0.5) / 3.0);
+            let got = t.eval(uv);
+            let tol = 1e-5 * Vec3::from(*w).max_element().max(1.0);
+            assert!((got - Vec3::from(*w)).abs().max_element() <= tol, "{ext} texel {i}: {got} vs {w:?}");
+        }
+    }
+    // A PFM cut short is an error naming the file.
+    let bytes = std::fs::read(dir.join("image.pfm")).unwrap();
+    std::fs::write(dir.join("short.pfm"), &bytes[..bytes.len() - 7]).unwrap();
+    let e = BitmapTexture::load(&dir.join("short.pfm"), &BitmapOptions::default()).unwrap_err();
+    assert!(e.contains("short.pfm") && e.contains("truncated"), "{e}");
+}

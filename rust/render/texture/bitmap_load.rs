@@ -6,7 +6,8 @@
 //!   gives the same numbers. `raw = true`: value/255, no decoding.
 //! * 16-bit PNG: value/65535, sRGB-decoded unless `raw`, stored as half floats (Mitsuba's
 //!   `auto` format for 2-byte sources); the f16 rounding is reproduced.
-//! * EXR: linear, as stored (R, G, B or Y channels).
+//! * EXR, Radiance RGBE (`.hdr`) and PFM: linear, as stored (R, G, B or Y channels).
+//! * TGA, PPM/PGM, BMP: 8-bit, sRGB-decoded like PNG (Mitsuba's other 8-bit formats).
 //! * Alpha is dropped (not premultiplied); gray images become R = G = B.
 //! * Images smaller than 2×2 are padded to 2 by repeating the last column/row
 //!   (`Bitmap::pad_to`), which changes the texel grid the lookup uses.
@@ -33,10 +34,23 @@ pub fn srgb_to_linear(c: f32) -> f32 {
 }
 
 pub(super) fn load(path: &Path, raw: bool) -> Result<Texels, String> {
-    let is_exr = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("exr"));
-    let t = if is_exr {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let t = if ext.as_deref() == Some("exr") {
         let img = read_exr(path)?;
         Texels { width: img.width, height: img.height, data: img.pixels }
+    } else if ext.as_deref() == Some("hdr") {
+        // Radiance RGBE. Mitsuba writes the signature `#?RGBE`, which the decoder does not
+        // know; it is the same format as `#?RADIANCE`.
+        let mut bytes = std::fs::read(path).map_err(|e| format!("{}: cannot open bitmap: {e}", path.display()))?;
+        if let Some(rest) = bytes.strip_prefix(b"#?RGBE") {
+            bytes = [b"#?RADIANCE".as_slice(), rest].concat();
+        }
+        let img = image::load_from_memory_with_format(&bytes, image::ImageFormat::Hdr)
+            .map_err(|e| format!("{}: cannot decode bitmap: {e}", path.display()))?;
+        decode(img, raw)
+    } else if ext.as_deref() == Some("pfm") {
+        let bytes = std::fs::read(path).map_err(|e| format!("{}: cannot open bitmap: {e}", path.display()))?;
+        read_pfm(&bytes).map_err(|e| format!("{}: invalid PFM file: {e}", path.display()))?
     } else {
         let img = image::ImageReader::open(path)
             .map_err(|e| format!("{}: cannot open bitmap: {e}", path.display()))?
@@ -73,6 +87,56 @@ fn decode(img: DynamicImage, raw: bool) -> Texels {
         other => other.into_rgb32f().pixels().map(|p| Vec3::from(p.0)).collect(),
     };
     Texels { width, height, data }
+}
+
+/// Portable float map as Mitsuba reads it (`Bitmap::read_pfm`): `PF` (RGB) or `Pf` (gray),
+/// width and height, a scale whose sign gives the byte order (≤ 0: little endian) and whose
+/// magnitude multiplies every value, then f32 rows from the bottom row up.
+fn read_pfm(bytes: &[u8]) -> Result<Texels, String> {
+    // The three header fields, each ended by one whitespace character.
+    let mut fields = Vec::new();
+    let mut at = 0;
+    while fields.len() < 4 {
+        while at < bytes.len() && bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        let start = at;
+        while at < bytes.len() && !bytes[at].is_ascii_whitespace() {
+            at += 1;
+        }
+        if start == at {
+            return Err("truncated header".into());
+        }
+        fields.push(std::str::from_utf8(&bytes[start..at]).map_err(|_| "header is not text")?);
+    }
+    at += 1;
+    let channels = match fields[0] {
+        "PF" => 3,
+        "Pf" => 1,
+        other => return Err(format!("unknown type \"{other}\" (expected PF or Pf)")),
+    };
+    let dim = |s: &str| s.parse::<u32>().ok().filter(|&d| d > 0 && d <= 1 << 16).ok_or(format!("bad size \"{s}\""));
+    let (width, height) = (dim(fields[1])?, dim(fields[2])?);
+    let scale: f32 = fields[3].parse().map_err(|_| format!("bad scale \"{}\"", fields[3]))?;
+    let n = (width * height) as usize * channels;
+    let body = bytes.get(at..at + 4 * n).ok_or("truncated pixel data")?;
+    let factor = if scale.abs() != 1.0 { scale.abs() } else { 1.0 };
+    let value = |i: usize| {
+        let b: [u8; 4] = body[4 * i..4 * i + 4].try_into().unwrap();
+        factor * if scale <= 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+    };
+    let mut data = Vec::with_capacity(n / channels);
+    for y in (0..height as usize).rev() {
+        for x in 0..width as usize {
+            let i = (y * width as usize + x) * channels;
+            data.push(if channels == 3 {
+                Vec3::new(value(i), value(i + 1), value(i + 2))
+            } else {
+                Vec3::splat(value(i))
+            });
+        }
+    }
+    Ok(Texels { width, height, data })
 }
 
 /// Linear value of every 8-bit code.
