@@ -4,7 +4,7 @@
 
 mod common;
 use matte::brdf::frame::spherical_direction;
-use matte::brdf::ginneken::accuracy::fast_path_error;
+use matte::brdf::ginneken::accuracy::fast_path_accuracy;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};
 
 #[test]
@@ -15,7 +15,7 @@ fn fast_path_within_half_a_percent_away_from_grazing() {
             else {
                 unreachable!()
             };
-            let e = fast_path_error(&g, 80.0, 1500);
+            let e = fast_path_accuracy(&g, 80.0, 1500);
             assert!(
                 e.max_relative < 5e-3,
                 "m={m} {shadowing}: max relative error {:.3} % at {:?}",
@@ -44,14 +44,14 @@ fn vanishing_roughness_is_lambert() {
 /// 600 configurations: max 5.3e-4, 2.5e-3, 3.5e-3 at m = 0.1, 0.3, 0.7; mean ≤ 1.7e-4).
 #[test]
 fn roughness_gradient_matches_the_reference_derivative() {
-    use matte::brdf::ginneken::accuracy::roughness_gradient_error;
+    use matte::brdf::ginneken::accuracy::roughness_gradient_accuracy;
     for m in ["0.1", "0.3", "0.7"] {
         for shadowing in ["vginneken", "height_correlated"] {
             let DiffuseModel::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)])
             else {
                 unreachable!()
             };
-            let e = roughness_gradient_error(&g, 80.0, 600);
+            let e = roughness_gradient_accuracy(&g, 80.0, 600);
             println!(
                 "m={m} {shadowing}: ∂ln f/∂ln m error max {:.2e} mean {:.2e} at {:?}",
                 e.max_log_error, e.mean_log_error, e.worst
@@ -67,11 +67,11 @@ fn roughness_gradient_matches_the_reference_derivative() {
 /// (`docs/models.md#van-ginneken-with-a-textured-roughness` has the measured numbers).
 #[test]
 fn roughness_axis_matches_the_reference_between_nodes() {
-    use matte::brdf::ginneken::roughness_axis::axis_error;
+    use matte::brdf::ginneken::roughness_axis::axis_accuracy;
     use matte::brdf::ginneken::shadowing::Shadowing;
     for m in [0.05, 0.13, 0.45, 0.8] {
         for shadowing in [Shadowing::VanGinneken, Shadowing::HeightCorrelated] {
-            let e = axis_error(m, shadowing, 80.0, 800);
+            let e = axis_accuracy(m, shadowing, 80.0, 800);
             println!(
                 "m={m} {shadowing:?}: f max {:.2e} mean {:.2e}; ∂ln f/∂ln m max {:.2e} mean {:.2e}",
                 e.max_relative, e.mean_relative, e.max_log_derivative, e.mean_log_derivative

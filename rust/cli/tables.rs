@@ -3,7 +3,7 @@
 //! reader can hold them against the published numbers, plus the van Ginneken fast path's
 //! measured error against the reference integral.
 
-use crate::brdf::ginneken::accuracy::fast_path_error;
+use crate::brdf::ginneken::accuracy::fast_path_accuracy;
 use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use clap::Args;
 
@@ -104,7 +104,7 @@ pub fn run(args: &TablesArgs) -> Result<(), String> {
         for (label, bsdf) in &models {
             if let DiffuseModel::Ginneken(g) = bsdf {
                 for max_theta in [80.0, 85.0, 89.0] {
-                    let e = fast_path_error(g, max_theta, args.error_samples);
+                    let e = fast_path_accuracy(g, max_theta, args.error_samples);
                     println!(
                         "{label:<26} θ ≤ {max_theta}°: max {:.3} %, mean {:.4} % (worst at {:.1}/{:.1}/{:.1})",
                         100.0 * e.max_relative,

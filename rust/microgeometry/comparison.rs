@@ -41,9 +41,9 @@ pub struct Comparison {
     pub points: Vec<GridPoint>,
     pub albedo: Vec<AlbedoPoint>,
     /// Each model against the all-bounce simulation.
-    pub summary: Vec<ModelError>,
+    pub summary: Vec<ModelDeviation>,
     /// Each model against the first-bounce simulation (no interreflection).
-    pub summary_single_bounce: Vec<ModelError>,
+    pub summary_single_bounce: Vec<ModelDeviation>,
 }
 
 #[derive(Serialize)]
@@ -69,7 +69,7 @@ pub struct AlbedoPoint {
 
 /// One model's relative error against one simulation over the grid.
 #[derive(Serialize)]
-pub struct ModelError {
+pub struct ModelDeviation {
     pub model: String,
     pub mean_abs_relative_error: f64,
     pub max_abs_relative_error: f64,
@@ -260,7 +260,7 @@ fn errors(
     albedo: &[AlbedoPoint],
     sim: impl Fn(&GridPoint) -> f64,
     sim_albedo: impl Fn(&AlbedoPoint) -> f64,
-) -> Vec<ModelError> {
+) -> Vec<ModelDeviation> {
     labels
         .iter()
         .enumerate()
@@ -275,7 +275,7 @@ fn errors(
                 .map(|a| ((a.model[m] / sim_albedo(a) - 1.0).abs(), a.theta_i))
                 .max_by(|a, b| a.0.total_cmp(&b.0))
                 .unwrap_or((f64::NAN, 0.0));
-            ModelError {
+            ModelDeviation {
                 model: label.clone(),
                 mean_abs_relative_error: errors.iter().map(|e| e.0).sum::<f64>() / errors.len() as f64,
                 max_abs_relative_error: worst.0,

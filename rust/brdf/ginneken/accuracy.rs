@@ -10,7 +10,7 @@ use crate::brdf::model::DiffuseBrdf;
 use crate::brdf::real::{Nodes, Real, V3};
 
 #[derive(Clone, Copy, Debug)]
-pub struct FastPathError {
+pub struct FastPathAccuracy {
     /// Largest |fast − reference| / reference.
     pub max_relative: f64,
     /// Mean of the same.
@@ -22,7 +22,7 @@ pub struct FastPathError {
 
 /// Compares [`DiffuseBrdf::eval`] with [`Ginneken::eval_reference`] at `samples` configurations
 /// with θi, θo uniform in [0, max_theta_deg] and Δφ uniform in [0°, 180°].
-pub fn fast_path_error(model: &Ginneken, max_theta_deg: f64, samples: usize) -> FastPathError {
+pub fn fast_path_accuracy(model: &Ginneken, max_theta_deg: f64, samples: usize) -> FastPathAccuracy {
     // R3 quasi-random sequence (Roberts 2018): additive recurrence with powers of 1/φ₃.
     let g = 1.220_744_084_605_759_5_f64;
     let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];
@@ -41,13 +41,13 @@ pub fn fast_path_error(model: &Ginneken, max_theta_deg: f64, samples: usize) -> 
             worst = (ti, to, ph);
         }
     }
-    FastPathError { max_relative: max_rel, mean_relative: sum_rel / samples as f64, worst, samples }
+    FastPathAccuracy { max_relative: max_rel, mean_relative: sum_rel / samples as f64, worst, samples }
 }
 
 /// How well the traced kernels' roughness gradient (the `∂/∂m` tables, first order around the
 /// tables' m₀) matches the true derivative.
 #[derive(Clone, Copy, Debug)]
-pub struct RoughnessGradientError {
+pub struct RoughnessGradientAccuracy {
     /// Largest error of the elasticity `∂ ln f / ∂ ln m` (the derivative's error relative to
     /// `f/m`, so it is finite where the derivative crosses zero).
     pub max_log_error: f64,
@@ -62,7 +62,7 @@ pub struct RoughnessGradientError {
 /// tables ([`Dual`]: the same code the plugin traces, `m − m₀` as the variable), against
 /// central differences (`m (1 ± 10⁻³)`) of [`Ginneken::eval_reference`], at `samples`
 /// quasi-random configurations with θi, θo ≤ `max_theta_deg`.
-pub fn roughness_gradient_error(model: &Ginneken, max_theta_deg: f64, samples: usize) -> RoughnessGradientError {
+pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples: usize) -> RoughnessGradientAccuracy {
     let m = model.roughness() as f64;
     let h = 1e-3 * m;
     let plus = Ginneken::new(m + h, model.shadowing()).expect("valid roughness");
@@ -98,5 +98,5 @@ pub fn roughness_gradient_error(model: &Ginneken, max_theta_deg: f64, samples: u
             worst = (ti, to, ph);
         }
     }
-    RoughnessGradientError { max_log_error: max_err, mean_log_error: sum_err / samples as f64, worst, samples }
+    RoughnessGradientAccuracy { max_log_error: max_err, mean_log_error: sum_err / samples as f64, worst, samples }
 }

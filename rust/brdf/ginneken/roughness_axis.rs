@@ -9,7 +9,7 @@
 //! is **cubic Hermite**: value and slope match at both ends of a cell. The value is then
 //! accurate to a few 1e-4 between nodes, and its m-derivative (the texture's gradient, exact
 //! derivative of the interpolant) is continuous. Measured against
-//! [`super::Ginneken::eval_reference`] by [`axis_error`] (`tests/ginneken_fast_path.rs`; docs/models.md).
+//! [`super::Ginneken::eval_reference`] by [`axis_accuracy`] (`tests/ginneken_fast_path.rs`; docs/models.md).
 //!
 //! A texture value outside [M_MIN, M_MAX] is clamped into it (NaN gives M_MIN). The stack is
 //! built once per process, on first use (M_NODES single-roughness builds, a few seconds).
@@ -179,7 +179,7 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
 
 /// How well the roughness-axis kernel matches the reference integral at one roughness.
 #[derive(Clone, Copy, Debug)]
-pub struct AxisError {
+pub struct AxisAccuracy {
     /// Largest and mean |axis − reference| / reference of f.
     pub max_relative: f64,
     pub mean_relative: f64,
@@ -193,7 +193,7 @@ pub struct AxisError {
 /// The axis kernel at roughness `m` (f64 evaluation of the same interpolation, with dual
 /// numbers for `∂f/∂m`) against [`Ginneken::eval_reference`] at `samples` quasi-random
 /// configurations (R3 sequence) with θi, θo ≤ `max_theta_deg`, Δφ ∈ [0°, 180°].
-pub fn axis_error(m: f64, shadowing: Shadowing, max_theta_deg: f64, samples: usize) -> AxisError {
+pub fn axis_accuracy(m: f64, shadowing: Shadowing, max_theta_deg: f64, samples: usize) -> AxisAccuracy {
     use crate::brdf::dual::Dual;
     let tables = RoughnessAxisTables::shared();
     let kernel = GinnekenAxisKernel::<Dual>::new(tables.nodes(), Dual::variable(m), shadowing);
@@ -220,7 +220,7 @@ pub fn axis_error(m: f64, shadowing: Shadowing, max_theta_deg: f64, samples: usi
         (sum_rel, sum_d) = (sum_rel + rel, sum_d + d_err);
         (max_rel, max_d) = (max_rel.max(rel), max_d.max(d_err));
     }
-    AxisError {
+    AxisAccuracy {
         max_relative: max_rel,
         mean_relative: sum_rel / samples as f64,
         max_log_derivative: max_d,
