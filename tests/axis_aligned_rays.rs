@@ -9,10 +9,11 @@
 //! plane at a known distance), never the renderer's own answers.
 
 use glam::{Affine3A, Mat4, Quat, Vec3};
-use matte::render::bsdf::{Bsdf, Texture};
+use matte::render::bsdf::Bsdf;
 use matte::render::geometry::Ray;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
+use matte::render::texture::Texture;
 use matte::scene_file::mesh::{MeshOptions, cube, rectangle};
 
 fn scene(geometries: Vec<Geometry>) -> Scene {

@@ -421,9 +421,9 @@ fn odd_values_never_panic_and_render_finite() {
 #[test]
 fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
     use bumpmap_reference::{HEIGHT, NESTED, ROWS, TEXELS, WIDTH};
-    use matte::render::bsdf::Texture;
     use matte::render::bsdf::bump_map::{BumpMap, HitGeometry};
     use matte::render::geometry::Frame;
+    use matte::render::texture::Texture;
     use matte::render::texture::{BitmapOptions, BitmapTexture};
     use std::sync::Arc;
     let texels = TEXELS.iter().map(|&g| Vec3::splat(g)).collect();

@@ -3,13 +3,14 @@
 //! plane). Oracles are closed forms and numerical integration, never the renderer itself.
 
 use glam::{Affine3A, Vec2, Vec3};
-use matte::render::bsdf::{Bsdf, Texture};
+use matte::render::bsdf::Bsdf;
 use matte::render::emitter::Emitter;
 use matte::render::geometry::Ray;
 use matte::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
 use matte::render::sampler::Sampler;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
+use matte::render::texture::Texture;
 use matte::scene_file::mesh::TriangleMesh;
 use std::f32::consts::PI;
 

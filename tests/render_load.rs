@@ -15,13 +15,14 @@ use std::process::Command;
 
 use glam::{Vec2, Vec3};
 use matte::brdf::ParamValue;
-use matte::render::bsdf::{Bsdf, MicrofacetDistribution, RoughConductor, Texture};
+use matte::render::bsdf::{Bsdf, MicrofacetDistribution, RoughConductor};
 use matte::render::emitter::Emitter;
 use matte::render::film::{CropWindow, ReconstructionFilter};
 use matte::render::geometry::Ray;
 use matte::render::integrator::Integrator;
 use matte::render::load::{LoadedScene, load_file, load_str};
 use matte::render::shape::SurfaceInteraction;
+use matte::render::texture::Texture;
 use matte::scene_file::SceneError;
 
 const FILE: &str = "/virtual/scenes/scene.xml";

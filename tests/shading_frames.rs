@@ -4,10 +4,11 @@
 //! tangent-space normal maps are oriented by `s`. Expected tangents are worked out by hand.
 
 use glam::{Affine3A, Quat, Vec2, Vec3};
-use matte::render::bsdf::{Bsdf, Texture};
+use matte::render::bsdf::Bsdf;
 use matte::render::geometry::Ray;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, SurfaceInteraction, Triangles};
+use matte::render::texture::Texture;
 use matte::scene_file::mesh::TriangleMesh;
 
 fn hit(g: Geometry, o: Vec3, d: Vec3) -> SurfaceInteraction {

@@ -12,7 +12,7 @@ use common::{Pcg32, chi2_sampling, sidak};
 use glam::{DVec3, Vec2, Vec3};
 use matte::brdf::quadrature::GaussLegendre;
 use matte::brdf::{BrdfSample as DiffuseSample, DiffuseBrdf};
-use matte::render::bsdf::fresnel::fresnel_dielectric;
+use matte::render::bsdf::interface::fresnel_dielectric;
 use matte::render::bsdf::vndf::erf_inv;
 use matte::render::bsdf::{
     Conductor, Dielectric, MicrofacetDistribution, RoughConductor, conductor_material, fresnel_conductor,

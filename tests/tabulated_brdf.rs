@@ -7,7 +7,7 @@
 mod common;
 use common::{Pcg32, chi2_sampling, model, sidak};
 use glam::Vec3;
-use matte::brdf::tabulated::TabulatedBrdf;
+use matte::brdf::tabulated::BrdfTable;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};
 use matte::microgeometry::tabulation::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
 use std::f64::consts::PI;
@@ -17,8 +17,8 @@ fn direction(theta: f64, phi: f64) -> Vec3 {
 }
 
 /// `model` sampled on the production grid.
-fn table_of(m: &DiffuseModel) -> TabulatedBrdf {
-    TabulatedBrdf::from_fn(
+fn table_of(m: &DiffuseModel) -> BrdfTable {
+    BrdfTable::from_fn(
         "test",
         TABLE_THETA.to_vec(),
         TABLE_DELTA_PHI.to_vec(),
@@ -30,7 +30,7 @@ fn table_of(m: &DiffuseModel) -> TabulatedBrdf {
 
 /// Relative error of the table against the model at random directions with θ ≤ `max_theta`°
 /// and random ρ: (mean, largest).
-fn interpolation_error(m: &DiffuseModel, t: &TabulatedBrdf, max_theta: f64) -> (f64, f64) {
+fn interpolation_error(m: &DiffuseModel, t: &BrdfTable, max_theta: f64) -> (f64, f64) {
     let mut rng = Pcg32::new(3, 1);
     let (mut sum, mut worst, n) = (0.0f64, 0.0f64, 20_000);
     for _ in 0..n {
@@ -112,23 +112,23 @@ fn files_round_trip_and_bad_files_give_one_line_errors() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("t.json");
     t.write(&path).unwrap();
-    let back = TabulatedBrdf::read(&path).unwrap();
+    let back = BrdfTable::read(&path).unwrap();
     assert_eq!(back.f_over_reflectance, t.f_over_reflectance);
 
-    let missing = TabulatedBrdf::read(&dir.join("missing.json")).unwrap_err();
+    let missing = BrdfTable::read(&dir.join("missing.json")).unwrap_err();
     assert!(missing.contains("missing.json"), "{missing}");
     std::fs::write(&path, "{\"format\": \"matte-tabulated-brdf\",\n \"version\": 1,\n \"oops\"").unwrap();
-    let broken = TabulatedBrdf::read(&path).unwrap_err();
+    let broken = BrdfTable::read(&path).unwrap_err();
     assert!(broken.contains("t.json:3"), "{broken}");
     let mut short = t.clone();
     short.f_over_reflectance.pop();
     std::fs::write(&path, serde_json::to_string(&short).unwrap()).unwrap();
-    let e = TabulatedBrdf::read(&path).unwrap_err();
+    let e = BrdfTable::read(&path).unwrap_err();
     assert!(e.contains("f_over_reflectance") && !e.contains('\n'), "{e}");
     let mut nan = t.clone();
     nan.theta_deg[3] = 95.0;
     std::fs::write(&path, serde_json::to_string(&nan).unwrap()).unwrap();
-    assert!(TabulatedBrdf::read(&path).unwrap_err().contains("theta_deg"));
+    assert!(BrdfTable::read(&path).unwrap_err().contains("theta_deg"));
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -20,7 +20,7 @@ pub const VERSION: u32 = 1;
 
 /// The table and its file format (JSON; `docs/microgeometry.md#file-format`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct TabulatedBrdf {
+pub struct BrdfTable {
     /// Always [`FORMAT`].
     pub format: String,
     /// Always [`VERSION`].
@@ -68,7 +68,7 @@ fn increasing_within(name: &str, v: &[f64], lo: f64, hi: f64, hi_open: bool) -> 
     Ok(())
 }
 
-impl TabulatedBrdf {
+impl BrdfTable {
     /// A table of `f(wi, wo, ρ)/ρ` for a function `f` of (θi, θo, Δφ in radians, ρ), sampled on
     /// the nodes. At ρ = 0 the function is called with ρ = 1e-6.
     pub fn from_fn(
@@ -101,7 +101,7 @@ impl TabulatedBrdf {
         f_over_reflectance: Vec<f32>,
         half_width_over_reflectance: Vec<f32>,
     ) -> Result<Self, String> {
-        let t = TabulatedBrdf {
+        let t = BrdfTable {
             format: FORMAT.into(),
             version: VERSION,
             description: description.into(),
@@ -118,8 +118,7 @@ impl TabulatedBrdf {
     /// Reads and checks a table file.
     pub fn read(path: &std::path::Path) -> Result<Self, String> {
         let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let t: TabulatedBrdf =
-            serde_json::from_str(&text).map_err(|e| format!("{}:{}: {e}", path.display(), e.line()))?;
+        let t: BrdfTable = serde_json::from_str(&text).map_err(|e| format!("{}:{}: {e}", path.display(), e.line()))?;
         t.check().map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(t)
     }
@@ -238,7 +237,7 @@ fn delta_phi_deg(a: Vec3, b: Vec3) -> f64 {
     ((ax * bx + ay * by) / (la * lb)).clamp(-1.0, 1.0).acos().to_degrees()
 }
 
-impl DiffuseBrdf for TabulatedBrdf {
+impl DiffuseBrdf for BrdfTable {
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
         if wi.z <= 0.0 || wo.z <= 0.0 {
             return [0.0; N];

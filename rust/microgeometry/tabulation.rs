@@ -2,14 +2,14 @@
 //! the gonioreflectometer's f on every (θi, θo, Δφ) node and every facet-reflectance node in
 //! one set of paths per θi ([`measure_reflectances`]), pooled over the surface's realisations,
 //! made reciprocal by averaging f(θi, θo) with f(θo, θi), and stored as `f/ρ` in a
-//! [`TabulatedBrdf`].
+//! [`BrdfTable`].
 
 use super::gonioreflectometer::{Bounces, Setup, measure_reflectances};
 use super::realisations::pool;
 use super::surface::MicroSurface;
 use crate::brdf::DiffuseBrdf;
 use crate::brdf::frame::spherical_direction_f64;
-use crate::brdf::tabulated::TabulatedBrdf;
+use crate::brdf::tabulated::BrdfTable;
 use glam::DVec3;
 
 /// Zenith nodes of the tables `matte microgeometry --table` writes (degrees).
@@ -47,7 +47,7 @@ pub fn tabulate<S: MicroSurface>(
     description: &str,
     photons: u64,
     seed: u64,
-) -> Result<(TabulatedBrdf, TableReport), String> {
+) -> Result<(BrdfTable, TableReport), String> {
     if realisations.is_empty() {
         return Err("tabulation needs at least one surface realisation".into());
     }
@@ -108,7 +108,7 @@ pub fn tabulate<S: MicroSurface>(
     }
     let relative: Vec<f64> =
         values.iter().zip(&widths).filter(|(v, _)| **v > 0.0).map(|(v, h)| (*h / *v) as f64).collect();
-    let mut table = TabulatedBrdf::new(
+    let mut table = BrdfTable::new(
         description,
         TABLE_THETA.to_vec(),
         TABLE_DELTA_PHI.to_vec(),
@@ -141,7 +141,7 @@ pub fn tabulate<S: MicroSurface>(
 /// Linear interpolation between 10° nodes misses the curvature of f toward grazing angles, and
 /// this removes the resulting energy bias while keeping the table reciprocal. Fixed-point
 /// iteration sᵢ ← sᵢ √(target/E) (a symmetric matrix-balancing step).
-fn match_measured_albedo(table: &mut TabulatedBrdf, target: &[Vec<f64>]) {
+fn match_measured_albedo(table: &mut BrdfTable, target: &[Vec<f64>]) {
     let (nt, np) = (table.theta_deg.len(), table.delta_phi_deg.len());
     for (r, target) in target.iter().enumerate() {
         let rho = table.reflectance[r].max(1e-3) as f32;

@@ -11,8 +11,8 @@
 
 use super::Bsdf;
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]

@@ -18,9 +18,9 @@
 use super::Bsdf;
 use super::normal_map::shadow_terminator;
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::render::geometry::Frame;
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 
 /// What `bumpmap` reads from Mitsuba's `SurfaceInteraction3f`, in world space.

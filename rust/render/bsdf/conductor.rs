@@ -1,7 +1,7 @@
 //! Mitsuba's smooth `conductor` (`src/bsdfs/conductor.cpp`): a one-sided Dirac mirror whose
 //! reflectance is the complex-index Fresnel term times `specular_reflectance` (§10).
 
-use super::fresnel::fresnel_conductor;
+use super::interface::fresnel_conductor;
 use super::parameter_checks::{check_colour, check_finite};
 use super::sample::BsdfSample;
 use glam::{Vec2, Vec3};

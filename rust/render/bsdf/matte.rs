@@ -4,10 +4,10 @@
 //! the kernel's given direction; every model is reciprocal.
 
 use super::BsdfSample;
-use super::texture::Texture;
 use crate::brdf::kernel;
 use crate::brdf::{DiffuseBrdf, DiffuseModel, dispatch};
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 
 /// `(f·cos θo, pdf)`.

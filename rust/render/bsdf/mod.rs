@@ -11,7 +11,7 @@ pub mod conductor_ior;
 mod conductor_ior_data;
 pub mod dielectric;
 pub mod diffuse;
-pub mod fresnel;
+pub mod interface;
 pub mod mask;
 pub mod matte;
 pub mod microfacet;
@@ -27,7 +27,6 @@ pub mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sample;
 pub mod tabulated_brdf;
-pub mod texture;
 pub mod textured_roughness;
 pub mod thin_dielectric;
 pub mod vndf;
@@ -37,7 +36,7 @@ pub use bump_map::BumpMap;
 pub use conductor::Conductor;
 pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
-pub use fresnel::fresnel_conductor;
+pub use interface::fresnel_conductor;
 pub use mask::Mask;
 pub use matte::TexturedMatte;
 pub use microfacet::MicrofacetDistribution;
@@ -50,11 +49,11 @@ pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
 pub use sample::BsdfSample;
 pub use tabulated_brdf::TabulatedBrdf;
-pub use texture::Texture;
 pub use textured_roughness::{RoughLobe, TexturedRoughness};
 pub use thin_dielectric::ThinDielectric;
 
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 
 /// One BSDF of the scene.

@@ -15,11 +15,11 @@
 //! textures' `mean()`), then draws a cosine-weighted direction. The diffuse pdf is
 //! p_d·cos θo/π.
 
-use super::fresnel::fresnel_dielectric;
+use super::interface::fresnel_dielectric;
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 
 /// Smooth plastic.

@@ -9,15 +9,15 @@
 //! gates and quirks follow the Mitsuba source (e.g. the clearcoat term has no 1/(4 cos θi),
 //! and in scalar variants sheen is only added where the diffuse lobe is active).
 
-use super::fresnel::fresnel_dielectric;
+use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
     Gtr1, calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight, smith_ggx1,
 };
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 

@@ -7,15 +7,15 @@
 //! lobes exist only with `spec_trans` (Mitsuba's `get_flag`); lobe probabilities follow the
 //! `*_sampling_rate`s; the sample weight is eval/pdf of the mixture.
 
-use super::fresnel::fresnel_dielectric;
+use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
     calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight,
 };
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 

@@ -7,7 +7,7 @@
 //!
 //! sampled through the microfacet normal (visible normals by default, or D·cos θm).
 
-use super::fresnel::fresnel_conductor;
+use super::interface::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::parameter_checks::{check_colour, check_finite};
 use super::sample::BsdfSample;

@@ -14,7 +14,7 @@
 //! roughness scale 1.2 − 0.2·√|cos θi| when `sample_visible` is false), then reflects with
 //! probability F(wi·m), else refracts.
 
-use super::fresnel::fresnel_dielectric;
+use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::parameter_checks::check_colour;
 use super::sample::BsdfSample;

@@ -14,13 +14,13 @@
 //! microfacet reflection density and the cosine density, and the sample weight is eval/pdf
 //! (Mitsuba evaluates both lobes for either choice). One-sided.
 
-use super::fresnel::fresnel_dielectric;
+use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_reflectance, lerp_table};
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 

@@ -4,21 +4,21 @@
 //! (the table is non-linear in ρ), one-sided like the matte models, cosine-weighted sampling.
 
 use super::BsdfSample;
-use super::texture::Texture;
 use crate::brdf::DiffuseBrdf;
-use crate::brdf::tabulated::TabulatedBrdf as Table;
+use crate::brdf::tabulated::BrdfTable;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
 #[derive(Clone, Debug)]
 pub struct TabulatedBrdf {
-    pub table: Arc<Table>,
+    pub table: Arc<BrdfTable>,
     pub reflectance: Texture,
 }
 
 /// `(f·cos θo, pdf)`.
 #[inline]
-pub fn eval_pdf(table: &Table, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+pub fn eval_pdf(table: &BrdfTable, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
     if wi.z <= 0.0 || wo.z <= 0.0 {
         return (Vec3::ZERO, 0.0);
     }
@@ -26,7 +26,7 @@ pub fn eval_pdf(table: &Table, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
 }
 
 #[inline]
-pub fn sample(table: &Table, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
+pub fn sample(table: &BrdfTable, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
     if wi.z <= 0.0 {
         return None;
     }

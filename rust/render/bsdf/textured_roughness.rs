@@ -7,8 +7,8 @@
 use super::rough_conductor::RoughConductor;
 use super::rough_dielectric::RoughDielectric;
 use super::sample::BsdfSample;
-use super::texture::Texture;
 use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]

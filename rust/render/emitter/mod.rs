@@ -9,9 +9,9 @@ pub mod sample_ray;
 pub use envmap::EnvMap;
 pub use sample::EmitterSample;
 
-use crate::render::bsdf::Texture;
 use crate::render::geometry::warp;
 use crate::render::shape::{Shape, SurfaceInteraction};
+use crate::render::texture::Texture;
 use glam::{Affine3A, Vec2, Vec3};
 use std::f32::consts::PI;
 

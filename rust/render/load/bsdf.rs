@@ -9,8 +9,9 @@ use super::{Builder, bsdf_principled, err, texture, values};
 use crate::brdf::{BSDF_TYPES, ParamValue, Params};
 use crate::render::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Mask, NormalMap, Plastic, RoughConductor, RoughDielectric, RoughLobe,
-    RoughPlastic, TabulatedBrdf, Texture, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
+    RoughPlastic, TabulatedBrdf, TexturedMatte, TexturedRoughness, ThinDielectric, conductor_material,
 };
+use crate::render::texture::Texture;
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;
@@ -108,7 +109,7 @@ fn build(b: &mut Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
             let filename =
                 obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
             let path = b.resolve(&filename);
-            let table = crate::brdf::tabulated::TabulatedBrdf::read(&path)
+            let table = crate::brdf::tabulated::BrdfTable::read(&path)
                 .map_err(|e| values::prop_err(obj, "filename", values::one_line(&e)))?;
             Bsdf::Tabulated(TabulatedBrdf { table: std::sync::Arc::new(table), reflectance })
         }

@@ -3,7 +3,8 @@
 //! `MicrofacetDistribution(const Properties &)` reads (`include/mitsuba/render/microfacet.h`).
 
 use super::{Builder, err, texture, values};
-use crate::render::bsdf::{MicrofacetDistribution, Texture};
+use crate::render::bsdf::MicrofacetDistribution;
+use crate::render::texture::Texture;
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;

@@ -5,7 +5,8 @@
 
 use super::bsdf_params::MAX_MAGNITUDE;
 use super::{Builder, err, texture, values};
-use crate::render::bsdf::{Principled, Texture, principled_thin::PrincipledThin};
+use crate::render::bsdf::{Principled, principled_thin::PrincipledThin};
+use crate::render::texture::Texture;
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::{ColorUse, SceneObject, Value};
 use glam::Vec3;

@@ -3,9 +3,9 @@
 //! `envmap` (`src/emitters/envmap.cpp`: filename, scale, to_world, mis_compensation).
 
 use super::{Builder, err, values};
-use crate::render::bsdf::Texture;
 use crate::render::camera::x_half_tan;
 use crate::render::emitter::{self, Emitter, EnvMap};
+use crate::render::texture::Texture;
 use crate::render::texture::{BitmapOptions, BitmapTexture};
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::{ColorUse, SceneObject};

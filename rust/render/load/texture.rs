@@ -2,7 +2,7 @@
 //! nested/referenced `<texture type="bitmap">` (docs/renderer-semantics.md §2, §11) or `checkerboard`.
 
 use super::{Builder, err, values};
-use crate::render::bsdf::Texture;
+use crate::render::texture::Texture;
 use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
 use crate::scene_file::SceneError;
 use crate::scene_file::xml::{ColorUse, SceneObject, Value};

@@ -1,12 +1,14 @@
-//! Textures (`src/textures/*.cpp`): `bitmap` (§11), `checkerboard` and `mesh_attribute`;
-//! uniform colours stay plain values in the scene description.
+//! Textures (`src/textures/*.cpp`): `bitmap` (§11), `checkerboard` and `mesh_attribute`, and
+//! [`Texture`], what a BSDF or emitter parameter holds (a constant or one of those).
 
 mod bitmap;
 mod bitmap_load;
 mod checkerboard;
 mod mesh_attribute;
+mod parameter;
 
 pub use bitmap::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 pub use bitmap_load::srgb_to_linear;
 pub use checkerboard::Checkerboard;
 pub use mesh_attribute::BoundAttribute;
+pub use parameter::{TexPoint, Texture};

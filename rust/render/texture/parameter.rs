@@ -2,8 +2,8 @@
 //! hit's uv, a `checkerboard`, or a mesh's attribute (`mesh_attribute`) at the hit (Mitsuba
 //! `get_texture`).
 
+use super::{BitmapTexture, BoundAttribute, Checkerboard};
 use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::{BitmapTexture, BoundAttribute, Checkerboard};
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
