@@ -30,6 +30,8 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from gradient_check import adjoint_gradient, central_difference  # noqa: E402
 SCENE = os.path.join(REPO, "mitsuba_scenes", "all_types.xml")
 
 # One differentiable parameter per type, its value and finite-difference step.
@@ -47,7 +49,6 @@ MEAN_Z_LIMIT = 4.5
 
 def child(args):
     """Runs one measurement in this process and prints its JSON."""
-    import drjit as dr
     import mitsuba as mi
     import numpy as np
     mi.set_variant(args.variant)
@@ -83,19 +84,9 @@ def child(args):
             return mi.Float(float(base[0]) + delta)
 
         params[key] = value(0.0)
-        dr.enable_grad(params[key])
-        params.update()
-        img = mi.render(scene, params, spp=spp, seed=seed)
-        n = int(np.prod(img.shape))
-        grad_in = mi.TensorXf(dr.full(mi.Float, 1.0 / n, n), img.shape)
-        scene.integrator().render_backward(scene, params, grad_in, sensor=0, seed=seed, spp=spp)
-        ad = float(np.sum(np.array(dr.grad(params[key]))))
-        means = []
-        for delta in (h, -h):
-            params[key] = value(delta)
-            params.update()
-            means.append(float(np.array(mi.render(scene, params, spp=spp, seed=seed), dtype=np.float64).mean()))
-        print(json.dumps({"ad": ad, "fd": (means[0] - means[1]) / (2 * h)}))
+        ad = float(np.sum(adjoint_gradient(mi, scene, params, key, spp, seed)))
+        fd = central_difference(mi, scene, params, key, value, h, spp, seed)
+        print(json.dumps({"ad": ad, "fd": fd}))
         return
     raise SystemExit(f"unknown child {args.child}")
 
@@ -152,7 +143,6 @@ def gradient_check(device, types):
 
 
 def speed_table(device, repeats):
-    sys.path.insert(0, HERE)
     import bench_plugin
     rows, base = [], None
     for kind in ["diffuse"] + list(bench_plugin.TYPES):

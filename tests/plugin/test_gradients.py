@@ -3,8 +3,16 @@
 of what finite differences measure) against central finite differences of renders with the
 same seed, for every differentiable parameter of every type, within 1 %. For `reflectance`
 the derivative is along (1, 1, 1) (all channels together)."""
+import os
+import sys
+
 import numpy as np
 import pytest
+
+from conftest import REPO
+
+sys.path.insert(0, os.path.join(REPO, "validation"))
+from gradient_check import adjoint_gradient, central_difference  # noqa: E402
 
 RES, SPP, SEED = 24, 8, 3
 
@@ -42,7 +50,6 @@ def cornell(mi, kind, fixed):
 @pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
 def test_ad_matches_finite_differences(mi_variant, case):
     mi = mi_variant
-    import drjit as dr
     kind, fixed, steps = case
     scene = cornell(mi, kind, fixed)
     params = mi.traverse(scene)
@@ -57,24 +64,10 @@ def test_ad_matches_finite_differences(mi_variant, case):
                 return mi.Color3f(*[float(x) + delta for x in base])
             return mi.Float(float(base[0]) + delta)
 
-        # Automatic differentiation, adjoint pass with the primal's seed.
         params[key] = with_value(0.0)
-        dr.enable_grad(params[key])
-        params.update()
-        img = mi.render(scene, params, spp=SPP, seed=SEED)
-        n = int(np.prod(img.shape))
-        grad_in = mi.TensorXf(dr.full(mi.Float, 1.0 / n, n), img.shape)
-        scene.integrator().render_backward(scene, params, grad_in, sensor=0, seed=SEED, spp=SPP)
-        ad = float(np.sum(np.array(dr.grad(params[key]))))
-        # Central differences, same seed.
-        means = []
-        for delta in (h, -h):
-            params[key] = with_value(delta)
-            params.update()
-            means.append(float(np.array(mi.render(scene, params, spp=SPP, seed=SEED), dtype=np.float64).mean()))
-        fd = (means[0] - means[1]) / (2 * h)
-        params[key] = with_value(0.0)
-        params.update()
+        # Along (1, 1, 1) for a colour: the sum over its channels.
+        ad = float(np.sum(adjoint_gradient(mi, scene, params, key, SPP, SEED)))
+        fd = central_difference(mi, scene, params, key, with_value, h, SPP, SEED)
         print(f"{case_id(case)} d(mean)/d({name}): AD {ad:.7g}  FD {fd:.7g}  relative gap {abs(ad - fd) / abs(fd):.1e}")
         assert np.isfinite(ad) and abs(fd) > 1e-6, (ad, fd)
         assert abs(ad - fd) <= 0.01 * abs(fd), f"{name}: AD {ad} vs FD {fd}"

@@ -6,10 +6,16 @@ texture's data through `mi.traverse`), the float form of each parameter (a textu
 same value everywhere must give the float's BSDF and, summed over its texels, the float's
 gradient), and Mitsuba's own error reporting for refused forms.
 """
+import os
+import sys
+
 import numpy as np
 import pytest
 
-from conftest import random_pairs
+from conftest import REPO, random_pairs
+
+sys.path.insert(0, os.path.join(REPO, "validation"))
+from gradient_check import adjoint_gradient, image_mean  # noqa: E402
 
 N = 4000
 # (type, textured parameter, value, fixed parameters, relative tolerance against the float form)
@@ -184,7 +190,6 @@ def test_render_gradient_of_a_textured_sigma(mi_variant):
     """A small render (prb) of a plane whose σ is a 2×2 texture: d(image mean)/d(texel) by the
     adjoint pass with the primal's seed, against central differences of renders, within 1 %."""
     mi = mi_variant
-    import drjit as dr
     texels = np.array([[0.2, 0.5], [0.8, 0.35]], dtype=np.float32)
     scene = mi.load_dict({
         "type": "scene",
@@ -204,17 +209,10 @@ def test_render_gradient_of_a_textured_sigma(mi_variant):
     def mean(data):
         params[key] = mi.TensorXf(np.asarray(data, dtype=np.float32).reshape(2, 2, 1))
         params.update()
-        return float(np.array(mi.render(scene, params, spp=spp, seed=seed), dtype=np.float64).mean())
+        return image_mean(mi, scene, params, spp, seed)
 
     params[key] = mi.TensorXf(texels.reshape(2, 2, 1))
-    dr.enable_grad(params[key])
-    params.update()
-    # The adjoint pass with the primal's seed: the exact derivative of what FD measures.
-    img = mi.render(scene, params, spp=spp, seed=seed)
-    n = int(np.prod(img.shape))
-    grad_in = mi.TensorXf(dr.full(mi.Float, 1.0 / n, n), img.shape)
-    scene.integrator().render_backward(scene, params, grad_in, sensor=0, seed=seed, spp=spp)
-    ad = np.array(dr.grad(params[key]), dtype=np.float64).ravel()
+    ad = adjoint_gradient(mi, scene, params, key, spp, seed)
     h = 1e-2
     for k in range(4):
         plus, minus = texels.ravel().copy(), texels.ravel().copy()
