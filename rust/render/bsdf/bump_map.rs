@@ -8,7 +8,8 @@
 //! default true, its tangential part is negated when wi is on the other side of n̂). The
 //! tangent is ŝ = normalize(∂p/∂u − n̂(n̂·∂p/∂u)) — Mitsuba mixes the local n̂ with the
 //! world-space ∂p/∂u here, and matte does the same so that images agree. Values and weights
-//! get the shadow-terminator term of `normalmap` (`use_shadowing_function`, default true).
+//! get the shadow-terminator term of `normalmap` (`use_shadowing_function`, default true;
+//! both wrappers share [`super::perturbed_frame`]).
 //!
 //! The hit geometry comes from the [`SurfaceInteraction`]; matte's meshes compute ∂p/∂u and
 //! ∂p/∂v as Mitsuba's do, its analytic shapes do not, so the loader accepts `bumpmap` on
@@ -16,7 +17,7 @@
 //! explicitly (tested against Mitsuba at given geometry).
 
 use super::Bsdf;
-use super::normal_map::shadow_terminator;
+use super::perturbed_frame;
 use super::sample::BsdfSample;
 use crate::render::geometry::Frame;
 use crate::render::shape::SurfaceInteraction;
@@ -83,18 +84,7 @@ impl BumpMap {
     /// `(f·|cos θo|, pdf)` at a hit with geometry `g`.
     pub fn eval_pdf_at(&self, si: &SurfaceInteraction, g: &HitGeometry, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(si, wi, g);
-        if !(frame.s.is_finite() && frame.t.is_finite() && frame.n.is_finite()) {
-            return (Vec3::ZERO, 0.0);
-        }
-        let (pwi, pwo) = (frame.to_local(wi), frame.to_local(wo));
-        if !(wo.z * pwo.z > 0.0) {
-            return (Vec3::ZERO, 0.0);
-        }
-        let (mut f, pdf) = self.nested.eval_pdf(si, pwi, pwo);
-        if self.use_shadowing_function {
-            f *= shadow_terminator(frame.n, wo);
-        }
-        (f, pdf)
+        perturbed_frame::eval_pdf(&self.nested, &frame, self.use_shadowing_function, si, wi, wo)
     }
 
     /// Samples the nested BSDF in the perturbed frame.
@@ -107,18 +97,6 @@ impl BumpMap {
         u: Vec2,
     ) -> Option<BsdfSample> {
         let frame = self.frame(si, wi, g);
-        if !(frame.s.is_finite() && frame.t.is_finite() && frame.n.is_finite()) {
-            return None;
-        }
-        let mut s = self.nested.sample(si, frame.to_local(wi), u_lobe, u)?;
-        let wo = frame.to_world(s.wo);
-        if !(s.wo.z * wo.z > 0.0) || s.weight == Vec3::ZERO {
-            return None;
-        }
-        s.wo = wo;
-        if self.use_shadowing_function {
-            s.weight *= shadow_terminator(frame.n, wo);
-        }
-        Some(s)
+        perturbed_frame::sample(&self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
     }
 }

@@ -18,6 +18,7 @@ pub mod microfacet;
 pub mod microfacet_albedo;
 pub mod normal_map;
 mod parameter_checks;
+pub mod perturbed_frame;
 pub mod plastic;
 pub mod principled;
 pub mod principled_helpers;

@@ -8,14 +8,13 @@
 //! ŝ = normalize(x − n̂·n̂ₓ), t̂ = n̂ × ŝ; wi and wo are expressed in it, and the result is zero
 //! when wo is on different sides of the two normals. With `use_shadowing_function` (default
 //! true) values and sample weights are multiplied by Estevez et al.'s shadow-terminator
-//! term 2/(1 + √(1 + α²·tan²θo)), α² = min(1, tan²θ(n̂)/8), θo measured from the
-//! unperturbed normal.
+//! term ([`super::perturbed_frame`], shared with `bumpmap`).
 //!
 //! Only the local shading frame is involved, so the result depends on the shape's tangent
 //! orientation exactly as in Mitsuba (`sh_frame.s` along ∂p/∂u there).
 
-use super::Bsdf;
 use super::sample::BsdfSample;
+use super::{Bsdf, perturbed_frame};
 use crate::render::geometry::Frame;
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
@@ -27,19 +26,6 @@ pub struct NormalMap {
     pub nested: Box<Bsdf>,
     pub flip_invalid_normals: bool,
     pub use_shadowing_function: bool,
-}
-
-/// Mitsuba's `eval_shadow_terminator(perturbed_n, wo)`.
-#[inline]
-pub fn shadow_terminator(perturbed_n: Vec3, wo: Vec3) -> f32 {
-    let alpha2 = (0.125 * tan_theta_2(perturbed_n)).min(1.0);
-    2.0 / (1.0 + (1.0 + alpha2 * tan_theta_2(wo)).sqrt())
-}
-
-/// Mitsuba's `Frame3f::tan_theta_2`.
-#[inline]
-fn tan_theta_2(v: Vec3) -> f32 {
-    (1.0 - v.z * v.z).max(0.0) / (v.z * v.z)
 }
 
 impl NormalMap {
@@ -58,43 +44,12 @@ impl NormalMap {
     #[inline]
     pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(si, wi);
-        // A texel that maps to a zero or purely tangential (1, 0, 0) normal has no frame
-        // (Mitsuba would produce NaN): no contribution.
-        if !frame_is_finite(&frame) {
-            return (Vec3::ZERO, 0.0);
-        }
-        let (pwi, pwo) = (frame.to_local(wi), frame.to_local(wo));
-        // `> 0` is false for NaN (a degenerate normal map texel).
-        if !(wo.z * pwo.z > 0.0) {
-            return (Vec3::ZERO, 0.0);
-        }
-        let (mut f, pdf) = self.nested.eval_pdf(si, pwi, pwo);
-        if self.use_shadowing_function {
-            f *= shadow_terminator(frame.n, wo);
-        }
-        (f, pdf)
+        perturbed_frame::eval_pdf(&self.nested, &frame, self.use_shadowing_function, si, wi, wo)
     }
 
     #[inline]
     pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let frame = self.frame(si, wi);
-        if !frame_is_finite(&frame) {
-            return None;
-        }
-        let mut s = self.nested.sample(si, frame.to_local(wi), u_lobe, u)?;
-        let wo = frame.to_world(s.wo);
-        if !(s.wo.z * wo.z > 0.0) || s.weight == Vec3::ZERO {
-            return None;
-        }
-        s.wo = wo;
-        if self.use_shadowing_function {
-            s.weight *= shadow_terminator(frame.n, wo);
-        }
-        Some(s)
+        perturbed_frame::sample(&self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
     }
-}
-
-#[inline]
-fn frame_is_finite(f: &Frame) -> bool {
-    f.s.is_finite() && f.t.is_finite() && f.n.is_finite()
 }
