@@ -6,7 +6,7 @@
 
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use crate::render::geometry::{Frame, Ray};
+use crate::render::geometry::Ray;
 use glam::{Affine3A, DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -72,20 +72,7 @@ impl Cylinder {
         let (p, n, uv) = self.surface_point(phi_dir, l.z);
         // Mitsuba: dp_du = to_world·2π(−y, x, 0) of the local point.
         let dp_du = self.to_world.transform_vector3(Vec3::new(-l.y, l.x, 0.0));
-        let sh_frame = Frame::from_normal_dpdu(n, dp_du);
-        SurfaceInteraction {
-            t,
-            p,
-            n,
-            sh_frame,
-            uv,
-            shape,
-            wi: sh_frame.to_local(-ray.d),
-            prim: 0,
-            bary: Vec2::ZERO,
-            dp_du: Vec3::ZERO,
-            dp_dv: Vec3::ZERO,
-        }
+        SurfaceInteraction::analytic(t, p, n, dp_du, uv, shape, ray.d)
     }
 
     /// Point, normal and uv on the wall at object-space azimuth direction `c` and height `z`.

@@ -5,7 +5,7 @@
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::brdf::sampling::square_to_uniform_disk_concentric;
-use crate::render::geometry::{Frame, Ray};
+use crate::render::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -65,20 +65,7 @@ impl Disk {
         // Mitsuba: dp_du = to_world·(cos φ, sin φ, 0), zero at the centre.
         let radial = local.normalize_or_zero();
         let dp_du = self.to_world.transform_vector3(Vec3::new(radial.x, radial.y, 0.0));
-        let sh_frame = Frame::from_normal_dpdu(self.n, dp_du);
-        SurfaceInteraction {
-            t,
-            p,
-            n: self.n,
-            sh_frame,
-            uv: Self::uv(local),
-            shape,
-            wi: sh_frame.to_local(-ray.d),
-            prim: 0,
-            bary: Vec2::ZERO,
-            dp_du: Vec3::ZERO,
-            dp_dv: Vec3::ZERO,
-        }
+        SurfaceInteraction::analytic(t, p, self.n, dp_du, Self::uv(local), shape, ray.d)
     }
 
     #[inline]

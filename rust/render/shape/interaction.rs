@@ -27,6 +27,27 @@ pub struct SurfaceInteraction {
 }
 
 impl SurfaceInteraction {
+    /// A hit on an analytic shape (sphere, disk, cylinder): shading frame from the normal `n`
+    /// and Mitsuba's ∂p/∂u (for the tangent only), no triangle, and ∂p/∂u, ∂p/∂v left zero
+    /// (`bumpmap` is refused on these shapes). `d` is the ray direction.
+    #[inline]
+    pub fn analytic(t: f32, p: Vec3, n: Vec3, dp_du: Vec3, uv: Vec2, shape: u32, d: Vec3) -> Self {
+        let sh_frame = Frame::from_normal_dpdu(n, dp_du);
+        SurfaceInteraction {
+            t,
+            p,
+            n,
+            sh_frame,
+            uv,
+            shape,
+            wi: sh_frame.to_local(-d),
+            prim: 0,
+            bary: Vec2::ZERO,
+            dp_du: Vec3::ZERO,
+            dp_dv: Vec3::ZERO,
+        }
+    }
+
     /// A hit at the origin with the identity shading frame and the given uv, for looking up
     /// textures and BSDFs outside a scene (tests, pointwise comparisons).
     pub fn at_uv(uv: Vec2) -> Self {

@@ -78,20 +78,7 @@ impl Sphere {
         // Mitsuba: dp_du = to_world·(−y, x, 0) of the local (unit-sphere) point.
         let l = self.to_object.transform_point3(p);
         let dp_du = self.to_object.matrix3.inverse() * glam::Vec3A::new(-l.y, l.x, 0.0);
-        let sh_frame = Frame::from_normal_dpdu(n, dp_du.into());
-        SurfaceInteraction {
-            t,
-            p,
-            n,
-            sh_frame,
-            uv,
-            shape,
-            wi: sh_frame.to_local(-ray.d),
-            prim: 0,
-            bary: Vec2::ZERO,
-            dp_du: Vec3::ZERO,
-            dp_dv: Vec3::ZERO,
-        }
+        SurfaceInteraction::analytic(t, p, n, dp_du.into(), uv, shape, ray.d)
     }
 
     #[inline]
