@@ -12,7 +12,8 @@
 use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
-    Gtr1, calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight, smith_ggx1,
+    Gtr1, calc_schlick, diffuse_lobe, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight,
+    sheen_color, smith_ggx1,
 };
 use super::sample::BsdfSample;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
@@ -167,32 +168,13 @@ impl Principled {
             value += Vec3::splat(p.clearcoat * 0.25 * fcc * dcc * gcc * cos_o.abs());
         }
         if p.brdf > 0.0 && reflect && front {
-            let fo = schlick_weight(cos_o.abs());
-            let fi = schlick_weight(cos_i.abs());
-            let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
             let cos_d = wh.dot(wo);
-            let rr = 2.0 * p.roughness * cos_d * cos_d;
-            let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
-            let lobe = if self.flatness.is_some() {
-                let fss90 = rr / 2.0;
-                let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
-                let f_ss = 1.25 * (fss * (1.0 / (cos_o.abs() + cos_i.abs()) - 0.5) + 0.5);
-                let a = f_diff + f_retro;
-                a + (f_ss - a) * flatness
-            } else {
-                f_diff + f_retro
-            };
+            let flat = self.flatness.as_ref().map(|_| flatness);
+            let lobe = diffuse_lobe(p.roughness, cos_i.abs(), cos_o.abs(), cos_d, flat);
             value += p.base * (p.brdf * cos_o.abs() * FRAC_1_PI * lobe);
             if self.sheen.is_some() && sheen > 0.0 && 1.0 - p.metallic > 0.0 {
                 let fd = schlick_weight(cos_d.abs());
-                let tint = if self.sheen_tint.is_some() {
-                    let st = opt(&self.sheen_tint, si);
-                    let lum = luminance(p.base);
-                    let c_tint = if lum > 0.0 { p.base / lum } else { Vec3::ONE };
-                    Vec3::ONE + (c_tint - Vec3::ONE) * st
-                } else {
-                    Vec3::ONE
-                };
+                let tint = sheen_color(p.base, self.sheen_tint.as_ref().map(|t| t.eval_1(si)));
                 value += tint * (sheen * (1.0 - p.metallic) * fd * cos_o.abs());
             }
         }

@@ -113,3 +113,41 @@ impl Gtr1 {
 pub fn luminance(c: Vec3) -> f32 {
     c.dot(Vec3::new(0.212_671, 0.715_160, 0.072_169))
 }
+
+/// Mitsuba's tint colour: the base colour over its luminance (white where that is 0).
+#[inline]
+pub fn tint_color(base: Vec3) -> Vec3 {
+    let lum = luminance(base);
+    if lum > 0.0 { base / lum } else { Vec3::ONE }
+}
+
+/// The sheen colour: 1 + (tint − 1)·`sheen_tint`, or white without the `sheen_tint` flag.
+#[inline]
+pub fn sheen_color(base: Vec3, sheen_tint: Option<f32>) -> Vec3 {
+    match sheen_tint {
+        Some(st) => Vec3::ONE + (tint_color(base) - Vec3::ONE) * st,
+        None => Vec3::ONE,
+    }
+}
+
+/// The diffuse lobe of `principled` and `principledthin` (Burley 2012, with retro-reflection;
+/// with the `flatness` flag blended towards the fake subsurface term): the factor of
+/// base·|cos θo|/π, from |cos θi|, |cos θo| and cos θd = wh·wo.
+#[inline]
+pub fn diffuse_lobe(roughness: f32, abs_cos_i: f32, abs_cos_o: f32, cos_d: f32, flatness: Option<f32>) -> f32 {
+    let fo = schlick_weight(abs_cos_o);
+    let fi = schlick_weight(abs_cos_i);
+    let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
+    let rr = 2.0 * roughness * cos_d * cos_d;
+    let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
+    match flatness {
+        Some(flatness) => {
+            let fss90 = rr / 2.0;
+            let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
+            let f_ss = 1.25 * (fss * (1.0 / (abs_cos_o + abs_cos_i) - 0.5) + 0.5);
+            let a = f_diff + f_retro;
+            a + (f_ss - a) * flatness
+        }
+        None => f_diff + f_retro,
+    }
+}

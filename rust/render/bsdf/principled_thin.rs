@@ -10,7 +10,8 @@
 use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
-    calc_schlick, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight,
+    calc_schlick, diffuse_lobe, dist_params, mac_mic_compatibility, schlick_r0_eta, schlick_weight, sheen_color,
+    tint_color,
 };
 use super::sample::BsdfSample;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
@@ -99,9 +100,7 @@ impl PrincipledThin {
                 let spec_tint = opt(&self.spec_tint, si);
                 let mut f_schlick = Vec3::ZERO;
                 if self.spec_tint.is_some() {
-                    let lum = luminance(base);
-                    let c_tint = if lum > 0.0 { base / lum } else { Vec3::ONE };
-                    f_schlick = calc_schlick(c_tint * schlick_r0_eta(eta_t), wi.dot(wh), eta_t);
+                    f_schlick = calc_schlick(tint_color(base) * schlick_r0_eta(eta_t), wi.dot(wh), eta_t);
                 }
                 let f_thin = Vec3::splat(f_diel) + (f_schlick - Vec3::splat(f_diel)) * spec_tint;
                 let d = refl_distr.d(wh);
@@ -115,33 +114,13 @@ impl PrincipledThin {
             }
         }
         if reflect && spec_trans < 1.0 && diff_trans < 1.0 {
-            let fo = schlick_weight(cos_o.abs());
-            let fi = schlick_weight(cos_i);
-            let f_diff = (1.0 - 0.5 * fi) * (1.0 - 0.5 * fo);
             let cos_d = wh.dot(wo_t);
-            let rr = 2.0 * roughness * cos_d * cos_d;
-            let f_retro = rr * (fo + fi + fo * fi * (rr - 1.0));
-            let lobe = if self.flatness.is_some() {
-                let fss90 = rr / 2.0;
-                let fss = (1.0 + (fss90 - 1.0) * fo) * (1.0 + (fss90 - 1.0) * fi);
-                let f_ss = 1.25 * (fss * (1.0 / (cos_o.abs() + cos_i) - 0.5) + 0.5);
-                let a = f_diff + f_retro;
-                a + (f_ss - a) * flatness
-            } else {
-                f_diff + f_retro
-            };
+            let lobe = diffuse_lobe(roughness, cos_i, cos_o.abs(), cos_d, self.flatness.as_ref().map(|_| flatness));
             value += base * ((1.0 - spec_trans) * cos_o * FRAC_1_PI * (1.0 - diff_trans) * lobe);
             let sheen = opt(&self.sheen, si);
             if self.sheen.is_some() && sheen > 0.0 {
                 let fd = schlick_weight(cos_d.abs());
-                let tint = if self.sheen_tint.is_some() {
-                    let st = opt(&self.sheen_tint, si);
-                    let lum = luminance(base);
-                    let c_tint = if lum > 0.0 { base / lum } else { Vec3::ONE };
-                    Vec3::ONE + (c_tint - Vec3::ONE) * st
-                } else {
-                    Vec3::ONE
-                };
+                let tint = sheen_color(base, self.sheen_tint.as_ref().map(|t| t.eval_1(si)));
                 value += tint * (sheen * (1.0 - spec_trans) * fd * (1.0 - diff_trans) * cos_o.abs());
             }
         }
