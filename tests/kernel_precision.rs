@@ -9,7 +9,7 @@
 //! `C1 + cos Δφ C2 tan β` in forward-grazing configurations.
 
 mod common;
-use common::{Pcg32, model};
+use common::{Pcg32, PcgExt, model};
 use glam::{DVec3, Vec3};
 use matte::brdf::{DiffuseBrdf, DiffuseModel};
 use std::f64::consts::{FRAC_PI_2, PI};

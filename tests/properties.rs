@@ -4,7 +4,7 @@
 //! method), no NaN/Inf anywhere, zero below the horizon.
 
 mod common;
-use common::{Pcg32, catalogue};
+use common::{Pcg32, PcgExt, catalogue};
 use glam::Vec3;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};
 

@@ -8,7 +8,7 @@ mod common;
 #[rustfmt::skip] // generated data, one configuration per line
 mod mitsuba_reference;
 
-use common::{Pcg32, chi2_sampling, sidak};
+use common::{Pcg32, PcgExt, chi2_sampling, sidak};
 use glam::{DVec3, Vec2, Vec3};
 use matte::brdf::quadrature::GaussLegendre;
 use matte::brdf::{BrdfSample as DiffuseSample, DiffuseBrdf};

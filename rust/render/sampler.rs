@@ -149,14 +149,61 @@ enum Seq {
     LowDiscrepancy,
 }
 
-/// A per-pixel sample stream: PCG32 (O'Neill 2014, "PCG: A family of simple fast
-/// space-efficient statistically good algorithms for random number generation"), the
-/// generator Mitsuba uses, plus for the stratified samplers the sample and dimension index
-/// within the pixel's sequence. The drivers call [`Sampler::advance`] after each sample.
+/// PCG32 (O'Neill 2014, "PCG: A family of simple fast space-efficient statistically good
+/// algorithms for random number generation"), the generator Mitsuba's samplers use (Dr.Jit's
+/// `PCG32`); [`Pcg32::new`] seeds as its `seed(initstate, initseq)`.
 #[derive(Clone, Debug)]
-pub struct Sampler {
+pub struct Pcg32 {
     state: u64,
     inc: u64,
+}
+
+impl Pcg32 {
+    /// The generator of stream `stream` started at `seed`.
+    #[must_use]
+    pub fn new(seed: u64, stream: u64) -> Self {
+        let mut r = Pcg32 { state: 0, inc: (stream << 1) | 1 };
+        r.next_u32();
+        r.state = r.state.wrapping_add(seed);
+        r.next_u32();
+        r
+    }
+
+    /// The next 32 random bits.
+    #[inline]
+    pub fn next_u32(&mut self) -> u32 {
+        let old = self.state;
+        self.state = old.wrapping_mul(MULT).wrapping_add(self.inc);
+        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
+        xorshifted.rotate_right((old >> 59) as u32)
+    }
+
+    /// Uniform in [0, 1) with 23 random mantissa bits (Mitsuba's `next_float32`).
+    #[inline]
+    pub fn next_f32(&mut self) -> f32 {
+        f32::from_bits((self.next_u32() >> 9) | 0x3f80_0000) - 1.0
+    }
+
+    /// Uniform in [0, 1) with 53 random bits, from two draws.
+    #[inline]
+    pub fn next_f64(&mut self) -> f64 {
+        ((self.next_u32() as u64) << 21 ^ (self.next_u32() as u64)) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Two [`Self::next_f32`] draws.
+    #[inline]
+    pub fn next_vec2(&mut self) -> Vec2 {
+        let x = self.next_f32();
+        Vec2::new(x, self.next_f32())
+    }
+}
+
+/// A per-pixel sample stream: a [`Pcg32`], plus for the stratified samplers the sample and
+/// dimension index within the pixel's sequence. The drivers call [`Sampler::advance`] after
+/// each sample.
+#[derive(Clone, Debug)]
+pub struct Sampler {
+    rng: Pcg32,
     seq: Seq,
     jitter: bool,
     /// Samples in the sequence.
@@ -181,16 +228,22 @@ impl Sampler {
     /// The `independent` stream for one pixel: `seed` picks the sequence family, `pixel` the
     /// stream.
     pub fn for_pixel(seed: u64, pixel: u64) -> Self {
-        let mut s = Sampler::blank(Seq::Independent);
-        s.inc = (splitmix64(pixel ^ splitmix64(seed)) << 1) | 1;
-        s.next_u32();
-        s.state = s.state.wrapping_add(splitmix64(seed.wrapping_add(pixel)));
-        s.next_u32();
-        s
+        let rng = Pcg32::new(splitmix64(seed.wrapping_add(pixel)), splitmix64(pixel ^ splitmix64(seed)));
+        Sampler { rng, ..Sampler::blank(Seq::Independent) }
     }
 
     fn blank(seq: Seq) -> Self {
-        Sampler { state: 0, inc: 0, seq, jitter: true, count: 1, res: 1, res2: 1, perm_seed: 0, index: 0, dim: 0 }
+        Sampler {
+            rng: Pcg32 { state: 0, inc: 0 },
+            seq,
+            jitter: true,
+            count: 1,
+            res: 1,
+            res2: 1,
+            perm_seed: 0,
+            index: 0,
+            dim: 0,
+        }
     }
 
     /// Exactly Mitsuba's scalar-variant sampler `kind` with `sample_count` (rounded as
@@ -211,27 +264,21 @@ impl Sampler {
             SamplerKind::Orthogonal { jitter, strength } => (Seq::Bush, jitter, orthogonal_resolution(n), strength),
             SamplerKind::LowDiscrepancy => (Seq::LowDiscrepancy, false, ld_resolution(n), 1),
         };
-        let mut s = Sampler { count, res, res2, jitter, ..Sampler::blank(seq) };
-        s.inc = (PCG32_DEFAULT_STREAM << 1) | 1;
-        s.next_u32();
-        s.state = s.state.wrapping_add(base_seed.wrapping_add(seed) as u64);
-        s.next_u32();
-        s.perm_seed = sample_tea_32(base_seed, seed, 4).0;
-        s
+        let rng = Pcg32::new(base_seed.wrapping_add(seed) as u64, PCG32_DEFAULT_STREAM);
+        let perm_seed = sample_tea_32(base_seed, seed, 4).0;
+        Sampler { rng, count, res, res2, jitter, perm_seed, ..Sampler::blank(seq) }
     }
 
+    /// The next 32 random bits of the stream's generator.
     #[inline]
     pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(MULT).wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        xorshifted.rotate_right((old >> 59) as u32)
+        self.rng.next_u32()
     }
 
-    /// Uniform in [0, 1) from PCG32 (23 random mantissa bits, as Mitsuba's `next_float32`).
+    /// Uniform in [0, 1) from the generator.
     #[inline]
     fn rng_1d(&mut self) -> f32 {
-        f32::from_bits((self.next_u32() >> 9) | 0x3f80_0000) - 1.0
+        self.rng.next_f32()
     }
 
     /// The next dimension of the current sample, in [0, 1).

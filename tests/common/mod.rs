@@ -1,53 +1,26 @@
-//! Helpers shared by the integration tests: a PCG32 generator (O'Neill's pcg32, the
-//! generator Mitsuba's samplers use), the catalogue of model configurations every property
+//! Helpers shared by the integration tests: the library's PCG32 (the generator Mitsuba's
+//! samplers use) with a test draw, the catalogue of model configurations every property
 //! test runs over, and Mitsuba's chi-square goodness-of-fit test re-implemented
 //! (`src/python/python/chi2.py` and `mitsuba::math::chi2` of v3.9.1).
 #![allow(dead_code)]
 // `!(x > 0.0)` is meant: it also rejects NaN, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
 
-pub struct Pcg32 {
-    state: u64,
-    inc: u64,
+pub use matte::render::sampler::Pcg32;
+
+/// Test draws beyond the generator's own.
+pub trait PcgExt {
+    /// Uniform direction on the upper hemisphere.
+    fn upper_hemisphere(&mut self) -> Vec3;
 }
 
-impl Pcg32 {
-    pub fn new(seed: u64, stream: u64) -> Self {
-        let mut r = Pcg32 { state: 0, inc: (stream << 1) | 1 };
-        r.next_u32();
-        r.state = r.state.wrapping_add(seed);
-        r.next_u32();
-        r
-    }
-
-    pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(0x5851_f42d_4c95_7f2d).wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        let rot = (old >> 59) as u32;
-        xorshifted.rotate_right(rot)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn next_f32(&mut self) -> f32 {
-        f32::from_bits((self.next_u32() >> 9) | 0x3f80_0000) - 1.0
-    }
-
-    pub fn next_f64(&mut self) -> f64 {
-        ((self.next_u32() as u64) << 21 ^ (self.next_u32() as u64)) as f64 / (1u64 << 53) as f64
-    }
-
-    pub fn next_vec2(&mut self) -> Vec2 {
-        Vec2::new(self.next_f32(), self.next_f32())
-    }
-
-    /// Uniform direction on the upper hemisphere.
-    pub fn upper_hemisphere(&mut self) -> Vec3 {
+impl PcgExt for Pcg32 {
+    fn upper_hemisphere(&mut self) -> Vec3 {
         let z = self.next_f32();
         let r = (1.0 - z * z).max(0.0).sqrt();
         let phi = 2.0 * std::f32::consts::PI * self.next_f32();
