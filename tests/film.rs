@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::Pcg32;
+use common::{Pcg32, PcgExt};
 use glam::{Vec2, Vec3};
 use matte::render::film::{CropWindow, Film, GAUSSIAN_FIT, Image, ReconstructionFilter, SplatWeights, Tile};
 use matte::render::image_io::{read_exr, write_exr, write_png};

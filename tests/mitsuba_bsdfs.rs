@@ -14,7 +14,7 @@ mod common;
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod reference;
 
-use common::{Pcg32, chi2_sampling_ires, sidak};
+use common::{Pcg32, PcgExt, chi2_sampling_ires, sidak};
 use glam::{Vec2, Vec3};
 use matte::brdf::{BrdfSample as HelperSample, DiffuseBrdf};
 use matte::render::bsdf::Bsdf;

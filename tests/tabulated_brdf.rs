@@ -5,7 +5,7 @@
 //! test and its pdf integrates to 1, and files round-trip or fail with a clear message.
 
 mod common;
-use common::{Pcg32, chi2_sampling, model, sidak};
+use common::{Pcg32, PcgExt, chi2_sampling, model, sidak};
 use glam::Vec3;
 use matte::brdf::tabulated::BrdfTable;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};

@@ -183,19 +183,6 @@ impl Pcg32 {
     pub fn next_f32(&mut self) -> f32 {
         f32::from_bits((self.next_u32() >> 9) | 0x3f80_0000) - 1.0
     }
-
-    /// Uniform in [0, 1) with 53 random bits, from two draws.
-    #[inline]
-    pub fn next_f64(&mut self) -> f64 {
-        ((self.next_u32() as u64) << 21 ^ (self.next_u32() as u64)) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Two [`Self::next_f32`] draws.
-    #[inline]
-    pub fn next_vec2(&mut self) -> Vec2 {
-        let x = self.next_f32();
-        Vec2::new(x, self.next_f32())
-    }
 }
 
 /// A per-pixel sample stream: a [`Pcg32`], plus for the stratified samplers the sample and

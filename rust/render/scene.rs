@@ -15,11 +15,7 @@ pub struct Scene {
     pub emitters: Vec<Emitter>,
     /// Selection probability of each emitter (Mitsuba: ∝ `sampling_weight`, default uniform).
     emitter_pmf: Vec<f32>,
-    /// Cumulative pmf over the emitters in [`Self::emitter_order`].
     emitter_cdf: Vec<f32>,
-    /// The order in which emitter selection lays the emitters on [0, 1) (Mitsuba's scene
-    /// order; [`Self::set_emitter_order`]).
-    emitter_order: Vec<u32>,
     /// Index of the environment emitter (`constant`), if any.
     pub environment: Option<u32>,
     accel: Accel,
@@ -36,44 +32,16 @@ impl Scene {
         let total: f32 = sampling_weights.iter().sum();
         let emitter_pmf: Vec<f32> =
             sampling_weights.iter().map(|w| if total > 0.0 { w / total } else { 0.0 }).collect();
-        let environment = emitters.iter().position(Emitter::is_environment).map(|i| i as u32);
-        let mut scene = Scene {
-            shapes,
-            bsdfs,
-            emitters,
-            emitter_pmf,
-            emitter_cdf: Vec::new(),
-            emitter_order: Vec::new(),
-            environment,
-            accel,
-            accel_build_seconds,
-        };
-        scene.set_emitter_order((0..scene.emitters.len() as u32).collect());
-        scene
-    }
-
-    /// Lays the emitters on [0, 1) for selection in `order` (a permutation of the emitter
-    /// indices). The pmf of each emitter is unchanged, so only which sample value picks which
-    /// emitter changes: the expectation is the same for independent samples, but Mitsuba's
-    /// `ldsampler`, whose dimensions are not independent, needs Mitsuba's order.
-    ///
-    /// # Panics
-    /// If `order` is not a permutation of `0..emitters.len()`.
-    pub fn set_emitter_order(&mut self, order: Vec<u32>) {
-        let mut seen = vec![false; self.emitters.len()];
-        for &i in &order {
-            assert!(!std::mem::replace(&mut seen[i as usize], true), "emitter {i} twice in the order");
-        }
-        assert!(seen.iter().all(|&s| s), "the emitter order misses an emitter");
         let mut acc = 0.0;
-        self.emitter_cdf = order
+        let emitter_cdf = emitter_pmf
             .iter()
-            .map(|&i| {
-                acc += self.emitter_pmf[i as usize];
+            .map(|p| {
+                acc += p;
                 acc
             })
             .collect();
-        self.emitter_order = order;
+        let environment = emitters.iter().position(Emitter::is_environment).map(|i| i as u32);
+        Scene { shapes, bsdfs, emitters, emitter_pmf, emitter_cdf, environment, accel, accel_build_seconds }
     }
 
     pub fn primitive_count(&self) -> usize {
@@ -162,13 +130,12 @@ impl Scene {
         if self.emitters.is_empty() {
             return None;
         }
-        let at = self.emitter_cdf.partition_point(|&c| c <= u).min(self.emitters.len() - 1);
-        let idx = self.emitter_order[at] as usize;
+        let idx = self.emitter_cdf.partition_point(|&c| c <= u).min(self.emitters.len() - 1);
         let pmf = self.emitter_pmf[idx];
         if pmf <= 0.0 {
             return None;
         }
-        let lo = if at == 0 { 0.0 } else { self.emitter_cdf[at - 1] };
+        let lo = if idx == 0 { 0.0 } else { self.emitter_cdf[idx - 1] };
         Some((idx, pmf, ((u - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0)))
     }
 

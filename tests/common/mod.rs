@@ -6,7 +6,7 @@
 // `!(x > 0.0)` is meant: it also rejects NaN, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
@@ -15,11 +15,24 @@ pub use matte::render::sampler::Pcg32;
 
 /// Test draws beyond the generator's own.
 pub trait PcgExt {
+    /// Uniform in [0, 1) with 53 random bits, from two draws.
+    fn next_f64(&mut self) -> f64;
+    /// Two `next_f32` draws.
+    fn next_vec2(&mut self) -> Vec2;
     /// Uniform direction on the upper hemisphere.
     fn upper_hemisphere(&mut self) -> Vec3;
 }
 
 impl PcgExt for Pcg32 {
+    fn next_f64(&mut self) -> f64 {
+        ((self.next_u32() as u64) << 21 ^ (self.next_u32() as u64)) as f64 / (1u64 << 53) as f64
+    }
+
+    fn next_vec2(&mut self) -> Vec2 {
+        let x = self.next_f32();
+        Vec2::new(x, self.next_f32())
+    }
+
     fn upper_hemisphere(&mut self) -> Vec3 {
         let z = self.next_f32();
         let r = (1.0 - z * z).max(0.0).sqrt();

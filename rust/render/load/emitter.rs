@@ -32,7 +32,6 @@ fn emissive(obj: &SceneObject, name: &str) -> Result<Vec3, SceneError> {
 }
 
 fn push(b: &mut Builder, e: Emitter, w: f32) -> u32 {
-    b.emitter_on_mesh.push(matches!(e, Emitter::Area { .. }) && b.shape.as_ref().is_some_and(|s| s.is_mesh));
     b.emitters.push(e);
     b.sampling_weights.push(w);
     (b.emitters.len() - 1) as u32

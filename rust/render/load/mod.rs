@@ -112,8 +112,6 @@ pub(crate) struct Builder {
     pub shapes: Vec<crate::render::shape::Shape>,
     pub emitters: Vec<Emitter>,
     pub sampling_weights: Vec<f32>,
-    /// Per emitter: an `area` emitter on a mesh (see [`mitsuba_emitter_order`]).
-    pub emitter_on_mesh: Vec<bool>,
     /// The shape whose BSDF is being built (`None` at the top level).
     pub shape: Option<ShapeContext>,
     /// Set while building when something read [`Self::shape`] (a `mesh_attribute` texture, a
@@ -165,7 +163,6 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
         shapes: Vec::new(),
         emitters: Vec::new(),
         sampling_weights: Vec::new(),
-        emitter_on_mesh: Vec::new(),
         shape: None,
         shape_dependent: std::cell::Cell::new(false),
         shape_dependent_bsdfs: std::collections::HashSet::new(),
@@ -242,7 +239,6 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             emitter::build_area(&mut b, &obj, 0)?;
             b.emitters.pop();
             b.sampling_weights.pop();
-            b.emitter_on_mesh.pop();
         }
     }
     root.check_all_used()?;
@@ -259,9 +255,8 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
     if let (Integrator::ParticleTracer(_), Some(obj)) = (&integrator, &integrator_obj) {
         particle_tracer_limits(&b, &sensor, obj)?;
     }
-    let order = mitsuba_emitter_order(&b.emitter_on_mesh);
-    let mut scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
-    scene.set_emitter_order(order);
+    into_mitsuba_emitter_order(&mut b);
+    let scene = Scene::new(b.shapes, b.bsdfs, b.emitters, b.sampling_weights);
     Ok(LoadedScene { scene, camera: sensor.camera, film: sensor.film, integrator, sampling: sensor.sampling, notes })
 }
 
@@ -304,15 +299,32 @@ pub(crate) fn err(obj: &SceneObject, what: impl Into<String>) -> SceneError {
     SceneError::at(&obj.pos, format!("{} \"{}\": {}", obj.tag, obj.plugin, what.into()))
 }
 
-/// The order of Mitsuba 3.9.1's `Scene::emitters()`, which its emitter selection follows: the
-/// top-level emitters and the area emitters of analytic shapes in declaration order, then those
-/// of meshes (`obj`, `ply`, `serialized`, `rectangle`, `cube`) last, in reverse declaration
-/// order (its parser's mesh merging, `src/core/parser.cpp`, `src/shapes/merge.cpp`; measured with
-/// `load_file(..., parallel=False)`: with parallel loading, the default, the mesh emitters'
-/// order among themselves varies from run to run). It matters only with `ldsampler`.
-fn mitsuba_emitter_order(on_mesh: &[bool]) -> Vec<u32> {
-    let n = on_mesh.len() as u32;
-    let analytic = (0..n).filter(|&i| !on_mesh[i as usize]);
-    let meshes = (0..n).rev().filter(|&i| on_mesh[i as usize]);
-    analytic.chain(meshes).collect()
+/// Puts the emitters in the order of Mitsuba 3.9.1's `Scene::emitters()`, which emitter
+/// selection lays on [0, 1): the top-level emitters and the area emitters of analytic shapes in
+/// declaration order, then those of meshes (`obj`, `ply`, `serialized`, `rectangle`, `cube`)
+/// last, in reverse declaration order (its parser's mesh merging, `src/core/parser.cpp`,
+/// `src/shapes/merge.cpp`; measured with `load_file(..., parallel=False)`: with parallel
+/// loading, the default, the mesh emitters' order among themselves varies from run to run).
+/// Only `ldsampler`'s expectation depends on it (docs/renderer-semantics.md §5).
+fn into_mitsuba_emitter_order(b: &mut Builder) {
+    use crate::render::shape::Geometry;
+    let emitters = std::mem::take(&mut b.emitters);
+    let weights = std::mem::take(&mut b.sampling_weights);
+    let mut items: Vec<(usize, Emitter, f32)> =
+        emitters.into_iter().zip(weights).enumerate().map(|(i, (e, w))| (i, e, w)).collect();
+    // Analytic first by declaration (key 0, i); meshes after, reversed (key 1, −i).
+    items.sort_by_key(|(i, e, _)| match e {
+        Emitter::Area { shape, .. } if matches!(b.shapes[*shape as usize].geometry, Geometry::Triangles(_)) => {
+            (1, -(*i as i64))
+        }
+        _ => (0, *i as i64),
+    });
+    let mut new_index = vec![0u32; items.len()];
+    for (new, (old, ..)) in items.iter().enumerate() {
+        new_index[*old] = new as u32;
+    }
+    for shape in &mut b.shapes {
+        shape.emitter = shape.emitter.map(|e| new_index[e as usize]);
+    }
+    (b.emitters, b.sampling_weights) = items.into_iter().map(|(_, e, w)| (e, w)).unzip();
 }

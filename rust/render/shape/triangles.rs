@@ -20,9 +20,10 @@ pub struct Triangles {
     /// on the latency chain of every path vertex).
     face_normals: Vec<Vec3>,
     area: f32,
-    /// A `rectangle`'s `to_world`: its points are sampled as Mitsuba's analytic rectangle
-    /// samples them (`to_world · (2u − 1, 2v − 1, 0)`), not as a two-triangle mesh.
-    rectangle: Option<Affine3A>,
+    /// A `rectangle`'s `to_world` and normal (after `flip_normals`): its points are sampled as
+    /// Mitsuba's analytic rectangle samples them (`to_world · (2u − 1, 2v − 1, 0)`), not as a
+    /// two-triangle mesh.
+    rectangle: Option<(Affine3A, Vec3)>,
 }
 
 impl Triangles {
@@ -44,7 +45,10 @@ impl Triangles {
     /// Mitsuba's `rectangle` with `to_world`: intersected as its two triangles, sampled as the
     /// analytic shape (`src/shapes/rectangle.cpp`, `sample_position`).
     pub fn rectangle(mesh: TriangleMesh, flip_normals: bool, to_world: Affine3A) -> Self {
-        Triangles { rectangle: Some(to_world), ..Triangles::new(mesh, flip_normals) }
+        let t = Triangles::new(mesh, flip_normals);
+        // The rectangle's normal: the inverse transpose of `to_world` applied to +z, flipped.
+        let n = t.surface_point(0, Vec2::ZERO).2;
+        Triangles { rectangle: Some((to_world, n)), ..t }
     }
 
     pub fn surface_area(&self) -> f32 {
@@ -136,11 +140,9 @@ impl Triangles {
         if self.area <= 0.0 {
             return None;
         }
-        if let Some(m) = &self.rectangle {
+        if let Some((m, n)) = &self.rectangle {
             let p = m.transform_point3(Vec3::new(2.0 * u.x - 1.0, 2.0 * u.y - 1.0, 0.0));
-            // The rectangle's normal (inverse transpose of `to_world`, after `flip_normals`).
-            let n = self.surface_point(0, Vec2::ZERO).2;
-            return Some((p, n, u));
+            return Some((p, *n, u));
         }
         let target = u.y * self.area;
         let tri = self.area_cdf.partition_point(|&c| c <= target).min(self.area_cdf.len() - 1);

@@ -93,7 +93,8 @@ fn decode(img: DynamicImage, raw: bool) -> Texels {
 /// width and height, a scale whose sign gives the byte order (≤ 0: little endian) and whose
 /// magnitude multiplies every value, then f32 rows from the bottom row up.
 fn read_pfm(bytes: &[u8]) -> Result<Texels, String> {
-    // The three header fields, each ended by one whitespace character.
+    // The four header fields (type, width, height, scale), separated by whitespace; one
+    // whitespace character ends the header.
     let mut fields = Vec::new();
     let mut at = 0;
     while fields.len() < 4 {
@@ -118,12 +119,11 @@ fn read_pfm(bytes: &[u8]) -> Result<Texels, String> {
     let dim = |s: &str| s.parse::<u32>().ok().filter(|&d| d > 0 && d <= 1 << 16).ok_or(format!("bad size \"{s}\""));
     let (width, height) = (dim(fields[1])?, dim(fields[2])?);
     let scale: f32 = fields[3].parse().map_err(|_| format!("bad scale \"{}\"", fields[3]))?;
-    let n = (width * height) as usize * channels;
+    let n = width as usize * height as usize * channels;
     let body = bytes.get(at..at + 4 * n).ok_or("truncated pixel data")?;
-    let factor = if scale.abs() != 1.0 { scale.abs() } else { 1.0 };
     let value = |i: usize| {
         let b: [u8; 4] = body[4 * i..4 * i + 4].try_into().unwrap();
-        factor * if scale <= 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
+        scale.abs() * if scale <= 0.0 { f32::from_le_bytes(b) } else { f32::from_be_bytes(b) }
     };
     let mut data = Vec::with_capacity(n / channels);
     for y in (0..height as usize).rev() {
