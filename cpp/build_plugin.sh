@@ -42,5 +42,7 @@ for t in $(./target/release/matte types); do
     g++ -shared -o "$OUT/$t.so" "$OBJ/plugin_stub.o" -Wl,--version-script=cpp/stub_exports.map -s \
         -L"$OUT" -lmatte_bsdfs -Wl,-rpath,'$ORIGIN'
 done
-printf '"""Written by cpp/build_plugin.sh."""\nMITSUBA_VERSION = "%s"\n' "$MITSUBA_VERSION" > "$PKG/_build.py"
+# The Mitsuba version and the model registry (`matte types --json`) for matte_mitsuba.MODELS.
+printf '"""Written by cpp/build_plugin.sh."""\nMITSUBA_VERSION = "%s"\nMODELS_JSON = r"""%s"""\n' \
+    "$MITSUBA_VERSION" "$(./target/release/matte types --json)" > "$PKG/_build.py"
 echo "build_plugin: $OUT/libmatte_bsdfs.so ($(du -k "$OUT/libmatte_bsdfs.so" | cut -f1) KB) for Mitsuba $MITSUBA_VERSION, plugins: $(./target/release/matte types | tr '\n' ' ')"

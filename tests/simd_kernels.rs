@@ -8,8 +8,9 @@
 
 use glam::{Vec2, Vec3};
 use matte::bench::kernels::direction_pairs;
-use matte::bench::wide_kernels::{AnyKernel, ModelPair, to_lanes};
+use matte::bench::wide_kernels::{ModelPair, to_lanes};
 use matte::brdf::BSDF_TYPES;
+use matte::brdf::LaneKernel;
 use matte::brdf::kernel;
 use matte::brdf::real::Real;
 use matte::brdf::simd::F32x8;
@@ -62,7 +63,7 @@ fn assert_same(what: &str, lane: usize, wide: f32, scalar: f32) {
 
 const RHO: [f32; 3] = [0.8, 0.5, 0.2];
 
-fn check_model(name: &str, scalar: &AnyKernel<'_, f32>, wide: &AnyKernel<'_, F32x8>, pairs: &[(Vec3, Vec3, Vec2)]) {
+fn check_model(name: &str, scalar: &LaneKernel<'_, f32>, wide: &LaneKernel<'_, F32x8>, pairs: &[(Vec3, Vec3, Vec2)]) {
     let rho8 = RHO.map(F32x8::splat);
     for (chunk, (wi8, wo8)) in
         pairs.chunks_exact(8).zip(to_lanes(&pairs.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>()))
@@ -109,15 +110,17 @@ fn every_model_evaluates_lane_by_lane_as_f32() {
 fn per_lane_parameters_match_one_f32_kernel_per_lane() {
     let pairs = test_pairs();
     let params: [[f32; 8]; 3] = [
-        [0.0, 0.05, 0.2, 0.3, 0.5, 0.8, 1.2, 2.0],   // Oren–Nayar σ
+        [0.0, 0.05, 0.2, 0.3, 0.5, 0.8, 1.2, 2.0],   // Oren–Nayar σ, roughdiffuse α
         [0.0, 1e-4, 0.1, 0.3, 0.5, 0.7, 0.95, 1.0],  // EON r
         [1.0, 1.0001, 1.2, 1.4, 1.5, 1.8, 2.4, 3.5], // Wolff n
     ];
     for (model, p) in [("oren_nayar", params[0]), ("roughdiffuse", params[0]), ("eon", params[1]), ("wolff", params[2])]
     {
         let pair = ModelPair::new(model).unwrap();
-        let wide = pair.kernel_with(|_| F32x8::new(p));
-        let scalars: Vec<AnyKernel<'_, f32>> = (0..8).map(|i| pair.kernel_with(|_| p[i])).collect();
+        // The first numeric parameter per lane (Wolff: int_ior, so n with ext_ior = 1).
+        let wide = pair.kernel_with(|k, d| if k == 0 { F32x8::new(p) } else { F32x8::splat(d) });
+        let scalars: Vec<LaneKernel<'_, f32>> =
+            (0..8).map(|i| pair.kernel_with(|k, d| if k == 0 { p[i] } else { d })).collect();
         let rho8 = RHO.map(F32x8::splat);
         for (chunk, (wi8, wo8)) in
             pairs.chunks_exact(8).zip(to_lanes(&pairs.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>()))

@@ -42,14 +42,9 @@ _plugin_root_first()
 import matte_mitsuba  # noqa: E402
 from matte_mitsuba import BSDF_TYPES as TYPES  # noqa: E402  (the plugin names, as the build wrote them)
 
-# Each type's numeric parameter and its default (README, "Models and parameters"; docs/models.md).
-SHAPE_PARAMETER = {
-    "oren_nayar": ("sigma", 0.3),
-    "eon": ("roughness", 0.3),
-    "wolff": ("int_ior", 1.4),
-    "ginneken": ("roughness", 0.3),
-    "roughdiffuse": ("alpha", 0.2),
-}
+# Each type's first numeric parameter and its default, from the model registry.
+SHAPE_PARAMETER = {m["name"]: (p[0]["name"], p[0]["kind"]["default"])
+                   for m in matte_mitsuba.MODELS for p in [matte_mitsuba.numeric_parameters(m)] if p}
 
 
 def constant_bitmap(mi, value, folder):

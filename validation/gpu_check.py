@@ -34,15 +34,42 @@ sys.path.insert(0, HERE)
 from gradient_check import adjoint_gradient, central_difference  # noqa: E402
 SCENE = os.path.join(REPO, "mitsuba_scenes", "all_types.xml")
 
-# One differentiable parameter per type, its value and finite-difference step.
-GRADIENT_CASES = [
-    ("lambert", {}, "reflectance.value", 1e-2),
-    ("oren_nayar", {"sigma": 0.5}, "sigma", 1e-2),
-    ("eon", {"roughness": 0.5}, "roughness", 1e-2),
-    ("wolff", {"int_ior": 1.5}, "int_ior", 1e-2),
-    ("ginneken", {"roughness": 0.4}, "roughness", 4e-3),
-    ("roughdiffuse", {"alpha": 0.4}, "alpha", 1e-2),
-]
+# One differentiable parameter per type, its value and finite-difference step: the first
+# numeric parameter of every registered model (reflectance for a model without one) at its
+# default, except where a value away from the default or a smaller step is checked.
+GRADIENT_OVERRIDES = {
+    "oren_nayar": ({"sigma": 0.5}, 1e-2),
+    "eon": ({"roughness": 0.5}, 1e-2),
+    "wolff": ({"int_ior": 1.5}, 1e-2),
+    "ginneken": ({"roughness": 0.4}, 4e-3),
+    "roughdiffuse": ({"alpha": 0.4}, 1e-2),
+}
+
+
+def gradient_cases(models):
+    cases = []
+    for m in models:
+        numeric = [p for p in m["params"] if p["kind"]["type"] in ("number", "ior")]
+        if not numeric:
+            cases.append((m["name"], {}, "reflectance.value", 1e-2))
+            continue
+        fixed, h = GRADIENT_OVERRIDES.get(m["name"], ({}, 1e-2))
+        cases.append((m["name"], fixed, numeric[0]["name"], h))
+    return cases
+
+
+def _registry():
+    """The registered models: from the installed package, else the checkout's `matte`."""
+    try:
+        import matte_mitsuba
+        return matte_mitsuba.MODELS
+    except ImportError:
+        out = subprocess.run([os.path.join(REPO, "target", "release", "matte"), "types", "--json"],
+                             capture_output=True, text=True, check=True)
+        return json.loads(out.stdout)
+
+
+GRADIENT_CASES = gradient_cases(_registry())
 GRADIENT_TOLERANCE = 0.01
 MEAN_Z_LIMIT = 4.5
 

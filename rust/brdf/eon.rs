@@ -7,8 +7,9 @@
 use super::approx::acos_unit;
 use super::kernel::{self, Kernel, azimuthal_dot};
 use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
-use super::params::{ParamError, Params};
+use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
+use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
 use glam::{Vec2, Vec3};
 use std::f64::consts::PI;
 
@@ -130,18 +131,10 @@ pub struct Eon {
 }
 
 impl Eon {
-    pub const DEFAULT_ROUGHNESS: f64 = 0.3;
-
     pub fn new(r: f64) -> Result<Self, ParamError> {
-        if !(0.0..=1.0).contains(&r) {
-            return Err(ParamError::new("roughness", format!("must lie in [0, 1] (got {r})")));
-        }
+        let r = Self::SPEC.params[0].check(r)?;
         let k = EonKernel::<f64>::new(r);
         Ok(Self { r: r as f32, kernel: EonKernel::from_coefficients(k.coefficients().map(|c| c as f32)) })
-    }
-
-    pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
-        Self::new(p.number("roughness", Self::DEFAULT_ROUGHNESS)?)
     }
 
     pub fn roughness(&self) -> f32 {
@@ -179,5 +172,38 @@ impl DiffuseBrdf for Eon {
         let e_avg = self.kernel.e_avg as f64;
         let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
         Albedo { value: rho * e_f + rho_ms * (1.0 - e_f), method: AlbedoMethod::ClosedForm }
+    }
+}
+
+impl Registered for Eon {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "eon",
+        summary: "energy-preserving Oren–Nayar (Portsmouth et al. 2025), exact albedo: the white furnace gives 1",
+        params: &[ParamSpec::number(
+            "roughness",
+            0.3,
+            Range::Closed(0.0, 1.0),
+            "lie in [0, 1]",
+            "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)",
+        )],
+        examples: &[&[("roughness", "1.0")]],
+    };
+    type Lane<'t, T: Real + 't> = EonKernel<T>;
+
+    fn build(v: &Values) -> Result<Self, ParamError> {
+        Self::new(v.number("roughness"))
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![ParamValue::Number(self.r as f64)]
+    }
+
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
+        let [r] = first(numeric)?;
+        Some(EonKernel::new(r).coefficients().to_vec())
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<EonKernel<T>> {
+        Some(EonKernel::from_coefficients(first(c)?))
     }
 }

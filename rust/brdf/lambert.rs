@@ -3,7 +3,9 @@
 
 use super::kernel::{self, Kernel};
 use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
+use super::registry::{ModelSpec, Registered, Values};
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -30,5 +32,31 @@ impl DiffuseBrdf for Lambert {
     fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
         let value = if cos_theta_i > 0.0 { reflectance as f64 } else { 0.0 };
         Albedo { value, method: AlbedoMethod::ClosedForm }
+    }
+}
+
+impl Registered for Lambert {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "lambert",
+        summary: "`ρ/π`; matches Mitsuba's `diffuse`, sampling included",
+        params: &[],
+        examples: &[],
+    };
+    type Lane<'t, T: Real + 't> = Lambert;
+
+    fn build(_: &Values) -> Result<Self, ParamError> {
+        Ok(Lambert)
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        Vec::new()
+    }
+
+    fn constant_coefficients<T: Real>(&self, _: &[T], _: bool) -> Option<Vec<T>> {
+        Some(Vec::new())
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&self, _: &[T], _: &[T::Table<'t>], _: bool) -> Option<Lambert> {
+        Some(Lambert)
     }
 }

@@ -48,8 +48,9 @@ pub struct Albedo {
     pub method: AlbedoMethod,
 }
 
-/// A diffuse BRDF in the local frame (z = normal; `wi` towards the light, `wo` towards the
-/// viewer). One-sided: zero unless both directions are strictly above the surface.
+/// A diffuse BRDF in the local frame (z = normal; `wi` the given direction, towards the previous
+/// vertex of a path, `wo` the other one, as in Mitsuba and the renderer: `docs/conventions.md`;
+/// every model is reciprocal). One-sided: zero unless both directions are strictly above the surface.
 pub trait DiffuseBrdf {
     /// `f(wi, wo)` in 1/sr, **without** the cosine, for each reflectance channel.
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N];

@@ -7,8 +7,9 @@
 use super::approx::acos_unit;
 use super::kernel::{self, Kernel, azimuthal_dot};
 use super::model::{BrdfSample, DiffuseBrdf};
-use super::params::{ParamError, Params};
+use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
+use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
 use glam::{Vec2, Vec3};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
@@ -130,26 +131,13 @@ pub struct OrenNayar {
 }
 
 impl OrenNayar {
-    pub const DEFAULT_SIGMA: f64 = 0.3;
-
     pub fn new(sigma: f64, model: OrenNayarModel) -> Result<Self, ParamError> {
-        if !(sigma >= 0.0) || !sigma.is_finite() {
-            return Err(ParamError::new("sigma", format!("must be a finite angle >= 0 in radians (got {sigma})")));
-        }
+        let sigma = Self::SPEC.params[0].check(sigma)?;
         let k = OrenNayarKernel::<f64>::new(sigma, model);
         Ok(Self {
             sigma: sigma as f32,
             kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model),
         })
-    }
-
-    pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
-        let sigma = p.number("sigma", Self::DEFAULT_SIGMA)?;
-        let model = match p.choice("model", &["qualitative", "full"], "qualitative")? {
-            "full" => OrenNayarModel::Full,
-            _ => OrenNayarModel::Qualitative,
-        };
-        Self::new(sigma, model)
     }
 
     pub fn sigma(&self) -> f32 {
@@ -176,5 +164,47 @@ impl DiffuseBrdf for OrenNayar {
     #[inline]
     fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
+    }
+}
+
+impl Registered for OrenNayar {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "oren_nayar",
+        summary: "Oren–Nayar 1994: the qualitative A/B model, or the full C1–C3 model with the ρ² interreflection term",
+        params: &[
+            ParamSpec::number(
+                "sigma",
+                0.3,
+                Range::AtLeast(0.0),
+                "be a finite angle >= 0 in radians",
+                "slope-angle standard deviation σ (radians)",
+            ),
+            ParamSpec::choice(
+                "model",
+                &["qualitative", "full"],
+                "qualitative",
+                "`qualitative` (eq. 30) or `full` (C1–C3 and the ρ² interreflection term)",
+            ),
+        ],
+        examples: &[&[("sigma", "0.8"), ("model", "full")]],
+    };
+    type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
+
+    fn build(v: &Values) -> Result<Self, ParamError> {
+        let model = if v.choice("model") == "full" { OrenNayarModel::Full } else { OrenNayarModel::Qualitative };
+        Self::new(v.number("sigma"), model)
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![ParamValue::Number(self.sigma as f64), ParamValue::Text(self.model().as_str().into())]
+    }
+
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
+        let [sigma] = first(numeric)?;
+        Some(OrenNayarKernel::new(sigma, self.model()).coefficients().to_vec())
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<OrenNayarKernel<T>> {
+        Some(OrenNayarKernel::from_coefficients(first(c)?, self.model()))
     }
 }

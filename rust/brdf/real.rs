@@ -180,6 +180,11 @@ impl<'t> Nodes<'t> {
         Self { data, last: N - 1 }
     }
 
+    /// A table of the nodes in `data`; `None` if it is empty.
+    pub fn from_slice(data: &'t [f32]) -> Option<Self> {
+        Some(Self { data, last: data.len().checked_sub(1)? })
+    }
+
     /// The node at `i`, or the last node for an index past the end (callers clamp, so this
     /// only guards memory safety).
     #[inline(always)]

@@ -6,9 +6,10 @@
 //! So that scenes written for Mitsuba 0.6 render with the rough diffuse model they asked for.
 
 use super::model::{BrdfSample, DiffuseBrdf};
-use super::oren_nayar::{OrenNayar, OrenNayarModel};
-use super::params::{ParamError, Params};
+use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarModel};
+use super::params::{ParamError, ParamValue};
 use super::real::Real;
+use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
 use glam::{Vec2, Vec3};
 use std::f64::consts::FRAC_1_SQRT_2;
 
@@ -19,8 +20,6 @@ pub struct RoughDiffuse {
 }
 
 impl RoughDiffuse {
-    pub const DEFAULT_ALPHA: f64 = 0.2;
-
     /// Oren–Nayar's σ for the RMS slope α: `α/√2`.
     #[inline]
     pub fn sigma_of_alpha<T: Real>(alpha: T) -> T {
@@ -28,16 +27,9 @@ impl RoughDiffuse {
     }
 
     pub fn new(alpha: f64, use_fast_approx: bool) -> Result<Self, ParamError> {
-        if !(alpha >= 0.0) || !alpha.is_finite() {
-            return Err(ParamError::new("alpha", format!("must be a finite RMS slope >= 0 (got {alpha})")));
-        }
+        let alpha = Self::SPEC.params[0].check(alpha)?;
         let model = if use_fast_approx { OrenNayarModel::Qualitative } else { OrenNayarModel::Full };
         Ok(Self { alpha: alpha as f32, oren_nayar: OrenNayar::new(Self::sigma_of_alpha(alpha), model)? })
-    }
-
-    pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
-        let alpha = p.number("alpha", Self::DEFAULT_ALPHA)?;
-        Self::new(alpha, p.flag("use_fast_approx", false)?)
     }
 
     pub fn alpha(&self) -> f32 {
@@ -63,5 +55,36 @@ impl DiffuseBrdf for RoughDiffuse {
     #[inline]
     fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         self.oren_nayar.sample(wi, u, reflectance)
+    }
+}
+
+impl Registered for RoughDiffuse {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "roughdiffuse",
+        summary: "Mitsuba 0.6's rough diffuse: full Oren–Nayar with σ = α/√2, or the qualitative one with `use_fast_approx`",
+        params: &[
+            ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)"),
+            ParamSpec::flag("use_fast_approx", false, "the qualitative model instead of the full one"),
+        ],
+        examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
+    };
+    type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
+
+    fn build(v: &Values) -> Result<Self, ParamError> {
+        Self::new(v.number("alpha"), v.flag("use_fast_approx"))
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![ParamValue::Number(self.alpha as f64), ParamValue::Text(self.use_fast_approx().to_string())]
+    }
+
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
+        let [alpha] = first(numeric)?;
+        let sigma = Self::sigma_of_alpha(alpha);
+        Some(OrenNayarKernel::new(sigma, self.oren_nayar.model()).coefficients().to_vec())
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<OrenNayarKernel<T>> {
+        Some(OrenNayarKernel::from_coefficients(first(c)?, self.oren_nayar.model()))
     }
 }

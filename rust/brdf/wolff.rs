@@ -20,8 +20,9 @@ use super::fresnel::{Transmittance, dielectric_reflectance, diffuse_fresnel_exte
 use super::fresnel_fit::diffuse_fresnel_external_fit;
 use super::kernel::{self, Kernel};
 use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
-use super::params::{ParamError, Params};
+use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
+use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -131,22 +132,9 @@ pub struct Wolff {
 }
 
 impl Wolff {
-    pub const DEFAULT_INT_IOR: f64 = 1.4;
-    pub const DEFAULT_EXT_IOR: f64 = 1.0;
-
     pub fn new(int_ior: f64, ext_ior: f64, normalization: WolffNormalization) -> Result<Self, ParamError> {
-        if !(int_ior >= 1.0) || !int_ior.is_finite() {
-            return Err(ParamError::new(
-                "int_ior",
-                format!("must be a finite index of refraction >= 1 (got {int_ior})"),
-            ));
-        }
-        if !(ext_ior >= 1.0) || !ext_ior.is_finite() {
-            return Err(ParamError::new(
-                "ext_ior",
-                format!("must be a finite index of refraction >= 1 (got {ext_ior})"),
-            ));
-        }
+        let int_ior = Self::SPEC.params[0].check(int_ior)?;
+        let ext_ior = Self::SPEC.params[1].check(ext_ior)?;
         let eta = int_ior / ext_ior;
         if eta < 1.0 {
             return Err(ParamError::new(
@@ -171,17 +159,6 @@ impl Wolff {
             f_dr_ext: diffuse_fresnel_external(eta) as f32,
             kernel,
         })
-    }
-
-    pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
-        let int_ior = p.ior("int_ior", Self::DEFAULT_INT_IOR)?;
-        let ext_ior = p.ior("ext_ior", Self::DEFAULT_EXT_IOR)?;
-        let normalization = match p.choice("normalization", &["physical", "normal", "raw"], "physical")? {
-            "normal" => WolffNormalization::Normal,
-            "raw" => WolffNormalization::Raw,
-            _ => WolffNormalization::Physical,
-        };
-        Self::new(int_ior, ext_ior, normalization)
     }
 
     pub fn int_ior(&self) -> f32 {
@@ -218,5 +195,67 @@ impl DiffuseBrdf for Wolff {
             self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64)
         };
         Albedo { value, method: AlbedoMethod::ClosedForm }
+    }
+}
+
+impl Registered for Wolff {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "wolff",
+        summary: "smooth dielectric, Fresnel in and out: `K·T(θi)·T(θo)`, T = 1 − Fresnel",
+        params: &[
+            ParamSpec::ior("int_ior", 1.4, "interior index of refraction (number or material name)"),
+            ParamSpec::ior("ext_ior", 1.0, "exterior index of refraction"),
+            ParamSpec::choice(
+                "normalization",
+                &["physical", "normal", "raw"],
+                "physical",
+                "`physical` (energy-conserving), `normal` (Wolff's normal-incidence scaling) or `raw`",
+            ),
+        ],
+        examples: &[&[("int_ior", "bk7"), ("ext_ior", "1.1"), ("normalization", "normal")], &[("int_ior", "1.8"), ("normalization", "raw")]],
+    };
+    type Lane<'t, T: Real + 't> = WolffKernel<T>;
+
+    fn build(v: &Values) -> Result<Self, ParamError> {
+        let normalization = match v.choice("normalization") {
+            "normal" => WolffNormalization::Normal,
+            "raw" => WolffNormalization::Raw,
+            _ => WolffNormalization::Physical,
+        };
+        Self::new(v.number("int_ior"), v.number("ext_ior"), normalization)
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![
+            ParamValue::Number(self.int_ior as f64),
+            ParamValue::Number(self.ext_ior as f64),
+            ParamValue::Text(self.normalization().as_str().into()),
+        ]
+    }
+
+    /// The exact `F_dr` (a 64-node quadrature): once per parameter value.
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
+        let [int_ior, ext_ior] = first(numeric)?;
+        Some(WolffKernel::new(int_ior / ext_ior, self.normalization()).coefficients().to_vec())
+    }
+
+    /// `F_dr` from its fit ([`WolffKernel::per_lane`]); `ext_ior ≥ 1`, and `n ≥ 1` there.
+    fn lane_coefficients<T: Real>(&self, numeric: &[T]) -> Option<Vec<T>> {
+        let [int_ior, ext_ior] = first(numeric)?;
+        Some(WolffKernel::per_lane(int_ior / ext_ior.max(T::c(1.0)), self.normalization()).coefficients().to_vec())
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<WolffKernel<T>> {
+        Some(WolffKernel::from_coefficients(first(c)?, self.normalization()))
+    }
+
+    /// The indices bound each other: `int_ior ≥ max(ext_ior, 1)`, `1 ≤ ext_ior ≤ int_ior`.
+    fn placeholder(name: &str, mean: f64, number: &dyn Fn(&str) -> Option<f64>) -> f64 {
+        let at_least = |lo: f64| if mean >= lo { mean } else { lo }; // NaN gives lo
+        match name {
+            "int_ior" => at_least(number("ext_ior").unwrap_or(1.0).max(1.0)),
+            "ext_ior" => at_least(1.0).min(number("int_ior").unwrap_or(1.0).max(1.0)),
+            _ => mean,
+        }
     }
 }

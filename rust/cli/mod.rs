@@ -8,6 +8,7 @@ pub mod microgeometry_cmd;
 pub mod render_cmd;
 pub mod study_cmd;
 mod tables;
+pub mod types_cmd;
 pub mod validate_cmd;
 
 use clap::{Parser, Subcommand};
@@ -46,8 +47,9 @@ pub enum Command {
     /// Inverse rendering: fit scene parameters (textured σ, reflectance, …) to target images
     /// with Mitsuba's prb and Adam (runs `python -m matte_mitsuba.fit`).
     Fit(fit_cmd::FitArgs),
-    /// The BSDF plugin names matte provides, one per line (the plugin build reads them).
-    Types,
+    /// The diffuse models matte provides: plugin names one per line (the plugin build reads
+    /// them), `--json` (parameters, defaults, ranges, examples) or `--markdown` (the README table).
+    Types(types_cmd::TypesArgs),
 }
 
 /// Parses the command line; usage errors become one line (clap's own multi-line report is
@@ -84,9 +86,6 @@ pub fn run(cli: Cli) -> Result<(), String> {
         Command::Bench(a) => bench_cmd::run(&a),
         Command::Microgeometry(a) => microgeometry_cmd::run(&a),
         Command::Fit(a) => fit_cmd::run(&a),
-        Command::Types => {
-            crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
-            Ok(())
-        }
+        Command::Types(a) => types_cmd::run(&a),
     }
 }

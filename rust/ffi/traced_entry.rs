@@ -11,14 +11,10 @@
 use super::Model;
 use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
-use crate::brdf::eon::EonKernel;
-use crate::brdf::ginneken::GinnekenKernel;
 use crate::brdf::kernel;
-use crate::brdf::lane::LaneKernel;
-use crate::brdf::oren_nayar::OrenNayarKernel;
 use crate::brdf::real::V3;
-use crate::brdf::wolff::WolffKernel;
-use crate::brdf::{DiffuseModel, RoughDiffuse};
+use crate::brdf::registry::Registered;
+use crate::brdf::{LaneKernel, dispatch};
 
 /// One model's kernel with traced constants.
 type TracedKernel<'a> = LaneKernel<'a, Traced<'a>>;
@@ -47,107 +43,54 @@ macro_rules! by_channels {
 }
 
 impl Model {
+    /// The number of tables the constant-parameter kernel reads ([`Registered::tables`]).
     pub(super) fn table_count(&self) -> usize {
-        match &self.bsdf {
-            DiffuseModel::Ginneken(_) => 4,
-            _ => 0,
-        }
+        dispatch!(&self.bsdf, m => m.tables().len())
     }
 
-    /// van Ginneken's tables in the order the traced kernel gathers them: `I`, `∂I/∂m`,
-    /// `μΛ`, `∂(μΛ)/∂m`.
+    /// Table `k` in the order the traced kernel gathers them (van Ginneken: `I`, `∂I/∂m`,
+    /// `μΛ`, `∂(μΛ)/∂m`); empty past the end.
     pub(super) fn table(&self, k: usize) -> &[f32] {
-        match &self.bsdf {
-            DiffuseModel::Ginneken(g) => {
-                let t = g.table();
-                match k {
-                    0 => t.slope_nodes(),
-                    1 => t.slope_derivative_nodes(),
-                    2 => t.mu_lambda_nodes(),
-                    3 => t.mu_lambda_derivative_nodes(),
-                    _ => &[],
-                }
-            }
-            _ => &[],
-        }
+        dispatch!(&self.bsdf, m => m.tables().get(k).copied().unwrap_or(&[]))
     }
 
-    /// Tables for per-lane parameters (van Ginneken: the four roughness-axis stacks, built on
-    /// first use), registered instead of [`Self::table`]'s when a parameter is textured.
+    /// Tables for per-lane parameters ([`Registered::lane_tables`]: van Ginneken's four
+    /// roughness-axis stacks, built on first use), registered instead of [`Self::table`]'s
+    /// when a parameter is textured.
     pub(super) fn lane_table_count(&self) -> usize {
-        if self.bsdf.lane_tables().is_some() { 4 } else { 0 }
+        dispatch!(&self.bsdf, m => m.lane_tables().len())
     }
 
     pub(super) fn lane_table(&self, k: usize) -> &[f32] {
-        self.bsdf.lane_tables().map_or(&[], |t| t.table(k))
+        dispatch!(&self.bsdf, m => m.lane_tables().get(k).copied().unwrap_or(&[]))
     }
 
+    /// The kernel constants for the numeric parameters `params` (traced, possibly with
+    /// gradients), once per `parameters_changed` ([`Registered::constant_coefficients`]).
+    /// Empty if `params` is short.
     pub(super) fn traced_coefficients(&self, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32> {
-        let p = |k: usize| params.get(k).map(|&i| Traced::node(arena, i));
-        match &self.bsdf {
-            DiffuseModel::Lambert(_) => vec![],
-            DiffuseModel::OrenNayar(b) => {
-                p(0).map_or(vec![], |sigma| ids(arena, OrenNayarKernel::new(sigma, b.model()).coefficients()))
-            }
-            DiffuseModel::Eon(_) => p(0).map_or(vec![], |r| ids(arena, EonKernel::new(r).coefficients())),
-            DiffuseModel::RoughDiffuse(b) => p(0).map_or(vec![], |alpha| {
-                ids(
-                    arena,
-                    OrenNayarKernel::new(RoughDiffuse::sigma_of_alpha(alpha), b.oren_nayar().model()).coefficients(),
-                )
-            }),
-            DiffuseModel::Wolff(b) => match (p(0), p(1)) {
-                (Some(int_ior), Some(ext_ior)) => {
-                    ids(arena, WolffKernel::new(int_ior / ext_ior, b.normalization()).coefficients())
-                }
-                _ => vec![],
-            },
-            // m − m₀: zero in value (the tables were built at the parameter's value m₀), the
-            // roughness's gradient in derivative.
-            DiffuseModel::Ginneken(b) => match p(0) {
-                Some(m) if differentiable => ids(arena, [m - Traced::Lit(b.roughness())]),
-                _ => vec![],
-            },
-        }
+        let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
+        let c = dispatch!(&self.bsdf, m => m.constant_coefficients(&values, differentiable));
+        c.map_or(vec![], |c| c.iter().map(|v| v.id(arena)).collect())
     }
 
     /// The kernel constants for per-lane (textured) parameters, traced: `params` holds every
     /// numeric parameter's value per lane (a texture's `eval_1`, or the constant), in the order
-    /// of `numeric_parameters`; the result is in [`Self::traced_coefficients`]' layout, so
-    /// [`Self::traced_eval_pdf`] / [`Self::traced_sample`] take it unchanged
-    /// (`crate::brdf::lane`). Empty if the model has no per-lane form or `params` is short.
+    /// of `numeric_parameters`; the result goes to [`Self::traced_eval_pdf`] /
+    /// [`Self::traced_sample`] with `lane` set (`crate::brdf::lane`). Empty if `params` is short.
     pub(super) fn traced_lane_coefficients(&self, arena: &Arena, params: &[u32]) -> Vec<u32> {
         let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
-        match self.bsdf.lane_coefficients(&values) {
-            Some(c) => c.iter().map(|v| v.id(arena)).collect(),
-            None => vec![],
-        }
+        let c = dispatch!(&self.bsdf, m => m.lane_coefficients(&values));
+        c.map_or(vec![], |c| c.iter().map(|v| v.id(arena)).collect())
     }
 
-    /// The kernel with the constants `coefficients` (from [`Self::traced_coefficients`]).
-    /// `lane`: the constants come from [`Self::traced_lane_coefficients`] (van Ginneken then
-    /// reads the roughness-axis stacks the plugin registered, [`Self::lane_table`]).
+    /// The kernel with the constants `coefficients` and the registered tables (those of
+    /// [`Self::lane_table`] when `lane`, else [`Self::table`]'s).
     fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32], lane: bool) -> Option<TracedKernel<'a>> {
-        let table = |id| TracedTable { arena, id };
-        match &self.bsdf {
-            DiffuseModel::Ginneken(_) if lane => {
-                let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
-                self.bsdf.kernel_from_coefficients(&c, || Some([table(0), table(1), table(2), table(3)]))
-            }
-            DiffuseModel::Ginneken(b) => {
-                let roughness_derivative = nodes::<1>(arena, coefficients).map(|[dm]| (table(1), table(3), dm));
-                Some(LaneKernel::Ginneken(GinnekenKernel {
-                    slope: table(0),
-                    mu_lambda: table(2),
-                    roughness_derivative,
-                    shadowing: b.shadowing(),
-                }))
-            }
-            _ => {
-                let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
-                self.bsdf.kernel_from_coefficients(&c, || None)
-            }
-        }
+        let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
+        let count = if lane { self.lane_table_count() } else { self.table_count() };
+        let tables: Vec<TracedTable<'a>> = (0..count as u32).map(|id| TracedTable { arena, id }).collect();
+        dispatch!(&self.bsdf, m => m.kernel_from(&c, &tables, lane), lane)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs

@@ -50,25 +50,25 @@ pub fn model(kind: &str, params: &[(&str, &str)]) -> DiffuseModel {
     DiffuseModel::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
 }
 
-/// Every model with defaults and with low / high roughness (and each option).
+/// Every registered model at its defaults and at each of its declared examples (the set the
+/// plugin tests run too), plus low and high roughness and each option of the models here.
 pub fn catalogue() -> Vec<(String, DiffuseModel)> {
-    let cfgs: &[(&str, &[(&str, &str)])] = &[
-        ("lambert", &[]),
-        ("oren_nayar", &[]),
-        ("oren_nayar", &[("sigma", "0.1")]),
+    let mut cfgs: Vec<(&str, &[(&str, &str)])> = Vec::new();
+    for spec in matte::brdf::MODELS {
+        cfgs.push((spec.name, &[]));
+        cfgs.extend(spec.examples.iter().map(|e| (spec.name, *e)));
+    }
+    cfgs.extend_from_slice(&[
+        ("oren_nayar", &[("sigma", "0.1")][..]),
         ("oren_nayar", &[("sigma", "1.0")]),
         ("oren_nayar", &[("sigma", "0.1"), ("model", "full")]),
         ("oren_nayar", &[("sigma", "1.0"), ("model", "full")]),
-        ("eon", &[]),
         ("eon", &[("roughness", "0.05")]),
-        ("eon", &[("roughness", "1")]),
-        ("wolff", &[]),
         ("wolff", &[("int_ior", "2.4"), ("normalization", "normal")]),
         ("wolff", &[("int_ior", "bk7"), ("ext_ior", "water"), ("normalization", "raw")]),
-        ("ginneken", &[]),
         ("ginneken", &[("roughness", "0.1")]),
         ("ginneken", &[("roughness", "0.8"), ("shadowing", "height_correlated")]),
-    ];
+    ]);
     cfgs.iter().map(|(k, p)| (format!("{k} {p:?}"), model(k, p))).collect()
 }
 

@@ -15,21 +15,26 @@ REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MATTE = os.path.join(REPO, "target", "release", "matte")
 SCENES = os.path.join(REPO, "mitsuba_scenes")
 
-# (type, parameters) exercised by the agreement tests: defaults plus every option.
-CONFIGS = [
-    ("lambert", {}),
-    ("oren_nayar", {}),
-    ("oren_nayar", {"sigma": 0.8, "model": "full"}),
-    ("eon", {}),
-    ("eon", {"roughness": 1.0}),
-    ("wolff", {}),
-    ("wolff", {"int_ior": "bk7", "ext_ior": 1.1, "normalization": "normal"}),
-    ("wolff", {"int_ior": 1.8, "normalization": "raw"}),
-    ("ginneken", {}),
-    ("ginneken", {"roughness": 0.7, "shadowing": "height_correlated"}),
-    ("roughdiffuse", {}),
-    ("roughdiffuse", {"alpha": 0.6, "use_fast_approx": "true"}),
-]
+
+
+def _registry():
+    """The model registry as the checkout's `matte types --json` prints it."""
+    out = subprocess.run([MATTE, "types", "--json"], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def _value(text):
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+MODELS = _registry()
+# (type, parameters) exercised by the agreement, χ² and finiteness tests: every registered
+# model at its defaults and at each of its declared examples (every option).
+CONFIGS = [(m["name"], params) for m in MODELS
+           for params in [{}] + [{k: _value(v) for k, v in ex} for ex in m["examples"]]]
 
 
 def config_id(cfg):

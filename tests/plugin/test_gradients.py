@@ -9,7 +9,7 @@ import sys
 import numpy as np
 import pytest
 
-from conftest import REPO
+from conftest import MODELS, REPO
 
 sys.path.insert(0, os.path.join(REPO, "validation"))
 from gradient_check import adjoint_gradient, central_difference  # noqa: E402
@@ -29,6 +29,10 @@ CASES = [
     ("ginneken", {"roughness": 0.4}, {"reflectance.value": 1e-2, "roughness": 4e-3}),
     ("ginneken", {"roughness": 0.4, "shadowing": "height_correlated"}, {"roughness": 4e-3}),
 ]
+# Every other registered model at its defaults: reflectance and each numeric parameter.
+CASES += [(m["name"], {}, {"reflectance.value": 1e-2,
+                           **{p["name"]: 1e-2 for p in m["params"] if p["kind"]["type"] in ("number", "ior")}})
+          for m in MODELS if m["name"] not in {c[0] for c in CASES}]
 
 
 def case_id(case):

@@ -19,8 +19,10 @@ pub mod table;
 use super::approx;
 use super::kernel::{self, Kernel, azimuthal_dot};
 use super::model::{BrdfSample, DiffuseBrdf};
-use super::params::{ParamError, Params};
+use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
+use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use glam::{Vec2, Vec3};
 use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
@@ -117,28 +119,9 @@ impl PartialEq for Ginneken {
 }
 
 impl Ginneken {
-    pub const DEFAULT_ROUGHNESS: f64 = 0.3;
-
     pub fn new(m: f64, shadowing: Shadowing) -> Result<Self, ParamError> {
-        if !(m > 0.0) || !m.is_finite() {
-            return Err(ParamError::new("roughness", format!("must be a finite rms slope > 0 (got {m})")));
-        }
-        if m > 4.0 {
-            return Err(ParamError::new(
-                "roughness",
-                format!("must be <= 4 (rms slope; 1 is already a 45° mean facet tilt) (got {m})"),
-            ));
-        }
+        let m = Self::SPEC.params[0].check(m)?;
         Ok(Self { m: m as f32, shadowing, table: SlopeTable::shared(m) })
-    }
-
-    pub fn from_params(p: &mut Params) -> Result<Self, ParamError> {
-        let m = p.number("roughness", Self::DEFAULT_ROUGHNESS)?;
-        let shadowing = match p.choice("shadowing", &["vginneken", "height_correlated"], "vginneken")? {
-            "height_correlated" => Shadowing::HeightCorrelated,
-            _ => Shadowing::VanGinneken,
-        };
-        Self::new(m, shadowing)
     }
 
     pub fn roughness(&self) -> f32 {
@@ -185,6 +168,101 @@ impl Ginneken {
     /// The tables (shared between instances of the same roughness).
     pub fn table(&self) -> &SlopeTable {
         &self.table
+    }
+}
+
+/// van Ginneken's kernel: on its own roughness's tables ([`GinnekenKernel`]), or with the
+/// roughness per lane on the tables stacked over m ([`GinnekenAxisKernel`]).
+#[derive(Clone, Copy)]
+pub enum GinnekenLane<'t, T: Real> {
+    Fixed(GinnekenKernel<'t, T>),
+    Axis(GinnekenAxisKernel<'t, T>),
+}
+
+impl<'t, T: Real> Kernel<T> for GinnekenLane<'t, T> {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        match self {
+            GinnekenLane::Fixed(k) => k.reduced_f(wi, wo, rho),
+            GinnekenLane::Axis(k) => k.reduced_f(wi, wo, rho),
+        }
+    }
+}
+
+impl Registered for Ginneken {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "ginneken",
+        summary: "van Ginneken et al.: Lambertian facets on a Gaussian surface, with shadowing and masking",
+        params: &[
+            ParamSpec::number(
+                "roughness",
+                0.3,
+                Range::OpenClosed(0.0, 4.0),
+                "be a finite rms slope in (0, 4] (1 is already a 45° mean facet tilt)",
+                "per-axis rms slope m",
+            )
+            .with_lane_clamp(M_MIN, M_MAX),
+            ParamSpec::choice(
+                "shadowing",
+                &["vginneken", "height_correlated"],
+                "vginneken",
+                "the shadowing-masking term: the paper's or height-correlated Smith",
+            ),
+        ],
+        examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
+    };
+    type Lane<'t, T: Real + 't> = GinnekenLane<'t, T>;
+
+    fn build(v: &Values) -> Result<Self, ParamError> {
+        let shadowing = match v.choice("shadowing") {
+            "height_correlated" => Shadowing::HeightCorrelated,
+            _ => Shadowing::VanGinneken,
+        };
+        Self::new(v.number("roughness"), shadowing)
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![ParamValue::Number(self.m as f64), ParamValue::Text(self.shadowing.as_str().into())]
+    }
+
+    /// `m − m₀`, when differentiable: zero in value (the tables were built at the
+    /// parameter's value m₀), the roughness's gradient in derivative. Nothing otherwise.
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], differentiable: bool) -> Option<Vec<T>> {
+        let [m] = first(numeric)?;
+        Some(if differentiable { vec![m - T::c(self.m as f64)] } else { vec![] })
+    }
+
+    /// The clamped roughness itself.
+    fn lane_coefficients<T: Real>(&self, numeric: &[T]) -> Option<Vec<T>> {
+        let [m] = first(numeric)?;
+        Some(vec![clamp_roughness(m)])
+    }
+
+    /// `tables`: `I`, `∂I/∂m`, `μΛ`, `∂(μΛ)/∂m` ([`Self::tables`], or the stacks over m of
+    /// [`Self::lane_tables`] when `lane`).
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], tables: &[T::Table<'t>], lane: bool) -> Option<GinnekenLane<'t, T>> {
+        let [slope, d_slope, mu_lambda, d_mu_lambda]: [T::Table<'t>; 4] = first(tables)?;
+        Some(if lane {
+            let [m] = first(c)?;
+            GinnekenLane::Axis(GinnekenAxisKernel::new([slope, d_slope, mu_lambda, d_mu_lambda], m, self.shadowing))
+        } else {
+            GinnekenLane::Fixed(GinnekenKernel {
+                slope,
+                mu_lambda,
+                roughness_derivative: first(c).map(|[dm]| (d_slope, d_mu_lambda, dm)),
+                shadowing: self.shadowing,
+            })
+        })
+    }
+
+    fn tables(&self) -> Vec<&[f32]> {
+        let t = &self.table;
+        vec![t.slope_nodes(), t.slope_derivative_nodes(), t.mu_lambda_nodes(), t.mu_lambda_derivative_nodes()]
+    }
+
+    fn lane_tables(&self) -> Vec<&'static [f32]> {
+        let t = RoughnessAxisTables::shared();
+        (0..4).map(|k| t.table(k)).collect()
     }
 }
 

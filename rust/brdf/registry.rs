@@ -1,0 +1,442 @@
+//! The registry of diffuse models. Each model declares itself once, in its own file: a
+//! [`ModelSpec`] (plugin name, parameters with kind, default, valid range and the clamp of
+//! its per-lane values, example configurations) and an implementation of [`Registered`]
+//! (how its kernel is built from those parameters). The list of models is the one
+//! [`models!`] call in `rust/brdf/mod.rs`; from it come [`super::DiffuseModel`] and its
+//! static dispatch (`dispatch!`), [`super::LaneKernel`], [`super::MODELS`],
+//! [`super::BSDF_TYPES`], the parameter parsing of every front end (CLI, scene loader,
+//! Mitsuba plugin) and `matte types --json`, which the Python side and the tests read.
+//! `docs/adding-a-model.md` walks through adding one.
+
+use super::kernel::Kernel;
+use super::model::DiffuseBrdf;
+use super::params::{ParamError, ParamValue, Params};
+use super::real::Real;
+use std::fmt::Debug;
+
+/// One model as the front ends see it.
+#[derive(Debug, serde::Serialize)]
+pub struct ModelSpec {
+    /// The plugin name (`<bsdf type="...">`, `matte brdf KIND`).
+    pub name: &'static str,
+    /// One line for tables: the model and its source.
+    pub summary: &'static str,
+    pub params: &'static [ParamSpec],
+    /// Parameter sets the test sweeps run besides the defaults (`name`, value as written in
+    /// a scene), e.g. the other `model` of Oren–Nayar or a large roughness.
+    pub examples: &'static [&'static [(&'static str, &'static str)]],
+}
+
+/// One parameter of a model.
+#[derive(Debug, serde::Serialize)]
+pub struct ParamSpec {
+    pub name: &'static str,
+    pub kind: ParamKind,
+    /// The values accepted as a number (numeric kinds).
+    pub range: Range,
+    /// Per-lane (textured) values are clamped into `[lo, hi]`, NaN to `lo`
+    /// (`docs/models.md#spatially-varying-parameters`); numeric kinds only.
+    pub lane_clamp: (f64, f64),
+    /// What a valid value is, completing "must ...": the error text for a value outside
+    /// `range` ("be a finite angle >= 0 in radians").
+    pub what: &'static str,
+    /// For the README's model table: the meaning and unit.
+    pub doc: &'static str,
+}
+
+/// How a parameter is given.
+#[derive(Debug, serde::Serialize)]
+#[serde(tag = "type", rename_all = "snake_case")]
+pub enum ParamKind {
+    /// A number; texturable (a `<texture>` gives it per lane).
+    Number { default: f64 },
+    /// An index of refraction: a number or one of Mitsuba's named materials; texturable.
+    Ior { default: f64 },
+    /// One word of `choices` (case-insensitive).
+    Choice { choices: &'static [&'static str], default: &'static str },
+    /// A boolean.
+    Flag { default: bool },
+}
+
+/// The valid numbers of a numeric parameter (always finite, within `MAX_MAGNITUDE`).
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+#[serde(tag = "type", content = "bounds", rename_all = "snake_case")]
+pub enum Range {
+    /// `x ≥ lo`.
+    AtLeast(f64),
+    /// `lo ≤ x ≤ hi`.
+    Closed(f64, f64),
+    /// `lo < x ≤ hi`.
+    OpenClosed(f64, f64),
+}
+
+impl Range {
+    pub fn contains(self, x: f64) -> bool {
+        match self {
+            Range::AtLeast(lo) => x >= lo,
+            Range::Closed(lo, hi) => lo <= x && x <= hi,
+            Range::OpenClosed(lo, hi) => lo < x && x <= hi,
+        }
+    }
+}
+
+impl ParamSpec {
+    /// A number in `range`; its per-lane values are clamped into the range's bounds.
+    pub const fn number(name: &'static str, default: f64, range: Range, what: &'static str, doc: &'static str) -> Self {
+        let lane_clamp = match range {
+            Range::AtLeast(lo) => (lo, f64::INFINITY),
+            Range::Closed(lo, hi) | Range::OpenClosed(lo, hi) => (lo, hi),
+        };
+        Self { name, kind: ParamKind::Number { default }, range, lane_clamp, what, doc }
+    }
+
+    /// An index of refraction (a number ≥ 1 or a named material).
+    pub const fn ior(name: &'static str, default: f64, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Ior { default },
+            range: Range::AtLeast(1.0),
+            lane_clamp: (1.0, f64::INFINITY),
+            what: "be a finite index of refraction >= 1",
+            doc,
+        }
+    }
+
+    /// One word of `choices`.
+    pub const fn choice(
+        name: &'static str,
+        choices: &'static [&'static str],
+        default: &'static str,
+        doc: &'static str,
+    ) -> Self {
+        Self { kind: ParamKind::Choice { choices, default }, ..Self::word(name, doc) }
+    }
+
+    /// A boolean.
+    pub const fn flag(name: &'static str, default: bool, doc: &'static str) -> Self {
+        Self { kind: ParamKind::Flag { default }, ..Self::word(name, doc) }
+    }
+
+    const fn word(name: &'static str, doc: &'static str) -> Self {
+        Self {
+            name,
+            kind: ParamKind::Flag { default: false },
+            range: Range::AtLeast(f64::NEG_INFINITY),
+            lane_clamp: (f64::NEG_INFINITY, f64::INFINITY),
+            what: "",
+            doc,
+        }
+    }
+
+    /// The same parameter with per-lane values clamped into `[lo, hi]` instead.
+    pub const fn with_lane_clamp(self, lo: f64, hi: f64) -> Self {
+        Self { lane_clamp: (lo, hi), ..self }
+    }
+
+    /// A number or an index of refraction: the parameters a texture may give.
+    pub const fn is_numeric(&self) -> bool {
+        matches!(self.kind, ParamKind::Number { .. } | ParamKind::Ior { .. })
+    }
+
+    /// The default as a [`ParamValue`] (what `parameters()` reports when nothing is given).
+    pub fn default_value(&self) -> ParamValue {
+        match self.kind {
+            ParamKind::Number { default } | ParamKind::Ior { default } => ParamValue::Number(default),
+            ParamKind::Choice { default, .. } => ParamValue::Text(default.into()),
+            ParamKind::Flag { default } => ParamValue::Text(default.to_string()),
+        }
+    }
+
+    /// `x` if it lies in the range, else the error naming the parameter.
+    pub fn check(&self, x: f64) -> Result<f64, ParamError> {
+        if self.range.contains(x) {
+            Ok(x)
+        } else {
+            Err(ParamError::new(self.name, format!("must {} (got {x})", self.what)))
+        }
+    }
+
+    /// `mean` clamped into the lane clamp (NaN gives the lower bound).
+    pub fn clamp_lane(&self, mean: f64) -> f64 {
+        let (lo, hi) = self.lane_clamp;
+        if mean >= lo { mean.min(hi) } else { lo }
+    }
+}
+
+impl ModelSpec {
+    pub fn param(&self, name: &str) -> Option<&'static ParamSpec> {
+        self.params.iter().find(|p| p.name == name)
+    }
+
+    /// The numeric parameters in order: the order per-lane values are given in.
+    pub fn numeric(&self) -> impl Iterator<Item = &'static ParamSpec> {
+        self.params.iter().filter(|p| p.is_numeric())
+    }
+
+    pub fn names(&self) -> Vec<&'static str> {
+        self.params.iter().map(|p| p.name).collect()
+    }
+}
+
+/// Counts the numeric parameters of `spec` (a `const fn`, for the compile-time limit below).
+pub const fn numeric_count(spec: &ModelSpec) -> usize {
+    let (mut i, mut n) = (0, 0);
+    while i < spec.params.len() {
+        if spec.params[i].is_numeric() {
+            n += 1;
+        }
+        i += 1;
+    }
+    n
+}
+
+/// The most numeric parameters a model may have: the Mitsuba plugin and the renderer keep
+/// per-lane values in fixed arrays of this size.
+pub const MAX_NUMERIC: usize = 2;
+
+/// A value read for one parameter, after the default was filled in and the range checked.
+#[derive(Clone, Debug, PartialEq)]
+enum Value {
+    Number(f64),
+    Choice(&'static str),
+    Flag(bool),
+}
+
+/// A model's parameters read from [`Params`] by its [`ModelSpec`]: every parameter present
+/// (defaults filled in), numbers range-checked. [`Registered::build`] takes them by name.
+#[derive(Clone, Debug)]
+pub struct Values {
+    spec: &'static ModelSpec,
+    values: Vec<Value>,
+}
+
+impl Values {
+    /// Reads every parameter of `spec` from `params` (marking them used; unknown names are
+    /// left for [`Params::finish`]).
+    pub fn read(spec: &'static ModelSpec, params: &mut Params) -> Result<Self, ParamError> {
+        let mut values = Vec::with_capacity(spec.params.len());
+        for p in spec.params {
+            values.push(match p.kind {
+                ParamKind::Number { default } => Value::Number(p.check(params.number(p.name, default)?)?),
+                ParamKind::Ior { default } => Value::Number(p.check(params.ior(p.name, default)?)?),
+                ParamKind::Choice { choices, default } => Value::Choice(params.choice(p.name, choices, default)?),
+                ParamKind::Flag { default } => Value::Flag(params.flag(p.name, default)?),
+            });
+        }
+        Ok(Self { spec, values })
+    }
+
+    fn get(&self, name: &str) -> &Value {
+        let k = self.spec.params.iter().position(|p| p.name == name);
+        // A model asking for a parameter its own SPEC does not declare is a bug in that file,
+        // caught by the registry tests on every model.
+        &self.values[k.unwrap_or_else(|| panic!("model \"{}\" has no parameter \"{name}\"", self.spec.name))]
+    }
+
+    pub fn number(&self, name: &str) -> f64 {
+        match self.get(name) {
+            Value::Number(x) => *x,
+            other => panic!("parameter \"{name}\" is not a number ({other:?})"),
+        }
+    }
+
+    pub fn choice(&self, name: &str) -> &'static str {
+        match self.get(name) {
+            Value::Choice(c) => c,
+            other => panic!("parameter \"{name}\" is not a choice ({other:?})"),
+        }
+    }
+
+    pub fn flag(&self, name: &str) -> bool {
+        match self.get(name) {
+            Value::Flag(b) => *b,
+            other => panic!("parameter \"{name}\" is not a flag ({other:?})"),
+        }
+    }
+}
+
+/// What a model implements to be registered; everything else about it is derived. `T` in the
+/// kernel methods is any [`Real`]: f32 and f64 on the CPU, `F32x8`, and the plugin's traced
+/// Dr.Jit values (`crate::ffi::traced`), so one implementation serves all of them.
+pub trait Registered: DiffuseBrdf + Clone + Debug + PartialEq + Sized + 'static {
+    const SPEC: ModelSpec;
+
+    /// The model's kernel with its constants in `T`, built by [`Self::kernel_from`].
+    type Lane<'t, T: Real + 't>: Kernel<T> + Copy;
+
+    /// The model from its parameters (defaults filled in, ranges checked). Checks that
+    /// involve several parameters (Wolff: int_ior ≥ ext_ior) are made here.
+    fn build(values: &Values) -> Result<Self, ParamError>;
+
+    /// The effective value of every parameter, in the SPEC's order (numbers as the model
+    /// stores them, words and flags as text).
+    fn values(&self) -> Vec<ParamValue>;
+
+    /// The kernel constants for numeric parameter values given as `T` (in the order of
+    /// [`ModelSpec::numeric`]), as the traced plugin computes them once per parameter
+    /// change; `differentiable`: the values carry gradients. `None` if `numeric` is short.
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], differentiable: bool) -> Option<Vec<T>>;
+
+    /// The kernel constants for per-lane (textured) values, each clamped into its lane clamp
+    /// first (`docs/models.md#spatially-varying-parameters`). Default: clamp, then
+    /// [`Self::constant_coefficients`].
+    fn lane_coefficients<T: Real>(&self, numeric: &[T]) -> Option<Vec<T>> {
+        let clamped: Vec<T> = Self::SPEC
+            .numeric()
+            .zip(numeric)
+            .map(|(p, &x)| {
+                let (lo, hi) = p.lane_clamp;
+                let x = if lo > f64::NEG_INFINITY { x.max(T::c(lo)) } else { x };
+                if hi < f64::INFINITY { x.min(T::c(hi)) } else { x }
+            })
+            .collect();
+        self.constant_coefficients(&clamped, true)
+    }
+
+    /// The kernel from constants `c` (of either coefficient method) and the tables
+    /// ([`Self::tables`] or, when `lane`, [`Self::lane_tables`]) in `T`'s table type.
+    /// `None` if `c` or `tables` is short.
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], tables: &[T::Table<'t>], lane: bool) -> Option<Self::Lane<'t, T>>;
+
+    /// Tables the constant-parameter kernel reads (van Ginneken's slope integral and μΛ);
+    /// the plugin registers them as Dr.Jit arrays.
+    fn tables(&self) -> Vec<&[f32]> {
+        Vec::new()
+    }
+
+    /// Tables the per-lane kernel reads (van Ginneken's stacks over the roughness).
+    fn lane_tables(&self) -> Vec<&'static [f32]> {
+        Vec::new()
+    }
+
+    /// The number a textured parameter `name` stands for when the model is built and
+    /// validated as a number: the texture's `mean` clamped into the lane clamp. `number`
+    /// gives another parameter's value when it is a number (Wolff's indices bound each other).
+    fn placeholder(name: &str, mean: f64, number: &dyn Fn(&str) -> Option<f64>) -> f64 {
+        let _ = number;
+        Self::SPEC.param(name).map_or(mean, |p| p.clamp_lane(mean))
+    }
+}
+
+/// The first `N` values of `c`, or `None`.
+#[inline(always)]
+pub fn first<T: Copy, const N: usize>(c: &[T]) -> Option<[T; N]> {
+    c.get(..N)?.try_into().ok()
+}
+
+/// `models! { Variant: module::Type, ... }`: declares the model modules and generates
+/// everything that lists the models (see the module comment). The order is the README's.
+macro_rules! models {
+    ($($variant:ident : $module:ident :: $ty:ident),+ $(,)?) => {
+        $crate::brdf::registry::models!(@with_dollar ($) $($variant : $module :: $ty),+);
+    };
+    (@with_dollar ($d:tt) $($variant:ident : $module:ident :: $ty:ident),+) => {
+        $(pub mod $module;)+
+        $(pub use $module::$ty;)+
+
+        /// Every registered model's declaration, in the README's order.
+        pub const MODELS: &[&$crate::brdf::registry::ModelSpec] =
+            &[$(&<$ty as $crate::brdf::registry::Registered>::SPEC),+];
+
+        /// The plugin names, in the README's order.
+        pub const BSDF_TYPES: &[&str] = &[$(<$ty as $crate::brdf::registry::Registered>::SPEC.name),+];
+
+        const _: () = {
+            $(assert!(
+                $crate::brdf::registry::numeric_count(&<$ty as $crate::brdf::registry::Registered>::SPEC)
+                    <= $crate::brdf::registry::MAX_NUMERIC,
+                "a model has more numeric parameters than MAX_NUMERIC"
+            );)+
+        };
+
+        /// One of matte's diffuse models with its (validated) parameters.
+        #[derive(Clone, Debug, PartialEq)]
+        pub enum DiffuseModel {
+            $($variant($ty),)+
+        }
+
+        /// One model's kernel with constants in `T` (per-lane or traced parameters).
+        #[derive(Clone, Copy)]
+        pub enum LaneKernel<'t, T: $crate::brdf::real::Real + 't> {
+            $($variant(<$ty as $crate::brdf::registry::Registered>::Lane<'t, T>),)+
+        }
+
+        impl<'t, T: $crate::brdf::real::Real + 't> $crate::brdf::kernel::Kernel<T> for LaneKernel<'t, T> {
+            #[inline(always)]
+            fn reduced_f<const N: usize>(
+                &self,
+                wi: $crate::brdf::real::V3<T>,
+                wo: $crate::brdf::real::V3<T>,
+                rho: [T; N],
+            ) -> [T; N] {
+                match self {
+                    $(LaneKernel::$variant(k) => k.reduced_f(wi, wo, rho),)+
+                }
+            }
+        }
+
+        /// `dispatch!(model, m => expr)`: evaluates `expr` with `m` bound to the concrete
+        /// model (static dispatch); `dispatch!(model, m => expr, lane)` also wraps the
+        /// expression's `Option<Lane>` into a [`LaneKernel`] of the same variant.
+        macro_rules! dispatch {
+            ($d self_:expr, $d b:ident => $d e:expr) => {
+                match $d self_ {
+                    $($crate::brdf::DiffuseModel::$variant($d b) => $d e,)+
+                }
+            };
+            ($d self_:expr, $d b:ident => $d e:expr, lane) => {
+                match $d self_ {
+                    $($crate::brdf::DiffuseModel::$variant($d b) => ($d e).map($crate::brdf::LaneKernel::$variant),)+
+                }
+            };
+        }
+        pub(crate) use dispatch;
+
+        impl DiffuseModel {
+            /// Builds the model `kind` (a plugin name) from its parameters. `reflectance` is
+            /// not a model parameter here: it is per channel and per call (textures). Unknown
+            /// names, unknown parameters and out-of-range values are errors naming the
+            /// parameter.
+            pub fn from_params(kind: &str, mut params: $crate::brdf::Params) -> Result<Self, $crate::brdf::ParamError> {
+                use $crate::brdf::registry::{Registered, Values};
+                $(
+                    if kind == <$ty as Registered>::SPEC.name {
+                        let spec = &<$ty as Registered>::SPEC;
+                        let model = <$ty>::build(&Values::read(spec, &mut params)?)?;
+                        params.finish(kind, &spec.names())?;
+                        return Ok(DiffuseModel::$variant(model));
+                    }
+                )+
+                Err($crate::brdf::ParamError::new(
+                    "type",
+                    format!("unknown bsdf type \"{kind}\" (known: {})", BSDF_TYPES.join(", ")),
+                ))
+            }
+
+            /// The model's declaration.
+            pub fn spec(&self) -> &'static $crate::brdf::registry::ModelSpec {
+                match self {
+                    $(DiffuseModel::$variant(_) => &<$ty as $crate::brdf::registry::Registered>::SPEC,)+
+                }
+            }
+        }
+
+        /// The declaration of the model `kind` (a plugin name).
+        pub fn spec(kind: &str) -> Option<&'static $crate::brdf::registry::ModelSpec> {
+            MODELS.iter().copied().find(|s| s.name == kind)
+        }
+
+        /// [`$crate::brdf::registry::Registered::placeholder`] of the model `kind`; `mean`
+        /// itself for unknown kinds.
+        pub fn placeholder(kind: &str, name: &str, mean: f64, number: &dyn Fn(&str) -> Option<f64>) -> f64 {
+            use $crate::brdf::registry::Registered;
+            $(
+                if kind == <$ty as Registered>::SPEC.name {
+                    return <$ty>::placeholder(name, mean, number);
+                }
+            )+
+            mean
+        }
+    };
+}
+pub(crate) use models;

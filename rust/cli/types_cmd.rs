@@ -1,0 +1,58 @@
+//! `matte types`: the registered diffuse models (`crate::brdf::MODELS`), as plugin names (one
+//! per line; the plugin build reads them), as JSON (every parameter with its kind, default,
+//! range and lane clamp, and the example configurations the tests sweep) or as the README's
+//! model table.
+
+use crate::brdf::registry::{ModelSpec, ParamKind, ParamSpec};
+
+#[derive(clap::Args, Debug)]
+pub struct TypesArgs {
+    /// Every model's declaration as JSON.
+    #[arg(long, conflicts_with = "markdown")]
+    pub json: bool,
+    /// The README's "Models and parameters" table (Markdown).
+    #[arg(long)]
+    pub markdown: bool,
+}
+
+pub fn run(a: &TypesArgs) -> Result<(), String> {
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(crate::brdf::MODELS).map_err(|e| e.to_string())?);
+    } else if a.markdown {
+        print!("{}", markdown_table());
+    } else {
+        crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
+    }
+    Ok(())
+}
+
+/// The README's model table, one row per registered model.
+pub fn markdown_table() -> String {
+    let mut s = String::from("| type | parameters (default) | what it is |\n|---|---|---|\n");
+    for m in crate::brdf::MODELS {
+        s += &format!("| `{}` | {} | {} |\n", m.name, parameters_cell(m), m.summary);
+    }
+    s
+}
+
+fn parameters_cell(m: &ModelSpec) -> String {
+    if m.params.is_empty() {
+        return "none".into();
+    }
+    let mut cell = m.params.iter().map(parameter).collect::<Vec<_>>().join("; ");
+    if m.params.iter().any(|p| matches!(p.kind, ParamKind::Ior { .. })) {
+        cell += " (indices: numbers or names, `bk7`, `water`, …)";
+    }
+    cell
+}
+
+fn parameter(p: &ParamSpec) -> String {
+    match p.kind {
+        ParamKind::Number { default } | ParamKind::Ior { default } => format!("`{}` ({default})", p.name),
+        ParamKind::Choice { choices, .. } => {
+            let words: Vec<String> = choices.iter().map(|c| format!("`{c}`")).collect();
+            format!("`{}` = {}", p.name, words.join(" \\| "))
+        }
+        ParamKind::Flag { default } => format!("`{}` ({default})", p.name),
+    }
+}
