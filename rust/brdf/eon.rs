@@ -178,6 +178,7 @@ impl DiffuseBrdf for Eon {
 impl Registered for Eon {
     const SPEC: ModelSpec = ModelSpec {
         name: "eon",
+        label: "EON",
         summary: "energy-preserving Oren–Nayar (Portsmouth et al. 2025), exact albedo: the white furnace gives 1",
         params: &[ParamSpec::number(
             "roughness",
@@ -187,6 +188,7 @@ impl Registered for Eon {
             "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)",
         )],
         examples: &[&[("roughness", "1.0")]],
+        in_study: true,
     };
     type Lane<'t, T: Real + 't> = EonKernel<T>;
 

@@ -38,9 +38,11 @@ impl DiffuseBrdf for Lambert {
 impl Registered for Lambert {
     const SPEC: ModelSpec = ModelSpec {
         name: "lambert",
+        label: "Lambert",
         summary: "`ρ/π`; matches Mitsuba's `diffuse`, sampling included",
         params: &[],
         examples: &[],
+        in_study: true,
     };
     type Lane<'t, T: Real + 't> = Lambert;
 

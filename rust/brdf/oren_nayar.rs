@@ -170,6 +170,7 @@ impl DiffuseBrdf for OrenNayar {
 impl Registered for OrenNayar {
     const SPEC: ModelSpec = ModelSpec {
         name: "oren_nayar",
+        label: "Oren–Nayar",
         summary: "Oren–Nayar 1994: the qualitative A/B model, or the full C1–C3 model with the ρ² interreflection term",
         params: &[
             ParamSpec::number(
@@ -187,6 +188,7 @@ impl Registered for OrenNayar {
             ),
         ],
         examples: &[&[("sigma", "0.8"), ("model", "full")]],
+        in_study: true,
     };
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 

@@ -19,12 +19,17 @@ use std::fmt::Debug;
 pub struct ModelSpec {
     /// The plugin name (`<bsdf type="...">`, `matte brdf KIND`).
     pub name: &'static str,
+    /// The name in tables, reports and sentences ("Oren–Nayar").
+    pub label: &'static str,
     /// One line for tables: the model and its source.
     pub summary: &'static str,
     pub params: &'static [ParamSpec],
     /// Parameter sets the test sweeps run besides the defaults (`name`, value as written in
     /// a scene), e.g. the other `model` of Oren–Nayar or a large roughness.
     pub examples: &'static [&'static [(&'static str, &'static str)]],
+    /// Rendered at its defaults in the study's main run (`rust/study/configuration.rs`),
+    /// beside the paper's models. False for a model that re-parametrises another.
+    pub in_study: bool,
 }
 
 /// One parameter of a model.

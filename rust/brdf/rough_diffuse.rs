@@ -61,12 +61,14 @@ impl DiffuseBrdf for RoughDiffuse {
 impl Registered for RoughDiffuse {
     const SPEC: ModelSpec = ModelSpec {
         name: "roughdiffuse",
+        label: "roughdiffuse",
         summary: "Mitsuba 0.6's rough diffuse: full Oren–Nayar with σ = α/√2, or the qualitative one with `use_fast_approx`",
         params: &[
             ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)"),
             ParamSpec::flag("use_fast_approx", false, "the qualitative model instead of the full one"),
         ],
         examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
+        in_study: false,
     };
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 

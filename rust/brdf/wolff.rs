@@ -201,6 +201,7 @@ impl DiffuseBrdf for Wolff {
 impl Registered for Wolff {
     const SPEC: ModelSpec = ModelSpec {
         name: "wolff",
+        label: "Wolff",
         summary: "smooth dielectric, Fresnel in and out: `K·T(θi)·T(θo)`, T = 1 − Fresnel",
         params: &[
             ParamSpec::ior("int_ior", 1.4, "interior index of refraction (number or material name)"),
@@ -213,6 +214,7 @@ impl Registered for Wolff {
             ),
         ],
         examples: &[&[("int_ior", "bk7"), ("ext_ior", "1.1"), ("normalization", "normal")], &[("int_ior", "1.8"), ("normalization", "raw")]],
+        in_study: true,
     };
     type Lane<'t, T: Real + 't> = WolffKernel<T>;
 

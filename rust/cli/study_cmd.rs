@@ -84,7 +84,7 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         mitsuba_variant: a.variant.clone(),
     };
     // Progress total: main run, variants, convergence series.
-    let mut total = (scenes.len() * study::configuration::MAIN_RUN.len() * 2) as u64 * a.passes as u64;
+    let mut total = (scenes.len() * study::configuration::main_run().len() * 2) as u64 * a.passes as u64;
     let mut series_regions = Vec::new();
     for scene in &scenes {
         let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();

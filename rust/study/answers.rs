@@ -1,7 +1,7 @@
 //! The paper's observations, each answered by a sentence computed from the measurements
 //! (never hand-written numbers), for the report and study.json.
 
-use super::configuration::{Configuration, MAIN_RUN, VARIANTS};
+use super::configuration::{Configuration, VARIANTS, main_run};
 use super::convergence::Series;
 use super::ratio::{Ratio, Relation};
 use super::variants::VariantStudy;
@@ -54,7 +54,7 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
     // The paper's question: does the difference to Lambert grow under global illumination?
     let (mut grow, mut total) = (0, 0);
     for s in studies {
-        for m in &MAIN_RUN[1..] {
+        for m in &main_run()[1..] {
             if let (Some(g), Some(d)) = (ratio(s, *m, Lighting::Global), ratio(s, *m, Lighting::Direct))
                 && (g.value - d.value).abs() > 1e-9
             {

@@ -1,7 +1,8 @@
 //! Every model configuration the study renders, in one table: the plugin, the one property
 //! that distinguishes a variant, and the names the report, the strips and study.json use.
-//! The main run ([`MAIN_RUN`]), the model variants ([`VARIANTS`]) and the convergence series
-//! ([`SERIES`]) are lists of these configurations.
+//! The main run ([`main_run`]: the paper's models, then every other registered model marked
+//! `in_study`), the model variants ([`VARIANTS`]) and the convergence series ([`SERIES`]) are
+//! lists of these configurations.
 //!
 //! What the variants mean: `docs/models.md#oren-nayar-qualitative`, `#oren-nayar-full` and
 //! `#wolff-normalisations` (Wolff's constant K).
@@ -17,17 +18,31 @@ pub enum Configuration {
     OrenNayarFull,
     Ginneken,
     Eon,
+    /// Another registered model (`crate::brdf::MODELS`, by plugin name) at its defaults.
+    Registered(&'static str),
 }
 
 /// The paper's four models (its column order) and EON as a fifth, each with the plugin's
 /// defaults; Lambert first, as every ratio's denominator.
-pub const MAIN_RUN: [Configuration; 5] = [
+pub const PAPER_RUN: [Configuration; 5] = [
     Configuration::Lambert,
     Configuration::WolffPhysical,
     Configuration::OrenNayarQualitative,
     Configuration::Ginneken,
     Configuration::Eon,
 ];
+
+/// The main run: [`PAPER_RUN`], then every registered model marked `in_study` whose plugin
+/// none of those renders, at its defaults.
+pub fn main_run() -> Vec<Configuration> {
+    let mut run = PAPER_RUN.to_vec();
+    for spec in crate::brdf::MODELS.iter().filter(|s| s.in_study) {
+        if !PAPER_RUN.iter().any(|c| c.bsdf() == spec.name) {
+            run.push(Configuration::Registered(spec.name));
+        }
+    }
+    run
+}
 
 /// Wolff's normalisations and the two Oren–Nayar models.
 pub const VARIANTS: [Configuration; 5] = [
@@ -120,6 +135,17 @@ impl Configuration {
                 property: None,
                 meaning: "Energy-preserving Oren–Nayar (Portsmouth et al. 2025).",
             },
+            Registered(name) => {
+                let spec = crate::brdf::spec(name).expect("a registered model");
+                Entry {
+                    key: spec.name,
+                    bsdf: spec.name,
+                    label: spec.label,
+                    tile: if spec.label.is_ascii() { spec.label } else { spec.name },
+                    property: None,
+                    meaning: spec.summary,
+                }
+            }
         }
     }
 
@@ -156,7 +182,7 @@ impl Configuration {
     /// Whether the plugin's defaults give this configuration, so the main run already
     /// rendered it (no derived scene needed).
     pub fn is_main_run(self) -> bool {
-        MAIN_RUN.contains(&self)
+        main_run().contains(&self)
     }
 }
 
@@ -168,7 +194,7 @@ mod tests {
     fn main_run_configurations_are_the_plugin_defaults() {
         // The main run renders `<bsdf type="…"/>` with no property: a configuration with a
         // property is in it only when that property is the plugin's default.
-        for c in MAIN_RUN {
+        for c in main_run() {
             if let Some((name, value)) = c.property() {
                 let bsdf = crate::brdf::DiffuseModel::from_params(c.bsdf(), crate::brdf::Params::default()).unwrap();
                 let default = bsdf.parameters().into_iter().find(|(n, _)| *n == name).map(|(_, v)| v);
@@ -179,7 +205,7 @@ mod tests {
 
     #[test]
     fn keys_are_unique() {
-        let all = [MAIN_RUN.as_slice(), &VARIANTS, &SERIES].concat();
+        let all = [main_run().as_slice(), &VARIANTS, &SERIES].concat();
         for a in &all {
             for b in &all {
                 assert!(a == b || a.key() != b.key(), "{a:?} and {b:?} share a key");

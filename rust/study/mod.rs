@@ -27,7 +27,7 @@ use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
 use crate::validate::passes::Renderer;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
-use configuration::{Configuration, MAIN_RUN};
+use configuration::{Configuration, main_run};
 use ratio::{Ratio, RegionRatio};
 use std::path::{Path, PathBuf};
 
@@ -225,7 +225,7 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
     let regions = load_regions(scene)?;
     for lighting in [Lighting::Global, Lighting::Direct] {
         let mut sides: Vec<(Configuration, Side)> = Vec::new();
-        for model in MAIN_RUN {
+        for model in main_run() {
             let defines = image_defines(opts, model.bsdf(), lighting);
             let what = format!("{name} {} {}", lighting.name(), model.label());
             let side = render_side(scene, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;

@@ -192,6 +192,7 @@ impl<'t, T: Real> Kernel<T> for GinnekenLane<'t, T> {
 impl Registered for Ginneken {
     const SPEC: ModelSpec = ModelSpec {
         name: "ginneken",
+        label: "van Ginneken",
         summary: "van Ginneken et al.: Lambertian facets on a Gaussian surface, with shadowing and masking",
         params: &[
             ParamSpec::number(
@@ -210,6 +211,7 @@ impl Registered for Ginneken {
             ),
         ],
         examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
+        in_study: true,
     };
     type Lane<'t, T: Real + 't> = GinnekenLane<'t, T>;
 

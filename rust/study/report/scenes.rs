@@ -5,7 +5,7 @@
 
 use super::{RegionJson, StripJson, ratio_cell, strips_html};
 use crate::markup::escape;
-use crate::study::configuration::MAIN_RUN;
+use crate::study::configuration::main_run;
 use crate::study::{Lighting, ModelResult, SceneStudy};
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -44,7 +44,7 @@ pub struct ModelJson {
 
 /// Each main-run model with its global and direct results, in the table's order.
 fn both_lightings(s: &SceneStudy) -> impl Iterator<Item = (&ModelResult, &ModelResult)> {
-    MAIN_RUN.into_iter().filter_map(|m| Some((s.result(m, Lighting::Global)?, s.result(m, Lighting::Direct)?)))
+    main_run().into_iter().filter_map(|m| Some((s.result(m, Lighting::Global)?, s.result(m, Lighting::Direct)?)))
 }
 
 /// The paper's question for one model: does the difference to Lambert grow with global
