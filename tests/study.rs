@@ -34,7 +34,10 @@ fn study_run_writes_strips_report_and_sane_numbers() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
     let models = j["scenes"][0]["models"].as_array().expect("models");
-    assert_eq!(models.len(), 5);
+    // The paper's five, then every other registered model the study renders.
+    let main_run = matte::study::configuration::main_run();
+    assert_eq!(models.len(), main_run.len());
+    assert!(main_run.len() >= 5);
     assert_eq!(models[0]["model"], "lambert");
     assert_eq!(models[0]["ratio_global"].as_f64(), Some(1.0));
     let answers = j["answers"].as_array().expect("answers");
