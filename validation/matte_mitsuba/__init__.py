@@ -39,18 +39,6 @@ def _built_plugins():
 BSDF_TYPES = _built_plugins()
 
 
-def _models():
-    import json
-    from ._build import MODELS_JSON
-    return json.loads(MODELS_JSON)
-
-
-#: Every model's declaration, as ``matte types --json`` prints it: ``name``, ``summary``,
-#: ``params`` (each with ``name``, ``kind`` (``type``: number, ior, choice or flag, and its
-#: ``default``), ``range``, ``lane_clamp``) and ``examples`` (parameter sets the tests sweep).
-MODELS = _models()
-
-
 def numeric_parameters(model):
     """The parameters of ``model`` (an entry of :data:`MODELS`) a texture may give, in order."""
     return [p for p in model["params"] if p["kind"]["type"] in ("number", "ior")]
@@ -74,3 +62,15 @@ def register():
 
 
 register()
+
+
+def _models():
+    import json
+    from ._build import MODELS_JSON
+    return json.loads(MODELS_JSON)
+
+
+#: Every model's declaration, as ``matte types --json`` prints it: ``name``, ``summary``,
+#: ``params`` (each with ``name``, ``kind`` (``type``: number, ior, choice or flag, and its
+#: ``default``), ``range``, ``lane_clamp``) and ``examples`` (parameter sets the tests sweep).
+MODELS = _models()
