@@ -28,6 +28,7 @@ registry::models! {
     Wolff: wolff::Wolff,
     Ginneken: ginneken::Ginneken,
     RoughDiffuse: rough_diffuse::RoughDiffuse,
+    Burley: burley::Burley,
 }
 
 pub use model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};

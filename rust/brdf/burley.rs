@@ -1,0 +1,110 @@
+//! Burley's diffuse (Burley 2012, "Physically-Based Shading at Disney", §5.3): Lambert with
+//! Schlick-like Fresnel factors at both directions and a roughness-driven retro-reflection,
+//! the diffuse lobe of Disney's BRDF and of Mitsuba's `principled` (flatness 0):
+//!
+//! `π f = ρ (f_d + f_r)`, `f_d = (1 − F_i/2)(1 − F_o/2)`,
+//! `f_r = R_R (F_i + F_o + F_i F_o (R_R − 1))`, `F = (1 − μ)⁵`, `R_R = 2 r cos²θ_d`,
+//!
+//! with θ_d the angle between either direction and the half vector, so that
+//! `cos²θ_d = (1 + wi·wo)/2` (no normalisation, no square root). Reciprocal; not energy
+//! conserving (the retro-reflection adds light at grazing for large r), as published.
+
+use super::kernel::{self, Kernel};
+use super::model::{BrdfSample, DiffuseBrdf};
+use super::params::{ParamError, ParamValue};
+use super::real::{Real, V3};
+use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use glam::{Vec2, Vec3};
+
+/// Burley's diffuse with its roughness in any [`Real`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BurleyKernel<T> {
+    pub roughness: T,
+}
+
+/// `(1 − μ)⁵`, with μ clamped into [0, 1].
+#[inline(always)]
+fn schlick_weight<T: Real>(mu: T) -> T {
+    let m = T::c(1.0) - mu.clamp_to(0.0, 1.0);
+    let m2 = m * m;
+    m2 * m2 * m
+}
+
+impl<T: Real> Kernel<T> for BurleyKernel<T> {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        let one = T::c(1.0);
+        let (f_i, f_o) = (schlick_weight(wi.z), schlick_weight(wo.z));
+        let f_diffuse = (one - f_i.scale(0.5)) * (one - f_o.scale(0.5));
+        // R_R = 2 r cos²θd = r (1 + wi·wo).
+        let cos = wi.x * wo.x + wi.y * wo.y + wi.z * wo.z;
+        let r_r = self.roughness * (one + cos);
+        let f_retro = r_r * (f_i + f_o + f_i * f_o * (r_r - one));
+        let g = f_diffuse + f_retro;
+        rho.map(|r| r * g)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Burley {
+    kernel: BurleyKernel<f32>,
+}
+
+impl Burley {
+    pub fn new(roughness: f64) -> Result<Self, ParamError> {
+        let r = Self::SPEC.params[0].check(roughness)?;
+        Ok(Self { kernel: BurleyKernel { roughness: r as f32 } })
+    }
+
+    pub fn roughness(&self) -> f32 {
+        self.kernel.roughness
+    }
+}
+
+impl DiffuseBrdf for Burley {
+    #[inline]
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
+    }
+}
+
+impl Registered for Burley {
+    const SPEC: ModelSpec = ModelSpec {
+        name: "burley",
+        label: "Burley",
+        summary: "Burley 2012 (Disney): Lambert with Fresnel-like grazing factors and a roughness-driven retro-reflection; `principled`'s diffuse lobe",
+        params: &[ParamSpec::number(
+            "roughness",
+            0.5,
+            Range::Closed(0.0, 1.0),
+            "lie in [0, 1]",
+            "roughness r ∈ [0, 1] (Disney's, as `principled`'s)",
+        )],
+        examples: &[&[("roughness", "1.0")]],
+        in_study: true,
+    };
+    type Lane<'t, T: Real + 't> = BurleyKernel<T>;
+
+    fn build(v: &Values) -> Result<Self, ParamError> {
+        Self::new(v.number("roughness"))
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![ParamValue::Number(self.kernel.roughness as f64)]
+    }
+
+    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
+        let [roughness] = first(numeric)?;
+        Some(vec![roughness])
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<BurleyKernel<T>> {
+        let [roughness] = first(c)?;
+        Some(BurleyKernel { roughness })
+    }
+}
