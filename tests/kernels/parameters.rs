@@ -1,6 +1,5 @@
 //! Bad parameters are rejected at construction with an error naming the parameter.
 
-mod common;
 use matte::brdf::{DiffuseModel, ParamValue, Params};
 
 fn rejected(kind: &str, params: &[(&str, ParamValue)]) -> String {

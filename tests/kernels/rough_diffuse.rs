@@ -2,7 +2,7 @@
 //! full model unless `use_fast_approx`; 0.6-style XML (`useFastApprox`, version 0.6.0) loads
 //! through the version upgrade.
 
-mod common;
+use crate::common;
 use glam::Vec3;
 use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use matte::render::bsdf::Bsdf;

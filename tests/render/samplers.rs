@@ -1,5 +1,5 @@
 //! The samplers (`matte::render::sampler`) and the `thinlens` sensor against live Mitsuba
-//! 3.9.1: `tests/samplers/mitsuba_reference.json` was written by
+//! 3.9.1: `tests/render/samplers/mitsuba_reference.json` was written by
 //! `validation/mitsuba_sampler_reference.py` (scalar_rgb) and holds each sampler's rounded
 //! `sample_count`, the numbers it draws after `sampler.seed(s)` and `thinlens` rays. A second
 //! check is a closed form: every sampler's per-pixel streams integrate a smooth function of
@@ -13,7 +13,7 @@ use serde_json::Value;
 use std::path::Path;
 
 fn reference() -> Value {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/samplers/mitsuba_reference.json");
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/render/samplers/mitsuba_reference.json");
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Writes tests/mitsuba_bsdfs/bumpmap_reference.rs: Mitsuba 3.9.1's `bumpmap` eval/pdf for a
+"""Writes tests/render/mitsuba_bsdfs/bumpmap_reference.rs: Mitsuba 3.9.1's `bumpmap` eval/pdf for a
 small generated height map (5x4 grey texels, raw, bilinear, repeat) at hits with explicit
 dp/du, dp/dv, geometric normal and shading frame (`scalar_rgb`). Run once with the pinned
 wheel:
 
-    /work/main/.venv/bin/python tests/mitsuba_bsdfs/generate_bumpmap_reference.py
+    /work/main/.venv/bin/python tests/render/mitsuba_bsdfs/generate_bumpmap_reference.py
 """
 import os
 

@@ -5,16 +5,13 @@
 //! oracle: sample weight = eval/pdf, Mitsuba's χ² test of the sampled directions against the
 //! pdf, and the Dirac lobes' probabilities.
 
-#[path = "mitsuba_bsdfs/bumpmap_reference.rs"]
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod bumpmap_reference;
-mod common;
-#[path = "mitsuba_bsdfs/reference.rs"]
 #[rustfmt::skip] // generated data, one configuration per line
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod reference;
 
-use common::{Pcg32, PcgExt, chi2_sampling_ires, sidak};
+use crate::common::{Pcg32, PcgExt, chi2_sampling_ires, sidak};
 use glam::{Vec2, Vec3};
 use matte::brdf::{BrdfSample as HelperSample, DiffuseBrdf};
 use matte::render::bsdf::Bsdf;

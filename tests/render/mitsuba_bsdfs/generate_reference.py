@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
-"""Writes tests/mitsuba_bsdfs/reference.rs: eval/pdf (and, for the BSDFs whose sampling
+"""Writes tests/render/mitsuba_bsdfs/reference.rs: eval/pdf (and, for the BSDFs whose sampling
 warp matte reproduces exactly, sample) values of the real Mitsuba 3.9.1 for the BSDF
 configurations listed below.
 
 Run once with the pinned wheel (mitsuba==3.9.1, drjit==1.5.0), e.g.
 
-    /work/main/.venv/bin/python tests/mitsuba_bsdfs/generate_reference.py
+    /work/main/.venv/bin/python tests/render/mitsuba_bsdfs/generate_reference.py
 
 The output is committed; the Rust test suite never runs Mitsuba. Each configuration is one
 XML `<bsdf>` element, loaded as-is by Mitsuba (`mi.load_string`) and by matte's scene

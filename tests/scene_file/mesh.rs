@@ -4,7 +4,7 @@
 //! inverse-transpose normals), the verified smooth-normal value of `docs/renderer-semantics.md` §8, and the vertex buffers /
 //! ray-query results of Mitsuba 3.9.1 `scalar_rgb` (`mi.traverse`, `scene.ray_intersect`).
 
-mod common;
+use crate::common;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
 use matte::scene_file::mesh::{
@@ -653,10 +653,10 @@ json.dump(out, open(out_path, 'w'))
 }
 
 // ---------------------------------------------------------------------------------------------
-// serialized, checked against Mitsuba 3.9.1 scalar_rgb (tests/serialized/make_reference.py)
+// serialized, checked against Mitsuba 3.9.1 scalar_rgb (tests/scene_file/serialized/make_reference.py)
 
 fn serialized_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/serialized")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scene_file/serialized")
 }
 
 #[test]

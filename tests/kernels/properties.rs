@@ -3,8 +3,7 @@
 //! sampling weights with the directional albedo (Mitsuba's `test_hair.py` furnace
 //! method), no NaN/Inf anywhere, zero below the horizon.
 
-mod common;
-use common::{Pcg32, PcgExt, catalogue};
+use crate::common::{Pcg32, PcgExt, catalogue};
 use glam::Vec3;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};
 

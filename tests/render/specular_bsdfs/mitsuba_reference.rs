@@ -1,6 +1,6 @@
 //! Expected `eval`/`pdf` values of the real Mitsuba 3.9.1 `roughconductor` (PyPI wheel
 //! `mitsuba==3.9.1`, `drjit==1.5.0`, variant `scalar_rgb`), written by
-//! `tests/specular_bsdfs/generate_reference.py` (Au's eta/k of `docs/renderer-semantics.md`
+//! `tests/render/specular_bsdfs/generate_reference.py` (Au's eta/k of `docs/renderer-semantics.md`
 //! §10). wi/wo are f32 unit vectors: normal incidence, one wo below the surface, random wi
 //! with lobe-centred wo. `eval` is the same for both `sample_visible` settings (checked by
 //! the script); `pdf` is given for both.

@@ -1,8 +1,7 @@
 //! Sampling routines against their pdfs with Mitsuba's chi-square test (`docs/validation.md#kernel-checks`):
 //! every model configuration at incidence 0°, 45° and 80°, Šidák-corrected over all cases.
 
-mod common;
-use common::{catalogue, chi2_sampling, sidak};
+use crate::common::{self, catalogue, chi2_sampling, sidak};
 use glam::Vec3;
 
 #[test]

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Writes the `.serialized` files of tests/mesh.rs and what Mitsuba 3.9.1 (scalar_rgb) loads
+"""Writes the `.serialized` files of tests/scene_file/mesh.rs and what Mitsuba 3.9.1 (scalar_rgb) loads
 from them, the oracle. Run by hand with the venv's Python from the repository root:
 
-    .venv/bin/python tests/serialized/make_reference.py
+    .venv/bin/python tests/scene_file/serialized/make_reference.py
 
 * v4.serialized: version 4, f32, two meshes with normals and uvs (the bundled torus and a
   tilted quad pair), then the bundled twisted box (no normals, vertex colours).
@@ -19,7 +19,7 @@ from pathlib import Path
 import mitsuba as mi
 
 HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE.parent.parent / "mitsuba_scenes" / "assets"))
+sys.path.insert(0, str(HERE.parents[2] / "mitsuba_scenes" / "assets"))
 from make_assets import serialized, torus, twisted_box  # noqa: E402
 
 mi.set_variant("scalar_rgb")

@@ -8,8 +8,7 @@
 //! `1 + r s/t` at Δφ = π and grazing (rounding `s` alone is 1.4e-5 of it), full Oren–Nayar's
 //! `C1 + cos Δφ C2 tan β` in forward-grazing configurations.
 
-mod common;
-use common::{Pcg32, PcgExt, model};
+use crate::common::{Pcg32, PcgExt, model};
 use glam::{DVec3, Vec3};
 use matte::brdf::{DiffuseBrdf, DiffuseModel};
 use std::f64::consts::{FRAC_PI_2, PI};

@@ -3,7 +3,7 @@
 //! back from Mitsuba 3.9.1 for RGBA / gray-alpha PNGs, the exact sRGB EOTF, and hand-derived
 //! texel indices for orientation and wrapping.
 
-mod common;
+use crate::common;
 
 use glam::{Affine2, Vec2, Vec3};
 use image::{ImageBuffer, Luma, LumaA, Rgb, Rgba};

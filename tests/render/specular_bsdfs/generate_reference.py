@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Writes tests/specular_bsdfs/mitsuba_reference.rs, the oracle of
-`rough_conductor_matches_mitsuba_3_9_1` in tests/specular_bsdfs.rs: Mitsuba 3.9.1's own
+"""Writes tests/render/specular_bsdfs/mitsuba_reference.rs, the oracle of
+`rough_conductor_matches_mitsuba_3_9_1` in tests/render/specular_bsdfs.rs: Mitsuba 3.9.1's own
 `roughconductor` (`scalar_rgb`) evaluated at fixed directions. Run by hand with the venv's
 Python from the repository root:
 
-    .venv/bin/python tests/specular_bsdfs/generate_reference.py > tests/specular_bsdfs/mitsuba_reference.rs
+    .venv/bin/python tests/render/specular_bsdfs/generate_reference.py > tests/render/specular_bsdfs/mitsuba_reference.rs
 
 Per configuration: normal incidence, one wo below the surface, then 18 random wi (a seeded
 generator) each with a wo near its mirror direction (the lobe), as f32 unit vectors.
@@ -64,7 +64,7 @@ def main():
     rng = np.random.default_rng(20261204)
     print("//! Expected `eval`/`pdf` values of the real Mitsuba 3.9.1 `roughconductor` (PyPI wheel")
     print("//! `mitsuba==3.9.1`, `drjit==1.5.0`, variant `scalar_rgb`), written by")
-    print("//! `tests/specular_bsdfs/generate_reference.py` (Au's eta/k of `docs/renderer-semantics.md`")
+    print("//! `tests/render/specular_bsdfs/generate_reference.py` (Au's eta/k of `docs/renderer-semantics.md`")
     print("//! §10). wi/wo are f32 unit vectors: normal incidence, one wo below the surface, random wi")
     print("//! with lobe-centred wo. `eval` is the same for both `sample_visible` settings (checked by")
     print("//! the script); `pdf` is given for both.")

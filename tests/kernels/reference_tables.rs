@@ -4,8 +4,7 @@
 //! Ginneken: the reference integral to 2e-4 (the table's own convergence is ~1e-4), the fast
 //! path to 0.5 % (its measured error bound away from grazing, see the ginneken tests).
 
-mod common;
-use common::model;
+use crate::common::model;
 use glam::DVec3;
 use matte::brdf::frame::spherical_direction;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};

@@ -2,7 +2,7 @@
 //! Stated bound: 0.5 % for θi, θo ≤ 80° (measured max 0.23 % at m = 0.3, 0.26 % at m = 0.5;
 //! `matte tables` prints the numbers). Also: smooth limit m → 0 is Lambert.
 
-mod common;
+use crate::common;
 use matte::brdf::frame::spherical_direction;
 use matte::brdf::ginneken::accuracy::fast_path_accuracy;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};

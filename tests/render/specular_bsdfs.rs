@@ -3,12 +3,10 @@
 //! arithmetic written here), the verified numbers of `docs/renderer-semantics.md` §10, numerical
 //! quadrature, Mitsuba's chi-square test, and eval/pdf values of the real Mitsuba 3.9.1.
 
-mod common;
-#[path = "specular_bsdfs/mitsuba_reference.rs"]
 #[rustfmt::skip] // generated data, one configuration per line
 mod mitsuba_reference;
 
-use common::{Pcg32, PcgExt, chi2_sampling, sidak};
+use crate::common::{Pcg32, PcgExt, chi2_sampling, sidak};
 use glam::{DVec3, Vec2, Vec3};
 use matte::brdf::quadrature::GaussLegendre;
 use matte::brdf::{BrdfSample as DiffuseSample, DiffuseBrdf};

@@ -3,9 +3,7 @@
 //! half-bright/half-dark edge test), closed forms (tent table, constant images, plain means),
 //! and EXR files written by Mitsuba 3.9.1 itself when its venv is present.
 
-mod common;
-
-use common::{Pcg32, PcgExt};
+use crate::common::{self, Pcg32, PcgExt};
 use glam::{Vec2, Vec3};
 use matte::render::film::{CropWindow, Film, GAUSSIAN_FIT, Image, ReconstructionFilter, SplatWeights, Tile};
 use matte::render::image_io::{read_exr, write_exr, write_png};

@@ -4,8 +4,7 @@
 //! table of EON keeps a white surface's energy, the cosine sampling passes Mitsuba's chi-square
 //! test and its pdf integrates to 1, and files round-trip or fail with a clear message.
 
-mod common;
-use common::{Pcg32, PcgExt, chi2_sampling, model, sidak};
+use crate::common::{Pcg32, PcgExt, chi2_sampling, model, sidak};
 use glam::Vec3;
 use matte::brdf::tabulated::BrdfTable;
 use matte::brdf::{DiffuseBrdf, DiffuseModel};

@@ -1,7 +1,7 @@
 //! `matte brdf` / `matte albedo` as a user runs them: JSON for every plugin type, values
 //! equal to the kernels', and one-line errors with a non-zero exit code for bad input.
 
-mod common;
+use crate::common;
 use matte::brdf::frame::spherical_direction;
 use matte::brdf::{BSDF_TYPES, DiffuseBrdf};
 use std::process::Command;
