@@ -1,8 +1,9 @@
 //! Textured numeric parameters of matte's models (`docs/models.md#spatially-varying-parameters`):
 //! the per-lane kernels (`matte::brdf::lane`) against the constant-parameter models they must
 //! equal, the clamps that keep a texture's out-of-range values finite, and the loader
-//! (`rust/render/load/bsdf.rs`): a constant texture renders as the number, a checkerboard
-//! parameter follows Mitsuba's `eval_1` colour order, and refused forms name file:line.
+//! (`rust/render/load/bsdf.rs`): a constant texture renders as the number, and refused forms
+//! name file:line. (Which colour of a checkerboard a parameter reads, Mitsuba's `eval_1`, is
+//! checked with the other checkerboard tests in `tests/scene_file/load.rs`.)
 
 use std::path::Path;
 
@@ -161,21 +162,6 @@ fn constant_texture_equals_the_number() {
         let tol: f32 = tol.parse().unwrap();
         assert!(((a - b).abs() / a).max_element() <= tol, "{kind}: {a} vs {b}");
     }
-}
-
-/// Mitsuba 3.9.1's `Checkerboard::eval_1` (what a scalar parameter reads) takes `color0` where
-/// `eval` takes `color1`: at uv = (0.25, 0.25) both fractional parts are ≤ ½, `eval` gives
-/// color0 but `eval_1` gives color1 (`src/textures/checkerboard.cpp`).
-#[test]
-fn checkerboard_parameter_follows_mitsubas_eval_1() {
-    let textured = scene(
-        r#"<bsdf type="oren_nayar"><texture type="checkerboard" name="sigma"><float name="color0" value="0"/><float name="color1" value="1"/></texture></bsdf>"#,
-    );
-    let sigma = |v: f64| scene(&format!(r#"<bsdf type="oren_nayar"><float name="sigma" value="{v}"/></bsdf>"#));
-    let at = |uv| eval_at(&textured, uv);
-    let (one, zero) = (eval_at(&sigma(1.0), Vec2::ZERO), eval_at(&sigma(0.0), Vec2::ZERO));
-    assert!(((at(Vec2::new(0.25, 0.25)) - one).abs()).max_element() < 1e-6);
-    assert!(((at(Vec2::new(0.75, 0.25)) - zero).abs()).max_element() < 1e-6);
 }
 
 #[test]

@@ -2,12 +2,15 @@
 //! direction ↔ uv mapping d = (sin φ sin θ, cos θ, −cos φ sin θ), θ = π v, φ = 2π u; texel i
 //! of row j sits at u = (i + ½)/W, v = j/(H − 1); the sampling density integrates to 1 over
 //! the sphere (quadrature), sampled directions carry the density `pdf` reports, and the
-//! light-sampling estimate of ∫ L dω agrees with quadrature. None of the expected values comes
-//! from the code under test.
+//! light-sampling estimate of ∫ L dω agrees with quadrature; through the loader, `scale`,
+//! `to_world` and `<path>` apply. None of the expected values comes from the code under test.
 
+use crate::common::{SENSOR, assert_err_at, scene, write_exr};
 use glam::{Affine3A, Vec2, Vec3};
 use matte::render::emitter::EnvMap;
+use matte::render::load::load_file;
 use std::f64::consts::PI;
+use std::path::PathBuf;
 
 const W: usize = 8;
 const H: usize = 5;
@@ -150,4 +153,48 @@ fn invalid_maps_are_refused() {
     let mut t = texels();
     t[3] = Vec3::new(f32::NAN, 0.0, 0.0);
     assert!(EnvMap::new(W, H, t, 1.0, Affine3A::IDENTITY, false).is_err());
+}
+
+/// A fresh folder for tests that write files.
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("matte_envmap_{name}_{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `envmap` through the loader: `scale` and `to_world` apply, the file is found through
+/// `<path>`, and it is the scene's environment.
+#[test]
+fn envmap_loads_as_the_environment() {
+    let dir = temp_dir("envmap");
+    std::fs::create_dir_all(dir.join("tex")).unwrap();
+    write_exr(&dir.join("tex/sky.exr"), 8, 5, |i, j| Vec3::new(0.1 * (i + 1) as f32, 0.2 * (j + 1) as f32, 0.5));
+    let file = dir.join("s.xml");
+    std::fs::write(
+        &file,
+        scene(&format!(
+            "<path value=\"tex\"/>\n{SENSOR}\n<emitter type=\"envmap\"><string name=\"filename\" value=\"sky.exr\"/><float name=\"scale\" value=\"2\"/>\
+             <transform name=\"to_world\"><rotate x=\"1\" angle=\"90\"/></transform></emitter>"
+        )),
+    )
+    .unwrap();
+    let s = load_file(&file, &[]).unwrap();
+    let env = s.scene.environment.expect("an environment");
+    // Row 2 (v = ½, the horizon), column 3 at u = 3.5/8: local d = (sin φ, 0, −cos φ);
+    // rotating +90° about x maps local (x, y, z) to (x, −z, y).
+    let phi = 2.0 * std::f32::consts::PI * 3.5 / 8.0;
+    let local = Vec3::new(phi.sin(), 0.0, -phi.cos());
+    let world = Vec3::new(local.x, -local.z, local.y);
+    let got = s.scene.emitters[env as usize].eval_environment(world);
+    assert!((got - 2.0 * Vec3::new(0.4, 0.6, 0.5)).length() < 1e-4, "{got}");
+    std::fs::write(&file, scene(&format!("{SENSOR}\n<emitter type=\"constant\"/>\n<emitter type=\"envmap\"><string name=\"filename\" value=\"tex/sky.exr\"/></emitter>"))).unwrap();
+    assert_err_at(load_file(&file, &[]), &file, 4, "only one environment emitter");
+    std::fs::write(
+        &file,
+        scene(&format!("{SENSOR}\n<emitter type=\"envmap\"><string name=\"filename\" value=\"nope.exr\"/></emitter>")),
+    )
+    .unwrap();
+    assert_err_at(load_file(&file, &[]), &file, 3, "nope.exr");
+    let _ = std::fs::remove_dir_all(&dir);
 }
