@@ -1,7 +1,7 @@
 //! Every model's kernel twice, in `f32` and in the 8-wide [`F32x8`], with its constants built
 //! by the same generic constructor from the same f32 parameter (so lane `i` of the wide
 //! kernel is the f32 kernel, operation for operation). The criterion benchmark
-//! (`benches/kernels.rs`, group `wide`) times both; `tests/simd_kernels.rs` compares them lane
+//! (`benches/kernels.rs`, group `wide`) times both; `tests/kernels/simd_kernels.rs` compares them lane
 //! by lane.
 
 use crate::brdf::kernel;

@@ -8,7 +8,7 @@
 //! `minps`/`maxps`, which return the second operand on NaN or ties as the scalar
 //! `if a < b { a } else { b }` does; comparisons are ordered (false on NaN) as Rust's; `sincos`
 //! and `gather` run the scalar code lane by lane. The lane-by-lane tests
-//! (`tests/simd_kernels.rs`) check results bit for bit.
+//! (`tests/kernels/simd_kernels.rs`) check results bit for bit.
 
 use super::real::{Nodes, Real};
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};

@@ -8,7 +8,7 @@
 //!   one dimension, `orthogonal`'s `next_2d` two) comes from a per-dimension permutation of
 //!   the sample indices, seeded from the pixel's sequence seed. Given a sequence seed, these
 //!   four produce exactly the numbers of Mitsuba's scalar variants after `sampler.seed(s)`
-//!   ([`Sampler::mitsuba`], checked against live Mitsuba in `tests/samplers.rs`); only the
+//!   ([`Sampler::mitsuba`], checked against live Mitsuba in `tests/render/samplers.rs`); only the
 //!   sequence seed of each pixel differs from Mitsuba's (which counts pixels in its block
 //!   spiral).
 

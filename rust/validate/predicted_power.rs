@@ -8,7 +8,7 @@
 //! the noncentral one). The family rejects whenever any test does, so the largest of these
 //! probabilities is a **lower bound** on the family's power; the prediction is the smallest δ
 //! where that bound reaches 80 %, a conservative (larger) figure than injection measures.
-//! `tests/validate_stats.rs` checks it against injection over replicates.
+//! `tests/tools/validate_stats.rs` checks it against injection over replicates.
 
 use super::crop::PixelBox;
 use super::power::{TARGET_POWER, patch_place};

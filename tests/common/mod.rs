@@ -1,15 +1,18 @@
 //! Helpers shared by the integration tests: the library's PCG32 (the generator Mitsuba's
 //! samplers use) with a test draw, the catalogue of model configurations every property
-//! test runs over, and Mitsuba's chi-square goodness-of-fit test re-implemented
-//! (`src/python/python/chi2.py` and `mitsuba::math::chi2` of v3.9.1).
+//! test runs over, Mitsuba's chi-square goodness-of-fit test re-implemented
+//! (`src/python/python/chi2.py` and `mitsuba::math::chi2` of v3.9.1), and the pieces of the
+//! scene-file tests (a small scene around a body, `file:line` error checks, EXR textures).
 #![allow(dead_code)]
 // `!(x > 0.0)` is meant: it also rejects NaN, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use glam::{Vec2, Vec3};
 use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte::scene_file::SceneError;
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
+use std::path::Path;
 
 pub use matte::render::sampler::Pcg32;
 
@@ -191,11 +194,48 @@ pub fn sidak(test_count: usize) -> f64 {
 /// has one; checks against Mitsuba itself are skipped (with a note) where it does not. `make
 /// test` builds the venv first, so the suite always runs them.
 pub fn mitsuba_python() -> Option<std::path::PathBuf> {
-    let python = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
+    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
     if python.exists() {
         Some(python)
     } else {
         println!("note: {} not found; skipping a check against Mitsuba itself", python.display());
         None
     }
+}
+
+// ------------------------------------------------------------------------------------------
+// Scene files
+
+/// A 4×2 film, so that tests that do not care about the camera stay tiny.
+pub const SENSOR: &str = r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="2"/></film></sensor>"#;
+
+/// `<scene>` on line 1, `body` from line 2 on.
+pub fn scene(body: &str) -> String {
+    format!("<scene version=\"3.0.0\">\n{body}\n</scene>")
+}
+
+/// The error is one line, starts with `file:line:` and contains `needle`.
+pub fn assert_error_at(e: &SceneError, file: &Path, line: u32, needle: &str) {
+    let text = e.to_string();
+    assert!(!text.contains('\n'), "multi-line error: {text}");
+    let prefix = format!("{}:{line}", file.display());
+    assert!(text.starts_with(&format!("{prefix}:")), "expected {prefix} in: {text}");
+    assert!(text.contains(needle), "expected {needle:?} in: {text}");
+}
+
+/// [`assert_error_at`] for a result that must be an error.
+pub fn assert_err_at<T>(r: Result<T, SceneError>, file: &Path, line: u32, needle: &str) {
+    let Err(e) = r else { panic!("expected an error containing {needle:?}") };
+    assert_error_at(&e, file, line, needle);
+}
+
+/// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
+pub fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
+    let mut img = matte::render::film::Image::new(w, h);
+    for j in 0..h {
+        for i in 0..w {
+            img.set(i, j, f(i, j));
+        }
+    }
+    matte::render::image_io::write_exr(path, &img).unwrap();
 }

@@ -322,7 +322,7 @@ mod tests {
     /// by a large factor from one node to the next, so the f32 rounding of the axis coordinate
     /// (~2e-7, i.e. 2e-5 of a cell) moves the value by a few 1e-5 (measured 3.3e-5 at m = 1,
     /// θo = 88.9°); for θ ≤ 80° about 1e-6. The table's own error against the integral is the
-    /// separate 0.5 % bound of `tests/ginneken_fast_path.rs`.
+    /// separate 0.5 % bound of `tests/kernels/ginneken_fast_path.rs`.
     #[test]
     fn fast_path_is_its_f64_evaluation_to_rounding() {
         // R3 quasi-random sequence (Roberts 2018), as in `accuracy`.

@@ -9,7 +9,7 @@
 //! is **cubic Hermite**: value and slope match at both ends of a cell. The value is then
 //! accurate to a few 1e-4 between nodes, and its m-derivative (the texture's gradient, exact
 //! derivative of the interpolant) is continuous. Measured against
-//! [`super::Ginneken::eval_reference`] by [`axis_accuracy`] (`tests/ginneken_fast_path.rs`; docs/models.md).
+//! [`super::Ginneken::eval_reference`] by [`axis_accuracy`] (`tests/kernels/ginneken_fast_path.rs`; docs/models.md).
 //!
 //! A texture value outside [M_MIN, M_MAX] is clamped into it (NaN gives M_MIN). The stack is
 //! built once per process, on first use (M_NODES single-roughness builds, a few seconds).

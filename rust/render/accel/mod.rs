@@ -146,7 +146,7 @@ impl Accel {
 
     /// The closest hits of the `active` ones of eight rays (inactive lanes: `None`): one
     /// Embree packet query with `embree`, else one query per ray. Same answers as
-    /// [`Self::intersect`] (`tests/accel_backends.rs`).
+    /// [`Self::intersect`] (`tests/render/accel_backends.rs`).
     #[inline]
     pub fn intersect8(&self, rays: &[Ray; 8], active: [bool; 8], shapes: &[Shape]) -> [Option<Hit>; 8] {
         match &self.embree {

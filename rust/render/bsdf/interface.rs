@@ -5,7 +5,7 @@
 //!
 //! `brdf::fresnel::dielectric_reflectance` is one-sided (light always arrives from the side of
 //! index 1, `cos θ` clamped to [0, 1]), so the renderer's glass uses [`fresnel_dielectric`]
-//! instead; the two agree where both apply (`tests/specular_bsdfs.rs`).
+//! instead; the two agree where both apply (`tests/render/specular_bsdfs.rs`).
 
 use glam::Vec3;
 

@@ -25,7 +25,7 @@ use crate::render::shape::SurfaceInteraction;
 use glam::Vec3;
 
 /// How the renderer runs an integrator over a tile. Both give the same estimator
-/// (`tests/render_drivers.rs`).
+/// (`tests/render/render_drivers.rs`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Driver {
     /// One path at a time ([`one_path`]). The default: with scalar shading the wavefront is

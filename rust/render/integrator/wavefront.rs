@@ -5,7 +5,7 @@
 //! sample of a pixel in turn with the pixel's own sampler stream: the numbers drawn, and so
 //! each sample's radiance, are exactly those of the one-path driver ([`super::Integrator::li`]);
 //! only the order in which samples reach the image block changes
-//! (`tests/render_drivers.rs`).
+//! (`tests/render/render_drivers.rs`).
 //! Every step traces the lanes' pending rays eight at a time
 //! ([`Scene::intersect8`](crate::render::scene::Scene::intersect8): Embree's `rtcIntersect8`),
 //! advances each lane's state machine with its hit, and tests all the shadow rays those
