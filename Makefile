@@ -10,7 +10,7 @@
 PY     := .venv/bin/python
 # The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv.
 WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
-SOURCES := $(shell find rust cpp validation/matte_mitsuba -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
+SOURCES := $(shell find rust cpp python/matte_mitsuba -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
 	-not -name '_build.py' -not -path '*__pycache__*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py
 
 main: plugin

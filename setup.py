@@ -18,7 +18,7 @@ ROOT = os.path.dirname(os.path.abspath(__file__))
 class BuildPlugins(build_py):
     def run(self):
         subprocess.check_call([os.path.join(ROOT, "cpp", "build_plugin.sh")], env={**os.environ, "MATTE_PYTHON": sys.executable})
-        binary = os.path.join(ROOT, "validation", "matte_mitsuba", "bin", "matte")
+        binary = os.path.join(ROOT, "python", "matte_mitsuba", "bin", "matte")
         os.makedirs(os.path.dirname(binary), exist_ok=True)
         shutil.copy2(os.path.join(ROOT, "target", "release", "matte"), binary)
         subprocess.check_call(["strip", binary])

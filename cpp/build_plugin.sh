@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds matte's Mitsuba plugin into validation/matte_mitsuba/plugins/:
+# Builds matte's Mitsuba plugin into python/matte_mitsuba/plugins/:
 #   1. the Rust staticlib (kernels + cxx bridge glue) and the `matte` binary;
 #   2. cpp/plugin.cpp against the Mitsuba/Dr.Jit headers of the Python that will load it
 #      ($MATTE_PYTHON, default .venv/bin/python), with -march=x86-64-v3 to match the wheel's
@@ -18,7 +18,7 @@ MI=$(where mitsuba)
 DR=$(where drjit)
 NB=$(where nanobind)
 MITSUBA_VERSION=$("$PYTHON" -c 'import mitsuba; print(mitsuba.__version__)')
-PKG=validation/matte_mitsuba
+PKG=python/matte_mitsuba
 OUT=$PKG/plugins
 OBJ=target/plugin
 mkdir -p "$OUT" "$OBJ"

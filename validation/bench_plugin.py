@@ -31,8 +31,8 @@ import time
 
 
 def _plugin_root_first():
-    """`--plugin-root DIR` puts DIR before every other folder (this script's own folder, which
-    holds the checkout's matte_mitsuba, comes first otherwise) before matte_mitsuba is imported."""
+    """`--plugin-root DIR` puts DIR first on the import path before matte_mitsuba is imported
+    (a matte_mitsuba other than the installed one)."""
     for i, a in enumerate(sys.argv):
         if a == "--plugin-root" and i + 1 < len(sys.argv):
             sys.path.insert(0, os.path.abspath(sys.argv[i + 1]))

@@ -15,8 +15,6 @@ import math
 import random
 import tempfile
 
-# The installed package, not the checkout's validation/matte_mitsuba next to this script.
-sys.path = [p for p in sys.path if os.path.abspath(p or ".") != os.path.dirname(os.path.abspath(__file__))]
 
 SCENE = """<scene version="3.0.0">
     <integrator type="path"><integer name="max_depth" value="4"/></integrator>

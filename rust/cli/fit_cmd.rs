@@ -1,6 +1,6 @@
 //! `matte fit`: inverse rendering with matte's models. The optimisation runs in Mitsuba 3
 //! (its `prb` integrator and `mi.ad.Adam`, through matte's plugins), so this subcommand only
-//! forwards its arguments to `python -m matte_mitsuba.fit` (`validation/matte_mitsuba/fit.py`,
+//! forwards its arguments to `python -m matte_mitsuba.fit` (`python/matte_mitsuba/fit.py`,
 //! which documents them) with the project's `.venv` Python, or `python3` outside a checkout.
 //! The wheel's own `matte` command runs the same module in-process.
 

@@ -1,4 +1,4 @@
-"""`matte fit` end to end (validation/matte_mitsuba/fit.py): a 16² plane of known Oren–Nayar
+"""`matte fit` end to end (python/matte_mitsuba/fit.py): a 16² plane of known Oren–Nayar
 σ = 0.6 under an oblique directional light, seen in perspective (so view and light angles vary
 across the image). Starting from σ = 0 (Lambert), the fit must recover σ within 0.05, and
 write its outputs. The target is rendered from the truth scene at 256 spp (independent seeds

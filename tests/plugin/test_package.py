@@ -59,7 +59,7 @@ def test_sdist_holds_what_builds_and_nothing_else():
     files = set(names)
     for needed in ("Cargo.toml", "Cargo.lock", "build.rs", "setup.py", "pyproject.toml", "README.md", "LICENSE",
                    "cpp/build_plugin.sh", "cpp/plugin.cpp", "rust/lib.rs", "rust/main.rs",
-                   "validation/matte_mitsuba/__init__.py", "PKG-INFO"):
+                   "python/matte_mitsuba/__init__.py", "PKG-INFO"):
         assert needed in files, f"{needed} missing from the sdist"
     # Every Rust and C++ source of the checkout is in it.
     tracked = subprocess.run(["git", "ls-files", "rust", "cpp"], capture_output=True, text=True, cwd=REPO).stdout.split()
@@ -68,10 +68,10 @@ def test_sdist_holds_what_builds_and_nothing_else():
     for n in names:
         top = n.split("/")[0]
         assert top in {"Cargo.toml", "Cargo.lock", "build.rs", "rustfmt.toml", "setup.py", "setup.cfg", "pyproject.toml",
-                       "README.md", "LICENSE", "MANIFEST.in", "PKG-INFO", "rust", "cpp", "benches", "validation",
+                       "README.md", "LICENSE", "MANIFEST.in", "PKG-INFO", "rust", "cpp", "benches", "python",
                        "matte_mitsuba.egg-info"}, n
         assert not n.endswith((".png", ".exr", ".so", ".a", ".o")), n
-        assert not n.startswith("validation/") or n.startswith("validation/matte_mitsuba"), n
+        assert not n.startswith("python/") or n.startswith("python/matte_mitsuba"), n
 
 
 def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
