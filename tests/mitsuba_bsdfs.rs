@@ -17,7 +17,7 @@ mod reference;
 use common::{Pcg32, PcgExt, chi2_sampling_ires, sidak};
 use glam::{Vec2, Vec3};
 use matte::brdf::{BrdfSample as HelperSample, DiffuseBrdf};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, BsdfModel};
 use matte::render::load::load_str;
 use matte::render::shape::SurfaceInteraction;
 use reference::CONFIGS;

@@ -173,7 +173,7 @@ fn checkerboard_texture() {
     let reflectance_at = |s: &LoadedScene, x: f32, y: f32| -> Vec3 {
         let si = s.scene.intersect(&Ray::new(Vec3::new(x, y, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
         match s.scene.bsdf(&si) {
-            Bsdf::Diffuse { reflectance } => reflectance.eval(si.uv),
+            Bsdf::Diffuse(d) => d.reflectance.eval(si.uv),
             other => panic!("{other:?}"),
         }
     };
@@ -565,7 +565,7 @@ fn rawconstant_texture() {
     let refl = |s: &LoadedScene| {
         let si = s.scene.intersect(&Ray::new(Vec3::new(0.1, 0.2, 1.0), Vec3::NEG_Z, f32::INFINITY)).unwrap();
         match s.scene.bsdf(&si) {
-            Bsdf::Diffuse { reflectance } => reflectance.eval(si.uv),
+            Bsdf::Diffuse(d) => d.reflectance.eval(si.uv),
             other => panic!("{other:?}"),
         }
     };
