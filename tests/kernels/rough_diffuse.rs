@@ -5,7 +5,7 @@
 use crate::common;
 use glam::Vec3;
 use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, Matte};
 use matte::render::load::load_str;
 use std::path::Path;
 
@@ -62,7 +62,7 @@ fn mitsuba_0_6_xml_loads_through_the_upgrade() {
 <bsdf type="roughdiffuse"><float name="alpha" value="0.4"/><boolean name="useFastApprox" value="true"/></bsdf>
 </scene>"#;
     let s = load_str(xml, Path::new("/virtual/scene.xml"), &[]).unwrap();
-    let Bsdf::Matte { model, .. } = &s.scene.bsdfs[0] else { panic!("{:?}", s.scene.bsdfs[0]) };
+    let Bsdf::Matte(Matte { model, .. }) = &s.scene.bsdfs[0] else { panic!("{:?}", s.scene.bsdfs[0]) };
     assert_eq!(model.kind(), "roughdiffuse");
     assert_eq!(
         model.parameters(),

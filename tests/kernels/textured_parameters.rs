@@ -10,7 +10,7 @@ use std::path::Path;
 use glam::{Vec2, Vec3};
 use matte::brdf::kernel;
 use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, BsdfModel};
 use matte::render::load::load_str;
 
 const FILE: &str = "/virtual/scenes/textured.xml";
@@ -140,7 +140,7 @@ fn eval_at(xml: &str, uv: Vec2) -> Vec3 {
 }
 
 /// A texture whose value is the same everywhere gives the number's BSDF (the per-hit path is
-/// the same kernel), and the scene then holds a `TexturedMatte`.
+/// the same kernel), and the scene then holds a `Matte` with textured parameters.
 #[test]
 fn constant_texture_equals_the_number() {
     let cases = [
@@ -157,7 +157,7 @@ fn constant_texture_equals_the_number() {
             r#"<bsdf type="{kind}"><texture type="checkerboard" name="{name}"><float name="color0" value="{v}"/><float name="color1" value="{v}"/></texture></bsdf>"#
         ));
         let s = load_str(&textured, Path::new(FILE), &[]).unwrap();
-        assert!(matches!(s.scene.bsdfs[0], Bsdf::TexturedMatte(_)), "{kind}: not a TexturedMatte");
+        assert!(matches!(&s.scene.bsdfs[0], Bsdf::Matte(m) if m.is_textured()), "{kind}: not a textured Matte");
         let (a, b) = (eval_at(&number, Vec2::new(0.3, 0.6)), eval_at(&textured, Vec2::new(0.3, 0.6)));
         let tol: f32 = tol.parse().unwrap();
         assert!(((a - b).abs() / a).max_element() <= tol, "{kind}: {a} vs {b}");

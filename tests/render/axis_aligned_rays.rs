@@ -9,7 +9,7 @@
 //! plane at a known distance), never the renderer's own answers.
 
 use glam::{Affine3A, Mat4, Quat, Vec3};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, Diffuse};
 use matte::render::geometry::Ray;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
@@ -21,7 +21,12 @@ fn scene(geometries: Vec<Geometry>) -> Scene {
         .into_iter()
         .map(|geometry| Shape { geometry, bsdf: 0, emitter: None, plugin: "test".into() })
         .collect();
-    Scene::new(shapes, vec![Bsdf::Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) }], vec![], vec![])
+    Scene::new(
+        shapes,
+        vec![Bsdf::Diffuse(Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) })],
+        vec![],
+        vec![],
+    )
 }
 
 /// Unit vector along axis `a` with sign `s`; the other two components are `+0` or `-0` as

@@ -11,14 +11,12 @@ mod bumpmap_reference;
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
 mod reference;
 
-use crate::common::{Pcg32, PcgExt, chi2_sampling_ires, sidak};
+use crate::common::{Pcg32, PcgExt, chi2_render_bsdf, sidak};
 use glam::{Vec2, Vec3};
-use matte::brdf::{BrdfSample as HelperSample, DiffuseBrdf};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, BsdfModel};
 use matte::render::load::load_str;
 use matte::render::shape::SurfaceInteraction;
 use reference::CONFIGS;
-use std::cell::RefCell;
 use std::path::Path;
 
 const SENSOR: &str = r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="2"/></film></sensor>"#;
@@ -159,40 +157,6 @@ fn sample_weight_is_eval_over_pdf() {
     }
 }
 
-/// Drives the shared χ² helper (written for `brdf::DiffuseBrdf`): the lobe choice comes from
-/// the adapter's own generator; Dirac samples count as no sample (their mass is exactly what
-/// the smooth pdf misses). The shading normal is rotated onto the helper's +y axis so that the
-/// horizon lies on cell boundaries (as in `specular_bsdfs.rs`).
-struct Adapter {
-    bsdf: Bsdf,
-    rng: RefCell<Pcg32>,
-}
-
-fn to_shading(h: Vec3) -> Vec3 {
-    Vec3::new(h.x, -h.z, h.y)
-}
-
-fn to_helper(l: Vec3) -> Vec3 {
-    Vec3::new(l.x, l.z, -l.y)
-}
-
-impl DiffuseBrdf for Adapter {
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, _r: [f32; N]) -> [f32; N] {
-        [self.bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), to_shading(wi), to_shading(wo)).0.x; N]
-    }
-    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        self.bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), to_shading(wi), to_shading(wo)).1
-    }
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, _r: [f32; N]) -> Option<HelperSample<N>> {
-        let u_lobe = self.rng.borrow_mut().next_f32();
-        let s = self.bsdf.sample(&SurfaceInteraction::at_uv(Vec2::ZERO), to_shading(wi), u_lobe, u)?;
-        if s.delta {
-            return None;
-        }
-        Some(HelperSample { wo: to_helper(s.wo), pdf: s.pdf, weight: [s.weight.element_sum(); N] })
-    }
-}
-
 /// (configuration, incidence in degrees; > 90° is from below). Each sampling code path once,
 /// dielectrics from both sides; the rest is left out to keep the file fast (smooth-only BSDFs
 /// have nothing to histogram; rough conductors are covered in `specular_bsdfs.rs`).
@@ -222,10 +186,9 @@ fn samples_follow_pdf_chi_square() {
         let seed = 41 + seed as u64;
         let t = theta.to_radians();
         let wi = Vec3::new((t.sin() * 0.6f64.cos()) as f32, (t.sin() * 0.6f64.sin()) as f32, t.cos() as f32);
-        let adapter = Adapter { bsdf: load_bsdf(c.xml), rng: RefCell::new(Pcg32::new(seed, 3)) };
         // The refracted lobe of α = 0.1 is squeezed by η²: integrate the cells more finely.
         let ires = if c.name.starts_with("roughdielectric") { 24 } else { 12 };
-        match chi2_sampling_ires(&adapter, to_helper(wi), seed, ires) {
+        match chi2_render_bsdf(&load_bsdf(c.xml), &SurfaceInteraction::at_uv(Vec2::ZERO), wi, seed, ires) {
             Err(e) => failures.push(format!("{name} θ={theta}: {e}")),
             Ok(out) => {
                 println!("{name:34} θ={theta:5}: p = {:.3e}", out.p_value);

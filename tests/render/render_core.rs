@@ -3,7 +3,7 @@
 //! plane). Oracles are closed forms and numerical integration, never the renderer itself.
 
 use glam::{Affine3A, Vec2, Vec3};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, Diffuse, Matte};
 use matte::render::emitter::Emitter;
 use matte::render::geometry::Ray;
 use matte::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
@@ -19,7 +19,7 @@ fn shape(geometry: Geometry, bsdf: u32, emitter: Option<u32>) -> Shape {
 }
 
 fn diffuse(r: f32) -> Bsdf {
-    Bsdf::Diffuse { reflectance: Texture::Constant(Vec3::splat(r)) }
+    Bsdf::Diffuse(Diffuse { reflectance: Texture::Constant(Vec3::splat(r)) })
 }
 
 /// A square [−s, s]² in z = h, counter-clockwise seen from +z.
@@ -199,10 +199,7 @@ fn white_furnace_returns_the_environment_radiance() {
     let sphere = Sphere::new(Affine3A::IDENTITY, false);
     for bsdf in [
         diffuse(1.0),
-        Bsdf::Matte {
-            model: matte::brdf::DiffuseModel::Lambert(matte::brdf::Lambert),
-            reflectance: Texture::Constant(Vec3::ONE),
-        },
+        Bsdf::Matte(Matte::new(matte::brdf::DiffuseModel::Lambert(matte::brdf::Lambert), Texture::Constant(Vec3::ONE))),
     ] {
         let scene = Scene::new(
             vec![shape(Geometry::Sphere(sphere.clone()), 0, None)],

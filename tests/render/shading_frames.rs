@@ -4,7 +4,7 @@
 //! tangent-space normal maps are oriented by `s`. Expected tangents are worked out by hand.
 
 use glam::{Affine3A, Quat, Vec2, Vec3};
-use matte::render::bsdf::Bsdf;
+use matte::render::bsdf::{Bsdf, Diffuse};
 use matte::render::geometry::Ray;
 use matte::render::scene::Scene;
 use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, SurfaceInteraction, Triangles};
@@ -13,8 +13,12 @@ use matte::scene_file::mesh::TriangleMesh;
 
 fn hit(g: Geometry, o: Vec3, d: Vec3) -> SurfaceInteraction {
     let shapes = vec![Shape { geometry: g, bsdf: 0, emitter: None, plugin: "test".into() }];
-    let scene =
-        Scene::new(shapes, vec![Bsdf::Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) }], vec![], vec![]);
+    let scene = Scene::new(
+        shapes,
+        vec![Bsdf::Diffuse(Diffuse { reflectance: Texture::Constant(Vec3::splat(0.5)) })],
+        vec![],
+        vec![],
+    );
     scene.intersect(&Ray::new(o, d, f32::INFINITY)).expect("hit")
 }
 

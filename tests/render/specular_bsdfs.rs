@@ -6,15 +6,15 @@
 #[rustfmt::skip] // generated data, one configuration per line
 mod mitsuba_reference;
 
-use crate::common::{Pcg32, PcgExt, chi2_sampling, sidak};
+use crate::common::{Pcg32, PcgExt, chi2_render_bsdf, sidak};
 use glam::{DVec3, Vec2, Vec3};
 use matte::brdf::quadrature::GaussLegendre;
-use matte::brdf::{BrdfSample as DiffuseSample, DiffuseBrdf};
 use matte::render::bsdf::interface::fresnel_dielectric;
 use matte::render::bsdf::vndf::erf_inv;
 use matte::render::bsdf::{
     Conductor, Dielectric, MicrofacetDistribution, RoughConductor, conductor_material, fresnel_conductor,
 };
+use matte::render::shape::SurfaceInteraction;
 use mitsuba_reference::MITSUBA_CONFIGS;
 use std::f64::consts::PI;
 
@@ -378,38 +378,6 @@ fn rough_conductor_matches_mitsuba_3_9_1() {
     }
 }
 
-/// Lets the shared chi-square helper (written for `brdf::DiffuseBrdf`) drive a rough conductor,
-/// seen in a rotated frame: the helper's (φ, cos θ) grid has the plane φ ∈ {0, ±π} on cell
-/// boundaries but the plane z = 0 mid-row, and its 4×4 trapezoid rule per cell cannot
-/// integrate the pdf's jump to 0 at the horizon there. Rotating the shading normal onto the
-/// helper's +y axis puts the horizon on the cell boundaries φ = 0, ±π. (Densities are invariant
-/// under the rotation.)
-struct Adapter(RoughConductor);
-
-/// Helper frame → shading frame (rotation by −90° about x: helper +y ↦ shading +z).
-fn to_shading(h: Vec3) -> Vec3 {
-    Vec3::new(h.x, -h.z, h.y)
-}
-
-/// Shading frame → helper frame.
-fn to_helper(l: Vec3) -> Vec3 {
-    Vec3::new(l.x, l.z, -l.y)
-}
-
-impl DiffuseBrdf for Adapter {
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, _reflectance: [f32; N]) -> [f32; N] {
-        let (wi, wo) = (to_shading(wi), to_shading(wo));
-        [self.0.eval(wi, wo).x / wo.z.max(1e-30); N]
-    }
-    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        self.0.pdf(to_shading(wi), to_shading(wo))
-    }
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, _reflectance: [f32; N]) -> Option<DiffuseSample<N>> {
-        let s = self.0.sample(to_shading(wi), 0.5, u)?;
-        Some(DiffuseSample { wo: to_helper(s.wo), pdf: s.pdf, weight: [s.weight.x; N] })
-    }
-}
-
 #[test]
 fn rough_conductor_samples_follow_pdf_chi_square() {
     // Beyond ~80° the lobe is squeezed against the horizon into a few cells that the helper's
@@ -423,7 +391,8 @@ fn rough_conductor_samples_follow_pdf_chi_square() {
         for &theta in &incidences {
             let wi = dir(theta.to_radians(), 0.7);
             seed += 1;
-            let out = chi2_sampling(&Adapter(rough(kind, au, av, visible)), to_helper(wi), seed)
+            let si = SurfaceInteraction::at_uv(Vec2::ZERO);
+            let out = chi2_render_bsdf(&rough(kind, au, av, visible), &si, wi, seed, 4)
                 .unwrap_or_else(|e| panic!("{kind:?} α=({au},{av}) visible={visible} θ={theta}: {e}"));
             assert!(
                 out.p_value > level,

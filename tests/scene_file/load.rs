@@ -15,7 +15,9 @@ use std::process::Command;
 
 use glam::{Vec2, Vec3};
 use matte::brdf::ParamValue;
-use matte::render::bsdf::{Bsdf, MicrofacetDistribution, RoughConductor};
+use matte::render::bsdf::{
+    Bsdf, BsdfFlags, BsdfModel, Diffuse, Matte, MicrofacetDistribution, RoughConductor, TwoSided,
+};
 use matte::render::emitter::Emitter;
 use matte::render::film::{CropWindow, ReconstructionFilter};
 use matte::render::geometry::Ray;
@@ -80,9 +82,8 @@ fn shape_bsdf(s: &LoadedScene, i: usize) -> &Bsdf {
 
 fn constant_reflectance(b: &Bsdf) -> Vec3 {
     match b {
-        Bsdf::Diffuse { reflectance: Texture::Constant(c) } | Bsdf::Matte { reflectance: Texture::Constant(c), .. } => {
-            *c
-        }
+        Bsdf::Diffuse(Diffuse { reflectance: Texture::Constant(c) })
+        | Bsdf::Matte(Matte { reflectance: Texture::Constant(c), .. }) => *c,
         other => panic!("expected a constant diffuse reflectance, got {other:?}"),
     }
 }
@@ -1322,7 +1323,7 @@ fn matte_models_with_documented_defaults() {
     ];
     for (kind, props, want) in cases {
         let b = one_bsdf(&format!("<bsdf type=\"{kind}\">{props}</bsdf>"));
-        let Bsdf::Matte { model, reflectance: Texture::Constant(rho) } = &b else { panic!("{kind}: {b:?}") };
+        let Bsdf::Matte(Matte { model, reflectance: Texture::Constant(rho), .. }) = &b else { panic!("{kind}: {b:?}") };
         assert_eq!(model.kind(), kind);
         assert_eq!(model.parameters(), want, "{kind} {props}");
         assert_eq!(*rho, Vec3::splat(0.5), "{kind}");
@@ -1338,13 +1339,13 @@ fn matte_models_with_documented_defaults() {
 fn null_bsdf_passes_rays_straight_through() {
     let s = ok(&with_sensor("<shape type=\"sphere\"><bsdf type=\"null\"/></shape>"));
     let b = shape_bsdf(&s, 0).clone();
-    assert!(matches!(b, Bsdf::Null), "{b:?}");
+    assert!(matches!(b, Bsdf::Null(_)), "{b:?}");
     let si = hit(&s, Vec3::new(0.0, 0.0, 5.0), Vec3::NEG_Z).expect("the sphere is hit");
     let wi = Vec3::new(0.3, 0.0, 0.954);
     let bs = b.sample(&si, wi, 0.3, Vec2::new(0.2, 0.7)).expect("a sample");
     assert_eq!((bs.wo, bs.weight, bs.pdf, bs.delta, bs.eta), (-wi, Vec3::ONE, 1.0, true, 1.0));
     assert_eq!(b.eval_pdf(&si, wi, -wi), (Vec3::ZERO, 0.0));
-    assert!(!b.has_smooth());
+    assert!(!b.flags().has(BsdfFlags::SMOOTH));
     assert_body_err(
         "<shape type=\"sphere\"><bsdf type=\"twosided\"><bsdf type=\"null\"/></bsdf></shape>",
         1,
@@ -1357,20 +1358,22 @@ fn twosided_wraps_one_or_two_bsdfs() {
     let b = one_bsdf(
         "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"><float name=\"reflectance\" value=\"0.2\"/></bsdf></bsdf>",
     );
-    let Bsdf::TwoSided { front, back } = b else { panic!() };
+    let Bsdf::TwoSided(TwoSided { front, back }) = b else { panic!() };
     assert_eq!((constant_reflectance(&front), constant_reflectance(&back)), (Vec3::splat(0.2), Vec3::splat(0.2)));
     let b = one_bsdf(
         "<bsdf type=\"twosided\"><bsdf type=\"diffuse\"/><bsdf type=\"eon\"><float name=\"reflectance\" value=\"0.9\"/></bsdf></bsdf>",
     );
-    let Bsdf::TwoSided { front, back } = b else { panic!() };
+    let Bsdf::TwoSided(TwoSided { front, back }) = b else { panic!() };
     assert_eq!(constant_reflectance(&front), Vec3::splat(0.5));
-    assert!(matches!(*back, Bsdf::Matte { ref model, .. } if model.kind() == "eon"));
+    assert!(matches!(*back, Bsdf::Matte(Matte { ref model, .. }) if model.kind() == "eon"));
     assert_eq!(constant_reflectance(&back), Vec3::splat(0.9));
     // A referenced inner BSDF works too.
     let s = ok(&with_sensor(
         "<bsdf type=\"conductor\" id=\"m\"/><shape type=\"sphere\"><bsdf type=\"twosided\"><ref id=\"m\"/></bsdf></shape>",
     ));
-    assert!(matches!(shape_bsdf(&s, 0), Bsdf::TwoSided { front, .. } if matches!(**front, Bsdf::Conductor(_))));
+    assert!(
+        matches!(shape_bsdf(&s, 0), Bsdf::TwoSided(TwoSided { front, .. }) if matches!(**front, Bsdf::Conductor(_)))
+    );
 }
 
 /// `src/bsdfs/mask.cpp`: `opacity` defaults to 0.5 (a float or a texture), exactly one nested
@@ -1567,9 +1570,8 @@ fn bitmap_reflectance_nested_and_referenced() {
     );
     let s = load_str(&xml, &path, &[]).unwrap_or_else(|e| panic!("{e}"));
     let tex = |i: usize| match &s.scene.bsdfs[i] {
-        Bsdf::Diffuse { reflectance: Texture::Bitmap(t) } | Bsdf::Matte { reflectance: Texture::Bitmap(t), .. } => {
-            t.clone()
-        }
+        Bsdf::Diffuse(Diffuse { reflectance: Texture::Bitmap(t) })
+        | Bsdf::Matte(Matte { reflectance: Texture::Bitmap(t), .. }) => t.clone(),
         other => panic!("{other:?}"),
     };
     // §11: 8-bit PNG is sRGB → 128 decodes to 0.215861; bilinear averages the LINEAR texels:
@@ -1599,7 +1601,7 @@ fn checkerboard_texture() {
     let reflectance_at = |s: &LoadedScene, x: f32, y: f32| -> Vec3 {
         let si = s.scene.intersect(&Ray::new(Vec3::new(x, y, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit");
         match s.scene.bsdf(&si) {
-            Bsdf::Diffuse { reflectance } => reflectance.eval(si.uv),
+            Bsdf::Diffuse(d) => d.reflectance.eval(si.uv),
             other => panic!("{other:?}"),
         }
     };
@@ -1685,7 +1687,7 @@ fn rawconstant_texture() {
     let refl = |s: &LoadedScene| {
         let si = s.scene.intersect(&Ray::new(Vec3::new(0.1, 0.2, 1.0), Vec3::NEG_Z, f32::INFINITY)).unwrap();
         match s.scene.bsdf(&si) {
-            Bsdf::Diffuse { reflectance } => reflectance.eval(si.uv),
+            Bsdf::Diffuse(d) => d.reflectance.eval(si.uv),
             other => panic!("{other:?}"),
         }
     };

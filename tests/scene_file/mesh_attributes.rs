@@ -99,8 +99,8 @@ fn mesh_attribute_texture_interpolates_vertex_and_looks_up_face_values() {
     let s = load_file(&file, &[]).unwrap();
     for (x, y) in [(0.2f32, 0.7f32), (0.9, 0.1), (1.5, 0.5), (1.2, 0.45)] {
         let si = hit(&s, x, y);
-        let Bsdf::Diffuse { reflectance } = s.scene.bsdf(&si) else { panic!() };
-        let got = reflectance.eval(&si);
+        let Bsdf::Diffuse(d) = s.scene.bsdf(&si) else { panic!() };
+        let got = d.reflectance.eval(&si);
         let expected = Vec3::new(x, y, 0.5) * 0.5;
         assert!((got - expected).abs().max_element() < 1e-5, "({x}, {y}): {got} vs {expected}");
     }

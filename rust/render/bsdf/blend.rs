@@ -9,17 +9,34 @@
 //!   `f` is its sample weight times its pdf and the other's is evaluated in the sampled
 //!   direction (one-sample MIS over the two). The picked sample's Dirac flag and η are kept.
 
-use super::Bsdf;
-use super::sample::BsdfSample;
+use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
+/// Mitsuba's `blendbsdf`: `(1 − weight)·first + weight·second`.
 #[derive(Clone, Debug)]
 pub struct Blend {
     pub weight: Texture,
     pub first: Box<Bsdf>,
     pub second: Box<Bsdf>,
+}
+
+impl FromProps for Blend {
+    /// Two nested BSDFs and `weight` (a float or a texture; required).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let nested = p.nested("bsdf");
+        let [first, second] = nested.as_slice() else {
+            return Err(p.err(format!("needs exactly two nested BSDFs, found {}", nested.len())));
+        };
+        if !p.has("weight") {
+            return Err(p.err("missing the blend \"weight\" (a float or a texture)"));
+        }
+        let weight = p.texture("weight")?;
+        Ok(Blend { weight, first: Box::new(p.build_bsdf(first)?), second: Box::new(p.build_bsdf(second)?) })
+    }
 }
 
 impl Blend {
@@ -35,9 +52,11 @@ impl Blend {
             0.0
         }
     }
+}
 
+impl BsdfModel for Blend {
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let w = self.weight(si);
         let (f0, p0) = self.first.eval_pdf(si, wi, wo);
         let (f1, p1) = self.second.eval_pdf(si, wi, wo);
@@ -45,7 +64,7 @@ impl Blend {
     }
 
     #[inline]
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let w = self.weight(si);
         // Mitsuba: the first BSDF where u_lobe > w, the second where u_lobe ≤ w (w = 0 and
         // u_lobe = 0 would divide 0 by 0 there; the first BSDF is the only one that counts).
@@ -62,6 +81,12 @@ impl Blend {
         s.weight = if pdf > 0.0 { f / pdf } else { Vec3::ZERO };
         s.pdf = pdf;
         Some(s)
+    }
+
+    /// Both nested BSDFs'.
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.first.flags() | self.second.flags()
     }
 }
 

@@ -16,12 +16,12 @@
 //! meshes only. [`BumpMap::eval_pdf_at`] and [`BumpMap::sample_at`] take the geometry
 //! explicitly (tested against Mitsuba at given geometry).
 
-use super::Bsdf;
-use super::perturbed_frame;
-use super::sample::BsdfSample;
+use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample, perturbed_frame};
 use crate::render::geometry::Frame;
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
 /// What `bumpmap` reads from Mitsuba's `SurfaceInteraction3f`, in world space.
@@ -34,6 +34,7 @@ pub struct HitGeometry {
     pub sh_frame: Frame,
 }
 
+/// Mitsuba's `bumpmap` wrapper around a nested BSDF.
 #[derive(Clone, Debug)]
 pub struct BumpMap {
     pub height: Texture,
@@ -50,19 +51,68 @@ impl HitGeometry {
     }
 }
 
-impl BumpMap {
+impl FromProps for BumpMap {
+    /// One nested BSDF, one nested `bitmap` texture of any name (the height map, as Mitsuba
+    /// takes the one texture child), `scale` (default 1), `flip_invalid_normals` and
+    /// `use_shadowing_function` (default true). The BSDF is built for its shape, which must be
+    /// a mesh.
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let nested = p.nested("bsdf");
+        let [inner] = nested.as_slice() else {
+            return Err(p.err(format!("needs exactly one nested BSDF, found {}", nested.len())));
+        };
+        let textures = p.nested("texture");
+        let [height] = textures.as_slice() else {
+            return Err(p.err(format!("needs exactly one nested texture (the height map), found {}", textures.len())));
+        };
+        if height.plugin != "bitmap" {
+            return Err(crate::render::load::err(
+                height,
+                "a bumpmap needs a bitmap height texture (Mitsuba's other textures have no gradient)",
+            ));
+        }
+        let height = p.build_texture(height)?;
+        let b = p.builder();
+        b.shape_dependent.set(true);
+        if b.shape.as_ref().is_some_and(|s| !s.is_mesh) {
+            return Err(p.err(
+                "bumpmap is supported on meshes only (obj, ply, rectangle, cube): matte's analytic shapes have no ∂p/∂u, ∂p/∂v",
+            ));
+        }
+        let scale = p.float("scale")? as f32;
+        let flip_invalid_normals = p.boolean("flip_invalid_normals")?;
+        let use_shadowing_function = p.boolean("use_shadowing_function")?;
+        Ok(BumpMap {
+            height,
+            nested: Box::new(p.build_bsdf(inner)?),
+            scale,
+            flip_invalid_normals,
+            use_shadowing_function,
+        })
+    }
+}
+
+impl BsdfModel for BumpMap {
     /// `(f·|cos θo|, pdf)` at the hit `si`.
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         self.eval_pdf_at(si, &HitGeometry::of(si), wi, wo)
     }
 
     /// Samples the nested BSDF in the perturbed frame at the hit `si`.
     #[inline]
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         self.sample_at(si, &HitGeometry::of(si), wi, u_lobe, u)
     }
 
+    /// The nested BSDF's.
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.nested.flags()
+    }
+}
+
+impl BumpMap {
     /// Mitsuba's `BumpMap::frame`, relative to the shading frame (`wi` local).
     pub fn frame(&self, si: &SurfaceInteraction, wi: Vec3, g: &HitGeometry) -> Frame {
         let grad = self.height.eval_1_grad(si) * self.scale;

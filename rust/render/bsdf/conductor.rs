@@ -1,9 +1,13 @@
 //! Mitsuba's smooth `conductor` (`src/bsdfs/conductor.cpp`): a one-sided Dirac mirror whose
 //! reflectance is the complex-index Fresnel term times `specular_reflectance` (§10).
 
+use super::conductor_ior::conductor_ior_from_props;
 use super::interface::fresnel_conductor;
 use super::parameter_checks::{check_colour, check_finite};
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
 /// Smooth conductor. Mitsuba's default `material` "none" (η = 0, k = 1) is a perfect mirror.
@@ -39,5 +43,30 @@ impl Conductor {
             delta: true,
             eta: 1.0,
         })
+    }
+}
+
+impl FromProps for Conductor {
+    /// `material` or `eta`/`k`, and a constant `specular_reflectance` (default 1).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let (eta, k) = conductor_ior_from_props(p)?;
+        Conductor::new(eta, k, p.constant_color("specular_reflectance")?).map_err(|e| p.err(e))
+    }
+}
+
+impl BsdfModel for Conductor {
+    #[inline]
+    fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
+        (Vec3::ZERO, 0.0)
+    }
+
+    #[inline]
+    fn sample(&self, _si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        Conductor::sample(self, wi, u_lobe, u)
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA_REFLECTION | BsdfFlags::FRONT_SIDE
     }
 }

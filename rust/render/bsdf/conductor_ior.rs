@@ -10,6 +10,9 @@
 //! normal-incidence furnace values (0.96668, 0.80201, 0.32412).
 
 use super::conductor_ior_data::MATERIALS;
+use crate::brdf::params::{MAX_MAGNITUDE, too_large};
+use crate::render::load::props::PluginProps;
+use crate::scene_file::SceneError;
 use glam::Vec3;
 
 /// RGB `(eta, k)` of a named conductor as Mitsuba computes it in RGB mode. "none" is
@@ -30,4 +33,24 @@ pub fn conductor_material(name: &str) -> Result<(Vec3, Vec3), String> {
 /// Every material name (without "none"), for tests and messages.
 pub fn conductor_material_names() -> impl Iterator<Item = &'static str> {
     MATERIALS.iter().map(|(n, _, _)| *n)
+}
+
+/// The complex index of `conductor` and `roughconductor`: `material` (default "none": a
+/// perfect mirror) or explicit `eta` and `k`. As in Mitsuba (`src/bsdfs/conductor.cpp`),
+/// `material="none"` may be spelt out next to `eta`/`k`.
+pub(crate) fn conductor_ior_from_props(p: &mut PluginProps) -> Result<(Vec3, Vec3), SceneError> {
+    if p.has_property("eta") || p.has_property("k") {
+        if p.has_property("material") && p.string("material")? != "none" {
+            return Err(p.err("give either material or eta/k, not both"));
+        }
+        let (eta, k) = (p.color("eta")?, p.color("k")?);
+        for (name, v) in [("eta", eta), ("k", k)] {
+            if v.abs().max_element() as f64 > MAX_MAGNITUDE {
+                return Err(p.prop_err(name, too_large(v.abs().max_element() as f64)));
+            }
+        }
+        return Ok((eta, k));
+    }
+    let m = p.string("material")?;
+    conductor_material(&m).map_err(|e| p.prop_err("material", e))
 }

@@ -4,7 +4,10 @@
 
 use super::interface::fresnel_dielectric;
 use super::parameter_checks::check_colour;
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
 /// Smooth dielectric interface (radiance transport).
@@ -73,5 +76,38 @@ impl Dielectric {
                 eta: f.eta_it,
             })
         }
+    }
+}
+
+impl FromProps for Dielectric {
+    /// `int_ior`, `ext_ior` (numbers or names; bk7 over air) and constant `specular_*`
+    /// weights (default 1).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let int_ior = p.ior("int_ior")?;
+        let ext_ior = p.ior("ext_ior")?;
+        let r = p.constant_color("specular_reflectance")?;
+        let t = p.constant_color("specular_transmittance")?;
+        Dielectric::new(int_ior, ext_ior, r, t).map_err(|e| p.err(e))
+    }
+}
+
+impl BsdfModel for Dielectric {
+    #[inline]
+    fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
+        (Vec3::ZERO, 0.0)
+    }
+
+    #[inline]
+    fn sample(&self, _si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        Dielectric::sample(self, wi, u_lobe, u)
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA_REFLECTION
+            | BsdfFlags::DELTA_TRANSMISSION
+            | BsdfFlags::NON_SYMMETRIC
+            | BsdfFlags::FRONT_SIDE
+            | BsdfFlags::BACK_SIDE
     }
 }

@@ -1,29 +1,53 @@
 //! Mitsuba's built-in `diffuse` (`src/bsdfs/diffuse.cpp`): ρ/π, one-sided (zero when either
 //! direction is below the shading surface), cosine-weighted sampling with weight ρ.
 
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
-/// `(f·cos θo, pdf)`.
-#[inline]
-pub fn eval_pdf(rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-    if wi.z <= 0.0 || wo.z <= 0.0 {
-        return (Vec3::ZERO, 0.0);
-    }
-    (rho * (FRAC_1_PI * wo.z), cosine_hemisphere_pdf(wo))
+/// Mitsuba's `diffuse`: `reflectance` ρ (a texture, default 0.5).
+#[derive(Clone, Debug)]
+pub struct Diffuse {
+    pub reflectance: Texture,
 }
 
-#[inline]
-pub fn sample(rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
-    if wi.z <= 0.0 {
-        return None;
+impl FromProps for Diffuse {
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        Ok(Diffuse { reflectance: p.texture("reflectance")? })
     }
-    let wo = square_to_cosine_hemisphere(u);
-    let pdf = cosine_hemisphere_pdf(wo);
-    if !(pdf > 0.0) || wo.z <= 0.0 {
-        return None;
+}
+
+impl BsdfModel for Diffuse {
+    /// `(ρ/π·cos θo, cos θo/π)`.
+    #[inline]
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        if wi.z <= 0.0 || wo.z <= 0.0 {
+            return (Vec3::ZERO, 0.0);
+        }
+        (self.reflectance.eval(si) * (FRAC_1_PI * wo.z), cosine_hemisphere_pdf(wo))
     }
-    Some(BsdfSample { wo, weight: rho, pdf, delta: false, eta: 1.0 })
+
+    /// A cosine-weighted direction, weight ρ.
+    #[inline]
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, _u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let wo = square_to_cosine_hemisphere(u);
+        let pdf = cosine_hemisphere_pdf(wo);
+        if !(pdf > 0.0) || wo.z <= 0.0 {
+            return None;
+        }
+        Some(BsdfSample { wo, weight: self.reflectance.eval(si), pdf, delta: false, eta: 1.0 })
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE_REFLECTION | BsdfFlags::FRONT_SIDE
+    }
 }

@@ -12,16 +12,30 @@
 //! after a Dirac sample, and there is no light sampling through it. Shadow rays do not see
 //! through masks (Mitsuba's `Scene::ray_test` only tests geometry).
 
-use super::Bsdf;
-use super::sample::BsdfSample;
+use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
+/// Mitsuba's `mask`: the nested BSDF with probability `opacity`, else pass-through.
 #[derive(Clone, Debug)]
 pub struct Mask {
     pub opacity: Texture,
     pub nested: Box<Bsdf>,
+}
+
+impl FromProps for Mask {
+    /// One nested BSDF and `opacity` (a texture, default 0.5).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let nested = p.nested("bsdf");
+        let [inner] = nested.as_slice() else {
+            return Err(p.err(format!("needs exactly one nested BSDF, found {}", nested.len())));
+        };
+        let opacity = p.texture("opacity")?;
+        Ok(Mask { opacity, nested: Box::new(p.build_bsdf(inner)?) })
+    }
 }
 
 impl Mask {
@@ -38,16 +52,18 @@ impl Mask {
             0.0
         }
     }
+}
 
+impl BsdfModel for Mask {
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let a = self.opacity(si);
         let (f, pdf) = self.nested.eval_pdf(si, wi, wo);
         (f * a, pdf * a)
     }
 
     #[inline]
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let a = self.opacity(si);
         if u_lobe < a {
             let mut s = self.nested.sample(si, wi, (u_lobe / a).min(ONE_MINUS_EPSILON), u)?;
@@ -56,6 +72,12 @@ impl Mask {
         } else {
             Some(BsdfSample { wo: -wi, weight: Vec3::ONE, pdf: 1.0 - a, delta: true, eta: 1.0 })
         }
+    }
+
+    /// The nested BSDF's and the null (pass-through) component's.
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.nested.flags() | BsdfFlags::NULL | BsdfFlags::FRONT_SIDE | BsdfFlags::BACK_SIDE
     }
 }
 

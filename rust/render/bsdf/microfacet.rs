@@ -5,6 +5,10 @@
 //! [`super::vndf`] (visible normals) and [`Microfacet::sample_d_cos`] (plain D·cos θ).
 
 use super::vndf;
+use crate::brdf::params::{MAX_MAGNITUDE, too_large};
+use crate::render::load::props::PluginProps;
+use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 use std::f32::consts::{PI, TAU};
 
@@ -29,6 +33,84 @@ pub struct Microfacet {
 /// Mitsuba clamps roughness to at least 1e-4 (`MicrofacetDistribution::configure`), so that α
 /// = 0 gives a very sharp lobe instead of a division by zero.
 pub const MIN_ALPHA: f32 = 1e-4;
+
+/// The microfacet parameters of a rough BSDF as read from its properties.
+pub struct MicrofacetParams {
+    pub kind: MicrofacetDistribution,
+    pub alpha_u: f32,
+    pub alpha_v: f32,
+    pub sample_visible: bool,
+    /// Roughness textures (α_u, α_v) when a texture is nested for `alpha`/`alpha_u`/`alpha_v`.
+    pub alpha_tex: Option<(Texture, Texture)>,
+}
+
+/// α when no roughness is given: `roughconductor`'s and `roughdielectric`'s default, and the
+/// default argument of `MicrofacetDistribution(props)` that `roughplastic` uses.
+const DEFAULT_ALPHA: f64 = 0.1;
+
+impl MicrofacetParams {
+    /// `distribution` (beckmann | ggx, case-insensitive; default beckmann), `alpha` (default
+    /// 0.1) or both `alpha_u`/`alpha_v`, `sample_visible` (default true), as
+    /// `roughconductor.cpp`, `roughdielectric.cpp` and `MicrofacetDistribution(const Properties
+    /// &)` (`include/mitsuba/render/microfacet.h`) read them. With `anisotropic = false`
+    /// (roughplastic) α_u ≠ α_v is an error, as in Mitsuba. α = 0 is valid (raised to 1e-4
+    /// later); a negative roughness, which Mitsuba would take silently, is an error here.
+    /// Roughness textures (nested `<texture name="alpha…">`) are read when `textures` is set
+    /// (roughconductor, roughdielectric: Mitsuba's `get_unbounded_texture`), else an error
+    /// (roughplastic reads plain floats).
+    pub(crate) fn from_props(p: &mut PluginProps, textures: bool, anisotropic: bool) -> Result<Self, SceneError> {
+        let plugin = &p.object().plugin;
+        let kind = match p.string_opt("distribution")?.unwrap_or_else(|| "beckmann".into()).to_lowercase().as_str() {
+            "beckmann" => MicrofacetDistribution::Beckmann,
+            "ggx" => MicrofacetDistribution::Ggx,
+            other => {
+                return Err(p.prop_err("distribution", format!("must be beckmann or ggx, got \"{other}\"")));
+            }
+        };
+        if !textures {
+            for name in ["alpha", "alpha_u", "alpha_v"] {
+                if p.is_nested(name) {
+                    return Err(p.err(format!(
+                        "a texture for \"{name}\" is not supported by {plugin} (give a number, as Mitsuba)"
+                    )));
+                }
+            }
+        }
+        let names = match (p.has("alpha_u"), p.has("alpha_v")) {
+            (false, false) => ["alpha", "alpha"],
+            // With all three, `alpha` stays unread and is reported at its own line.
+            (true, true) => ["alpha_u", "alpha_v"],
+            _ => return Err(p.err("alpha_u and alpha_v must be given together")),
+        };
+        let sample_visible = p.boolean_opt("sample_visible")?.unwrap_or(true);
+        if textures && (p.is_nested(names[0]) || p.is_nested(names[1])) {
+            let (tu, tv) = (p.texture(names[0])?, p.texture(names[1])?);
+            return Ok(MicrofacetParams {
+                kind,
+                alpha_u: 0.1,
+                alpha_v: 0.1,
+                sample_visible,
+                alpha_tex: Some((tu, tv)),
+            });
+        }
+        let au = p.float_opt(names[0])?.unwrap_or(DEFAULT_ALPHA);
+        let av = p.float_opt(names[1])?.unwrap_or(DEFAULT_ALPHA);
+        for (n, a) in [(names[0], au), (names[1], av)] {
+            if !(a.is_finite() && a >= 0.0) {
+                return Err(p.prop_err(n, format!("roughness must be finite and ≥ 0, got {a}")));
+            }
+            if a > MAX_MAGNITUDE {
+                return Err(p.prop_err(n, too_large(a)));
+            }
+        }
+        if !anisotropic && au != av {
+            return Err(
+                p.prop_err("alpha_u", format!("{plugin} does not support anisotropic roughness (as in Mitsuba)"))
+            );
+        }
+        Ok(MicrofacetParams { kind, alpha_u: au as f32, alpha_v: av as f32, sample_visible, alpha_tex: None })
+    }
+}
 
 impl Microfacet {
     /// Roughness below [`MIN_ALPHA`] is raised to it; the caller rejects negative/NaN input.

@@ -13,19 +13,39 @@
 //! Only the local shading frame is involved, so the result depends on the shape's tangent
 //! orientation exactly as in Mitsuba (`sh_frame.s` along ∂p/∂u there).
 
-use super::sample::BsdfSample;
-use super::{Bsdf, perturbed_frame};
+use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample, perturbed_frame};
 use crate::render::geometry::Frame;
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
+/// Mitsuba's `normalmap` wrapper around a nested BSDF.
 #[derive(Clone, Debug)]
 pub struct NormalMap {
     pub normals: Texture,
     pub nested: Box<Bsdf>,
     pub flip_invalid_normals: bool,
     pub use_shadowing_function: bool,
+}
+
+impl FromProps for NormalMap {
+    /// One nested BSDF, the `normalmap` texture (required), `flip_invalid_normals` and
+    /// `use_shadowing_function` (default true).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let nested = p.nested("bsdf");
+        let [inner] = nested.as_slice() else {
+            return Err(p.err(format!("needs exactly one nested BSDF, found {}", nested.len())));
+        };
+        if !p.has("normalmap") {
+            return Err(p.err("missing the \"normalmap\" texture"));
+        }
+        let normals = p.texture("normalmap")?;
+        let flip_invalid_normals = p.boolean("flip_invalid_normals")?;
+        let use_shadowing_function = p.boolean("use_shadowing_function")?;
+        Ok(NormalMap { normals, nested: Box::new(p.build_bsdf(inner)?), flip_invalid_normals, use_shadowing_function })
+    }
 }
 
 impl NormalMap {
@@ -40,16 +60,24 @@ impl NormalMap {
         let s = (Vec3::X - n * n.x).normalize();
         Frame { s, t: n.cross(s), n }
     }
+}
 
+impl BsdfModel for NormalMap {
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(si, wi);
         perturbed_frame::eval_pdf(&self.nested, &frame, self.use_shadowing_function, si, wi, wo)
     }
 
     #[inline]
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let frame = self.frame(si, wi);
         perturbed_frame::sample(&self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
+    }
+
+    /// The nested BSDF's.
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        self.nested.flags()
     }
 }

@@ -4,8 +4,8 @@
 //! shadow-terminator term on values and weights when `use_shadowing_function` is set.
 //! Each wrapper builds its own frame (from a normal map, from a height map's gradient).
 
-use super::Bsdf;
 use super::sample::BsdfSample;
+use super::{Bsdf, BsdfModel};
 use crate::render::geometry::Frame;
 use crate::render::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

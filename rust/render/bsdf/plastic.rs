@@ -16,10 +16,12 @@
 //! p_d·cos θo/π.
 
 use super::interface::fresnel_dielectric;
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
 /// Smooth plastic.
@@ -45,6 +47,18 @@ pub fn fresnel_diffuse_reflectance(eta: f32) -> f32 {
     } else {
         let c = [0.919317f32, -3.4793, 6.75335, -7.80989, 4.98554, -1.36881];
         c.iter().rev().fold(0.0f32, |acc, &ci| acc.mul_add(inv, ci))
+    }
+}
+
+impl FromProps for Plastic {
+    /// `int_ior`/`ext_ior` (polypropylene over air), `diffuse_reflectance` (a texture, default
+    /// 0.5), a constant `specular_reflectance` if given, `nonlinear` (default false).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let eta = p.ior("int_ior")? / p.ior("ext_ior")?;
+        let diffuse = p.texture("diffuse_reflectance")?;
+        let specular = p.optional_constant_color("specular_reflectance")?;
+        let nonlinear = p.boolean("nonlinear")?;
+        Plastic::new(eta, diffuse, specular, nonlinear).map_err(|e| p.err(e))
     }
 }
 
@@ -90,10 +104,12 @@ impl Plastic {
         let w = self.specular_sampling_weight;
         (f_i * w, (1.0 - f_i) * (1.0 - w))
     }
+}
 
+impl BsdfModel for Plastic {
     /// `(f·cos θo, pdf)` of the diffuse lobe (the mirror has no density).
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
@@ -108,7 +124,7 @@ impl Plastic {
     /// Mirror if `u_lobe < p_s` (weight R/p_s·specular, pdf p_s, Dirac), else a cosine-weighted
     /// direction from `u`.
     #[inline]
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
@@ -135,6 +151,11 @@ impl Plastic {
         let f_o = fresnel_dielectric(wo.z, self.eta).r;
         let weight = self.diffuse_albedo(si) * (self.inv_eta_2 * (1.0 - f_i) * (1.0 - f_o) / prob_diffuse);
         Some(BsdfSample { wo, weight, pdf, delta: false, eta: 1.0 })
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA_REFLECTION | BsdfFlags::DIFFUSE_REFLECTION | BsdfFlags::FRONT_SIDE
     }
 }
 

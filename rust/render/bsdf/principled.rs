@@ -12,13 +12,16 @@
 use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
-    Gtr1, calc_schlick, diffuse_lobe, dist_params, luminance, mac_mic_compatibility, schlick_r0_eta, schlick_weight,
-    sheen_color, smith_ggx1,
+    Gtr1, calc_schlick, diffuse_lobe, dist_params, flagged, luminance, mac_mic_compatibility, sampling_rate,
+    schlick_r0_eta, schlick_weight, sheen_color, smith_ggx1, texture,
 };
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::brdf::params::MAX_MAGNITUDE;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -57,6 +60,61 @@ struct Local {
 #[inline]
 fn opt(t: &Option<Texture>, si: &SurfaceInteraction) -> f32 {
     t.as_ref().map_or(0.0, |t| t.eval_1(si))
+}
+
+impl FromProps for Principled {
+    /// Every parameter a texture (default: Mitsuba's), the optional lobes by `get_flag`, the
+    /// sampling rates (default 1), and `eta` or `specular` (not both).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let base_color = texture(p, "base_color")?;
+        let roughness = texture(p, "roughness")?;
+        let anisotropic = flagged(p, "anisotropic")?;
+        let spec_trans = flagged(p, "spec_trans")?;
+        let sheen = flagged(p, "sheen")?;
+        let sheen_tint = flagged(p, "sheen_tint")?;
+        let flatness = flagged(p, "flatness")?;
+        let spec_tint = flagged(p, "spec_tint")?;
+        let metallic = flagged(p, "metallic")?;
+        let clearcoat = flagged(p, "clearcoat")?;
+        let clearcoat_gloss = texture(p, "clearcoat_gloss")?;
+        let spec_srate = sampling_rate(p, "main_specular_sampling_rate")?;
+        let clearcoat_srate = sampling_rate(p, "clearcoat_sampling_rate")?;
+        let diff_refl_srate = sampling_rate(p, "diffuse_reflectance_sampling_rate")?;
+        if p.has_property("eta") && p.has_property("specular") {
+            return Err(p.err("give either eta or specular, not both (as in Mitsuba)"));
+        }
+        let eta = p.float_opt("eta")?;
+        if let Some(e) = eta
+            && !(e.is_finite() && e > 0.0 && e <= MAX_MAGNITUDE)
+        {
+            return Err(p.prop_err("eta", format!("must be a positive finite index, got {e}")));
+        }
+        let specular = p.float("specular")?;
+        if !(specular.is_finite() && (0.0..12.5).contains(&specular)) {
+            return Err(p.prop_err(
+                "specular",
+                format!("must be in [0, 12.5) (η = 2/(1 − √(0.08·specular)) − 1), got {specular}"),
+            ));
+        }
+        let eta = Principled::eta_from(eta.map(|e| e as f32), Some(specular as f32), spec_trans.is_some());
+        Ok(Principled {
+            base_color,
+            roughness,
+            anisotropic,
+            spec_trans,
+            sheen,
+            sheen_tint,
+            flatness,
+            spec_tint,
+            metallic,
+            clearcoat,
+            clearcoat_gloss,
+            spec_srate,
+            clearcoat_srate,
+            diff_refl_srate,
+            eta,
+        })
+    }
 }
 
 impl Principled {
@@ -250,16 +308,18 @@ impl Principled {
         }
         if pdf.is_finite() { pdf } else { 0.0 }
     }
+}
 
+impl BsdfModel for Principled {
     /// `(f·|cos θo|, pdf)`.
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         (self.eval(si, wi, wo), self.pdf(si, wi, wo))
     }
 
     /// Mitsuba's `sample`: picks a lobe by `u_lobe`, draws its direction from `u`, weight =
     /// eval/pdf of the mixture. `None` where Mitsuba returns zero.
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let cos_i = wi.z;
         if cos_i == 0.0 || !wi.is_finite() {
             return None;
@@ -311,5 +371,18 @@ impl Principled {
             return None;
         }
         Some(BsdfSample { wo, weight, pdf, delta: false, eta })
+    }
+
+    /// Diffuse and glossy reflection (the specular lobe on both sides); glossy transmission
+    /// (refraction) with `spec_trans`.
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        let reflection =
+            BsdfFlags::DIFFUSE_REFLECTION | BsdfFlags::GLOSSY_REFLECTION | BsdfFlags::FRONT_SIDE | BsdfFlags::BACK_SIDE;
+        if self.spec_trans.is_some() {
+            reflection | BsdfFlags::GLOSSY_TRANSMISSION | BsdfFlags::NON_SYMMETRIC
+        } else {
+            reflection
+        }
     }
 }

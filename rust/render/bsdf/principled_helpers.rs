@@ -1,10 +1,47 @@
 //! Helpers of Mitsuba's Disney-style BSDFs (`src/bsdfs/principledhelpers.h`, v3.9.1): the
 //! GTR1 clearcoat distribution, Schlick terms, the macro/micro-surface side test and the
 //! roughness → (α_u, α_v) map. Semantics as there, including the quirks (e.g. `calc_schlick`
-//! switches to the refracted cosine when light leaves the denser side).
+//! switches to the refracted cosine when light leaves the denser side), and the property reads
+//! both plugins share (`get_flag`: an optional lobe exists when its parameter is given and is
+//! not the float 0).
 
+use crate::brdf::params::{MAX_MAGNITUDE, too_large};
+use crate::render::load::props::PluginProps;
+use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
+use crate::scene_file::xml::Value;
 use glam::Vec3;
 use std::f32::consts::{PI, TAU};
+
+/// A parameter texture (default: the harvested one); constants beyond [`MAX_MAGNITUDE`] are
+/// rejected (Mitsuba takes them, and renders NaN).
+pub(crate) fn texture(p: &mut PluginProps, name: &str) -> Result<Texture, SceneError> {
+    let t = p.texture(name)?;
+    if let Texture::Constant(c) = &t
+        && c.max_element() as f64 > MAX_MAGNITUDE
+    {
+        return Err(p.prop_err(name, too_large(c.max_element() as f64)));
+    }
+    Ok(t)
+}
+
+/// The texture of an optional lobe, `None` when absent or given as the float 0 (Mitsuba's
+/// `get_flag`).
+pub(crate) fn flagged(p: &mut PluginProps, name: &str) -> Result<Option<Texture>, SceneError> {
+    let given_as_zero = matches!(p.raw(name), Some(Value::Float(x)) if *x == 0.0);
+    let given = p.has(name);
+    let t = texture(p, name)?;
+    Ok(if given && !given_as_zero { Some(t) } else { None })
+}
+
+/// A `*_sampling_rate` (default 1).
+pub(crate) fn sampling_rate(p: &mut PluginProps, name: &str) -> Result<f32, SceneError> {
+    let v = p.float(name)?;
+    if !(v.is_finite() && (0.0..=MAX_MAGNITUDE).contains(&v)) {
+        return Err(p.prop_err(name, format!("must be a finite sampling rate ≥ 0, got {v}")));
+    }
+    Ok(v as f32)
+}
 
 /// (1 − cos)⁵ with cos clamped to [0, 1].
 #[inline]

@@ -10,16 +10,20 @@
 use super::interface::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
-    calc_schlick, diffuse_lobe, dist_params, mac_mic_compatibility, schlick_r0_eta, schlick_weight, sheen_color,
-    tint_color,
+    calc_schlick, diffuse_lobe, dist_params, flagged, mac_mic_compatibility, sampling_rate, schlick_r0_eta,
+    schlick_weight, sheen_color, texture, tint_color,
 };
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::brdf::params::MAX_MAGNITUDE;
 use crate::brdf::sampling::square_to_cosine_hemisphere;
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
+/// Parameters as Mitsuba reads them; `None` = the lobe's flag is off.
 #[derive(Clone, Debug)]
 pub struct PrincipledThin {
     pub base_color: Texture,
@@ -47,6 +51,35 @@ fn opt(t: &Option<Texture>, si: &SurfaceInteraction) -> f32 {
 #[inline]
 fn mulsign(v: Vec3, c: f32) -> Vec3 {
     if c.is_sign_negative() { -v } else { v }
+}
+
+impl FromProps for PrincipledThin {
+    /// Every parameter a texture (default: Mitsuba's), the optional lobes by `get_flag`, `eta`
+    /// (an unbounded texture, default 1.5) and the sampling rates (default 1).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let eta = p.texture("eta")?;
+        if let Texture::Constant(e) = &eta
+            && !(e.min_element() > 0.0 && e.max_element() as f64 <= MAX_MAGNITUDE)
+        {
+            return Err(p.prop_err("eta", format!("must be a positive finite index, got {e}")));
+        }
+        Ok(PrincipledThin {
+            base_color: texture(p, "base_color")?,
+            roughness: texture(p, "roughness")?,
+            anisotropic: flagged(p, "anisotropic")?,
+            spec_trans: flagged(p, "spec_trans")?,
+            sheen: flagged(p, "sheen")?,
+            sheen_tint: flagged(p, "sheen_tint")?,
+            flatness: flagged(p, "flatness")?,
+            spec_tint: flagged(p, "spec_tint")?,
+            diff_trans: flagged(p, "diff_trans")?,
+            eta,
+            spec_refl_srate: sampling_rate(p, "specular_reflectance_sampling_rate")?,
+            spec_trans_srate: sampling_rate(p, "specular_transmittance_sampling_rate")?,
+            diff_trans_srate: sampling_rate(p, "diffuse_transmittance_sampling_rate")?,
+            diff_refl_srate: sampling_rate(p, "diffuse_reflectance_sampling_rate")?,
+        })
+    }
 }
 
 impl PrincipledThin {
@@ -167,14 +200,16 @@ impl PrincipledThin {
         }
         if pdf.is_finite() { pdf } else { 0.0 }
     }
+}
 
+impl BsdfModel for PrincipledThin {
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         (self.eval(si, wi, wo), self.pdf(si, wi, wo))
     }
 
     /// Mitsuba's `sample` (lobe by `u_lobe`, direction by `u`; weight = eval/pdf).
-    pub fn sample(&self, si: &SurfaceInteraction, wi_in: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi_in: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let cos_i = wi_in.z;
         if cos_i == 0.0 || !wi_in.is_finite() {
             return None;
@@ -218,5 +253,17 @@ impl PrincipledThin {
             return None;
         }
         Some(BsdfSample { wo, weight, pdf, delta: false, eta: 1.0 })
+    }
+
+    /// Diffuse reflection and transmission, glossy reflection, glossy transmission with
+    /// `spec_trans` (no refraction: the surface is thin), on both sides.
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        let flags = BsdfFlags::DIFFUSE_REFLECTION
+            | BsdfFlags::DIFFUSE_TRANSMISSION
+            | BsdfFlags::GLOSSY_REFLECTION
+            | BsdfFlags::FRONT_SIDE
+            | BsdfFlags::BACK_SIDE;
+        if self.spec_trans.is_some() { flags | BsdfFlags::GLOSSY_TRANSMISSION } else { flags }
     }
 }

@@ -6,21 +6,53 @@
 //! ```
 //!
 //! sampled through the microfacet normal (visible normals by default, or D·cos θm).
+//!
+//! The roughness is a number or a texture (`alpha`, or `alpha_u`/`alpha_v`; Mitsuba reads them
+//! with `get_unbounded_texture` and builds the distribution from their `eval_1` at every
+//! hit). Numbers give one distribution, computed once; with a texture the lobe is copied per
+//! hit with the textures' roughness (raised to 1e-4 as in Mitsuba).
 
+use super::conductor_ior::conductor_ior_from_props;
 use super::interface::fresnel_conductor;
-use super::microfacet::{Microfacet, MicrofacetDistribution};
+use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::{check_colour, check_finite};
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
 /// Rough conductor (radiance transport).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct RoughConductor {
-    distr: Microfacet,
-    sample_visible: bool,
-    eta: Vec3,
-    k: Vec3,
-    specular_reflectance: Vec3,
+    /// The lobe at the constant roughness (with textured roughness: at α = 0.1, unused).
+    lobe: Lobe,
+    /// (α_u, α_v) as textures, evaluated per hit; `None`: the roughness is constant.
+    alpha_tex: Option<Box<[Texture; 2]>>,
+}
+
+/// Equal parameters; a textured roughness is never equal (textures have no equality).
+impl PartialEq for RoughConductor {
+    fn eq(&self, other: &Self) -> bool {
+        self.alpha_tex.is_none() && other.alpha_tex.is_none() && self.lobe == other.lobe
+    }
+}
+
+impl FromProps for RoughConductor {
+    /// The microfacet parameters (roughness textures allowed), `material` or `eta`/`k`, and a
+    /// constant `specular_reflectance` (default 1).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let mf = MicrofacetParams::from_props(p, true, true)?;
+        let (eta, k) = conductor_ior_from_props(p)?;
+        let r = p.constant_color("specular_reflectance")?;
+        let b =
+            RoughConductor::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, k, r).map_err(|e| p.err(e))?;
+        Ok(match mf.alpha_tex {
+            None => b,
+            Some((u, v)) => RoughConductor { alpha_tex: Some(Box::new([u, v])), ..b },
+        })
+    }
 }
 
 impl RoughConductor {
@@ -45,31 +77,89 @@ impl RoughConductor {
         check_finite("roughconductor", "eta", eta)?;
         check_finite("roughconductor", "k", k)?;
         check_colour("roughconductor", "specular_reflectance", specular_reflectance)?;
-        Ok(RoughConductor {
-            distr: Microfacet::new(distribution, alpha_u, alpha_v),
-            sample_visible,
-            eta,
-            k,
-            specular_reflectance,
-        })
+        let distr = Microfacet::new(distribution, alpha_u, alpha_v);
+        Ok(RoughConductor { lobe: Lobe { distr, sample_visible, eta, k, specular_reflectance }, alpha_tex: None })
     }
 
+    /// The microfacet distribution at the constant roughness (after Mitsuba's 1e-4 clamp).
+    pub fn distribution(&self) -> Microfacet {
+        self.lobe.distr
+    }
+
+    /// Mitsuba's `eval` at the constant roughness: f·cos θo per channel; zero unless both
+    /// directions are strictly above the surface. (A textured roughness needs the hit:
+    /// [`BsdfModel::eval_pdf`].)
+    #[inline]
+    pub fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
+        self.lobe.eval(wi, wo)
+    }
+
+    /// Mitsuba's `pdf` at the constant roughness (solid angle, of [`Self::sample`]); zero
+    /// below the surface and where the micro- and macro-surface disagree on the side.
+    #[inline]
+    pub fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        self.lobe.pdf(wi, wo)
+    }
+
+    /// Mitsuba's `sample` at the constant roughness: draws a microfacet normal m (`u`;
+    /// `u_lobe` is unused) and reflects `wi` about it. Weight F(wi·m)·G1(wo, m) (visible
+    /// normals) or F·G1(wi, m)·G1(wo, m)·(wi·m)/(cos θi cos θm) (plain), times
+    /// `specular_reflectance`. `None` for `wi` below or on the surface and for draws that
+    /// Mitsuba would return with zero weight or zero pdf (wo below the surface, m facing away
+    /// from wi).
+    #[inline]
+    pub fn sample(&self, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.lobe.sample(wi, u_lobe, u)
+    }
+
+    /// `f` applied to the lobe at the hit's roughness.
+    #[inline]
+    fn at<R>(&self, si: &SurfaceInteraction, f: impl FnOnce(&Lobe) -> R) -> R {
+        match &self.alpha_tex {
+            None => f(&self.lobe),
+            Some(t) => f(&self.lobe.with_alpha(t[0].eval_1(si), t[1].eval_1(si))),
+        }
+    }
+}
+
+impl BsdfModel for RoughConductor {
+    #[inline]
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        self.at(si, |l| (l.eval(wi, wo), l.pdf(wi, wo)))
+    }
+
+    #[inline]
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.at(si, |l| l.sample(wi, u_lobe, u))
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::GLOSSY_REFLECTION | BsdfFlags::FRONT_SIDE
+    }
+}
+
+/// The lobe at one roughness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lobe {
+    distr: Microfacet,
+    sample_visible: bool,
+    eta: Vec3,
+    k: Vec3,
+    specular_reflectance: Vec3,
+}
+
+impl Lobe {
     /// The same lobe with roughness (α_u, α_v) from a texture: raised to 1e-4 as Mitsuba's
     /// `MicrofacetDistribution` does (NaN becomes 1e-4, negative values too).
     #[inline]
-    pub fn with_alpha(&self, alpha_u: f32, alpha_v: f32) -> Self {
+    fn with_alpha(&self, alpha_u: f32, alpha_v: f32) -> Self {
         Self { distr: Microfacet::new(self.distr.kind, alpha_u, alpha_v), ..*self }
     }
 
-    /// The microfacet distribution (roughness after Mitsuba's 1e-4 clamp).
-    pub fn distribution(&self) -> Microfacet {
-        self.distr
-    }
-
-    /// Mitsuba's `eval`: f·cos θo per channel; zero unless both directions are strictly above
-    /// the surface.
+    /// See [`RoughConductor::eval`].
     #[inline]
-    pub fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
+    fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return Vec3::ZERO;
         }
@@ -82,10 +172,9 @@ impl RoughConductor {
         (f * self.specular_reflectance) * (d * g / (4.0 * wi.z))
     }
 
-    /// Mitsuba's `pdf` (solid angle, of [`Self::sample`]); zero below the surface and where
-    /// the micro- and macro-surface disagree on the side.
+    /// See [`RoughConductor::pdf`].
     #[inline]
-    pub fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return 0.0;
         }
@@ -105,13 +194,9 @@ impl RoughConductor {
         p.min(f32::MAX)
     }
 
-    /// Mitsuba's `sample`: draws a microfacet normal m (`u`; `u_lobe` is unused) and
-    /// reflects `wi` about it. Weight F(wi·m)·G1(wo, m) (visible normals) or
-    /// F·G1(wi, m)·G1(wo, m)·(wi·m)/(cos θi cos θm) (plain), times `specular_reflectance`.
-    /// `None` for `wi` below or on the surface and for draws that Mitsuba would return with
-    /// zero weight or zero pdf (wo below the surface, m facing away from wi).
+    /// See [`RoughConductor::sample`].
     #[inline]
-    pub fn sample(&self, wi: Vec3, _u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, wi: Vec3, _u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if wi.z.is_nan() || wi.z <= 0.0 {
             return None;
         }

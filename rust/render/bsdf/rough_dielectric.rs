@@ -13,15 +13,100 @@
 //! from the visible normals of wi mirrored to the upper side (or from D·cos θm with Walter's
 //! roughness scale 1.2 − 0.2·√|cos θi| when `sample_visible` is false), then reflects with
 //! probability F(wi·m), else refracts.
+//!
+//! The roughness is a number or a texture, as in `roughconductor`
+//! ([`super::rough_conductor`]): numbers give one distribution, computed once; with a texture
+//! the lobe is copied per hit with the textures' roughness.
 
 use super::interface::fresnel_dielectric;
-use super::microfacet::{Microfacet, MicrofacetDistribution};
+use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::check_colour;
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
+use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Rough dielectric (radiance transport).
+#[derive(Clone, Debug)]
 pub struct RoughDielectric {
+    /// The lobe at the constant roughness (with textured roughness: at α = 0.1, unused).
+    lobe: Lobe,
+    /// (α_u, α_v) as textures, evaluated per hit; `None`: the roughness is constant.
+    alpha_tex: Option<Box<[Texture; 2]>>,
+}
+
+impl FromProps for RoughDielectric {
+    /// The microfacet parameters (roughness textures allowed), `int_ior`/`ext_ior` (bk7 over
+    /// air; they must differ) and constant `specular_*` weights (default 1).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let mf = MicrofacetParams::from_props(p, true, true)?;
+        let eta = p.relative_ior()?;
+        let r = p.constant_color("specular_reflectance")?;
+        let t = p.constant_color("specular_transmittance")?;
+        let b = RoughDielectric::new(mf.kind, mf.alpha_u, mf.alpha_v, mf.sample_visible, eta, r, t)
+            .map_err(|e| p.err(e))?;
+        Ok(RoughDielectric { alpha_tex: mf.alpha_tex.map(|(u, v)| Box::new([u, v])), ..b })
+    }
+}
+
+impl RoughDielectric {
+    /// α ≥ 0 (raised to 1e-4), `eta` = int_ior/ext_ior ≠ 1. Mitsuba's defaults: Beckmann,
+    /// α = 0.1, visible normals, bk7 over air.
+    pub fn new(
+        kind: MicrofacetDistribution,
+        alpha_u: f32,
+        alpha_v: f32,
+        sample_visible: bool,
+        eta: f32,
+        specular_reflectance: Vec3,
+        specular_transmittance: Vec3,
+    ) -> Result<Self, String> {
+        let lobe =
+            Lobe::new(kind, alpha_u, alpha_v, sample_visible, eta, specular_reflectance, specular_transmittance)?;
+        Ok(RoughDielectric { lobe, alpha_tex: None })
+    }
+
+    /// Relative index of refraction η = int_ior / ext_ior.
+    pub fn eta(&self) -> f32 {
+        self.lobe.eta
+    }
+
+    /// `f` applied to the lobe at the hit's roughness.
+    #[inline]
+    fn at<R>(&self, si: &SurfaceInteraction, f: impl FnOnce(&Lobe) -> R) -> R {
+        match &self.alpha_tex {
+            None => f(&self.lobe),
+            Some(t) => f(&self.lobe.with_alpha(t[0].eval_1(si), t[1].eval_1(si))),
+        }
+    }
+}
+
+impl BsdfModel for RoughDielectric {
+    #[inline]
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        self.at(si, |l| (l.eval(wi, wo), l.pdf(wi, wo)))
+    }
+
+    #[inline]
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        self.at(si, |l| l.sample(wi, u_lobe, u))
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::GLOSSY_REFLECTION
+            | BsdfFlags::GLOSSY_TRANSMISSION
+            | BsdfFlags::NON_SYMMETRIC
+            | BsdfFlags::FRONT_SIDE
+            | BsdfFlags::BACK_SIDE
+    }
+}
+
+/// The lobe at one roughness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Lobe {
     distr: Microfacet,
     sample_visible: bool,
     eta: f32,
@@ -30,10 +115,9 @@ pub struct RoughDielectric {
     specular_transmittance: Vec3,
 }
 
-impl RoughDielectric {
-    /// α ≥ 0 (raised to 1e-4), `eta` = int_ior/ext_ior ≠ 1. Mitsuba's defaults: Beckmann,
-    /// α = 0.1, visible normals, bk7 over air.
-    pub fn new(
+impl Lobe {
+    /// See [`RoughDielectric::new`].
+    fn new(
         kind: MicrofacetDistribution,
         alpha_u: f32,
         alpha_v: f32,
@@ -54,7 +138,7 @@ impl RoughDielectric {
         }
         check_colour("roughdielectric", "specular_reflectance", specular_reflectance)?;
         check_colour("roughdielectric", "specular_transmittance", specular_transmittance)?;
-        Ok(RoughDielectric {
+        Ok(Lobe {
             distr: Microfacet::new(kind, alpha_u, alpha_v),
             sample_visible,
             eta,
@@ -67,12 +151,8 @@ impl RoughDielectric {
     /// The same lobe with roughness (α_u, α_v) from a texture: raised to 1e-4 as Mitsuba's
     /// `MicrofacetDistribution` does (NaN becomes 1e-4, negative values too).
     #[inline]
-    pub fn with_alpha(&self, alpha_u: f32, alpha_v: f32) -> Self {
+    fn with_alpha(&self, alpha_u: f32, alpha_v: f32) -> Self {
         Self { distr: Microfacet::new(self.distr.kind, alpha_u, alpha_v), ..*self }
-    }
-
-    pub fn eta(&self) -> f32 {
-        self.eta
     }
 
     /// The distribution used for sampling and the pdf: Walter's widened lobe without visible
@@ -98,7 +178,7 @@ impl RoughDielectric {
 
     /// Mitsuba's `eval` (radiance): f·|cos θo|.
     #[inline]
-    pub fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
+    fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
         if wi.z == 0.0 || !wi.is_finite() || !wo.is_finite() {
             return Vec3::ZERO;
         }
@@ -120,7 +200,7 @@ impl RoughDielectric {
 
     /// Mitsuba's `pdf` of [`Self::sample`] (solid angle).
     #[inline]
-    pub fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         if wi.z == 0.0 || !wi.is_finite() || !wo.is_finite() {
             return 0.0;
         }
@@ -143,15 +223,9 @@ impl RoughDielectric {
         if p.is_finite() { p } else { 0.0 }
     }
 
-    /// `(f·|cos θo|, pdf)`.
-    #[inline]
-    pub fn eval_pdf(&self, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
-        (self.eval(wi, wo), self.pdf(wi, wo))
-    }
-
     /// Mitsuba's `sample` (radiance). `None` where Mitsuba returns a zero weight or pdf.
     #[inline]
-    pub fn sample(&self, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if wi.z == 0.0 || !wi.is_finite() {
             return None;
         }

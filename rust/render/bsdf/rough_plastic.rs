@@ -15,12 +15,14 @@
 //! (Mitsuba evaluates both lobes for either choice). One-sided.
 
 use super::interface::fresnel_dielectric;
-use super::microfacet::{Microfacet, MicrofacetDistribution};
+use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_reflectance, lerp_table};
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -37,6 +39,22 @@ pub struct RoughPlastic {
     nonlinear: bool,
     external_transmittance: Box<[f32; TABLE_RES]>,
     internal_reflectance: f32,
+}
+
+impl FromProps for RoughPlastic {
+    /// The microfacet parameters (isotropic, numbers only, as Mitsuba's
+    /// `MicrofacetDistribution(props)`), `int_ior`/`ext_ior` (polypropylene over air; they must
+    /// differ), `diffuse_reflectance` (a texture, default 0.5), a constant
+    /// `specular_reflectance` if given, `nonlinear` (default false).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let mf = MicrofacetParams::from_props(p, false, false)?;
+        let eta = p.relative_ior()?;
+        let diffuse = p.texture("diffuse_reflectance")?;
+        let specular = p.optional_constant_color("specular_reflectance")?;
+        let nonlinear = p.boolean("nonlinear")?;
+        RoughPlastic::new(mf.kind, mf.alpha_u, mf.sample_visible, eta, diffuse, specular, nonlinear)
+            .map_err(|e| p.err(e))
+    }
 }
 
 impl RoughPlastic {
@@ -95,10 +113,12 @@ impl RoughPlastic {
         let pd = t_i * (1.0 - w);
         ps / (ps + pd)
     }
+}
 
+impl BsdfModel for RoughPlastic {
     /// `(f·cos θo, pdf)`; zero unless both directions are above the surface.
     #[inline]
-    pub fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if !(wi.z > 0.0 && wo.z > 0.0) {
             return (Vec3::ZERO, 0.0);
         }
@@ -132,7 +152,7 @@ impl RoughPlastic {
     /// Lobe by `u_lobe`, direction by `u` (microfacet reflection or cosine-weighted); weight =
     /// eval/pdf of the full mixture. `None` where Mitsuba's weight is zero (pdf 0).
     #[inline]
-    pub fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         if !(wi.z > 0.0) {
             return None;
         }
@@ -148,5 +168,10 @@ impl RoughPlastic {
             return None;
         }
         Some(BsdfSample { wo, weight: f / pdf, pdf, delta: false, eta: 1.0 })
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::GLOSSY_REFLECTION | BsdfFlags::DIFFUSE_REFLECTION | BsdfFlags::FRONT_SIDE
     }
 }

@@ -2,18 +2,34 @@
 //! (`crate::brdf::tabulated`, `docs/microgeometry.md#the-tabulated-ground-truth-brdf`), such as
 //! the simulated microsurface `matte microgeometry --table` writes. Reflectance per RGB channel
 //! (the table is non-linear in ρ), one-sided like the matte models, cosine-weighted sampling.
+//! Properties: `filename` (required) and `reflectance` (a texture, default 0.5).
 
-use super::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::DiffuseBrdf;
 use crate::brdf::tabulated::BrdfTable;
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 
+/// `tabulated_brdf`: the table and the reflectance ρ.
 #[derive(Clone, Debug)]
 pub struct TabulatedBrdf {
     pub table: Arc<BrdfTable>,
     pub reflectance: Texture,
+}
+
+impl FromProps for TabulatedBrdf {
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let reflectance = p.texture("reflectance")?;
+        let filename = p.string_opt("filename")?.ok_or_else(|| p.err("missing property \"filename\""))?;
+        let path = p.resolve(&filename);
+        let table =
+            BrdfTable::read(&path).map_err(|e| p.prop_err("filename", crate::render::load::values::one_line(&e)))?;
+        Ok(TabulatedBrdf { table: Arc::new(table), reflectance })
+    }
 }
 
 /// `(f·cos θo, pdf)`.
@@ -35,4 +51,21 @@ pub fn sample(table: &BrdfTable, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSam
         return None;
     }
     Some(BsdfSample { wo: s.wo, weight: Vec3::from_array(s.weight), pdf: s.pdf, delta: false, eta: 1.0 })
+}
+
+impl BsdfModel for TabulatedBrdf {
+    #[inline]
+    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+        eval_pdf(&self.table, self.reflectance.eval(si), wi, wo)
+    }
+
+    #[inline]
+    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, _u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        sample(&self.table, self.reflectance.eval(si), wi, u)
+    }
+
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DIFFUSE_REFLECTION | BsdfFlags::FRONT_SIDE
+    }
 }

@@ -5,9 +5,13 @@
 
 use super::interface::fresnel_dielectric;
 use super::parameter_checks::check_colour;
-use super::sample::BsdfSample;
+use super::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::render::load::props::{FromProps, PluginProps};
+use crate::render::shape::SurfaceInteraction;
+use crate::scene_file::SceneError;
 use glam::{Vec2, Vec3};
 
+/// Mitsuba's `thindielectric`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ThinDielectric {
     eta: f32,
@@ -52,5 +56,34 @@ impl ThinDielectric {
         } else {
             Some(BsdfSample { wo: -wi, weight: self.specular_transmittance, pdf: 1.0 - r, delta: true, eta: 1.0 })
         }
+    }
+}
+
+impl FromProps for ThinDielectric {
+    /// `int_ior`, `ext_ior` (numbers or names; bk7 over air) and constant `specular_*`
+    /// weights (default 1).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let eta = p.ior("int_ior")? / p.ior("ext_ior")?;
+        let r = p.constant_color("specular_reflectance")?;
+        let t = p.constant_color("specular_transmittance")?;
+        ThinDielectric::new(eta, r, t).map_err(|e| p.err(e))
+    }
+}
+
+impl BsdfModel for ThinDielectric {
+    #[inline]
+    fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
+        (Vec3::ZERO, 0.0)
+    }
+
+    #[inline]
+    fn sample(&self, _si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        ThinDielectric::sample(self, wi, u_lobe, u)
+    }
+
+    /// The pass-through is Mitsuba's null event (no refraction).
+    #[inline]
+    fn flags(&self) -> BsdfFlags {
+        BsdfFlags::DELTA_REFLECTION | BsdfFlags::NULL | BsdfFlags::FRONT_SIDE | BsdfFlags::BACK_SIDE
     }
 }

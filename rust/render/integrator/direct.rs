@@ -12,7 +12,7 @@
 
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
-use crate::render::bsdf::BsdfSample;
+use crate::render::bsdf::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::render::geometry::{Ray, ray};
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
@@ -133,7 +133,7 @@ impl DirectIntegrator {
         let bsdf = scene.bsdf(&si);
         // The emitter samples are drawn whether or not the BSDF is smooth, as Mitsuba's JIT
         // variants draw them (the sample order matters with `ldsampler`; path.rs).
-        let smooth = bsdf.has_smooth();
+        let smooth = bsdf.flags().has(BsdfFlags::SMOOTH);
         for _ in 0..self.emitter_samples {
             let u = sampler.next_2d();
             if !smooth {

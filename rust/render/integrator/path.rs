@@ -11,6 +11,7 @@
 
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
+use crate::render::bsdf::{BsdfFlags, BsdfModel};
 use crate::render::geometry::{Ray, ray};
 use crate::render::sampler::Sampler;
 use crate::render::scene::Scene;
@@ -120,7 +121,7 @@ impl SampleIntegrator for PathIntegrator {
         // dimensions are not independent, which dimension feeds which choice changes the
         // expectation (docs/renderer-semantics.md §5).
         let u_emitter = sampler.next_2d();
-        if bsdf.has_smooth()
+        if bsdf.flags().has(BsdfFlags::SMOOTH)
             && let Some(es) = scene.sample_emitter_direction(&si, u_emitter)
         {
             let (f, pdf_b) = bsdf.eval_pdf(&si, si.wi, si.to_local(es.d));

@@ -19,6 +19,7 @@
 //! BSDFs are evaluated as for radiance (matte has no importance-transport mode), so the loader
 //! refuses scenes whose BSDFs refract (those differ by η² between the two modes).
 
+use crate::render::bsdf::BsdfModel;
 use crate::render::camera::Camera;
 use crate::render::film::{Film, Image};
 use crate::render::geometry::ray;

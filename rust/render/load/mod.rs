@@ -3,9 +3,7 @@
 //! defaults; whatever is left unread is an error naming file, line and property (Mitsuba
 //! does the same: `unused_properties = Error`).
 
-mod bsdf;
-mod bsdf_params;
-mod bsdf_principled;
+pub(crate) mod bsdf;
 mod emitter;
 mod instance;
 mod integrator;
@@ -13,11 +11,12 @@ mod integrator;
 #[rustfmt::skip]
 pub mod mitsuba_plugins;
 pub mod no_effect;
+pub(crate) mod props;
 pub mod scope;
 mod sensor;
 mod shape;
 mod texture;
-mod values;
+pub(crate) mod values;
 
 use crate::render::camera::Camera;
 use crate::render::emitter::Emitter;
@@ -265,7 +264,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
 /// directional, area lights on analytic shapes), BSDFs that refract (matte evaluates BSDFs
 /// for radiance only; importance transport differs by η² there).
 fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObject) -> Result<(), SceneError> {
-    use crate::render::bsdf::Bsdf;
+    use crate::render::bsdf::{BsdfFlags, BsdfModel};
     if !matches!(sensor.camera, Camera::Perspective(_)) {
         return Err(err(obj, "matte's ptracer needs a perspective sensor (not orthographic or thinlens)"));
     }
@@ -275,20 +274,8 @@ fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObjec
     if b.emitters.iter().any(|e| !e.can_sample_ray(&b.shapes)) {
         return Err(err(obj, "matte's ptracer supports area (on meshes), point, spot and projector emitters only"));
     }
-    fn refracts(bsdf: &Bsdf) -> bool {
-        match bsdf {
-            Bsdf::Dielectric(_) | Bsdf::RoughDielectric(_) => true,
-            Bsdf::TexturedRoughness(t) => matches!(t.lobe, crate::render::bsdf::RoughLobe::Dielectric(_)),
-            Bsdf::Principled(p) => p.spec_trans.is_some(),
-            Bsdf::TwoSided { front, back } => refracts(front) || refracts(back),
-            Bsdf::NormalMap(n) => refracts(&n.nested),
-            Bsdf::BumpMap(m) => refracts(&m.nested),
-            Bsdf::Mask(m) => refracts(&m.nested),
-            Bsdf::Blend(bl) => refracts(&bl.first) || refracts(&bl.second),
-            _ => false,
-        }
-    }
-    if b.bsdfs.iter().any(refracts) {
+    // Refraction is Mitsuba's `NonSymmetric` flag.
+    if b.bsdfs.iter().any(|bsdf| bsdf.flags().has(BsdfFlags::NON_SYMMETRIC)) {
         return Err(err(obj, "matte's ptracer does not support refracting BSDFs (dielectrics, principled spec_trans)"));
     }
     Ok(())

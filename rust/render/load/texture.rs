@@ -40,13 +40,6 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     }
 }
 
-/// The parameter `name` of `obj` as a texture that a scalar BSDF parameter (such as matte's σ)
-/// reads with Mitsuba's `eval_1` at the hit ([`Texture::eval_1`], which also gives Mitsuba
-/// 3.9.1's `checkerboard` its swapped colours).
-pub fn get_scalar(b: &Builder, obj: &SceneObject, name: &str, default: Vec3) -> Result<Texture, SceneError> {
-    get(b, obj, name, ColorUse::Unbounded, default)
-}
-
 /// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): `color0` and `color1` (colours,
 /// defaults 0.4 and 0.2) and `to_uv`; the lookup is [`Checkerboard`]'s. Textured colours are
 /// not supported.
