@@ -1,18 +1,13 @@
 /*
  * matte's Mitsuba 3 BSDF: one class for every matte model, whose math is the Rust kernels
  * (rust/brdf/) called through the cxx bridge (rust/ffi/). Mitsuba loads the plugin under the
- * name of the `<bsdf type="...">` (lambert, oren_nayar, eon, wolff, ginneken,
- * roughdiffuse); that name selects the model.
+ * name of the `<bsdf type="...">` (one per registered model, `matte types`); that name selects
+ * the model.
  *
- * Parameters (docs/models.md, README "Models and parameters"; all optional):
- *
- *   reflectance  spectrum or texture    albedo parameter ρ (default 0.5), evaluated per channel
- *   oren_nayar:  sigma (float, radians, 0.3), model ("qualitative" | "full")
- *   eon:         roughness (float in [0, 1], 0.3)
- *   wolff:       int_ior, ext_ior (float or a Mitsuba IOR name, 1.4 / 1.0),
- *                normalization ("physical" | "normal" | "raw")
- *   ginneken:    roughness (float > 0, rms slope, 0.3), shadowing ("vginneken" | "height_correlated")
- *   roughdiffuse: alpha (float, RMS slope, 0.2; σ = alpha/√2), use_fast_approx (boolean, false)
+ * Parameters (all optional): `reflectance` (spectrum or texture, default 0.5, evaluated per
+ * channel) and the model's own, as its registry entry declares them (rust/brdf/<model>.rs;
+ * `matte types --markdown`, the README's "Models and parameters"). The Rust parser validates
+ * names and values, so this class knows no model's parameters.
  *
  * Every numeric parameter may also be a texture (`<texture type="bitmap" name="sigma">`):
  * evaluated with `eval_1` at the interaction, its kernel constants computed per lane inside
@@ -64,6 +59,8 @@ public:
         std::vector<std::string> names;
         for (const auto &p : props)
             names.emplace_back(p.name());
+        // The `<texture name="...">` children, in the order given.
+        std::vector<std::pair<std::string, ref<Texture>>> textured;
         for (const std::string &name : names) {
             if (name == "reflectance")
                 continue;
@@ -75,7 +72,7 @@ public:
                                                          rust::Str(name.data(), name.size())))
                         Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this "
                               "model, so it cannot be a texture", m_kind, name);
-                    m_textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
+                    textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
                     break;
                 case Properties::Type::Float:
                 case Properties::Type::Integer:
@@ -94,7 +91,7 @@ public:
         // A textured parameter stands for a number when the model is built (its mean clamped
         // into the per-lane range, so any texture is accepted: its values are clamped per lane).
         std::vector<matte::ffi::Param> placeholders;
-        for (auto &[name, texture] : m_textured)
+        for (auto &[name, texture] : textured)
             placeholders.push_back(number_param(name, matte::ffi::textured_placeholder(
                 rust::Str(m_kind.data(), m_kind.size()), rust::Str(name.data(), name.size()),
                 scalar_value(texture->mean()),
@@ -105,20 +102,13 @@ public:
         // The numeric parameters with their effective values (defaults filled in), as the
         // variant's Float: fixed from here on (traverse hands out references to them).
         for (const auto &p : (*m_model)->numeric_parameters()) {
-            m_names.emplace_back(std::string(p.name));
-            m_values.push_back(Float((ScalarFloat) p.number));
-            m_textures.emplace_back();
+            NumericParameter n{ std::string(p.name), Float((ScalarFloat) p.number), nullptr };
+            for (auto &[name, texture] : textured)
+                if (name == n.name)
+                    n.texture = texture;
+            m_numeric.push_back(std::move(n));
         }
-        for (auto &[name, texture] : m_textured) {
-            size_t k = 0;
-            while (k < m_names.size() && m_names[k] != name)
-                ++k;
-            if (k < m_textures.size())
-                m_textures[k] = texture;
-        }
-        m_any_textured = !m_textured.empty();
-        m_texture_0 = m_textures.size() > 0 ? m_textures[0] : nullptr;
-        m_texture_1 = m_textures.size() > 1 ? m_textures[1] : nullptr;
+        m_any_textured = !textured.empty();
         update_traced_kernel();
         m_flags = BSDFFlags::DiffuseReflection | BSDFFlags::FrontSide;
         m_components.push_back(m_flags);
@@ -126,30 +116,30 @@ public:
 
     void traverse(TraversalCallback *cb) override {
         cb->put("reflectance", m_reflectance, ParamFlags::Differentiable);
-        for (size_t k = 0; k < m_values.size(); ++k) {
-            if (m_textures[k])
-                cb->put(m_names[k], m_textures[k], ParamFlags::Differentiable);
+        for (NumericParameter &n : m_numeric) {
+            if (n.texture)
+                cb->put(n.name, n.texture, ParamFlags::Differentiable);
             else
-                cb->put(m_names[k], m_values[k], ParamFlags::Differentiable);
+                cb->put(n.name, n.value, ParamFlags::Differentiable);
         }
     }
 
     void parameters_changed(const std::vector<std::string> & /*keys*/ = {}) override {
         // Numeric parameters may have been edited through mi.traverse(): rebuild the model
         // with the new values (validated again by the kernels), then the traced constants.
-        for (size_t k = 0; k < m_values.size(); ++k) {
-            if (m_textures[k])
+        for (const NumericParameter &n : m_numeric) {
+            if (n.texture)
                 continue;  // evaluated per call
-            double value = scalar_value(m_values[k]);
+            double value = scalar_value(n.value);
             bool found = false;
             for (auto &p : m_params)
-                if (std::string(p.name) == m_names[k]) {
+                if (std::string(p.name) == n.name) {
                     p.is_number = true;
                     p.number = value;
                     found = true;
                 }
             if (!found)
-                m_params.push_back(number_param(m_names[k], value));
+                m_params.push_back(number_param(n.name, value));
         }
         build_model();
         update_traced_kernel();
@@ -172,16 +162,9 @@ public:
         if constexpr (!dr::is_jit_v<Float>) {
             matte::ffi::Channels weight{};
             matte::ffi::Vec3f wo{ 0.f, 0.f, 1.f };
-            float pdf;
-            if (m_any_textured) {
-                auto params = lane_values(si, active);
-                pdf = (*m_model)->sample_lane(rust::Slice<const float>(params.data(), params.size()),
-                                              to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
-                                              to_channels(value), wo, weight);
-            } else {
-                pdf = (*m_model)->sample(to_ffi(si.wi), (float) sample2.x(), (float) sample2.y(),
-                                         to_channels(value), wo, weight);
-            }
+            auto params = lane_values(si, active);
+            float pdf = (*m_model)->sample(rust::Slice<const float>(params.data(), params.size()), to_ffi(si.wi),
+                                           (float) sample2.x(), (float) sample2.y(), to_channels(value), wo, weight);
             bs.wo = Vector3f(wo.x, wo.y, wo.z);
             bs.pdf = pdf;
             for (size_t c = 0; c < Channels; ++c)
@@ -256,9 +239,9 @@ public:
         for (const auto &p : (*m_model)->describe_parameters()) {
             oss << "  " << std::string(p.name) << " = ";
             const Texture *tex = nullptr;
-            for (size_t k = 0; k < m_names.size(); ++k)
-                if (m_names[k] == std::string(p.name) && m_textures[k])
-                    tex = m_textures[k].get();
+            for (const NumericParameter &n : m_numeric)
+                if (n.name == std::string(p.name) && n.texture)
+                    tex = n.texture.get();
             if (tex)
                 oss << string::indent(tex);
             else if (p.is_number)
@@ -307,32 +290,26 @@ private:
     /// recompile a kernel.
     void update_traced_kernel() {
         if constexpr (dr::is_jit_v<Float>) {
-            m_tables.clear();
             // Textured parameters read the per-lane tables (van Ginneken's stacks over m),
             // uploaded once: they do not depend on the parameter values.
-            if (m_any_textured) {
-                if (m_lane_tables.empty())
-                    for (size_t k = 0; k < (*m_model)->lane_table_count(); ++k) {
-                        rust::Slice<const float> t = (*m_model)->lane_table(k);
-                        m_lane_tables.push_back(dr::load<Float>(t.data(), t.size()));
-                    }
-                m_tables = m_lane_tables;
-            } else
-                for (size_t k = 0; k < (*m_model)->table_count(); ++k) {
-                    rust::Slice<const float> t = (*m_model)->table(k);
+            if (!m_any_textured || m_tables.empty()) {
+                m_tables.clear();
+                for (size_t k = 0; k < (*m_model)->table_count(m_any_textured); ++k) {
+                    rust::Slice<const float> t = (*m_model)->table(k, m_any_textured);
                     m_tables.push_back(dr::load<Float>(t.data(), t.size()));
                 }
+            }
             bool differentiable = false;
-            for (Float &v : m_values) {
-                dr::make_opaque(v);
-                differentiable |= dr::grad_enabled(v);
+            for (NumericParameter &n : m_numeric) {
+                dr::make_opaque(n.value);
+                differentiable |= dr::grad_enabled(n.value);
             }
             matte::ArenaT<Float> ar;
             std::vector<uint32_t> params;
-            for (const Float &v : m_values)
-                params.push_back(ar.push(v));
+            for (const NumericParameter &n : m_numeric)
+                params.push_back(ar.push(n.value));
             rust::Vec<uint32_t> coef = (*m_model)->traced_coefficients(
-                ar, rust::Slice<const uint32_t>(params.data(), params.size()), differentiable);
+                ar, rust::Slice<const uint32_t>(params.data(), params.size()), false, differentiable);
             m_coefficients.clear();
             for (uint32_t id : coef)
                 m_coefficients.push_back(ar.get(id));
@@ -380,12 +357,14 @@ private:
         return rust::Slice<uint32_t>(c.data(), c.size());
     }
 
-    /// Scalar variants: the numeric parameters' values at this hit (textures evaluated).
+    /// Scalar variants: the numeric parameters' values at this hit (textures evaluated), or
+    /// none when no parameter is textured (the model's constants are used).
     std::vector<float> lane_values(const SurfaceInteraction3f &si, Mask active) const {
         std::vector<float> out;
         if constexpr (!dr::is_jit_v<Float>) {
-            for (size_t k = 0; k < m_values.size(); ++k)
-                out.push_back(m_textures[k] ? (float) m_textures[k]->eval_1(si, active) : (float) m_values[k]);
+            if (m_any_textured)
+                for (const NumericParameter &n : m_numeric)
+                    out.push_back(n.texture ? (float) n.texture->eval_1(si, active) : (float) n.value);
         }
         return out;
     }
@@ -398,10 +377,10 @@ private:
         if (!m_any_textured)
             return ids(ar, m_coefficients);
         std::vector<uint32_t> params;
-        for (size_t k = 0; k < m_values.size(); ++k)
-            params.push_back(ar.push(m_textures[k] ? m_textures[k]->eval_1(si, active) : m_values[k]));
-        rust::Vec<uint32_t> coef =
-            (*m_model)->traced_lane_coefficients(ar, rust::Slice<const uint32_t>(params.data(), params.size()));
+        for (const NumericParameter &n : m_numeric)
+            params.push_back(ar.push(n.texture ? n.texture->eval_1(si, active) : n.value));
+        rust::Vec<uint32_t> coef = (*m_model)->traced_coefficients(
+            ar, rust::Slice<const uint32_t>(params.data(), params.size()), true, true);
         return std::vector<uint32_t>(coef.begin(), coef.end());
     }
 
@@ -418,13 +397,9 @@ private:
         Float pdf;
         if constexpr (!dr::is_jit_v<Float>) {
             matte::ffi::Channels f{};
-            if (m_any_textured) {
-                auto params = lane_values(si, active);
-                pdf = (*m_model)->eval_pdf_lane(rust::Slice<const float>(params.data(), params.size()),
-                                                to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
-            } else {
-                pdf = (*m_model)->eval_pdf(to_ffi(si.wi), to_ffi(wo), to_channels(value), f);
-            }
+            auto params = lane_values(si, active);
+            pdf = (*m_model)->eval_pdf(rust::Slice<const float>(params.data(), params.size()), to_ffi(si.wi),
+                                       to_ffi(wo), to_channels(value), f);
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = f.v[c] * cos_theta_o;
         } else {
@@ -446,24 +421,32 @@ private:
     std::string m_kind;
     ref<Texture> m_reflectance;
     std::vector<matte::ffi::Param> m_params;
-    /// The numeric parameters (names and values, in the model's order), traversable.
-    std::vector<std::string> m_names;
-    std::vector<Float> m_values;
-    /// Per numeric parameter: its texture when one was given (else null), and whether any is.
-    std::vector<ref<Texture>> m_textures;
+
+    /// One numeric parameter, in the model's order: its name, its value (traversed when no
+    /// texture gives it) and its texture, if one was given.
+    struct NumericParameter {
+        std::string name;
+        Float value;
+        ref<Texture> texture;
+
+        // Dr.Jit's traversal of the JIT state (MI_TRAVERSE_CB, frozen functions): the texture.
+        void traverse_1_cb_ro(void *payload, drjit::detail::traverse_callback_ro fn) const {
+            drjit::traverse_1_fn_ro(texture, payload, fn);
+        }
+        void traverse_1_cb_rw(void *payload, drjit::detail::traverse_callback_rw fn) {
+            drjit::traverse_1_fn_rw(texture, payload, fn);
+        }
+    };
+    std::vector<NumericParameter> m_numeric;
+    /// Whether any numeric parameter is textured (then every evaluation is per lane).
     bool m_any_textured = false;
-    /// The `<texture name="...">` children, in the order given (matched to names above).
-    std::vector<std::pair<std::string, ref<Texture>>> m_textured;
-    /// The same textures as named members, for MI_TRAVERSE_CB (at most two numeric parameters).
-    ref<Texture> m_texture_0, m_texture_1;
     /// JIT variants: the kernel's constants and tables (`update_traced_kernel`).
     std::vector<Float> m_coefficients;
     std::vector<Float> m_tables;
-    std::vector<Float> m_lane_tables;
     /// Always set after construction (optional only because rust::Box has no empty state).
     std::optional<rust::Box<matte::ffi::Model>> m_model;
 
-    MI_TRAVERSE_CB(Base, m_reflectance, m_texture_0, m_texture_1)
+    MI_TRAVERSE_CB(Base, m_reflectance, m_numeric)
 };
 
 NAMESPACE_END(mitsuba)

@@ -195,8 +195,8 @@ pub const fn numeric_count(spec: &ModelSpec) -> usize {
     n
 }
 
-/// The most numeric parameters a model may have: the Mitsuba plugin and the renderer keep
-/// per-lane values in fixed arrays of this size.
+/// The most numeric parameters a model may have: the renderer keeps a hit's per-lane values
+/// in a fixed array of this size (no allocation per hit). Raising it is this one constant.
 pub const MAX_NUMERIC: usize = 2;
 
 /// A value read for one parameter, after the default was filled in and the range checked.

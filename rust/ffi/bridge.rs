@@ -72,22 +72,13 @@ pub mod ffi {
         /// `mean` clamped into the parameter's per-lane range (`params`: the other parameters).
         fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64;
         fn numeric_parameters(self: &Model) -> Vec<Param>;
-        /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`.
-        fn eval_pdf(self: &Model, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32;
-        fn pdf(self: &Model, wi: &Vec3f, wo: &Vec3f) -> f32;
-        /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample).
-        fn sample(
-            self: &Model,
-            wi: &Vec3f,
-            u1: f32,
-            u2: f32,
-            reflectance: &Channels,
-            wo: &mut Vec3f,
-            weight: &mut Channels,
-        ) -> f32;
+        // Every evaluation takes the model's parameters one of two ways: its own constants, or
+        // per-lane values of its numeric parameters (textures, in the order of
+        // `numeric_parameters`; clamped into range, crate::brdf::lane).
 
-        /// `eval_pdf` with the numeric parameters' values for this call (textures).
-        fn eval_pdf_lane(
+        /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`. `params`: the
+        /// numeric parameters' values for this call, empty for the model's own constants.
+        fn eval_pdf(
             self: &Model,
             params: &[f32],
             wi: &Vec3f,
@@ -95,8 +86,10 @@ pub mod ffi {
             reflectance: &Channels,
             f: &mut Channels,
         ) -> f32;
-        /// `sample` with the numeric parameters' values for this call (textures).
-        fn sample_lane(
+        fn pdf(self: &Model, wi: &Vec3f, wo: &Vec3f) -> f32;
+        /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample). `params` as
+        /// in `eval_pdf`.
+        fn sample(
             self: &Model,
             params: &[f32],
             wi: &Vec3f,
@@ -107,24 +100,25 @@ pub mod ffi {
             weight: &mut Channels,
         ) -> f32;
 
-        // ---- traced (JIT variants): arguments and results are arena indices ----
+        // ---- traced (JIT variants): arguments and results are arena indices; `lane`: per-lane
+        // parameter values (textures) instead of the model's constants ----
         /// How many tables the traced kernel gathers from (van Ginneken: 4), and their
-        /// contents (uploaded once per parameter value).
-        fn table_count(self: &Model) -> usize;
-        fn table(self: &Model, k: usize) -> &[f32];
+        /// contents (uploaded once): the constants' tables, or with `lane` the tables per-lane
+        /// values need (van Ginneken's roughness-axis stacks).
+        fn table_count(self: &Model, lane: bool) -> usize;
+        fn table(self: &Model, k: usize, lane: bool) -> &[f32];
         /// The kernel's coefficients from the traced numeric parameters (in the order of
-        /// `numeric_parameters`). `differentiable`: a parameter carries a gradient (van
-        /// Ginneken then adds its roughness-derivative tables to the kernel).
-        fn traced_coefficients(self: &Model, arena: &Arena, params: &[u32], differentiable: bool) -> Vec<u32>;
-        /// The kernel's coefficients from per-lane (textured) parameter values, traced, in the
-        /// layout `traced_eval_pdf`/`traced_sample` take; empty if unsupported.
-        fn traced_lane_coefficients(self: &Model, arena: &Arena, params: &[u32]) -> Vec<u32>;
-        /// The tables per-lane parameters need (van Ginneken: its roughness-axis stacks),
-        /// registered instead of `table(k)`'s when a parameter is textured.
-        fn lane_table_count(self: &Model) -> usize;
-        fn lane_table(self: &Model, k: usize) -> &[f32];
-        /// f·cos θo per channel into `value`; returns the pdf. `lane`: the coefficients are
-        /// `traced_lane_coefficients`'.
+        /// `numeric_parameters`): once per parameter change, or with `lane` per call from the
+        /// textures' values. `differentiable`: a parameter carries a gradient (van Ginneken
+        /// then adds its roughness-derivative tables to the kernel). Empty if `params` is short.
+        fn traced_coefficients(
+            self: &Model,
+            arena: &Arena,
+            params: &[u32],
+            lane: bool,
+            differentiable: bool,
+        ) -> Vec<u32>;
+        /// f·cos θo per channel into `value`; returns the pdf.
         fn traced_eval_pdf(
             self: &Model,
             arena: &Arena,

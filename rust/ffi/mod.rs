@@ -63,6 +63,15 @@ fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> 
     })
 }
 
+/// The used channels of a [`Channels`], zero-padded to [`MAX_CHANNELS`].
+#[inline]
+fn padded(c: &Channels) -> [f32; MAX_CHANNELS] {
+    let mut r = [0.0; MAX_CHANNELS];
+    let used = used(c);
+    r[..used.len()].copy_from_slice(used);
+    r
+}
+
 /// The used channels of a [`Channels`].
 #[inline]
 fn used(c: &Channels) -> &[f32] {
@@ -106,11 +115,22 @@ impl Model {
             .collect()
     }
 
-    /// `f(wi, wo)` without the cosine, per channel; returns the pdf.
-    fn eval_pdf(&self, wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
+    /// `f(wi, wo)` without the cosine, per channel; returns the pdf. `params`: the numeric
+    /// parameters' values for this call (in the order of `numeric_parameters`: a texture's
+    /// value at the hit, or the constant), clamped into range (`crate::brdf::lane`); empty for
+    /// the model's own constants.
+    fn eval_pdf(&self, params: &[f32], wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
         let (wi, wo) = (v3(wi), v3(wo));
-        f.v = eval_channels(&self.bsdf, wi, wo, used(reflectance));
         f.n = reflectance.n;
+        if params.is_empty() {
+            f.v = eval_channels(&self.bsdf, wi, wo, used(reflectance));
+            return self.bsdf.pdf(wi, wo);
+        }
+        f.v = [0.0; MAX_CHANNELS];
+        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
+            return 0.0;
+        };
+        f.v = kernel::eval(&k, wi.into(), wo.into(), padded(reflectance));
         self.bsdf.pdf(wi, wo)
     }
 
@@ -119,8 +139,11 @@ impl Model {
     }
 
     /// Samples `wo`; writes it and the weight `f cos θo / pdf`; returns the pdf (0: no sample).
+    /// `params` as in [`Self::eval_pdf`].
+    #[allow(clippy::too_many_arguments)] // the bridge's shape: parameters, inputs, outputs
     fn sample(
         &self,
+        params: &[f32],
         wi: &Vec3f,
         u1: f32,
         u2: f32,
@@ -131,66 +154,24 @@ impl Model {
         let (wi, u) = (v3(wi), Vec2::new(u1, u2));
         weight.n = reflectance.n;
         weight.v = [0.0; MAX_CHANNELS];
-        let drawn = match *used(reflectance) {
-            [a] => self.bsdf.sample(wi, u, [a]).map(|s| (s.wo, s.pdf, [s.weight[0], 0.0, 0.0, 0.0])),
-            [a, b, c] => {
-                self.bsdf.sample(wi, u, [a, b, c]).map(|s| (s.wo, s.pdf, [s.weight[0], s.weight[1], s.weight[2], 0.0]))
+        let drawn = if params.is_empty() {
+            match *used(reflectance) {
+                [a] => self.bsdf.sample(wi, u, [a]).map(|s| (s.wo, s.pdf, [s.weight[0], 0.0, 0.0, 0.0])),
+                [a, b, c] => self
+                    .bsdf
+                    .sample(wi, u, [a, b, c])
+                    .map(|s| (s.wo, s.pdf, [s.weight[0], s.weight[1], s.weight[2], 0.0])),
+                _ => self.bsdf.sample(wi, u, padded(reflectance)).map(|s| (s.wo, s.pdf, s.weight)),
             }
-            ref rho => {
-                let mut r = [0.0; MAX_CHANNELS];
-                r[..rho.len()].copy_from_slice(rho);
-                self.bsdf.sample(wi, u, r).map(|s| (s.wo, s.pdf, s.weight))
-            }
+        } else {
+            self.bsdf.lane_kernel_f32(params).and_then(|k| {
+                let (dir, w, pdf) = kernel::sample(&k, wi.into(), u1, u2, padded(reflectance));
+                (pdf > 0.0).then_some((dir.into(), pdf, w))
+            })
         };
         let Some((dir, pdf, w)) = drawn else {
             return 0.0;
         };
-        *wo = Vec3f { x: dir.x, y: dir.y, z: dir.z };
-        weight.v = w;
-        pdf
-    }
-
-    /// [`Self::eval_pdf`] with the numeric parameters given per call (`params`, in the order
-    /// of `numeric_parameters`: a texture's value at the hit, or the constant), clamped into
-    /// range (`crate::brdf::lane`). Zeros if the model has no per-lane form.
-    fn eval_pdf_lane(&self, params: &[f32], wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
-        let (wi, wo) = (v3(wi), v3(wo));
-        f.n = reflectance.n;
-        f.v = [0.0; MAX_CHANNELS];
-        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
-            return 0.0;
-        };
-        let mut rho = [0.0; MAX_CHANNELS];
-        let used = used(reflectance);
-        rho[..used.len()].copy_from_slice(used);
-        f.v = kernel::eval(&k, wi.into(), wo.into(), rho);
-        self.bsdf.pdf(wi, wo)
-    }
-
-    /// [`Self::sample`] with per-call parameters, as [`Self::eval_pdf_lane`].
-    #[allow(clippy::too_many_arguments)]
-    fn sample_lane(
-        &self,
-        params: &[f32],
-        wi: &Vec3f,
-        u1: f32,
-        u2: f32,
-        reflectance: &Channels,
-        wo: &mut Vec3f,
-        weight: &mut Channels,
-    ) -> f32 {
-        weight.n = reflectance.n;
-        weight.v = [0.0; MAX_CHANNELS];
-        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
-            return 0.0;
-        };
-        let mut rho = [0.0; MAX_CHANNELS];
-        let used = used(reflectance);
-        rho[..used.len()].copy_from_slice(used);
-        let (dir, w, pdf) = kernel::sample(&k, v3(wi).into(), u1, u2, rho);
-        if !(pdf > 0.0) {
-            return 0.0;
-        }
         *wo = Vec3f { x: dir.x, y: dir.y, z: dir.z };
         weight.v = w;
         pdf

@@ -1,5 +1,4 @@
-//! The matte kernels (`crate::brdf`) as renderer BSDFs (`lambert`, `oren_nayar`, `eon`,
-//! `wolff`, `ginneken`, `roughdiffuse`): `f·cos θo` from the kernel's `f`, the kernel's own
+//! The matte kernels (`crate::brdf`, every registered model) as renderer BSDFs: `f·cos θo` from the kernel's `f`, the kernel's own
 //! sampling, reflectance per RGB channel (several models are non-linear in ρ). Direction
 //! convention as in the plugin: the renderer's `wi` (towards the camera side) is the kernel's
 //! given direction; every model is reciprocal.
@@ -12,6 +11,7 @@
 
 use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::kernel;
+use crate::brdf::registry::MAX_NUMERIC;
 use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, dispatch};
 use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
@@ -46,14 +46,15 @@ impl Matte {
         self.textured.is_some()
     }
 
-    /// The textured parameters' values at the hit (at most two: Wolff's indices).
+    /// The textured parameters' values at the hit, in a fixed array (no allocation per hit;
+    /// the registry holds every model to `MAX_NUMERIC` numeric parameters).
     #[inline]
-    fn values(params: &[Texture], si: &SurfaceInteraction) -> ([f32; 2], usize) {
-        let mut v = [0.0; 2];
+    fn values(params: &[Texture], si: &SurfaceInteraction) -> ([f32; MAX_NUMERIC], usize) {
+        let mut v = [0.0; MAX_NUMERIC];
         for (slot, t) in v.iter_mut().zip(params) {
             *slot = t.eval_1(si);
         }
-        (v, params.len().min(2))
+        (v, params.len().min(MAX_NUMERIC))
     }
 }
 

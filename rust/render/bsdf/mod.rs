@@ -140,7 +140,7 @@ macro_rules! bsdfs {
 bsdfs! {
     /// `diffuse`.
     Diffuse(Diffuse),
-    /// A matte model (`lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`, `roughdiffuse`).
+    /// A registered matte diffuse model (`crate::brdf::BSDF_TYPES`).
     Matte(Matte),
     /// `twosided`.
     TwoSided(TwoSided),

@@ -3,8 +3,7 @@
 //! `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`, `conductor`,
 //! `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `null`, `bumpmap`, `mask`,
 //! `blendbsdf`, `principled`, `principledthin`, matte's `tabulated_brdf` (a table file,
-//! `docs/microgeometry.md`) and matte's models `lambert`, `oren_nayar`, `eon`, `wolff`,
-//! `ginneken`, `roughdiffuse` (parameters validated by the kernels' own parser, the same one
+//! `docs/microgeometry.md`) and matte's registered diffuse models (`crate::brdf::BSDF_TYPES`; parameters validated by the kernels' own parser, the same one
 //! the Mitsuba plugin uses).
 
 use super::Builder;

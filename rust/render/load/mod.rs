@@ -34,7 +34,7 @@ use std::rc::Rc;
 /// own properties). Every property each of them reads in Mitsuba's sources
 /// ([`mitsuba_plugins`]) is implemented by its builder here or accepted as one that cannot
 /// change the image ([`no_effect`]); `tests/scene_file/load.rs` walks the list. matte's own BSDFs
-/// (`lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`, `roughdiffuse`, `tabulated_brdf`) come
+/// (the registered diffuse models, `crate::brdf::BSDF_TYPES`, and `tabulated_brdf`) come
 /// on top; what is refused by scope is in [`scope`].
 pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("scene", &["scene"]),

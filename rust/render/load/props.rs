@@ -7,7 +7,7 @@
 //! constructor argument), the plugin's file supplies it, as its `.cpp` does.
 //!
 //! Reading a name the entry does not list, or reading it as a kind of value the plugin does not
-//! accept, is a bug in the plugin's file and panics; `tests/render_load.rs` loads every
+//! accept, is a bug in the plugin's file and panics; `tests/scene_file/load.rs` loads every
 //! supported plugin with each harvested property, which runs every read.
 
 use super::mitsuba_plugins::{self, Kind, Plugin, Property};
@@ -21,8 +21,7 @@ use glam::Vec3;
 use std::path::PathBuf;
 use std::rc::Rc;
 
-/// matte's diffuse models (`lambert`, `oren_nayar`, `eon`, `wolff`, `ginneken`,
-/// `roughdiffuse`): `reflectance`, then every other property goes to the kernels' own
+/// matte's diffuse models (the registry, `crate::brdf::BSDF_TYPES`): `reflectance`, then every other property goes to the kernels' own
 /// parameter parser, as in the Mitsuba plugin (`cpp/matte_bsdf.h`).
 pub static MATTE_MODEL: Plugin = Plugin {
     tag: "bsdf",
