@@ -111,8 +111,9 @@ pub fn other_driver() -> Driver {
     if Driver::default() == Driver::OnePath { Driver::Wavefront } else { Driver::OnePath }
 }
 
-/// The diffuse models whose render time `matte bench` compares with Lambert's.
-pub const MODELS: [&str; 6] = ["lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse"];
+/// The diffuse models whose render time `matte bench` compares with Lambert's: every registered
+/// one (Lambert first).
+pub const MODELS: &[&str] = crate::brdf::BSDF_TYPES;
 
 /// Render time of the study's room with every diffuse surface as each of [`MODELS`] (its
 /// `$bsdf` parameter; the model's default parameters), at `res`² and `spp`, the models taking

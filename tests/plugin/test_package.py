@@ -90,11 +90,12 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
     assert show.returncode == 0, show.stderr
     report = json.loads(show.stdout)
     # The symbol versions allow exactly this tag (the lowest one they allow), no ISA beyond the
-    # policy's, and the only external libraries are the four the mitsuba/drjit wheels provide
+    # policy's, and the only external libraries are ones the mitsuba/drjit wheels provide
     # (which keep auditwheel's overall verdict at linux_x86_64: they are not system libraries).
     assert report["sym_tag"] == tag and not report["unsupported_isa"], report
-    assert set(report["external_libs"]) == {"libmitsuba.so", "libdrjit-core.so", "libdrjit-extra.so",
-                                            "libnanothread.so"}, report["external_libs"]
+    external = set(report["external_libs"])
+    assert "libmitsuba.so" in external, external
+    assert external <= {"libmitsuba.so", "libdrjit-core.so", "libdrjit-extra.so", "libnanothread.so"}, external
     # Every ELF file in the wheel needs only the policy's system libraries, Mitsuba's and
     # Dr.Jit's (loaded from their wheels, excluded from grafting) and matte's own library.
     from elftools.elf.dynamic import DynamicSection
