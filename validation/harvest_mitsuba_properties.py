@@ -459,7 +459,7 @@ pub enum Kind {
 
 /// One property a plugin reads.
 #[derive(Clone, Copy, Debug)]
-pub struct Property {
+pub struct PluginProperty {
     pub name: &'static str,
     pub kind: Kind,
     /// The default as written in Mitsuba's source (`None`: the property is required or has
@@ -477,7 +477,7 @@ pub struct Plugin {
     pub tag: &'static str,
     pub name: &'static str,
     pub source: &'static str,
-    pub properties: &'static [Property],
+    pub properties: &'static [PluginProperty],
     /// The plugin iterates over all its properties (any name may be read).
     pub reads_any_property: bool,
 }
@@ -488,7 +488,7 @@ pub fn plugin(tag: &str, name: &str) -> Option<&'static Plugin> {
 }
 
 /// Property `name` of plugin (`tag`, `plugin`).
-pub fn property(tag: &str, plugin_name: &str, name: &str) -> Option<&'static Property> {
+pub fn property(tag: &str, plugin_name: &str, name: &str) -> Option<&'static PluginProperty> {
     plugin(tag, plugin_name)?.properties.iter().find(|p| p.name == name)
 }
 
@@ -506,7 +506,7 @@ def write_rust(plugins, out):
         lines.append("        properties: &[")
         for p in props:
             lines.append(
-                f"            Property {{ name: {rust_str(p.name)}, kind: Kind::{p.kind}, default: {opt(p.default)}, "
+                f"            PluginProperty {{ name: {rust_str(p.name)}, kind: Kind::{p.kind}, default: {opt(p.default)}, "
                 f"literal: {opt(literal(p.default))}, source: {rust_str(p.source)} }},")
         lines.append("        ],")
         lines.append("    },")

@@ -16,7 +16,7 @@ use render::RenderJob;
 use std::path::PathBuf;
 
 #[derive(Clone, Debug)]
-pub struct Options {
+pub struct BenchOptions {
     /// Small images and one repeat: checks the machinery, not the targets.
     pub quick: bool,
     pub repeats: u32,
@@ -62,7 +62,7 @@ pub struct Measurements {
 pub const MITSUBA_VARIANTS: [&str; 2] = ["scalar_rgb", "llvm_ad_rgb"];
 
 /// Runs every measurement; `progress` gets a line per step.
-pub fn run(opts: &Options, progress: &dyn Fn(&str)) -> Result<Measurements, String> {
+pub fn run(opts: &BenchOptions, progress: &dyn Fn(&str)) -> Result<Measurements, String> {
     let jobs = render_jobs(opts.quick);
     let repeats = if opts.quick { 1 } else { opts.repeats };
     progress("kernels");

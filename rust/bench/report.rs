@@ -8,23 +8,23 @@ use std::path::PathBuf;
 /// One target: what, the measured value, the limit (measured ≤ limit passes, except where
 /// `at_least`), and whether it holds.
 #[derive(Clone, Debug)]
-pub struct Target {
+pub struct SpeedTarget {
     pub what: String,
     pub measured: f64,
     pub limit: f64,
     pub at_least: bool,
 }
 
-impl Target {
+impl SpeedTarget {
     pub fn met(&self) -> bool {
         if self.at_least { self.measured >= self.limit } else { self.measured <= self.limit }
     }
 }
 
 /// The speed targets (docs/performance.md) that the measurements can check.
-pub fn targets(m: &Measurements) -> Vec<Target> {
+pub fn targets(m: &Measurements) -> Vec<SpeedTarget> {
     let mut t = Vec::new();
-    let le = |what: String, measured: f64, limit: f64| Target { what, measured, limit, at_least: false };
+    let le = |what: String, measured: f64, limit: f64| SpeedTarget { what, measured, limit, at_least: false };
     if let Some(mi) = &m.mitsuba {
         for (job, mt) in &m.jobs {
             if let Some(s) = mi.seconds(&job.name, "llvm_ad_rgb") {
@@ -41,7 +41,7 @@ pub fn targets(m: &Measurements) -> Vec<Target> {
     if let (Some(lo), Some(hi)) =
         (m.scaling.iter().map(|s| s.1).min_by(f64::total_cmp), m.scaling.iter().map(|s| s.1).max_by(f64::total_cmp))
     {
-        t.push(Target {
+        t.push(SpeedTarget {
             what: "Cornell samples/s: slowest / fastest over spp".into(),
             measured: lo / hi,
             limit: 0.9,

@@ -1,7 +1,7 @@
 //! `matte bench`: the speed targets, matte against Mitsuba 3.9.1 in one run (table on
 //! stdout, `bench.json` in the output folder).
 
-use crate::bench::{self, Options};
+use crate::bench::{self, BenchOptions};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -27,7 +27,7 @@ pub fn run(a: &BenchArgs) -> Result<(), String> {
         return Err("--repeats must be at least 1".into());
     }
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    let opts = Options { quick: a.quick, repeats: a.repeats, mitsuba: !a.no_mitsuba, out: a.out.clone() };
+    let opts = BenchOptions { quick: a.quick, repeats: a.repeats, mitsuba: !a.no_mitsuba, out: a.out.clone() };
     let m = bench::run(&opts, &|step| {
         if !a.quiet {
             eprintln!("bench: {step}");

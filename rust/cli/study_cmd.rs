@@ -3,7 +3,7 @@
 //! series of the regions that ask for one.
 
 use super::render_cmd::parse_defines;
-use crate::study::{self, Options, Study, convergence, variants};
+use crate::study::{self, Study, StudyOptions, convergence, variants};
 use crate::validate::passes::Renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -71,7 +71,7 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     if !a.no_convergence && a.convergence_spp.iter().any(|&s| s < a.passes) {
         return Err(format!("every --convergence-spp level must be ≥ --passes ({})", a.passes));
     }
-    let opts = Options {
+    let opts = StudyOptions {
         out: a.out.clone(),
         passes: a.passes,
         spp: a.spp,

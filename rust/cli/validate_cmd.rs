@@ -3,7 +3,7 @@
 
 use super::render_cmd::parse_defines;
 use crate::validate::passes::Renderer;
-use crate::validate::{self, Options, SceneResult};
+use crate::validate::{self, SceneResult, ValidateOptions};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
@@ -98,7 +98,7 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     if a.matte_scene.is_some() && scenes.len() != 1 {
         return Err("--matte-scene needs exactly one scene".into());
     }
-    let opts = Options {
+    let opts = ValidateOptions {
         passes,
         spp,
         seed: a.seed,
@@ -147,7 +147,7 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
             }
         }
     }
-    validate::report::write_run(&a.out, &results)?;
+    validate::validation_report::write_run(&a.out, &results)?;
     if a.json {
         println!("{}", validate::summary::Summary::new(&results).to_json());
     }
@@ -193,7 +193,7 @@ fn one_line(name: &str, r: &SceneResult) -> String {
         c.global.ci99.y,
         c.global.ci99.z
     );
-    let d = validate::report::percent;
+    let d = validate::validation_report::percent;
     line += &format!(
         "; predicted 80% power at {} uniform, {} in a 16×16 patch",
         d(r.predicted_power.uniform),

@@ -23,7 +23,7 @@ pub const THETA_O: [f64; 9] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80
 pub const DELTA_PHI: [f64; 3] = [0.0, 90.0, 180.0];
 
 #[derive(Serialize)]
-pub struct Comparison {
+pub struct ModelComparison {
     /// "v_cavities" or "gaussian_height_field".
     pub surface: &'static str,
     /// σ (V-cavities, radians) or m (height field, per-axis rms slope).
@@ -121,7 +121,7 @@ pub fn models_at(s: f64) -> Result<Vec<(String, DiffuseModel)>, String> {
 
 /// V-cavities of slope deviation `sigma` against every model, plus EON at the r that fits them
 /// best.
-pub fn compare_v_cavities(sigma: f64, reflectance: f64, photons: u64, seed: u64) -> Result<Comparison, String> {
+pub fn compare_v_cavities(sigma: f64, reflectance: f64, photons: u64, seed: u64) -> Result<ModelComparison, String> {
     let surface = VCavities::new(sigma)?;
     let run = |setup: &Setup| Ok(vec![measure(&surface, setup)?]);
     compare("v_cavities", sigma, 0, 1, models_at(sigma)?, reflectance, photons, seed, run)
@@ -136,7 +136,7 @@ pub fn compare_height_field(
     reflectance: f64,
     photons: u64,
     seed: u64,
-) -> Result<Comparison, String> {
+) -> Result<ModelComparison, String> {
     if m == 0.0 {
         return Err("van Ginneken needs a roughness above 0".into());
     }
@@ -186,7 +186,7 @@ fn compare(
     photons: u64,
     seed: u64,
     run: impl Fn(&Setup) -> Result<Vec<Measurement>, String>,
-) -> Result<Comparison, String> {
+) -> Result<ModelComparison, String> {
     let wo: Vec<DVec3> = THETA_O.iter().flat_map(|&t| DELTA_PHI.map(|p| direction(t, p))).collect();
     let mut sims = Vec::new();
     for (k, &ti) in THETA_I.iter().enumerate() {
@@ -238,7 +238,7 @@ fn compare(
         });
     }
     let labels: Vec<String> = models.into_iter().map(|(l, _)| l).collect();
-    Ok(Comparison {
+    Ok(ModelComparison {
         surface: name,
         roughness,
         reflectance,

@@ -11,7 +11,7 @@
 //! slopes than the continuous one). Rays march through the cells (Amanatides–Woo) across the
 //! periodic copies until they hit a triangle or rise above the highest point.
 
-use super::surface::{Hit, MicroSurface};
+use super::surface::{MicroSurface, SurfaceHit};
 use glam::DVec3;
 use rand::{Rng, SeedableRng};
 use rand_distr::{Distribution, StandardNormal};
@@ -152,7 +152,7 @@ impl MicroSurface for HeightField {
         DVec3::new(rng.random::<f64>() * l, rng.random::<f64>() * l, self.max_height + 1e-9)
     }
 
-    fn intersect(&self, _patch: &(), origin: DVec3, dir: DVec3) -> Option<Hit> {
+    fn intersect(&self, _patch: &(), origin: DVec3, dir: DVec3) -> Option<SurfaceHit> {
         let d = self.spacing;
         let (mut i, mut j) = ((origin.x / d).floor() as i64, (origin.y / d).floor() as i64);
         let step = |c: f64| if c > 0.0 { 1 } else { -1 };
@@ -178,7 +178,7 @@ impl MicroSurface for HeightField {
             }
             if let Some((t, n)) = best {
                 let n = if n.dot(dir) > 0.0 { -n } else { n };
-                return Some(Hit { point: origin + dir * t, normal: n });
+                return Some(SurfaceHit { point: origin + dir * t, normal: n });
             }
             // Rising and above every point of the surface: gone.
             let z_exit = origin.z + dir.z * t_exit.min(1e300);

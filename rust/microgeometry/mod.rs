@@ -28,5 +28,5 @@ pub mod v_cavity;
 pub use estimate::{Estimate, RunningMean};
 pub use gonioreflectometer::{Bounces, Measurement, Setup, measure, measure_reflectances};
 pub use height_field::HeightField;
-pub use surface::{Hit, MicroSurface};
+pub use surface::{MicroSurface, SurfaceHit};
 pub use v_cavity::VCavities;

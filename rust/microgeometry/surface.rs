@@ -7,7 +7,7 @@ use rand::Rng;
 
 /// A facet point a ray reached: where, and the facet's normal (unit, facing the ray).
 #[derive(Clone, Copy, Debug)]
-pub struct Hit {
+pub struct SurfaceHit {
     pub point: DVec3,
     pub normal: DVec3,
 }
@@ -25,5 +25,5 @@ pub trait MicroSurface: Sync {
 
     /// The first facet hit by the ray `origin + t·direction`, t > 0; `None` when the ray leaves
     /// the surface (escapes above the macro plane).
-    fn intersect(&self, patch: &Self::Patch, origin: DVec3, direction: DVec3) -> Option<Hit>;
+    fn intersect(&self, patch: &Self::Patch, origin: DVec3, direction: DVec3) -> Option<SurfaceHit>;
 }

@@ -9,7 +9,7 @@
 //! direction across the cavity, a point is (s, z) = (p·u, p.z). The opening is s ∈ [−1, 1] at
 //! z = 0 and the bottom is (0, −tan θa).
 
-use super::surface::{Hit, MicroSurface};
+use super::surface::{MicroSurface, SurfaceHit};
 use glam::DVec3;
 use rand::Rng;
 use rand_distr::{Distribution, Normal};
@@ -82,7 +82,7 @@ impl MicroSurface for VCavities {
         cavity.across * s + DVec3::Z * ENTRY_HEIGHT
     }
 
-    fn intersect(&self, cavity: &Cavity, origin: DVec3, direction: DVec3) -> Option<Hit> {
+    fn intersect(&self, cavity: &Cavity, origin: DVec3, direction: DVec3) -> Option<SurfaceHit> {
         let t = cavity.tan_slope;
         let (s0, z0) = (origin.dot(cavity.across), origin.z);
         let (ds, dz) = (direction.dot(cavity.across), direction.z);
@@ -101,7 +101,7 @@ impl MicroSurface for VCavities {
                 best = Some((lambda, k));
             }
         }
-        best.map(|(lambda, k)| Hit { point: origin + direction * lambda, normal: cavity.normals[k] })
+        best.map(|(lambda, k)| SurfaceHit { point: origin + direction * lambda, normal: cavity.normals[k] })
     }
 }
 

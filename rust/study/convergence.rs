@@ -16,8 +16,8 @@
 
 use super::configuration::{Configuration, SERIES};
 use super::ratio::Ratio;
-use super::variant_scene::{self, Derivation, Property};
-use super::{Lighting, Options, Region, metrics};
+use super::variant_scene::{self, Derivation, DerivedProperty};
+use super::{Lighting, Region, StudyOptions, metrics};
 use crate::render::film::SplatWeights;
 use crate::render::load;
 use crate::validate::crop::{PixelBox, pixel_box};
@@ -93,7 +93,7 @@ pub fn mitsuba_available() -> bool {
 }
 
 /// Passes a series renders (for the progress bar).
-pub fn pass_count(opts: &Options) -> u64 {
+pub fn pass_count(opts: &StudyOptions) -> u64 {
     let renderers = 1 + mitsuba_available() as usize;
     (opts.convergence_spp.len() * SERIES.len() * renderers) as u64 * opts.passes as u64
 }
@@ -108,7 +108,7 @@ pub fn run(
     scene: &Path,
     name: &str,
     region: &Region,
-    opts: &Options,
+    opts: &StudyOptions,
     progress: &dyn Fn(&str, u32),
 ) -> Result<Series, String> {
     let rel_dir = PathBuf::from(name).join("convergence");
@@ -121,15 +121,15 @@ pub fn run(
     // The one rounding of a region to pixels, shared with the region means (crop.rs).
     let PixelBox { x0, y0, x1, y1 } = pixel_box(w, h, region.rect);
     let crop = vec![
-        Property::integer("crop_offset_x", x0 as i64),
-        Property::integer("crop_offset_y", y0 as i64),
-        Property::integer("crop_width", (x1 - x0) as i64),
-        Property::integer("crop_height", (y1 - y0) as i64),
+        DerivedProperty::integer("crop_offset_x", x0 as i64),
+        DerivedProperty::integer("crop_offset_y", y0 as i64),
+        DerivedProperty::integer("crop_width", (x1 - x0) as i64),
+        DerivedProperty::integer("crop_height", (y1 - y0) as i64),
     ];
     let mut files = Vec::new();
     for m in SERIES {
         let file = opts.out.join(&rel_dir).join(format!("{}_{}.xml", slug(&region.name), m.key()));
-        let bsdf_properties = m.property().map(|(k, v)| vec![Property::string(k, v)]).unwrap_or_default();
+        let bsdf_properties = m.property().map(|(k, v)| vec![DerivedProperty::string(k, v)]).unwrap_or_default();
         variant_scene::write_derived(
             scene,
             &file,

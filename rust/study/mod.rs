@@ -48,7 +48,7 @@ impl Lighting {
 }
 
 #[derive(Clone, Debug)]
-pub struct Options {
+pub struct StudyOptions {
     pub out: PathBuf,
     pub passes: u32,
     /// Total samples per pixel per image, split over the passes.
@@ -67,7 +67,7 @@ pub struct Options {
     pub mitsuba_variant: String,
 }
 
-impl Options {
+impl StudyOptions {
     /// Whether the model variants are rendered for the scene named `name`.
     pub fn variants_for(&self, name: &str) -> bool {
         self.variant_scenes.iter().any(|s| s == name || s == "all")
@@ -178,7 +178,7 @@ pub struct Study {
 }
 
 /// The `-D` parameters of one image: the user's, the model, the lighting and the resolution.
-pub(crate) fn image_defines(opts: &Options, bsdf: &str, lighting: Lighting) -> Vec<(String, String)> {
+pub(crate) fn image_defines(opts: &StudyOptions, bsdf: &str, lighting: Lighting) -> Vec<(String, String)> {
     let mut defines = opts.defines.clone();
     defines.push(("bsdf".into(), bsdf.into()));
     if lighting == Lighting::Direct {
@@ -193,7 +193,7 @@ pub(crate) fn image_defines(opts: &Options, bsdf: &str, lighting: Lighting) -> V
 /// K paired passes of `scene` with the study's seeds and budget, in the study's renderer.
 pub(crate) fn render_side(
     scene: &Path,
-    opts: &Options,
+    opts: &StudyOptions,
     defines: Vec<(String, String)>,
     regions: &[Region],
     work: &Path,
@@ -214,7 +214,7 @@ pub(crate) fn render_side(
 }
 
 /// Renders one scene with every model in both lighting settings and writes its pictures.
-pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -> Result<SceneStudy, String> {
+pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u32)) -> Result<SceneStudy, String> {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
     let dir = opts.out.join(&name);
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
@@ -243,8 +243,8 @@ pub fn study_scene(scene: &Path, opts: &Options, progress: &dyn Fn(&str, u32)) -
         for (((model, side), mean), rel) in sides.iter().zip(means).zip(&rels) {
             let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.bsdf()));
             image_io::write_exr(&opts.out.join(&exr), &mean)?;
-            tiles.push(strip::Tile::from_image(model.tile(), &mean));
-            diff_tiles.push(strip::Tile::from_difference(model.tile(), mean.width, mean.height, rel, range));
+            tiles.push(strip::StripTile::from_image(model.tile(), &mean));
+            diff_tiles.push(strip::StripTile::from_difference(model.tile(), mean.width, mean.height, rel, range));
             results.push(ModelResult {
                 model: *model,
                 lighting,

@@ -12,22 +12,22 @@ const SCALE: u32 = 2;
 const LABEL_H: u32 = 7 * SCALE + 8;
 
 /// One labelled tile: RGB8 pixels of a fixed size.
-pub struct Tile {
+pub struct StripTile {
     pub label: String,
     pub width: u32,
     pub height: u32,
     pub rgb: Vec<u8>,
 }
 
-impl Tile {
-    pub fn from_image(label: &str, img: &Image) -> Tile {
+impl StripTile {
+    pub fn from_image(label: &str, img: &Image) -> StripTile {
         let rgb = img.pixels.iter().flat_map(|p| [encode_srgb8(p.x), encode_srgb8(p.y), encode_srgb8(p.z)]).collect();
-        Tile { label: label.to_string(), width: img.width, height: img.height, rgb }
+        StripTile { label: label.to_string(), width: img.width, height: img.height, rgb }
     }
 
     /// A heatmap of signed values in [−range, range] (RdBu, red = brighter than Lambert);
     /// NaN = grey.
-    pub fn from_difference(label: &str, width: u32, height: u32, rel: &[f32], range: f32) -> Tile {
+    pub fn from_difference(label: &str, width: u32, height: u32, rel: &[f32], range: f32) -> StripTile {
         let rgb = rel
             .iter()
             .flat_map(|&x| {
@@ -38,12 +38,12 @@ impl Tile {
                 }
             })
             .collect();
-        Tile { label: label.to_string(), width, height, rgb }
+        StripTile { label: label.to_string(), width, height, rgb }
     }
 }
 
 /// Writes the tiles side by side with their labels above, on white.
-pub fn write_strip(path: &Path, tiles: &[Tile]) -> Result<(), String> {
+pub fn write_strip(path: &Path, tiles: &[StripTile]) -> Result<(), String> {
     let h = tiles.iter().map(|t| t.height).max().unwrap_or(1) + LABEL_H;
     let w = tiles.iter().map(|t| t.width).sum::<u32>() + GAP * (tiles.len() as u32 + 1);
     let mut buf = vec![255u8; (w * h * 3) as usize];

@@ -26,19 +26,19 @@ use std::path::{Path, PathBuf};
 
 /// One property child, e.g. `<string name="normalization" value="raw"/>`.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Property {
+pub struct DerivedProperty {
     /// `string`, `integer`, `float` or `boolean`.
     pub tag: &'static str,
     pub name: String,
     pub value: String,
 }
 
-impl Property {
-    pub fn string(name: &str, value: &str) -> Property {
-        Property { tag: "string", name: name.into(), value: value.into() }
+impl DerivedProperty {
+    pub fn string(name: &str, value: &str) -> DerivedProperty {
+        DerivedProperty { tag: "string", name: name.into(), value: value.into() }
     }
-    pub fn integer(name: &str, value: i64) -> Property {
-        Property { tag: "integer", name: name.into(), value: value.to_string() }
+    pub fn integer(name: &str, value: i64) -> DerivedProperty {
+        DerivedProperty { tag: "integer", name: name.into(), value: value.to_string() }
     }
 }
 
@@ -48,9 +48,9 @@ pub struct Derivation {
     /// New value of `<default name="bsdf">` (if the scene has one).
     pub bsdf: Option<String>,
     /// Set in every `<bsdf type="$bsdf">`; at least one must exist when this is not empty.
-    pub bsdf_properties: Vec<Property>,
+    pub bsdf_properties: Vec<DerivedProperty>,
     /// Set in every `<film>`; at least one must exist when this is not empty.
-    pub film_properties: Vec<Property>,
+    pub film_properties: Vec<DerivedProperty>,
 }
 
 struct Editor<'a> {
@@ -104,7 +104,7 @@ impl Editor<'_> {
 
     /// Sets `props` in `node`: replaces the value of an existing child with the same name and
     /// tag, inserts the others after the start tag.
-    fn set_properties(&mut self, node: roxmltree::Node, props: &[Property]) -> Result<(), String> {
+    fn set_properties(&mut self, node: roxmltree::Node, props: &[DerivedProperty]) -> Result<(), String> {
         let mut insert = Vec::new();
         for p in props {
             let existing = node.children().find(|c| c.is_element() && c.attribute("name") == Some(p.name.as_str()));

@@ -10,8 +10,8 @@
 
 use super::configuration::{Configuration, VARIANTS};
 use super::ratio::{Ratio, RegionRatio};
-use super::variant_scene::{self, Derivation, Property};
-use super::{Lighting, Options, SceneStudy, metrics, strip};
+use super::variant_scene::{self, Derivation, DerivedProperty};
+use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
 use crate::render::film::Image;
 use crate::render::image_io;
 use std::path::PathBuf;
@@ -52,7 +52,7 @@ pub fn pass_count(passes: u32) -> u64 {
 
 /// Renders the non-default variants of `study`'s scene in both lightings, paired with its
 /// Lambert passes, and writes the derived scenes, EXRs and strips.
-pub fn run(study: &SceneStudy, opts: &Options, progress: &dyn Fn(&str, u32)) -> Result<VariantStudy, String> {
+pub fn run(study: &SceneStudy, opts: &StudyOptions, progress: &dyn Fn(&str, u32)) -> Result<VariantStudy, String> {
     let rel_dir = PathBuf::from(&study.name).join("variants");
     let dir = opts.out.join(&rel_dir);
     let regions = super::load_regions(&study.scene)?;
@@ -70,7 +70,7 @@ pub fn run(study: &SceneStudy, opts: &Options, progress: &dyn Fn(&str, u32)) -> 
                 let scene_file = rel_dir.join(format!("{}.xml", v.key()));
                 let derivation = Derivation {
                     bsdf: Some(v.bsdf().into()),
-                    bsdf_properties: v.property().map(|(k, x)| vec![Property::string(k, x)]).unwrap_or_default(),
+                    bsdf_properties: v.property().map(|(k, x)| vec![DerivedProperty::string(k, x)]).unwrap_or_default(),
                     ..Default::default()
                 };
                 variant_scene::write_derived(&study.scene, &opts.out.join(&scene_file), &derivation)?;
@@ -103,11 +103,11 @@ pub fn run(study: &SceneStudy, opts: &Options, progress: &dyn Fn(&str, u32)) -> 
         let rels: Vec<Vec<f32>> =
             images.iter().map(|(_, m)| metrics::relative_difference(m, &lambert_img, 1e-4)).collect();
         let range = metrics::heatmap_range(&rels[1..]);
-        let tiles: Vec<strip::Tile> = images.iter().map(|(l, m)| strip::Tile::from_image(l, m)).collect();
-        let diff_tiles: Vec<strip::Tile> = images
+        let tiles: Vec<strip::StripTile> = images.iter().map(|(l, m)| strip::StripTile::from_image(l, m)).collect();
+        let diff_tiles: Vec<strip::StripTile> = images
             .iter()
             .zip(&rels)
-            .map(|((l, m), rel)| strip::Tile::from_difference(l, m.width, m.height, rel, range))
+            .map(|((l, m), rel)| strip::StripTile::from_difference(l, m.width, m.height, rel, range))
             .collect();
         let strip_path = rel_dir.join(format!("strip_{}.png", lighting.name()));
         let diff_path = rel_dir.join(format!("difference_{}.png", lighting.name()));

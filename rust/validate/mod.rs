@@ -3,17 +3,17 @@
 //! several scales — pixels, blocks, the whole image ([`scales`], [`stats`]) — whether the two
 //! expected images agree; `--power` measures what the budget detects ([`power`]); writes both
 //! images, heatmaps ([`heatmap`]), crops of rejected places, `summary.json` and `report.html`
-//! ([`report`]). `docs/validation.md` has the method and the measured numbers.
+//! ([`validation_report`]). `docs/validation.md` has the method and the measured numbers.
 
 pub mod crop;
 pub mod heatmap;
 pub mod passes;
 pub mod power;
 pub mod predicted_power;
-pub mod report;
 pub mod scales;
 pub mod stats;
 pub mod summary;
+pub mod validation_report;
 
 use crate::render::film::SplatWeights;
 use crate::render::image_io;
@@ -21,7 +21,7 @@ use passes::{Budget, PassPlan, Renderer, Side};
 use std::path::{Path, PathBuf};
 
 #[derive(Clone, Debug)]
-pub struct Options {
+pub struct ValidateOptions {
     pub passes: u32,
     /// Total samples per pixel per renderer (split over the passes); `None` = 4× the scene's
     /// `sample_count`.
@@ -45,7 +45,7 @@ pub struct SceneResult {
     pub scene: PathBuf,
     pub name: String,
     pub reference: String,
-    pub comparison: stats::Comparison,
+    pub comparison: stats::ImageComparison,
     pub seconds_matte: f64,
     pub seconds_reference: f64,
     pub passes: u32,
@@ -55,13 +55,13 @@ pub struct SceneResult {
     /// What this budget detects, predicted from this run's variances (a lower bound on power).
     pub predicted_power: predicted_power::Prediction,
     /// Files, relative to the output folder.
-    pub files: report::Files,
+    pub files: validation_report::Files,
 }
 
 pub fn validate_scene(
     scene: &Path,
     reference: &Renderer,
-    opts: &Options,
+    opts: &ValidateOptions,
     progress: &dyn Fn(&str, u32, u32),
 ) -> Result<SceneResult, String> {
     let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "scene".into());
@@ -118,7 +118,7 @@ pub fn validate_scene(
         None
     };
     let predicted_power = predicted_power::predict(&a.images, &b.images, opts.alpha)?;
-    let files = report::write_scene_files(&opts.out, &rel_dir, &a, &b, &comparison)?;
+    let files = validation_report::write_scene_files(&opts.out, &rel_dir, &a, &b, &comparison)?;
     Ok(SceneResult {
         scene: scene.to_path_buf(),
         name,

@@ -93,7 +93,7 @@ impl Moments {
 
 /// Result of comparing two renderers.
 #[derive(Clone, Debug)]
-pub struct Comparison {
+pub struct ImageComparison {
     pub width: u32,
     pub height: u32,
     /// Welch t statistic per pixel and channel (a − b).
@@ -127,7 +127,7 @@ pub struct GlobalTest {
     pub rejected: bool,
 }
 
-impl Comparison {
+impl ImageComparison {
     pub fn passed(&self) -> bool {
         self.scales.iter().all(|s| s.rejected == 0)
     }
@@ -183,7 +183,7 @@ pub fn compare(
     b_images: &[Image],
     b: &Moments,
     alpha: f64,
-) -> Result<Comparison, String> {
+) -> Result<ImageComparison, String> {
     if a.width != b.width || a.height != b.height {
         return Err(format!("image sizes differ: {}x{} vs {}x{}", a.width, a.height, b.width, b.height));
     }
@@ -215,7 +215,7 @@ pub fn compare(
     let mut global = global_test(&a.pass_means, &b.pass_means);
     global.rejected = scales.iter().any(|s| s.scale == Scale::Image && s.rejected > 0);
     let rejected = scales.iter().find(|s| s.scale == Scale::Pixel).map(|s| s.rejected).unwrap_or(0);
-    Ok(Comparison {
+    Ok(ImageComparison {
         width: a.width,
         height: a.height,
         t,

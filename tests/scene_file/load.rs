@@ -2250,7 +2250,7 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
 
 /// A valid value, as XML, for property `p` of `plugin`: the plugin's own default where Mitsuba
 /// has a literal one, else a value of the property's kind that the plugin accepts.
-fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_plugins::Property) -> String {
+fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_plugins::PluginProperty) -> String {
     use matte::render::load::mitsuba_plugins::Kind;
     let n = p.name;
     // Properties whose valid values the kind alone does not give.

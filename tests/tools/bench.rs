@@ -1,14 +1,14 @@
 //! `matte bench` machinery (quick mode, matte only: the timings themselves are the bench's
 //! output, not something a test can judge on a shared machine).
 
-use matte::bench::report::{Target, targets};
-use matte::bench::{Options, run};
+use matte::bench::report::{SpeedTarget, targets};
+use matte::bench::{BenchOptions, run};
 use std::process::Command;
 
 #[test]
 fn quick_bench_measures_every_scene_kernel_and_spp() {
     let out = std::env::temp_dir().join("matte_bench_test");
-    let m = run(&Options { quick: true, repeats: 1, mitsuba: false, out }, &|_| {}).unwrap();
+    let m = run(&BenchOptions { quick: true, repeats: 1, mitsuba: false, out }, &|_| {}).unwrap();
     let names: Vec<&str> = m.jobs.iter().map(|(j, _)| j.name.as_str()).collect();
     assert_eq!(names, ["cornell", "bunny", "room"]);
     for (job, t) in &m.jobs {
@@ -52,9 +52,9 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
 
 #[test]
 fn targets_compare_in_the_stated_direction() {
-    let at_most = Target { what: "x".into(), measured: 0.5, limit: 0.4, at_least: false };
+    let at_most = SpeedTarget { what: "x".into(), measured: 0.5, limit: 0.4, at_least: false };
     assert!(!at_most.met());
-    let at_least = Target { what: "y".into(), measured: 0.95, limit: 0.9, at_least: true };
+    let at_least = SpeedTarget { what: "y".into(), measured: 0.95, limit: 0.9, at_least: true };
     assert!(at_least.met());
 }
 

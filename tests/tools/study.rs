@@ -96,7 +96,7 @@ fn regions_file_is_read_and_validated() {
 use matte::study::configuration::Configuration;
 use matte::study::convergence::{Point, Series};
 use matte::study::ratio::Ratio;
-use matte::study::variant_scene::{Derivation, Property, derive_text, write_derived};
+use matte::study::variant_scene::{Derivation, DerivedProperty, derive_text, write_derived};
 use std::path::{Path, PathBuf};
 
 fn temp_dir(tag: &str) -> PathBuf {
@@ -133,7 +133,7 @@ const SCENE: &str = r#"<?xml version="1.0"?>
 fn raw_variant() -> Derivation {
     Derivation {
         bsdf: Some("wolff".into()),
-        bsdf_properties: vec![Property::string("normalization", "raw")],
+        bsdf_properties: vec![DerivedProperty::string("normalization", "raw")],
         ..Default::default()
     }
 }
@@ -145,7 +145,7 @@ fn derived_scene_sets_the_property_only_in_bsdf_parameter_elements() {
     std::fs::write(dir.join("parts/sub.xml"), "<scene version=\"3.0.0\"><shape type=\"sphere\"/></scene>").unwrap();
     let source = dir.join("scene.xml");
     let mut d = raw_variant();
-    d.film_properties = vec![Property::integer("crop_offset_x", 3), Property::integer("width", 16)];
+    d.film_properties = vec![DerivedProperty::integer("crop_offset_x", 3), DerivedProperty::integer("width", 16)];
     let out = derive_text(SCENE, &source, &d).expect("derive");
     let doc = roxmltree::Document::parse(&out).expect("the derived scene is well-formed XML");
     let mut param_bsdfs = 0;
@@ -264,7 +264,7 @@ fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() 
         let file = dir.join(format!("{normalization}.xml"));
         let d = Derivation {
             bsdf: Some("wolff".into()),
-            bsdf_properties: vec![Property::string("normalization", normalization)],
+            bsdf_properties: vec![DerivedProperty::string("normalization", normalization)],
             ..Default::default()
         };
         write_derived(&cornell, &file, &d).expect("derive");

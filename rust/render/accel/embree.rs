@@ -13,7 +13,7 @@ use glam::{Vec2, Vec3};
 
 pub struct EmbreeScene {
     api: &'static Api,
-    scene: rtc::Scene,
+    scene: rtc::RTCScene,
     /// Embree geometry id → index of the shape in the scene.
     shape_of_geometry: Vec<u32>,
     /// Copies of the analytic shapes the user geometries point to (never moved or resized
@@ -72,7 +72,7 @@ impl EmbreeScene {
                 analytic: analytic.into_boxed_slice(),
                 triangles: 0,
             };
-            let attach = |this: &mut Self, geom: rtc::Geometry, shape: u32| {
+            let attach = |this: &mut Self, geom: rtc::RTCGeometry, shape: u32| {
                 (api.commit_geometry)(geom);
                 let id = (api.attach_geometry)(scene, geom) as usize;
                 (api.release_geometry)(geom);

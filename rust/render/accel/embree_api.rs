@@ -14,9 +14,9 @@
 use std::ffi::{CStr, c_char, c_int, c_uint, c_void};
 use std::sync::OnceLock;
 
-pub type Device = *mut c_void;
-pub type Scene = *mut c_void;
-pub type Geometry = *mut c_void;
+pub type RTCDevice = *mut c_void;
+pub type RTCScene = *mut c_void;
+pub type RTCGeometry = *mut c_void;
 
 /// `RTC_GEOMETRY_TYPE_TRIANGLE`.
 pub const GEOMETRY_TYPE_TRIANGLE: c_int = 0;
@@ -142,29 +142,29 @@ pub type UserQueryFn = unsafe extern "C" fn(*const UserQueryArgs);
 
 /// The resolved entry points (names as in `rtcore_*.h`).
 pub struct Api {
-    pub new_device: unsafe extern "C" fn(*const c_char) -> Device,
-    pub get_device_error: unsafe extern "C" fn(Device) -> c_int,
-    pub new_scene: unsafe extern "C" fn(Device) -> Scene,
-    pub release_scene: unsafe extern "C" fn(Scene),
-    pub set_scene_build_quality: unsafe extern "C" fn(Scene, c_int),
-    pub set_scene_flags: unsafe extern "C" fn(Scene, c_int),
-    pub commit_scene: unsafe extern "C" fn(Scene),
-    pub new_geometry: unsafe extern "C" fn(Device, c_int) -> Geometry,
-    pub set_new_geometry_buffer: unsafe extern "C" fn(Geometry, c_int, c_uint, c_int, usize, usize) -> *mut c_void,
-    pub commit_geometry: unsafe extern "C" fn(Geometry),
-    pub attach_geometry: unsafe extern "C" fn(Scene, Geometry) -> c_uint,
-    pub release_geometry: unsafe extern "C" fn(Geometry),
-    pub set_geometry_user_primitive_count: unsafe extern "C" fn(Geometry, c_uint),
-    pub set_geometry_user_data: unsafe extern "C" fn(Geometry, *mut c_void),
-    pub set_geometry_bounds_function: unsafe extern "C" fn(Geometry, BoundsFn, *mut c_void),
-    pub set_geometry_intersect_function: unsafe extern "C" fn(Geometry, UserQueryFn),
-    pub set_geometry_occluded_function: unsafe extern "C" fn(Geometry, UserQueryFn),
-    pub intersect1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRayHit),
-    pub occluded1: unsafe extern "C" fn(Scene, *mut IntersectContext, *mut RtcRay),
-    pub intersect8: unsafe extern "C" fn(*const c_int, Scene, *mut IntersectContext, *mut RtcRayHit8),
-    pub occluded8: unsafe extern "C" fn(*const c_int, Scene, *mut IntersectContext, *mut RtcRay8),
+    pub new_device: unsafe extern "C" fn(*const c_char) -> RTCDevice,
+    pub get_device_error: unsafe extern "C" fn(RTCDevice) -> c_int,
+    pub new_scene: unsafe extern "C" fn(RTCDevice) -> RTCScene,
+    pub release_scene: unsafe extern "C" fn(RTCScene),
+    pub set_scene_build_quality: unsafe extern "C" fn(RTCScene, c_int),
+    pub set_scene_flags: unsafe extern "C" fn(RTCScene, c_int),
+    pub commit_scene: unsafe extern "C" fn(RTCScene),
+    pub new_geometry: unsafe extern "C" fn(RTCDevice, c_int) -> RTCGeometry,
+    pub set_new_geometry_buffer: unsafe extern "C" fn(RTCGeometry, c_int, c_uint, c_int, usize, usize) -> *mut c_void,
+    pub commit_geometry: unsafe extern "C" fn(RTCGeometry),
+    pub attach_geometry: unsafe extern "C" fn(RTCScene, RTCGeometry) -> c_uint,
+    pub release_geometry: unsafe extern "C" fn(RTCGeometry),
+    pub set_geometry_user_primitive_count: unsafe extern "C" fn(RTCGeometry, c_uint),
+    pub set_geometry_user_data: unsafe extern "C" fn(RTCGeometry, *mut c_void),
+    pub set_geometry_bounds_function: unsafe extern "C" fn(RTCGeometry, BoundsFn, *mut c_void),
+    pub set_geometry_intersect_function: unsafe extern "C" fn(RTCGeometry, UserQueryFn),
+    pub set_geometry_occluded_function: unsafe extern "C" fn(RTCGeometry, UserQueryFn),
+    pub intersect1: unsafe extern "C" fn(RTCScene, *mut IntersectContext, *mut RtcRayHit),
+    pub occluded1: unsafe extern "C" fn(RTCScene, *mut IntersectContext, *mut RtcRay),
+    pub intersect8: unsafe extern "C" fn(*const c_int, RTCScene, *mut IntersectContext, *mut RtcRayHit8),
+    pub occluded8: unsafe extern "C" fn(*const c_int, RTCScene, *mut IntersectContext, *mut RtcRay8),
     /// One device for the process (Embree's thread pool is per device); never released.
-    pub device: Device,
+    pub device: RTCDevice,
 }
 
 // SAFETY: the device handle is only used to create scenes and geometries, which Embree allows
@@ -204,8 +204,8 @@ fn load() -> Result<Api, String> {
             unsafe { fn_pointer(sym($name)?) }
         };
     }
-    let new_device: unsafe extern "C" fn(*const c_char) -> Device = f!(c"rtcNewDevice");
-    let get_device_error: unsafe extern "C" fn(Device) -> c_int = f!(c"rtcGetDeviceError");
+    let new_device: unsafe extern "C" fn(*const c_char) -> RTCDevice = f!(c"rtcNewDevice");
+    let get_device_error: unsafe extern "C" fn(RTCDevice) -> c_int = f!(c"rtcGetDeviceError");
     // SAFETY: a null config string selects Embree's defaults.
     let device = unsafe { new_device(std::ptr::null()) };
     if device.is_null() {

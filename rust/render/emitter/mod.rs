@@ -2,12 +2,12 @@
 //! shading normal, attached to a shape), `point`, `spot`, `projector`, `directional`, and the
 //! `constant` and `envmap` environments. Radiance values are linear RGB.
 
+pub mod emitter_sample;
 pub mod envmap;
-pub mod sample;
 pub mod sample_ray;
 
+pub use emitter_sample::EmitterSample;
 pub use envmap::EnvMap;
-pub use sample::EmitterSample;
 
 use crate::render::geometry::warp;
 use crate::render::shape::{Shape, SurfaceInteraction};

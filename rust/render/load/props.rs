@@ -10,7 +10,7 @@
 //! accept, is a bug in the plugin's file and panics; `tests/scene_file/load.rs` loads every
 //! supported plugin with each harvested property, which runs every read.
 
-use super::mitsuba_plugins::{self, Kind, Plugin, Property};
+use super::mitsuba_plugins::{self, Kind, Plugin, PluginProperty};
 use super::{Builder, err, texture, values};
 use crate::brdf::params::{MAX_MAGNITUDE, too_large};
 use crate::render::bsdf::Bsdf;
@@ -27,7 +27,7 @@ pub static MATTE_MODEL: Plugin = Plugin {
     tag: "bsdf",
     name: "<matte model>",
     source: "cpp/matte_bsdf.h",
-    properties: &[Property {
+    properties: &[PluginProperty {
         name: "reflectance",
         kind: Kind::Texture,
         default: Some(".5f"),
@@ -43,14 +43,14 @@ pub static TABULATED_BRDF: Plugin = Plugin {
     name: "tabulated_brdf",
     source: "rust/render/bsdf/tabulated_brdf.rs",
     properties: &[
-        Property {
+        PluginProperty {
             name: "filename",
             kind: Kind::String,
             default: None,
             literal: None,
             source: "rust/render/bsdf/tabulated_brdf.rs",
         },
-        Property {
+        PluginProperty {
             name: "reflectance",
             kind: Kind::Texture,
             default: Some("0.5"),
@@ -158,7 +158,7 @@ impl<'a> PluginProps<'a> {
     ///
     /// # Panics
     /// If the plugin does not read `name`, or not as `read` (a bug in the plugin's file).
-    fn entry(&mut self, name: &str, read: Read) -> Option<&'static Property> {
+    fn entry(&mut self, name: &str, read: Read) -> Option<&'static PluginProperty> {
         if !matches!(read, Read::Query) && !self.read.iter().any(|n| n == name) {
             self.read.push(name.to_string());
         }
@@ -187,7 +187,7 @@ impl<'a> PluginProps<'a> {
     /// # Panics
     /// If the harvest has none (Mitsuba's default is an expression or there is none: read with
     /// an `_opt` method and give the default in the plugin's file).
-    fn literal(e: Option<&'static Property>, name: &str) -> &'static str {
+    fn literal(e: Option<&'static PluginProperty>, name: &str) -> &'static str {
         e.and_then(|e| e.literal).unwrap_or_else(|| panic!("bug: \"{name}\" has no literal default in the harvest"))
     }
 
@@ -299,7 +299,7 @@ impl<'a> PluginProps<'a> {
     }
 
     /// How a texture or colour read as `kind` is checked (docs/renderer-semantics.md §2).
-    fn usage(e: Option<&'static Property>) -> ColorUse {
+    fn usage(e: Option<&'static PluginProperty>) -> ColorUse {
         match e.map(|e| e.kind) {
             Some(Kind::Texture | Kind::Color) => ColorUse::Bounded,
             _ => ColorUse::Unbounded,
@@ -307,7 +307,7 @@ impl<'a> PluginProps<'a> {
     }
 
     /// The harvested default of a colour or texture, as a grey.
-    fn grey_default(e: Option<&'static Property>) -> Option<Vec3> {
+    fn grey_default(e: Option<&'static PluginProperty>) -> Option<Vec3> {
         e.and_then(|e| e.literal).map(|l| Vec3::splat(l.parse().expect("a numeric literal")))
     }
 

@@ -62,12 +62,12 @@ mod numbers;
 mod object;
 mod parse;
 mod properties;
+mod property_values;
 mod raw;
 mod resolve;
 mod substitute;
 pub mod transform;
 mod upgrade;
-mod values;
 
 use std::path::Path;
 use std::rc::Rc;

@@ -9,10 +9,10 @@ use roxmltree::{Document, Node, ParsingOptions};
 
 use super::attrs::Attrs;
 use super::properties::{Property, Value};
+use super::property_values::{is_value_tag, property_value, spectrum_file};
 use super::raw::{RawChild, RawNode, RawScene, Target};
-use super::substitute::Params;
+use super::substitute::Substitutions;
 use super::transform::build_transform;
-use super::values::{is_value_tag, property_value, spectrum_file};
 use crate::scene_file::error::{SceneError, SourcePos};
 
 /// Includes nest at most this deep (Mitsuba's `ParserConfig::max_include_depth`).
@@ -55,7 +55,7 @@ impl FileCtx<'_, '_> {
 /// The walk's state: nodes so far and the parameters, shared with every include.
 pub(crate) struct Parser {
     pub scene: RawScene,
-    pub params: Params,
+    pub params: Substitutions,
     /// The folders Mitsuba's `FileResolver` holds while this file is parsed, first searched
     /// first: the main scene's folder and the working directory at the start (`load_file`
     /// prepends the scene's folder), `<path>` folders prepended as they come, and while an
@@ -100,7 +100,7 @@ fn parse_version(s: &str, pos: &SourcePos) -> Result<[u32; 3], SceneError> {
 
 impl Parser {
     pub(crate) fn new(overrides: &[(String, String)]) -> Self {
-        Parser { scene: RawScene::default(), params: Params::new(overrides), resolver: Vec::new() }
+        Parser { scene: RawScene::default(), params: Substitutions::new(overrides), resolver: Vec::new() }
     }
 
     /// The attributes of `el` after `$` substitution, in document order.

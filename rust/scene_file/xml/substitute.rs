@@ -13,14 +13,14 @@ struct Param {
 
 /// The parameters in effect, longest key first so that `$rr` is replaced before `$r`
 /// (equal lengths keep their definition order). Shared by a file and all its includes.
-pub(crate) struct Params {
+pub(crate) struct Substitutions {
     list: Vec<Param>,
 }
 
-impl Params {
-    /// The `-D key=value` overrides; each must be used somewhere ([`Params::check_all_used`]).
+impl Substitutions {
+    /// The `-D key=value` overrides; each must be used somewhere ([`Substitutions::check_all_used`]).
     pub(crate) fn new(overrides: &[(String, String)]) -> Self {
-        let mut p = Params { list: Vec::with_capacity(overrides.len()) };
+        let mut p = Substitutions { list: Vec::with_capacity(overrides.len()) };
         for (k, v) in overrides {
             p.insert(k, v, false);
         }

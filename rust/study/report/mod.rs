@@ -1,12 +1,12 @@
 //! `study.json` and `report.html`. The page has one section per kind of result, each in its
 //! own file with both its JSON and its HTML: the main run per scene ([`scenes`]: strips,
 //! heatmaps, ratios to Lambert under global and direct lighting), the model variants
-//! ([`variants`]) and the convergence series ([`convergence`], with its plot in [`plot`]).
+//! ([`variants_section`]) and the convergence series ([`convergence_section`], with its plot in [`plot`]).
 
-pub mod convergence;
+pub mod convergence_section;
 pub mod plot;
 pub mod scenes;
-pub mod variants;
+pub mod variants_section;
 
 use super::{Lighting, Study};
 use crate::markup::escape;
@@ -23,8 +23,8 @@ pub struct StudyJson {
     pub spp: u32,
     pub answers: Vec<String>,
     pub scenes: Vec<scenes::SceneJson>,
-    pub variants: Vec<variants::VariantsJson>,
-    pub convergence: Vec<convergence::SeriesJson>,
+    pub variants: Vec<variants_section::VariantsJson>,
+    pub convergence: Vec<convergence_section::SeriesJson>,
 }
 
 /// A region's ratio to Lambert in both lightings.
@@ -71,8 +71,8 @@ pub fn json(study: &Study) -> StudyJson {
         spp: study.spp,
         answers: super::answers::answers(study),
         scenes: study.scenes.iter().map(scenes::json).collect(),
-        variants: study.variants.iter().map(variants::json).collect(),
-        convergence: study.convergence.iter().map(convergence::json).collect(),
+        variants: study.variants.iter().map(variants_section::json).collect(),
+        convergence: study.convergence.iter().map(convergence_section::json).collect(),
     }
 }
 
@@ -121,10 +121,10 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
         h.push_str(&scenes::html(s));
     }
     for v in &study.variants {
-        h.push_str(&variants::html(v));
+        h.push_str(&variants_section::html(v));
     }
     for s in &study.convergence {
-        h.push_str(&convergence::html(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
+        h.push_str(&convergence_section::html(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
     }
     h.push_str("</body></html>\n");
     h

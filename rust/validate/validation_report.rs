@@ -8,7 +8,7 @@ use super::passes::Side;
 use super::power::Calibration;
 use super::predicted_power::Prediction;
 use super::scales::Rejection;
-use super::stats::Comparison;
+use super::stats::ImageComparison;
 use super::{SceneResult, write_mean};
 use crate::markup::escape;
 use crate::render::film::Image;
@@ -74,7 +74,7 @@ fn write_crops(
     rel_dir: &Path,
     a: &Image,
     b: &Image,
-    c: &Comparison,
+    c: &ImageComparison,
     range: f32,
 ) -> Result<Vec<Crop>, String> {
     let mut out: Vec<Crop> = Vec::new();
@@ -111,7 +111,7 @@ fn write_crops(
     Ok(out)
 }
 
-pub fn write_scene_files(out: &Path, rel_dir: &Path, a: &Side, b: &Side, c: &Comparison) -> Result<Files, String> {
+pub fn write_scene_files(out: &Path, rel_dir: &Path, a: &Side, b: &Side, c: &ImageComparison) -> Result<Files, String> {
     let dir = out.join(rel_dir);
     write_mean(&dir, "matte", a)?;
     write_mean(&dir, "reference", b)?;
