@@ -9,12 +9,10 @@
 //! `cos²θ_d = (1 + wi·wo)/2` (no normalisation, no square root). Reciprocal; not energy
 //! conserving (the retro-reflection adds light at grazing for large r), as published.
 
-use super::kernel::{self, Kernel};
-use super::model::{BrdfSample, DiffuseBrdf};
+use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
-use glam::{Vec2, Vec3};
+use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
 
 /// Burley's diffuse with its roughness in any [`Real`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -61,33 +59,20 @@ impl Burley {
     }
 }
 
-impl DiffuseBrdf for Burley {
-    #[inline]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
-    }
-}
 
 impl Registered for Burley {
     const SPEC: ModelSpec = ModelSpec {
         name: "burley",
         label: "Burley",
         summary: "Burley 2012 (Disney): Lambert with Fresnel-like grazing factors and a roughness-driven retro-reflection; `principled`'s diffuse lobe",
-        params: &[ParamSpec::number(
-            "roughness",
-            0.5,
-            Range::Closed(0.0, 1.0),
-            "lie in [0, 1]",
-            "roughness r ∈ [0, 1] (Disney's, as `principled`'s)",
-        )],
+        params: &[ParamSpec::unit_interval("roughness", 0.5, "roughness r ∈ [0, 1] (Disney's, as `principled`'s)")],
         examples: &[&[("roughness", "1.0")]],
         in_study: true,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
     type Lane<'t, T: Real + 't> = BurleyKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

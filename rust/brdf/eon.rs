@@ -5,12 +5,10 @@
 //! (closed form G(μ)), not the polynomial fit, so the white furnace is 1 to float precision.
 
 use super::approx::acos_unit;
-use super::kernel::{self, Kernel, azimuthal_dot};
-use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
-use glam::{Vec2, Vec3};
+use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
 use std::f64::consts::PI;
 
 const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
@@ -151,45 +149,29 @@ impl Eon {
     }
 }
 
-impl DiffuseBrdf for Eon {
-    #[inline]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
-    }
-
-    /// `E = ρ E_F(μi) + ρ_ms (1 − E_F(μi))` (Portsmouth et al. 2025, eq. 17).
-    fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
-        if cos_theta_i <= 0.0 {
-            return Albedo { value: 0.0, method: AlbedoMethod::ClosedForm };
-        }
-        let e_f = self.fon_albedo(cos_theta_i as f32) as f64;
-        let rho = reflectance as f64;
-        let e_avg = self.kernel.e_avg as f64;
-        let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
-        Albedo { value: rho * e_f + rho_ms * (1.0 - e_f), method: AlbedoMethod::ClosedForm }
-    }
-}
 
 impl Registered for Eon {
     const SPEC: ModelSpec = ModelSpec {
         name: "eon",
         label: "EON",
         summary: "energy-preserving Oren–Nayar (Portsmouth et al. 2025), exact albedo: the white furnace gives 1",
-        params: &[ParamSpec::number(
-            "roughness",
-            0.3,
-            Range::Closed(0.0, 1.0),
-            "lie in [0, 1]",
-            "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)",
-        )],
+        params: &[ParamSpec::unit_interval("roughness", 0.3, "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)")],
         examples: &[&[("roughness", "1.0")]],
         in_study: true,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
+
+    /// `E = ρ E_F(μi) + ρ_ms (1 − E_F(μi))` (Portsmouth et al. 2025, eq. 17).
+    fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
+        let e_f = self.fon_albedo(cos_theta_i as f32) as f64;
+        let rho = reflectance as f64;
+        let e_avg = self.kernel.e_avg as f64;
+        let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
+        Some(rho * e_f + rho_ms * (1.0 - e_f))
+    }
     type Lane<'t, T: Real + 't> = EonKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -15,6 +15,13 @@ pub trait Kernel<T: Real> {
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N];
 }
 
+impl<T: Real, K: Kernel<T> + ?Sized> Kernel<T> for &K {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        (**self).reduced_f(wi, wo, rho)
+    }
+}
+
 /// Both directions strictly above the surface: every matte model is one-sided.
 #[inline(always)]
 pub fn both_above<T: Real>(wi: V3<T>, wo: V3<T>) -> T::Mask {

@@ -1,12 +1,10 @@
 //! Lambert: `f = ρ/π` (Lambert 1760). Must agree with Mitsuba's built-in `diffuse` to float
 //! precision, including its sampling routine and its sampling weight `ρ`.
 
-use super::kernel::{self, Kernel};
-use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, Registered, Values};
-use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Lambert;
@@ -18,22 +16,6 @@ impl<T: Real> Kernel<T> for Lambert {
     }
 }
 
-impl DiffuseBrdf for Lambert {
-    #[inline]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(self, wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(self, wi.into(), u.x, u.y, reflectance))
-    }
-
-    fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
-        let value = if cos_theta_i > 0.0 { reflectance as f64 } else { 0.0 };
-        Albedo { value, method: AlbedoMethod::ClosedForm }
-    }
-}
 
 impl Registered for Lambert {
     const SPEC: ModelSpec = ModelSpec {
@@ -44,6 +26,14 @@ impl Registered for Lambert {
         examples: &[],
         in_study: true,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        *self
+    }
+
+    fn closed_form_albedo(&self, _cos_theta_i: f64, rho: f32) -> Option<f64> {
+        Some(rho as f64)
+    }
     type Lane<'t, T: Real + 't> = Lambert;
 
     fn build(_: &Values) -> Result<Self, ParamError> {

@@ -5,12 +5,10 @@
 //! ρ² interreflection term, eqs. 27–29 and 37), identical to Mitsuba 0.6 `roughdiffuse` with `useFastApprox` true / false.
 
 use super::approx::acos_unit;
-use super::kernel::{self, Kernel, azimuthal_dot};
-use super::model::{BrdfSample, DiffuseBrdf};
+use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
-use glam::{Vec2, Vec3};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
 /// Which of the 1994 forms to evaluate.
@@ -153,19 +151,6 @@ impl OrenNayar {
     }
 }
 
-impl DiffuseBrdf for OrenNayar {
-    /// `inline(always)`: with the full model's body the function exceeds the inliner's
-    /// threshold, and a call would cost the default (qualitative) model a third of its time.
-    #[inline(always)]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
-    }
-}
 
 impl Registered for OrenNayar {
     const SPEC: ModelSpec = ModelSpec {
@@ -190,6 +175,10 @@ impl Registered for OrenNayar {
         examples: &[&[("sigma", "0.8"), ("model", "full")]],
         in_study: true,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

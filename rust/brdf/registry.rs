@@ -8,10 +8,12 @@
 //! Mitsuba plugin) and `matte types --json`, which the Python side and the tests read.
 //! `docs/adding-a-model.md` walks through adding one.
 
+use super::kernel;
 use super::kernel::Kernel;
-use super::model::DiffuseBrdf;
+use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf, albedo_by_quadrature};
 use super::params::{ParamError, ParamValue, Params};
 use super::real::Real;
+use glam::{Vec2, Vec3};
 use std::fmt::Debug;
 
 /// One model as the front ends see it.
@@ -93,6 +95,11 @@ impl ParamSpec {
             Range::Closed(lo, hi) | Range::OpenClosed(lo, hi) => (lo, hi),
         };
         Self { name, kind: ParamKind::Number { default }, range, lane_clamp, what, doc }
+    }
+
+    /// A number in [0, 1] (a roughness).
+    pub const fn unit_interval(name: &'static str, default: f64, doc: &'static str) -> Self {
+        Self::number(name, default, Range::Closed(0.0, 1.0), "lie in [0, 1]", doc)
     }
 
     /// An index of refraction (a number ≥ 1 or a named material).
@@ -263,8 +270,20 @@ impl Values {
 /// What a model implements to be registered; everything else about it is derived. `T` in the
 /// kernel methods is any [`Real`]: f32 and f64 on the CPU, `F32x8`, and the plugin's traced
 /// Dr.Jit values (`crate::ffi::traced`), so one implementation serves all of them.
-pub trait Registered: DiffuseBrdf + Clone + Debug + PartialEq + Sized + 'static {
+pub trait Registered: Clone + Debug + PartialEq + Sized + 'static {
     const SPEC: ModelSpec;
+
+    /// The model's kernel in f32 with its constants: what every [`DiffuseBrdf`] method of the
+    /// model runs (the blanket implementation below).
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_;
+
+    /// The directional albedo for a grey reflectance `rho` in closed form, where the model has
+    /// one; `None` (the default) lets [`DiffuseBrdf::albedo`] integrate numerically. Called
+    /// with `cos_theta_i > 0` only (the albedo is 0 below the surface).
+    fn closed_form_albedo(&self, cos_theta_i: f64, rho: f32) -> Option<f64> {
+        let _ = (cos_theta_i, rho);
+        None
+    }
 
     /// The model's kernel with its constants in `T`, built by [`Self::kernel_from`].
     type Lane<'t, T: Real + 't>: Kernel<T> + Copy;
@@ -445,3 +464,31 @@ macro_rules! models {
     };
 }
 pub(crate) use models;
+
+/// Every registered model is a [`DiffuseBrdf`] through its f32 kernel: evaluation and sampling
+/// are [`kernel`]'s, the albedo the model's closed form or quadrature.
+impl<M: Registered> DiffuseBrdf for M {
+    /// `inline(always)`: with the full Oren–Nayar body the function exceeds the inliner's
+    /// threshold, and a call would cost the default (qualitative) model a third of its time.
+    #[inline(always)]
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        kernel::eval(&self.f32_kernel(), wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(&self.f32_kernel(), wi.into(), u.x, u.y, reflectance))
+    }
+
+    fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
+        if cos_theta_i <= 0.0 {
+            return Albedo { value: 0.0, method: AlbedoMethod::ClosedForm };
+        }
+        match self.closed_form_albedo(cos_theta_i, reflectance) {
+            Some(value) => Albedo { value, method: AlbedoMethod::ClosedForm },
+            None => {
+                Albedo { value: albedo_by_quadrature(self, cos_theta_i, reflectance), method: AlbedoMethod::Quadrature }
+            }
+        }
+    }
+}

@@ -5,12 +5,11 @@
 //! qualitative model; the default is the full one. Defaults as 0.6: α = 0.2, ρ = 0.5.
 //! So that scenes written for Mitsuba 0.6 render with the rough diffuse model they asked for.
 
-use super::model::{BrdfSample, DiffuseBrdf};
+use super::kernel::Kernel;
 use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarModel};
 use super::params::{ParamError, ParamValue};
 use super::real::Real;
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
-use glam::{Vec2, Vec3};
 use std::f64::consts::FRAC_1_SQRT_2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,17 +45,6 @@ impl RoughDiffuse {
     }
 }
 
-impl DiffuseBrdf for RoughDiffuse {
-    #[inline(always)]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        self.oren_nayar.eval(wi, wo, reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        self.oren_nayar.sample(wi, u, reflectance)
-    }
-}
 
 impl Registered for RoughDiffuse {
     const SPEC: ModelSpec = ModelSpec {
@@ -70,6 +58,10 @@ impl Registered for RoughDiffuse {
         examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
         in_study: false,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        self.oren_nayar.kernel()
+    }
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -18,12 +18,10 @@
 
 use super::fresnel::{Transmittance, dielectric_reflectance, diffuse_fresnel_external};
 use super::fresnel_fit::diffuse_fresnel_external_fit;
-use super::kernel::{self, Kernel};
-use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
-use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WolffNormalization {
@@ -175,28 +173,6 @@ impl Wolff {
     }
 }
 
-impl DiffuseBrdf for Wolff {
-    #[inline]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(&self.kernel, wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(&self.kernel, wi.into(), u.x, u.y, reflectance))
-    }
-
-    /// `E(θi) = K T(θi) π (1 − F_dr,ext)`, since `∫ T(θo) cos θo dωo = π (1 − F_dr,ext)`.
-    fn albedo(&self, cos_theta_i: f64, reflectance: f32) -> Albedo {
-        let value = if cos_theta_i <= 0.0 {
-            0.0
-        } else {
-            let t_i = 1.0 - dielectric_reflectance(cos_theta_i, self.eta as f64);
-            self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64)
-        };
-        Albedo { value, method: AlbedoMethod::ClosedForm }
-    }
-}
 
 impl Registered for Wolff {
     const SPEC: ModelSpec = ModelSpec {
@@ -216,6 +192,16 @@ impl Registered for Wolff {
         examples: &[&[("int_ior", "bk7"), ("ext_ior", "1.1"), ("normalization", "normal")], &[("int_ior", "1.8"), ("normalization", "raw")]],
         in_study: true,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
+
+    /// `E(θi) = K T(θi) π (1 − F_dr,ext)`, since `∫ T(θo) cos θo dωo = π (1 − F_dr,ext)`.
+    fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
+        let t_i = 1.0 - dielectric_reflectance(cos_theta_i, self.eta as f64);
+        Some(self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64))
+    }
     type Lane<'t, T: Real + 't> = WolffKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -17,13 +17,11 @@ pub mod slope_integral;
 pub mod table;
 
 use super::approx;
-use super::kernel::{self, Kernel, azimuthal_dot};
-use super::model::{BrdfSample, DiffuseBrdf};
+use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
-use glam::{Vec2, Vec3};
 use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
 use std::sync::Arc;
@@ -213,6 +211,10 @@ impl Registered for Ginneken {
         examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
         in_study: true,
     };
+
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        self.kernel()
+    }
     type Lane<'t, T: Real + 't> = GinnekenLane<'t, T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
@@ -268,21 +270,11 @@ impl Registered for Ginneken {
     }
 }
 
-impl DiffuseBrdf for Ginneken {
-    #[inline(always)]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(&self.kernel(), wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(&self.kernel(), wi.into(), u.x, u.y, reflectance))
-    }
-}
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::brdf::model::DiffuseBrdf;
     use crate::brdf::frame::spherical_direction_f64;
     use glam::DVec3;
     use table::{C_NODES, LAMBDA_NODES, U_NODES};
