@@ -209,7 +209,8 @@ public:
         if constexpr (!dr::is_jit_v<Float>) {
             if (!(active && Frame3f::cos_theta(si.wi) > 0.f && Frame3f::cos_theta(wo) > 0.f))
                 return 0.f;
-            return (*m_model)->pdf(to_ffi(si.wi), to_ffi(wo));
+            auto params = lane_values(si, active);
+            return (*m_model)->pdf(rust::Slice<const float>(params.data(), params.size()), to_ffi(si.wi), to_ffi(wo));
         } else {
             // Dr.Jit records only what the pdf depends on: the value's operations are dropped.
             return eval_pdf_impl(si, wo, active).second;

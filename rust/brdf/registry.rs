@@ -465,14 +465,19 @@ macro_rules! models {
 }
 pub(crate) use models;
 
-/// Every registered model is a [`DiffuseBrdf`] through its f32 kernel: evaluation and sampling
-/// are [`kernel`]'s, the albedo the model's closed form or quadrature.
+/// Every registered model is a [`DiffuseBrdf`] through its f32 kernel: evaluation, density and
+/// sampling are [`kernel`]'s, the albedo the model's closed form or quadrature.
 impl<M: Registered> DiffuseBrdf for M {
     /// `inline(always)`: with the full Oren–Nayar body the function exceeds the inliner's
     /// threshold, and a call would cost the default (qualitative) model a third of its time.
     #[inline(always)]
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
         kernel::eval(&self.f32_kernel(), wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        kernel::pdf(&self.f32_kernel(), wi.into(), wo.into())
     }
 
     #[inline]

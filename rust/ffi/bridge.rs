@@ -86,7 +86,8 @@ pub mod ffi {
             reflectance: &Channels,
             f: &mut Channels,
         ) -> f32;
-        fn pdf(self: &Model, wi: &Vec3f, wo: &Vec3f) -> f32;
+        /// The pdf of sampling `wo` given `wi`; `params` as in `eval_pdf`.
+        fn pdf(self: &Model, params: &[f32], wi: &Vec3f, wo: &Vec3f) -> f32;
         /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample). `params` as
         /// in `eval_pdf`.
         fn sample(

@@ -131,11 +131,15 @@ impl Model {
             return 0.0;
         };
         f.v = kernel::eval(&k, wi.into(), wo.into(), padded(reflectance));
-        self.bsdf.pdf(wi, wo)
+        kernel::pdf(&k, wi.into(), wo.into())
     }
 
-    fn pdf(&self, wi: &Vec3f, wo: &Vec3f) -> f32 {
-        self.bsdf.pdf(v3(wi), v3(wo))
+    fn pdf(&self, params: &[f32], wi: &Vec3f, wo: &Vec3f) -> f32 {
+        let (wi, wo) = (v3(wi), v3(wo));
+        if params.is_empty() {
+            return self.bsdf.pdf(wi, wo);
+        }
+        self.bsdf.lane_kernel_f32(params).map_or(0.0, |k| kernel::pdf(&k, wi.into(), wo.into()))
     }
 
     /// Samples `wo`; writes it and the weight `f cos θo / pdf`; returns the pdf (0: no sample).

@@ -141,8 +141,8 @@ impl BsdfModel for Matte {
                 let Some(k) = self.model.lane_kernel_f32(&v[..n]) else {
                     return (Vec3::ZERO, 0.0);
                 };
-                let f = kernel::eval(&k, wi.into(), wo.into(), rho.to_array());
-                (Vec3::from_array(f) * wo.z, self.model.pdf(wi, wo))
+                let (f_cos, pdf) = kernel::eval_cos_pdf(&k, wi.into(), wo.into(), rho.to_array());
+                (Vec3::from_array(f_cos), pdf)
             }
         }
     }
