@@ -5,6 +5,7 @@
 //! by the Mitsuba plugin (`crate::ffi::traced`).
 
 pub mod approx;
+pub mod cltc;
 pub mod dual;
 pub mod frame;
 pub mod fresnel;

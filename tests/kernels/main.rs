@@ -13,6 +13,7 @@ mod properties;
 mod reference_tables;
 mod registry;
 mod rough_diffuse;
+mod sampling;
 mod simd_kernels;
 mod tabulated_brdf;
 mod textured_parameters;
