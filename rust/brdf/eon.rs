@@ -150,7 +150,10 @@ impl<T: Real> Kernel<T> for EonKernel<T> {
         rho.map(|r| r * single + self.rho_ms(r) * lobe)
     }
 
-    const COSINE_SAMPLING: bool = false;
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        false
+    }
 
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {

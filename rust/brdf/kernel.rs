@@ -16,8 +16,12 @@ pub trait Kernel<T: Real> {
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N];
 
     /// Whether [`Self::sample_wo`] is the default cosine-weighted sampler: the sampling weight
-    /// is then `π f` itself, with no division by the pdf.
-    const COSINE_SAMPLING: bool = true;
+    /// is then `π f` itself, with no division by the pdf. Not a value of `T`: known when
+    /// the kernel is built (and when it is traced).
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        true
+    }
 
     /// Draws `wo` for `wi` strictly above the surface from two uniform numbers: `(wo, pdf)`.
     /// Default: cosine-weighted (Mitsuba's warp). Must be finite for every input (callers
@@ -44,7 +48,10 @@ impl<T: Real, K: Kernel<T> + ?Sized> Kernel<T> for &K {
         (**self).reduced_f(wi, wo, rho)
     }
 
-    const COSINE_SAMPLING: bool = K::COSINE_SAMPLING;
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        (**self).cosine_sampling()
+    }
 
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
@@ -114,7 +121,7 @@ pub fn sample<T: Real, K: Kernel<T>, const N: usize>(
     let (wo, pdf) = k.sample_wo(wi, u1, u2);
     let valid = wi.z.gt(zero) & wo.z.gt(zero) & pdf.gt(zero);
     let h = k.reduced_f(wi, wo, rho);
-    let weight = if K::COSINE_SAMPLING {
+    let weight = if k.cosine_sampling() {
         h
     } else {
         // f cos θo / pdf = π f · (cos θo / π) / pdf; the guarded pdf keeps masked lanes finite.

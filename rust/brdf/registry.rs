@@ -397,6 +397,32 @@ macro_rules! models {
                     $(LaneKernel::$variant(k) => k.reduced_f(wi, wo, rho),)+
                 }
             }
+
+            #[inline(always)]
+            fn cosine_sampling(&self) -> bool {
+                match self {
+                    $(LaneKernel::$variant(k) => $crate::brdf::kernel::Kernel::<T>::cosine_sampling(k),)+
+                }
+            }
+
+            #[inline(always)]
+            fn sample_wo(
+                &self,
+                wi: $crate::brdf::real::V3<T>,
+                u1: T,
+                u2: T,
+            ) -> ($crate::brdf::real::V3<T>, T) {
+                match self {
+                    $(LaneKernel::$variant(k) => k.sample_wo(wi, u1, u2),)+
+                }
+            }
+
+            #[inline(always)]
+            fn pdf_wo(&self, wi: $crate::brdf::real::V3<T>, wo: $crate::brdf::real::V3<T>) -> T {
+                match self {
+                    $(LaneKernel::$variant(k) => k.pdf_wo(wi, wo),)+
+                }
+            }
         }
 
         /// `dispatch!(model, m => expr)`: evaluates `expr` with `m` bound to the concrete

@@ -89,3 +89,32 @@ fn eon_sampler_is_the_cosine_at_roughness_zero() {
         assert!((m.pdf(wi, wo) - want).abs() <= 1e-6 * want, "θi={ti} θo={to}: {} vs {want}", m.pdf(wi, wo));
     }
 }
+
+/// The per-lane kernel (textured parameters, the traced plugin) samples with the model's own
+/// sampler: the same density and the same directions as the constant model.
+#[test]
+fn the_per_lane_kernel_samples_as_the_model() {
+    use matte::brdf::kernel;
+    for (label, bsdf) in catalogue() {
+        let values: Vec<f32> = bsdf
+            .parameters()
+            .iter()
+            .filter_map(|(name, v)| match v {
+                matte::brdf::ParamValue::Number(x) if bsdf.spec().numeric().any(|p| p.name == *name) => Some(*x as f32),
+                _ => None,
+            })
+            .collect();
+        let Some(lane) = bsdf.lane_kernel_f32(&values) else { panic!("{label}: no lane kernel for {values:?}") };
+        for (ti, to, dphi) in [(30.0f32, 60.0f32, 180.0f32), (85.0, 20.0, 0.0), (60.0, 88.0, 90.0)] {
+            let (wi, wo) = (direction(ti, 0.0), direction(to, dphi));
+            let (a, b) = (bsdf.pdf(wi, wo), kernel::pdf(&lane, wi.into(), wo.into()));
+            assert!((a - b).abs() <= 1e-5 * a, "{label} θi={ti}: model pdf {a}, lane pdf {b}");
+            let s = bsdf.sample(wi, glam::Vec2::new(0.37, 0.81), [1.0]).expect("a sample");
+            let (w, _, p) = kernel::sample(&lane, wi.into(), 0.37, 0.81, [1.0f32]);
+            assert!(
+                (Vec3::from(w) - s.wo).length() <= 1e-5 && (p - s.pdf).abs() <= 1e-5 * p,
+                "{label}: lane sample differs"
+            );
+        }
+    }
+}
