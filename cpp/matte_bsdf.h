@@ -182,8 +182,11 @@ public:
             uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), m_any_textured, slice(wi), ar.push(sample2.x()),
                                                      ar.push(sample2.y()), slice(rho), mut_slice(wo),
                                                      mut_slice(weight));
-            bs.wo = Vector3f(ar.get(wo[0]), ar.get(wo[1]), ar.get(wo[2]));
-            bs.pdf = ar.get(pdf);
+            // Zero on inactive lanes: their parameters (textures evaluated under `active`) are
+            // not the material's, so neither is what the sampler drew there.
+            bs.wo = dr::select(active, Vector3f(ar.get(wo[0]), ar.get(wo[1]), ar.get(wo[2])), 0.f);
+            // Detached: a sampling density (see eval_pdf_impl).
+            bs.pdf = dr::select(active, dr::detach(ar.get(pdf)), 0.f);
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = ar.get(weight[c]);
         }
@@ -414,7 +417,10 @@ private:
                                                           slice(rho), mut_slice(v));
             for (size_t c = 0; c < Channels; ++c)
                 value[c] = ar.get(v[c]);
-            pdf = ar.get(pdf_id);
+            // The pdf is a sampling density: detached, so that prb's emitter-sampling MIS weight
+            // (differentiated, while the BSDF-sampling one is not) adds no gradient of its own
+            // where the sampler depends on a parameter (docs/sampling.md#gradients).
+            pdf = dr::detach(ar.get(pdf_id));
         }
         return { depolarizer<Spectrum>(value) & active, dr::select(active, pdf, 0.f) };
     }

@@ -10,6 +10,7 @@ use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
+use super::sampling::{cosine_hemisphere, cosine_pdf};
 use std::f64::consts::PI;
 
 const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
@@ -39,6 +40,9 @@ pub struct EonKernel<T> {
     r: T,
     /// `r^{1/8}`: the uniform component's roughness factor ([`EonKernel::sampler`]).
     r_eighth: T,
+    /// Sample the lobe ([`EonKernel::sampler`]) rather than the cosine (the `sampling`
+    /// parameter). Not a coefficient: the model sets it ([`EonKernel::with_sampling`]).
+    cltc: bool,
 }
 
 /// `G(μ) = S (acos μ − S μ) + (2/3)[(S/μ)(1 − S³) − S]`, `S = √(1−μ²)`, the azimuth-integrated
@@ -71,7 +75,13 @@ impl<T: Real> EonKernel<T> {
             r,
             // Three square roots (traceable, no pow); the clamp keeps the derivative finite.
             r_eighth: T::select(r.gt(T::c(0.0)), r.max(T::c(1e-12)).sqrt().sqrt().sqrt(), T::c(0.0)),
+            cltc: true,
         }
+    }
+
+    /// The same kernel sampling the lobe (`Sampling::Cltc`) or the cosine.
+    pub fn with_sampling(self, sampling: Sampling) -> Self {
+        Self { cltc: sampling == Sampling::Cltc, ..self }
     }
 
     pub fn coefficients(&self) -> [T; 9] {
@@ -91,7 +101,7 @@ impl<T: Real> EonKernel<T> {
     pub fn from_coefficients(
         [a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth]: [T; 9],
     ) -> Self {
-        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth }
+        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth, cltc: true }
     }
 
     /// The importance sampler at `μ = cos θi`: EON's CLTC fit (Portsmouth et al. 2025, §4 and
@@ -152,31 +162,68 @@ impl<T: Real> Kernel<T> for EonKernel<T> {
 
     #[inline(always)]
     fn cosine_sampling(&self) -> bool {
-        false
+        !self.cltc
     }
 
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
+        if !self.cltc {
+            let wo = cosine_hemisphere(u1, u2);
+            return (wo, cosine_pdf(wo.z));
+        }
         self.sampler(wi.z.clamp_to(0.0, 1.0)).sample(wi, u1, u2)
     }
 
     #[inline(always)]
     fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
+        if !self.cltc {
+            return cosine_pdf(wo.z);
+        }
         self.sampler(wi.z.clamp_to(0.0, 1.0)).pdf(wi, wo)
+    }
+}
+
+/// How a model with its own sampler draws directions (its `sampling` parameter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sampling {
+    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`), the default.
+    Cltc,
+    /// Mitsuba's cosine-weighted sampling, as `diffuse` (for comparisons).
+    Cosine,
+}
+
+impl Sampling {
+    pub const CHOICES: &'static [&'static str] = &["cltc", "cosine"];
+
+    pub fn parse(word: &str) -> Self {
+        if word == "cosine" { Sampling::Cosine } else { Sampling::Cltc }
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Sampling::Cltc => "cltc",
+            Sampling::Cosine => "cosine",
+        }
     }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Eon {
     r: f32,
+    sampling: Sampling,
     kernel: EonKernel<f32>,
 }
 
 impl Eon {
     pub fn new(r: f64) -> Result<Self, ParamError> {
+        Self::with_sampling(r, Sampling::Cltc)
+    }
+
+    pub fn with_sampling(r: f64, sampling: Sampling) -> Result<Self, ParamError> {
         let r = Self::SPEC.params[0].check(r)?;
         let k = EonKernel::<f64>::new(r);
-        Ok(Self { r: r as f32, kernel: EonKernel::from_coefficients(k.coefficients().map(|c| c as f32)) })
+        let kernel = EonKernel::from_coefficients(k.coefficients().map(|c| c as f32)).with_sampling(sampling);
+        Ok(Self { r: r as f32, sampling, kernel })
     }
 
     pub fn roughness(&self) -> f32 {
@@ -199,8 +246,16 @@ impl Registered for Eon {
         name: "eon",
         label: "EON",
         summary: "energy-preserving Oren–Nayar (Portsmouth et al. 2025), exact albedo: the white furnace gives 1",
-        params: &[ParamSpec::unit_interval("roughness", 0.3, "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)")],
-        examples: &[&[("roughness", "1.0")]],
+        params: &[
+            ParamSpec::unit_interval("roughness", 0.3, "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)"),
+            ParamSpec::choice(
+                "sampling",
+                Sampling::CHOICES,
+                "cltc",
+                "`cltc`: the paper's clipped linearly transformed cosine with a uniform share; `cosine`: as `diffuse`",
+            ),
+        ],
+        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cosine")]],
         in_study: true,
     };
 
@@ -219,11 +274,11 @@ impl Registered for Eon {
     type Lane<'t, T: Real + 't> = EonKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        Self::new(v.number("roughness"))
+        Self::with_sampling(v.number("roughness"), Sampling::parse(v.choice("sampling")))
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.r as f64)]
+        vec![ParamValue::Number(self.r as f64), ParamValue::Text(self.sampling.as_str().into())]
     }
 
     fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
@@ -232,6 +287,6 @@ impl Registered for Eon {
     }
 
     fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<EonKernel<T>> {
-        Some(EonKernel::from_coefficients(first(c)?))
+        Some(EonKernel::from_coefficients(first(c)?).with_sampling(self.sampling))
     }
 }

@@ -45,6 +45,14 @@ impl DiffuseModel {
         self.spec().name
     }
 
+    /// Whether the model draws directions with its own sampler rather than the cosine
+    /// (`docs/sampling.md`).
+    pub fn own_sampler(&self) -> bool {
+        use kernel::Kernel;
+        use registry::Registered;
+        dispatch!(self, m => !m.f32_kernel().cosine_sampling())
+    }
+
     /// The effective parameters (defaults filled in), for printing and `to_string`.
     pub fn parameters(&self) -> Vec<(&'static str, ParamValue)> {
         use registry::Registered;

@@ -1,6 +1,6 @@
 //! `matte types`: the registered diffuse models (`crate::brdf::MODELS`), as plugin names (one
 //! per line; the plugin build reads them), as JSON (every parameter with its kind, default,
-//! range and lane clamp, and the example configurations the tests sweep) or as the README's
+//! range and lane clamp, the example configurations the tests sweep, the sampler) or as the README's
 //! model table.
 
 use crate::brdf::registry::{ModelSpec, ParamKind, ParamSpec};
@@ -17,13 +17,25 @@ pub struct TypesArgs {
 
 pub fn run(a: &TypesArgs) -> Result<(), String> {
     if a.json {
-        println!("{}", serde_json::to_string_pretty(crate::brdf::MODELS).map_err(|e| e.to_string())?);
+        println!("{}", serde_json::to_string_pretty(&json()).map_err(|e| e.to_string())?);
     } else if a.markdown {
         print!("{}", markdown_table());
     } else {
         crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
     }
     Ok(())
+}
+
+/// The registry as JSON: every declaration, plus `"sampler"`: `"own"` where the model (at its
+/// defaults) samples its own lobe, else `"cosine"`.
+pub fn json() -> serde_json::Value {
+    let mut all = serde_json::to_value(crate::brdf::MODELS).expect("the declarations serialise");
+    for (value, spec) in all.as_array_mut().expect("an array").iter_mut().zip(crate::brdf::MODELS) {
+        let own = crate::brdf::DiffuseModel::from_params(spec.name, crate::brdf::Params::new())
+            .is_ok_and(|m| m.own_sampler());
+        value["sampler"] = (if own { "own" } else { "cosine" }).into();
+    }
+    all
 }
 
 /// The README's model table, one row per registered model.
