@@ -8,6 +8,7 @@ pub mod kernels;
 pub mod mitsuba;
 pub mod render;
 pub mod report;
+pub mod sampling;
 pub mod traversal;
 pub mod wide_kernels;
 

@@ -13,6 +13,10 @@ pub struct BenchArgs {
     /// Renders per measurement; the best time counts.
     #[arg(long, default_value_t = 3)]
     pub repeats: u32,
+    /// Only the samplers' lobe-level efficiency (`sampling.json`, `sampling.md`;
+    /// `docs/sampling.md`): seconds, no renders.
+    #[arg(long)]
+    pub sampling: bool,
     /// Skip Mitsuba (matte's numbers only, no ratios).
     #[arg(long)]
     pub no_mitsuba: bool,
@@ -27,6 +31,19 @@ pub fn run(a: &BenchArgs) -> Result<(), String> {
         return Err("--repeats must be at least 1".into());
     }
     std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
+    if a.sampling {
+        let rows = bench::sampling::measure(a.quick);
+        let table = bench::sampling::table(&rows);
+        for (name, text) in [
+            ("sampling.json", serde_json::to_string_pretty(&rows).expect("json")),
+            ("sampling.md", table.clone()),
+        ] {
+            let path = a.out.join(name);
+            std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        print!("{table}");
+        return Ok(());
+    }
     let opts = BenchOptions { quick: a.quick, repeats: a.repeats, mitsuba: !a.no_mitsuba, out: a.out.clone() };
     let m = bench::run(&opts, &|step| {
         if !a.quiet {
