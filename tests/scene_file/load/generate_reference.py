@@ -30,7 +30,9 @@ Mitsuba is asked):
 * `rawconstant_texture`: its value, unconverted.
 * `nested_includes_resolve_paths_like_mitsuba`: the same file layout through `mi.load_file`:
   the scene loads, and with `tri.obj` alone it fails with "file not found".
-* `emitter_selection_follows_mitsubas_scene_order`: `scene.emitters()` with `parallel=False`.
+* `emitter_selection_follows_mitsubas_scene_order`: `scene.emitters()` with `parallel=False`,
+  100 loads: the test's order is the most frequent, but not the only one (about 5–8 % of loads
+  list the rectangles' emitters as shape3, shape4, shape1 instead of shape4, shape3, shape1).
 * `emitter_positions_map_the_sample_as_mitsuba`: `shape.sample_position` on the transformed
   rectangle and on the two-triangle OBJ.
 
@@ -334,17 +336,20 @@ def area(shape, x):
 
 body = "\n".join([area("sphere", 0), area("rectangle", 1), '<emitter type="constant"/>', area("sphere", 2),
                   area("rectangle", 3), '<emitter type="point"/>', area("rectangle", 4)])
-scene = load(f"{SENSOR}\n{body}", parallel=False)
-shape_index = {0: "shape0", 1: "shape1", 2: "shape2", 3: "shape3", 4: "shape4"}
-names = []
-for e in scene.emitters():
-    shape = e.get_shape()
-    if shape is not None:
-        names.append(shape_index[int(round(float(shape.bbox().center()[0])))])
-    else:
-        names.append("constant" if "Constant" in e.class_name() else "point" if "Point" in e.class_name() else e.class_name())
-check_true("scene.emitters() order (parallel=False)",
-           names == ["shape0", "constant", "shape2", "point", "shape4", "shape3", "shape1"], ", ".join(names))
+orders = {}
+for _ in range(100):  # not fully deterministic even with parallel=False: ~5-8 % of loads swap shape4 and shape3
+    scene = load(f"{SENSOR}\n{body}", parallel=False)
+    names = []
+    for e in scene.emitters():
+        shape = e.get_shape()
+        if shape is not None:
+            names.append(f"shape{int(round(float(shape.bbox().center()[0])))}")
+        else:
+            names.append("constant" if "Constant" in e.class_name() else "point")
+    orders[", ".join(names)] = orders.get(", ".join(names), 0) + 1
+seen = "; ".join(f"{o} ({n}/100)" for o, n in sorted(orders.items(), key=lambda kv: -kv[1]))
+check_true("scene.emitters() order (parallel=False), the most frequent of 100 loads",
+           max(orders, key=orders.get) == "shape0, constant, shape2, point, shape4, shape3, shape1", seen)
 
 # emitter_positions_map_the_sample_as_mitsuba
 obj = TMP / "two.obj"
