@@ -10,7 +10,9 @@ with the venv's Python from the repository root:
 Without a flag it prints the three tables in the Markdown layout of docs/models.md (paste
 them under "### Table 1" etc.). `--check` parses the tables of docs/models.md and the arrays of
 tests/kernels/reference_tables.rs and reports every cell that differs from this script's value
-at the printed digits; it exits 1 if any does. Either way it takes about 10 s (2 cores), most
+at the printed digits, then does the same for the numbers docs/models.md quotes in its text
+(Fresnel averages, Wolff's E(0°), Oren–Nayar's grazing maximum, van Ginneken's α(φ)); it
+exits 1 if any differs. Either way it takes 10–30 s on 2 cores (more when they are busy), most
 of it the van Ginneken albedos of Table 2.
 
 The numerical choices are the ones docs/models.md names:
@@ -428,13 +430,57 @@ def check(tables):
     return not bad
 
 
+def text_values(tables):
+    """Numbers quoted in docs/models.md's text: (what, as printed there, computed)."""
+    n = 1.5
+    s2 = np.linspace(0.01, 1.0, 9901) ** 2
+    grazing = 1 - 0.5 * s2 / (s2 + 0.33) + 0.5 * 0.45 * s2 / (s2 + 0.09)  # QON's E(90°) = A + B/2
+    t2 = tables["Table 2"]
+    vg_alpha = [4.41 * phi / (4.41 * phi + 1) for phi in (PI / 2, PI)]
+    return [
+        ("Fresnel F(0) at n = 1.5", "0.0400", float(fresnel(1.0, n))),
+        ("F_dr,ext(1.5)", "0.09178", f_dr(n)),
+        ("F_dr,int = F_dr(1/1.5)", "0.59635", f_dr(1 / n)),
+        ("1 − F_dr,int − (1 − F_dr,ext)/n² (the identity)", "0.00000", (1 - f_dr(1 / n)) - (1 - f_dr(n)) / n**2),
+        ("Wolff physical E(0°), n = 1.5, ρ = 1", "0.960", t2["Wolff physical"][0]),
+        ("Wolff normal E(0°)", "1.000", t2["Wolff normal"][0]),
+        ("Wolff raw E(0°)", "0.872", t2["Wolff raw"][0]),
+        ("Wolff physical E(0°) at ρ = 0.8", "0.593", albedo(wolff(n, 0.8, "physical"), 0.0)),
+        ("Wolff physical E(89°), ρ = 1", "0.10", t2["Wolff physical"][4]),
+        ("QON: max over σ of A + B/2", "1.0152", float(grazing.max())),
+        ("QON: σ of that maximum", "0.20", float(np.sqrt(s2[grazing.argmax()]))),
+        ("QON: A + B/2 > 1 for σ below", "0.326", float(np.sqrt(s2[np.nonzero(grazing > 1)[0].max()]))),
+        ("fullON σ = 0.5 E(89°)", "1.0166", t2["fullON s=0.5"][4]),
+        ("vG m = 0.3 E", "0.926", t2["vG m=0.3"][0]),
+        ("vG m = 0.5 E", "0.836", t2["vG m=0.5"][0]),
+        ("vG α(π/2)", "0.874", vg_alpha[0]),
+        ("vG α(π)", "0.933", vg_alpha[1]),
+        ("fullON σ = 0.5 at 75/75/180 (\"0.117 vs 0.038\")", "0.117", tables["Table 1"]["fullON s=0.5"][6]),
+        ("vG m = 0.5 at 75/75/180", "0.038", tables["Table 1"]["vG m=0.5"][6]),
+    ]
+
+
+def check_text(tables):
+    doc = DOC.read_text()
+    bad = 0
+    for what, printed, value in text_values(tables):
+        in_doc = printed in doc or what.startswith("1 − F_dr,int")
+        ok = in_doc and same_at_printed_digits(printed, value)
+        bad += not ok
+        print(f"{'OK      ' if ok else 'MISMATCH'} {what}: docs/models.md {printed}{'' if in_doc else ' (not found in the doc)'},"
+              f" computed {value:.6f}")
+    return bad == 0
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--check", action="store_true", help="compare with docs/models.md and the test's arrays")
     args = parser.parse_args()
     tables = compute()
     if args.check:
-        sys.exit(0 if check(tables) else 1)
+        tables_ok = check(tables)
+        text_ok = check_text(tables)
+        sys.exit(0 if tables_ok and text_ok else 1)
     print(markdown(tables))
 
 
