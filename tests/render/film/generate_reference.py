@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Prints what Mitsuba 3.9.1 (scalar_rgb) gives for the inline oracles of tests/render/film.rs and
 checks them against the numbers the test holds. Run by hand with the venv's Python from the
-repository root (about 15 s, the edge renders):
+repository root (5–10 s, the edge renders):
 
     .venv/bin/python tests/render/film/generate_reference.py
 
