@@ -221,6 +221,7 @@ fn white_furnace_returns_the_environment_radiance() {
 /// point gets L = ρ/π · I cos θ / d², with `path` (any depth ≥ 2) and `direct` alike. The
 /// `direct` quirk (delta-light samples not divided by Ne, `docs/renderer-semantics.md` §7)
 /// multiplies it by Ne.
+/// Checked against Mitsuba 3.9.1 (scalar_rgb) by validation/verify_semantics.py -k §9.
 #[test]
 fn plane_under_point_light_matches_closed_form() {
     let (i, h, rho) = (10.0f32, 2.0f32, 0.5f32);
@@ -253,6 +254,7 @@ fn plane_under_point_light_matches_closed_form() {
 /// `max_depth` counts segments: a closed emissive cube (inward normals, ρ = 0.5, Le = 1)
 /// gives 1, 1.5, 1.75 for depths 1, 2, 3 and 2 unbounded (`docs/renderer-semantics.md` §7,
 /// verified in Mitsuba).
+/// Checked against Mitsuba 3.9.1 (scalar_rgb) by validation/verify_semantics.py -k §7.
 #[test]
 fn max_depth_counts_segments_in_a_closed_emissive_box() {
     let mut pos = Vec::new();
@@ -303,6 +305,7 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
 /// 0.8511, 0, 0.8511). Shadow rays do not see through a mask: a diffuse floor under a mask
 /// plane lit only by a point light above both gets nothing (Mitsuba: 0; a see-through
 /// shadow ray would give (1 − α)·ρ/π·I/d²).
+/// Checked against Mitsuba 3.9.1 (scalar_rgb) by validation/verify_semantics.py -k §10.
 #[test]
 fn mask_passes_rays_through_as_a_bounce_but_blocks_shadow_rays() {
     let mask = Bsdf::Mask(matte::render::bsdf::Mask {
