@@ -159,7 +159,10 @@ pub fn table(rows: &[SamplerRow]) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     let _ = writeln!(s, "machine: {}", super::report::machine());
-    let _ = writeln!(s, "\n| model | ns/sample own / cosine | θi | E | Var cosine | Var own | variance ratio | efficiency gain |");
+    let _ = writeln!(
+        s,
+        "\n| model | ns/sample own / cosine | θi | E | Var cosine | Var own | variance ratio | efficiency gain |"
+    );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|");
     for r in rows {
         for (k, l) in r.lobe.iter().enumerate() {

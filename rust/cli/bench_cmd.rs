@@ -34,10 +34,9 @@ pub fn run(a: &BenchArgs) -> Result<(), String> {
     if a.sampling {
         let rows = bench::sampling::measure(a.quick);
         let table = bench::sampling::table(&rows);
-        for (name, text) in [
-            ("sampling.json", serde_json::to_string_pretty(&rows).expect("json")),
-            ("sampling.md", table.clone()),
-        ] {
+        for (name, text) in
+            [("sampling.json", serde_json::to_string_pretty(&rows).expect("json")), ("sampling.md", table.clone())]
+        {
             let path = a.out.join(name);
             std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
         }
