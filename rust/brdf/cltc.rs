@@ -23,7 +23,8 @@
 //! `pdf(eval)` exactly.
 
 use super::real::{Real, V3};
-use super::sampling::concentric_disk;
+use super::registry::ParamSpec;
+use super::sampling::{concentric_disk, cosine_hemisphere, cosine_pdf};
 use std::f64::consts::{FRAC_1_PI, PI};
 
 /// One CLTC lobe: the matrix entries and the uniform component's probability at one `μ`.
@@ -118,4 +119,100 @@ impl<T: Real> ClippedLtc<T> {
         );
         (wo, self.pdf(wi, wo))
     }
+}
+
+/// A fitted CLTC sampler (`rust/brdf/sampler_fits.rs`, written by
+/// `validation/fit_samplers.py`): each parameter of [`ClippedLtc`] is
+///
+/// `p_k(μ, t) = base_k + t g_k(μ) Σ_ij C[k][i][j] μ^i t^j`
+///
+/// with `base = (1, 0, 1, 0, 0)` (the cosine: the sampler at t = 0), `g_k = sin θi` (the
+/// cosine's value at normal incidence too) or 1 (`free_at_normal[k]`), and `t ∈ [0, 1]` the
+/// model's roughness variable. Then `a, c ≥ 0.05` and `p_uniform ∈ [0, 0.9]`; `d ≤ 0` is
+/// [`ClippedLtc::new`]'s. Polynomials only (Horner, no gathers, no division): cheap in every
+/// [`Real`], and finite for every input.
+#[derive(Clone, Copy, Debug)]
+pub struct CltcFit<const NMU: usize, const NT: usize> {
+    /// `C[k][i][j]`, k over (a, b, c, d, p_uniform), i the power of μ, j the power of t.
+    pub coefficients: [[[f64; NT]; NMU]; 5],
+    pub free_at_normal: [bool; 5],
+}
+
+impl<const NMU: usize, const NT: usize> CltcFit<NMU, NT> {
+    /// The sampler at `μ = cos θi` and roughness variable `t` (both clamped into [0, 1]).
+    #[inline(always)]
+    pub fn sampler<T: Real>(&self, mu: T, t: T) -> ClippedLtc<T> {
+        let mu = mu.clamp_to(0.0, 1.0);
+        let t = t.clamp_to(0.0, 1.0);
+        let sin_t = t * (T::c(1.0) - mu * mu).safe_sqrt();
+        let term = |k: usize| {
+            let c = &self.coefficients[k];
+            let mut acc = T::c(0.0);
+            for i in (0..NMU).rev() {
+                let mut q = T::c(c[i][NT - 1]);
+                for j in (0..NT - 1).rev() {
+                    q = q.fma(t, T::c(c[i][j]));
+                }
+                acc = if i == NMU - 1 { q } else { acc.fma(mu, q) };
+            }
+            acc * if self.free_at_normal[k] { t } else { sin_t }
+        };
+        let one = T::c(1.0);
+        ClippedLtc::new(
+            (one + term(0)).max(T::c(0.05)),
+            term(1),
+            (one + term(2)).max(T::c(0.05)),
+            term(3),
+            term(4).clamp_to(0.0, 0.9),
+        )
+    }
+}
+
+/// How a model with its own sampler draws directions (its `sampling` parameter).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sampling {
+    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`), the default.
+    Cltc,
+    /// Mitsuba's cosine-weighted sampling, as `diffuse` (for comparisons).
+    Cosine,
+}
+
+impl Sampling {
+    pub const CHOICES: &'static [&'static str] = &["cltc", "cosine"];
+
+    pub fn parse(word: &str) -> Self {
+        if word == "cosine" { Sampling::Cosine } else { Sampling::Cltc }
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Sampling::Cltc => "cltc",
+            Sampling::Cosine => "cosine",
+        }
+    }
+}
+
+/// The `sampling` parameter of a model with its own sampler; `doc` says what `cltc` is.
+pub const fn sampling_param(doc: &'static str) -> ParamSpec {
+    ParamSpec::choice("sampling", Sampling::CHOICES, "cltc", doc)
+}
+
+/// [`super::kernel::Kernel::sample_wo`] of a model with a CLTC sampler: `sampler(μ)`'s
+/// sample when `cltc`, else the cosine's.
+#[inline(always)]
+pub fn sample_wo<T: Real>(cltc: bool, wi: V3<T>, u1: T, u2: T, sampler: impl FnOnce(T) -> ClippedLtc<T>) -> (V3<T>, T) {
+    if !cltc {
+        let wo = cosine_hemisphere(u1, u2);
+        return (wo, cosine_pdf(wo.z));
+    }
+    sampler(wi.z.clamp_to(0.0, 1.0)).sample(wi, u1, u2)
+}
+
+/// [`super::kernel::Kernel::pdf_wo`] to go with [`sample_wo`].
+#[inline(always)]
+pub fn pdf_wo<T: Real>(cltc: bool, wi: V3<T>, wo: V3<T>, sampler: impl FnOnce(T) -> ClippedLtc<T>) -> T {
+    if !cltc {
+        return cosine_pdf(wo.z);
+    }
+    sampler(wi.z.clamp_to(0.0, 1.0)).pdf(wi, wo)
 }

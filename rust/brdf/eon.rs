@@ -5,12 +5,12 @@
 //! (closed form G(μ)), not the polynomial fit, so the white furnace is 1 to float precision.
 
 use super::approx::acos_unit;
-use super::cltc::ClippedLtc;
+use super::cltc::{self, ClippedLtc};
+pub use super::cltc::Sampling;
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
-use super::sampling::{cosine_hemisphere, cosine_pdf};
 use std::f64::consts::PI;
 
 const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
@@ -167,43 +167,12 @@ impl<T: Real> Kernel<T> for EonKernel<T> {
 
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        if !self.cltc {
-            let wo = cosine_hemisphere(u1, u2);
-            return (wo, cosine_pdf(wo.z));
-        }
-        self.sampler(wi.z.clamp_to(0.0, 1.0)).sample(wi, u1, u2)
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| self.sampler(mu))
     }
 
     #[inline(always)]
     fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        if !self.cltc {
-            return cosine_pdf(wo.z);
-        }
-        self.sampler(wi.z.clamp_to(0.0, 1.0)).pdf(wi, wo)
-    }
-}
-
-/// How a model with its own sampler draws directions (its `sampling` parameter).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Sampling {
-    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`), the default.
-    Cltc,
-    /// Mitsuba's cosine-weighted sampling, as `diffuse` (for comparisons).
-    Cosine,
-}
-
-impl Sampling {
-    pub const CHOICES: &'static [&'static str] = &["cltc", "cosine"];
-
-    pub fn parse(word: &str) -> Self {
-        if word == "cosine" { Sampling::Cosine } else { Sampling::Cltc }
-    }
-
-    pub fn as_str(self) -> &'static str {
-        match self {
-            Sampling::Cltc => "cltc",
-            Sampling::Cosine => "cosine",
-        }
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| self.sampler(mu))
     }
 }
 
@@ -248,10 +217,7 @@ impl Registered for Eon {
         summary: "energy-preserving Oren–Nayar (Portsmouth et al. 2025), exact albedo: the white furnace gives 1",
         params: &[
             ParamSpec::unit_interval("roughness", 0.3, "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)"),
-            ParamSpec::choice(
-                "sampling",
-                Sampling::CHOICES,
-                "cltc",
+            cltc::sampling_param(
                 "`cltc`: the paper's clipped linearly transformed cosine with a uniform share; `cosine`: as `diffuse`",
             ),
         ],

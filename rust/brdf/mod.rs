@@ -17,6 +17,7 @@ pub mod params;
 pub mod quadrature;
 pub mod real;
 pub mod registry;
+pub mod sampler_fits;
 pub mod sampling;
 pub mod simd;
 pub mod tabulated;

@@ -5,10 +5,12 @@
 //! ρ² interreflection term, eqs. 27–29 and 37), identical to Mitsuba 0.6 `roughdiffuse` with `useFastApprox` true / false.
 
 use super::approx::acos_unit;
+use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::sampler_fits::{OREN_NAYAR_FULL, OREN_NAYAR_QUALITATIVE};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
 /// Which of the 1994 forms to evaluate.
@@ -42,6 +44,9 @@ pub struct OrenNayarKernel<T> {
     /// `0.17 σ²/(σ²+0.13)`: the interreflection prefactor.
     pub l2: T,
     pub model: OrenNayarModel,
+    /// Sample the fitted lobe ([`OrenNayarKernel::sampler`]) rather than the cosine (the
+    /// `sampling` parameter). Not a coefficient: the model sets it.
+    pub cltc: bool,
 }
 
 impl<T: Real> OrenNayarKernel<T> {
@@ -54,7 +59,13 @@ impl<T: Real> OrenNayarKernel<T> {
             c3: ratio(0.125, 0.09),
             l2: ratio(0.17, 0.13),
             model,
+            cltc: true,
         }
+    }
+
+    /// The same kernel sampling the fitted lobe (`Sampling::Cltc`) or the cosine.
+    pub fn with_sampling(self, sampling: Sampling) -> Self {
+        Self { cltc: sampling == Sampling::Cltc, ..self }
     }
 
     pub fn coefficients(&self) -> [T; 4] {
@@ -62,7 +73,21 @@ impl<T: Real> OrenNayarKernel<T> {
     }
 
     pub fn from_coefficients([a, b, c3, l2]: [T; 4], model: OrenNayarModel) -> Self {
-        Self { a, b, c3, l2, model }
+        Self { a, b, c3, l2, model, cltc: true }
+    }
+
+    /// The importance sampler at `μ = cos θi`: the CLTC fitted to the model
+    /// (`rust/brdf/sampler_fits.rs`, `validation/fit_samplers.py`), polynomial in μ and in
+    /// `t = B/0.45 = σ²/(σ² + 0.09)` ∈ [0, 1), which maps every σ ≥ 0 onto a bounded interval
+    /// and is the kernel's own coefficient (traced, no new constant). At σ = 0 it is the
+    /// cosine; at normal incidence too (the lobe is then constant).
+    #[inline(always)]
+    pub fn sampler(&self, mu: T) -> ClippedLtc<T> {
+        let t = self.b.scale(1.0 / 0.45);
+        match self.model {
+            OrenNayarModel::Qualitative => OREN_NAYAR_QUALITATIVE.sampler(mu, t),
+            OrenNayarModel::Full => OREN_NAYAR_FULL.sampler(mu, t),
+        }
     }
 
     /// Full model. α = max(θi, θo), β = min(θi, θo); cos Δφ signed, 0 when undefined.
@@ -120,22 +145,48 @@ impl<T: Real> Kernel<T> for OrenNayarKernel<T> {
             OrenNayarModel::Full => self.reduced_full(wi, wo, rho),
         }
     }
+
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        !self.cltc
+    }
+
+    #[inline(always)]
+    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| self.sampler(mu))
+    }
+
+    #[inline(always)]
+    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| self.sampler(mu))
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrenNayar {
     sigma: f32,
+    sampling: Sampling,
     kernel: OrenNayarKernel<f32>,
 }
 
 impl OrenNayar {
     pub fn new(sigma: f64, model: OrenNayarModel) -> Result<Self, ParamError> {
+        Self::with_sampling(sigma, model, Sampling::Cltc)
+    }
+
+    pub fn with_sampling(sigma: f64, model: OrenNayarModel, sampling: Sampling) -> Result<Self, ParamError> {
         let sigma = Self::SPEC.params[0].check(sigma)?;
         let k = OrenNayarKernel::<f64>::new(sigma, model);
         Ok(Self {
             sigma: sigma as f32,
-            kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model),
+            sampling,
+            kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model)
+                .with_sampling(sampling),
         })
+    }
+
+    pub fn sampling(&self) -> Sampling {
+        self.sampling
     }
 
     pub fn sigma(&self) -> f32 {
@@ -171,8 +222,9 @@ impl Registered for OrenNayar {
                 "qualitative",
                 "`qualitative` (eq. 30) or `full` (C1–C3 and the ρ² interreflection term)",
             ),
+            cltc::sampling_param("`cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model; `cosine`: as `diffuse`"),
         ],
-        examples: &[&[("sigma", "0.8"), ("model", "full")]],
+        examples: &[&[("sigma", "0.8"), ("model", "full")], &[("sigma", "1.0"), ("sampling", "cosine")]],
         in_study: true,
     };
 
@@ -183,11 +235,15 @@ impl Registered for OrenNayar {
 
     fn build(v: &Values) -> Result<Self, ParamError> {
         let model = if v.choice("model") == "full" { OrenNayarModel::Full } else { OrenNayarModel::Qualitative };
-        Self::new(v.number("sigma"), model)
+        Self::with_sampling(v.number("sigma"), model, Sampling::parse(v.choice("sampling")))
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.sigma as f64), ParamValue::Text(self.model().as_str().into())]
+        vec![
+            ParamValue::Number(self.sigma as f64),
+            ParamValue::Text(self.model().as_str().into()),
+            ParamValue::Text(self.sampling.as_str().into()),
+        ]
     }
 
     fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
@@ -196,6 +252,6 @@ impl Registered for OrenNayar {
     }
 
     fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<OrenNayarKernel<T>> {
-        Some(OrenNayarKernel::from_coefficients(first(c)?, self.model()))
+        Some(OrenNayarKernel::from_coefficients(first(c)?, self.model()).with_sampling(self.sampling))
     }
 }

@@ -5,6 +5,7 @@
 //! qualitative model; the default is the full one. Defaults as 0.6: α = 0.2, ρ = 0.5.
 //! So that scenes written for Mitsuba 0.6 render with the rough diffuse model they asked for.
 
+use super::cltc::{self, Sampling};
 use super::kernel::Kernel;
 use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarModel};
 use super::params::{ParamError, ParamValue};
@@ -26,9 +27,17 @@ impl RoughDiffuse {
     }
 
     pub fn new(alpha: f64, use_fast_approx: bool) -> Result<Self, ParamError> {
+        Self::with_sampling(alpha, use_fast_approx, Sampling::Cltc)
+    }
+
+    /// With Oren–Nayar's sampler (`Sampling::Cltc`) or the cosine.
+    pub fn with_sampling(alpha: f64, use_fast_approx: bool, sampling: Sampling) -> Result<Self, ParamError> {
         let alpha = Self::SPEC.params[0].check(alpha)?;
         let model = if use_fast_approx { OrenNayarModel::Qualitative } else { OrenNayarModel::Full };
-        Ok(Self { alpha: alpha as f32, oren_nayar: OrenNayar::new(Self::sigma_of_alpha(alpha), model)? })
+        Ok(Self {
+            alpha: alpha as f32,
+            oren_nayar: OrenNayar::with_sampling(Self::sigma_of_alpha(alpha), model, sampling)?,
+        })
     }
 
     pub fn alpha(&self) -> f32 {
@@ -54,6 +63,7 @@ impl Registered for RoughDiffuse {
         params: &[
             ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)"),
             ParamSpec::flag("use_fast_approx", false, "the qualitative model instead of the full one"),
+            cltc::sampling_param("`cltc`: Oren–Nayar's fitted sampler; `cosine`: as `diffuse`"),
         ],
         examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
         in_study: false,
@@ -65,11 +75,15 @@ impl Registered for RoughDiffuse {
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        Self::new(v.number("alpha"), v.flag("use_fast_approx"))
+        Self::with_sampling(v.number("alpha"), v.flag("use_fast_approx"), Sampling::parse(v.choice("sampling")))
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.alpha as f64), ParamValue::Text(self.use_fast_approx().to_string())]
+        vec![
+            ParamValue::Number(self.alpha as f64),
+            ParamValue::Text(self.use_fast_approx().to_string()),
+            ParamValue::Text(self.oren_nayar.sampling().as_str().into()),
+        ]
     }
 
     fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
@@ -79,6 +93,9 @@ impl Registered for RoughDiffuse {
     }
 
     fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<OrenNayarKernel<T>> {
-        Some(OrenNayarKernel::from_coefficients(first(c)?, self.oren_nayar.model()))
+        Some(
+            OrenNayarKernel::from_coefficients(first(c)?, self.oren_nayar.model())
+                .with_sampling(self.oren_nayar.sampling()),
+        )
     }
 }

@@ -77,6 +77,8 @@ pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples
             Dual::variable(0.0),
         )),
         shadowing: model.shadowing(),
+        sampler_t: Dual::c(super::sampler_roughness(m)),
+        cltc: false,
     };
     let g = 1.220_744_084_605_759_5_f64;
     let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];

@@ -17,10 +17,12 @@ pub mod slope_integral;
 pub mod table;
 
 use super::approx;
+use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::sampler_fits::{GINNEKEN_HEIGHT_CORRELATED, GINNEKEN_VGINNEKEN};
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
@@ -31,6 +33,25 @@ use table::{SlopeTable, axis_of_cos, lookup_in, mu_lambda_in};
 /// model's back-scattering peak grows like 1/μ at grazing) without affecting any angle a
 /// renderer can resolve.
 const MIN_COS: f32 = 1e-7;
+
+/// The sampler's roughness variable `t = (m/(1 + m))/0.8` ∈ (0, 1] for m ∈ (0, 4]: the
+/// roughness axis of the per-lane tables ([`roughness_axis`]), scaled to 1 at m = 4.
+#[inline(always)]
+pub fn sampler_roughness<T: Real>(m: T) -> T {
+    (m / (m + T::c(1.0))).scale(1.25)
+}
+
+/// The importance sampler at `μ = cos θi` and roughness variable `t`
+/// ([`sampler_roughness`]): the CLTC fitted to the model with this shadowing
+/// (`rust/brdf/sampler_fits.rs`, `validation/fit_samplers.py`), polynomial in μ and t, no
+/// table. The cosine at t = 0.
+#[inline(always)]
+pub fn sampler<T: Real>(shadowing: Shadowing, mu: T, t: T) -> ClippedLtc<T> {
+    match shadowing {
+        Shadowing::VanGinneken => GINNEKEN_VGINNEKEN.sampler(mu, t),
+        Shadowing::HeightCorrelated => GINNEKEN_HEIGHT_CORRELATED.sampler(mu, t),
+    }
+}
 
 /// van Ginneken's tables and options in any [`Real`], and its evaluation (the fast path).
 /// The tables are built for one roughness m₀; the traced kernels may carry `∂/∂m` tables and
@@ -45,6 +66,10 @@ pub struct GinnekenKernel<'t, T: Real> {
     /// `(∂I/∂m table, ∂(μΛ)/∂m table, m − m₀)` when the roughness gradient is wanted.
     pub roughness_derivative: Option<(T::Table<'t>, T::Table<'t>, T)>,
     pub shadowing: Shadowing,
+    /// The sampler's roughness variable ([`sampler_roughness`] of the tables' m₀).
+    pub sampler_t: T,
+    /// Sample the fitted lobe ([`sampler`]) rather than the cosine (the `sampling` parameter).
+    pub cltc: bool,
 }
 
 impl<'t, T: Real> GinnekenKernel<'t, T> {
@@ -71,6 +96,21 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
         reduced_with(self.shadowing, wi, wo, rho, |x| self.mu_lambda(x), |x_i, x_o, c| self.slope_integral(x_i, x_o, c))
+    }
+
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        !self.cltc
+    }
+
+    #[inline(always)]
+    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(self.shadowing, mu, self.sampler_t))
+    }
+
+    #[inline(always)]
+    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(self.shadowing, mu, self.sampler_t))
     }
 }
 
@@ -107,19 +147,31 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
 pub struct Ginneken {
     m: f32,
     shadowing: Shadowing,
+    sampling: Sampling,
+    /// [`sampler_roughness`] of m.
+    sampler_t: f32,
     table: Arc<SlopeTable>,
 }
 
 impl PartialEq for Ginneken {
     fn eq(&self, other: &Self) -> bool {
-        self.m == other.m && self.shadowing == other.shadowing
+        self.m == other.m && self.shadowing == other.shadowing && self.sampling == other.sampling
     }
 }
 
 impl Ginneken {
     pub fn new(m: f64, shadowing: Shadowing) -> Result<Self, ParamError> {
+        Self::with_sampling(m, shadowing, Sampling::Cltc)
+    }
+
+    pub fn with_sampling(m: f64, shadowing: Shadowing, sampling: Sampling) -> Result<Self, ParamError> {
         let m = Self::SPEC.params[0].check(m)?;
-        Ok(Self { m: m as f32, shadowing, table: SlopeTable::shared(m) })
+        let sampler_t = sampler_roughness(m) as f32;
+        Ok(Self { m: m as f32, shadowing, sampling, sampler_t, table: SlopeTable::shared(m) })
+    }
+
+    pub fn sampling(&self) -> Sampling {
+        self.sampling
     }
 
     pub fn roughness(&self) -> f32 {
@@ -160,6 +212,8 @@ impl Ginneken {
             mu_lambda: Nodes::new(self.table.mu_lambda_nodes()),
             roughness_derivative: None,
             shadowing: self.shadowing,
+            sampler_t: self.sampler_t,
+            cltc: self.sampling == Sampling::Cltc,
         }
     }
 
@@ -185,6 +239,30 @@ impl<'t, T: Real> Kernel<T> for GinnekenLane<'t, T> {
             GinnekenLane::Axis(k) => k.reduced_f(wi, wo, rho),
         }
     }
+
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        match self {
+            GinnekenLane::Fixed(k) => k.cosine_sampling(),
+            GinnekenLane::Axis(k) => k.cosine_sampling(),
+        }
+    }
+
+    #[inline(always)]
+    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
+        match self {
+            GinnekenLane::Fixed(k) => k.sample_wo(wi, u1, u2),
+            GinnekenLane::Axis(k) => k.sample_wo(wi, u1, u2),
+        }
+    }
+
+    #[inline(always)]
+    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
+        match self {
+            GinnekenLane::Fixed(k) => k.pdf_wo(wi, wo),
+            GinnekenLane::Axis(k) => k.pdf_wo(wi, wo),
+        }
+    }
 }
 
 impl Registered for Ginneken {
@@ -207,6 +285,7 @@ impl Registered for Ginneken {
                 "vginneken",
                 "the shadowing-masking term: the paper's or height-correlated Smith",
             ),
+            cltc::sampling_param("`cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model; `cosine`: as `diffuse`"),
         ],
         examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
         in_study: true,
@@ -222,11 +301,15 @@ impl Registered for Ginneken {
             "height_correlated" => Shadowing::HeightCorrelated,
             _ => Shadowing::VanGinneken,
         };
-        Self::new(v.number("roughness"), shadowing)
+        Self::with_sampling(v.number("roughness"), shadowing, Sampling::parse(v.choice("sampling")))
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.m as f64), ParamValue::Text(self.shadowing.as_str().into())]
+        vec![
+            ParamValue::Number(self.m as f64),
+            ParamValue::Text(self.shadowing.as_str().into()),
+            ParamValue::Text(self.sampling.as_str().into()),
+        ]
     }
 
     /// `m − m₀`, when differentiable: zero in value (the tables were built at the
@@ -246,15 +329,21 @@ impl Registered for Ginneken {
     /// [`Self::lane_tables`] when `lane`).
     fn kernel_from<'t, T: Real + 't>(&self, c: &[T], tables: &[T::Table<'t>], lane: bool) -> Option<GinnekenLane<'t, T>> {
         let [slope, d_slope, mu_lambda, d_mu_lambda]: [T::Table<'t>; 4] = first(tables)?;
+        let cltc = self.sampling == Sampling::Cltc;
         Some(if lane {
             let [m] = first(c)?;
-            GinnekenLane::Axis(GinnekenAxisKernel::new([slope, d_slope, mu_lambda, d_mu_lambda], m, self.shadowing))
+            let tables = [slope, d_slope, mu_lambda, d_mu_lambda];
+            GinnekenLane::Axis(GinnekenAxisKernel::new(tables, m, self.shadowing).with_sampling(self.sampling))
         } else {
+            // The sampler's roughness is the tables' m₀, a constant: the sampling density is
+            // not differentiated (`docs/sampling.md#gradients`).
             GinnekenLane::Fixed(GinnekenKernel {
                 slope,
                 mu_lambda,
                 roughness_derivative: first(c).map(|[dm]| (d_slope, d_mu_lambda, dm)),
                 shadowing: self.shadowing,
+                sampler_t: T::c(self.sampler_t as f64),
+                cltc,
             })
         })
     }

@@ -16,7 +16,8 @@
 
 use super::shadowing::Shadowing;
 use super::table::{LAMBDA_NODES, SLOPE_NODES, SlopeTable, lookup_layer_in, mu_lambda_layer_in};
-use super::{Ginneken, reduced_with};
+use super::{Ginneken, reduced_with, sampler};
+use crate::brdf::cltc::{self, Sampling};
 use crate::brdf::frame::spherical_direction_f64;
 use crate::brdf::kernel::Kernel;
 use crate::brdf::real::{Nodes, Real, V3};
@@ -121,6 +122,10 @@ pub struct GinnekenAxisKernel<'t, T: Real> {
     /// Hermite basis `h00, h10, h01, h11` at the lane's position in its cell.
     weights: [T; 4],
     shadowing: Shadowing,
+    /// The sampler's roughness variable (`super::sampler_roughness` of the clamped m).
+    sampler_t: T,
+    /// Sample the fitted lobe rather than the cosine.
+    cltc: bool,
 }
 
 impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
@@ -147,7 +152,14 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
             lambda_base: j.scale(LAMBDA_NODES as f64),
             weights,
             shadowing,
+            sampler_t: u.scale(1.25),
+            cltc: true,
         }
+    }
+
+    /// The same kernel sampling the fitted lobe (`Sampling::Cltc`) or the cosine.
+    pub fn with_sampling(self, sampling: Sampling) -> Self {
+        Self { cltc: sampling == Sampling::Cltc, ..self }
     }
 
     /// Hermite combination of the lower (`+0`) and upper (`+1` layer) values and slopes.
@@ -174,6 +186,21 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
                 self.hermite(self.slope_base, SLOPE_NODES, |t, b| lookup_layer_in(t, Some(b), x_i, x_o, c), 0, 1)
             },
         )
+    }
+
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        !self.cltc
+    }
+
+    #[inline(always)]
+    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(self.shadowing, mu, self.sampler_t))
+    }
+
+    #[inline(always)]
+    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(self.shadowing, mu, self.sampler_t))
     }
 }
 
