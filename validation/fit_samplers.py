@@ -303,8 +303,8 @@ class Form:
     """`param_k(μ, t) = BASE_k + t · g_k(μ) · Σ_ij C[k, i, j] μ^i t^j`, with `g_k = sin θi` (the
     parameter takes the cosine's value at normal incidence, where the model's lobe is
     rotationally symmetric and, for Oren–Nayar, constant) or 1 (`free_at_normal`: a and c may
-    differ from 1 there). Then a, c ≥ 0.05, d ≤ 0 and p_uniform ∈ [0, 0.9]
-    (`rust/brdf/cltc.rs` clamps d; `CltcFit::sampler` the others)."""
+    differ from 1 there). Then a, c ≥ 0.05, d ≤ 0 and p_uniform ∈ [−0.1 d, 0.9]
+    ([`clamp_params`]; `CltcFit::sampler` in `rust/brdf/cltc.rs`)."""
 
     def __init__(self, deg_mu, deg_t, free_at_normal=()):
         self.deg_mu, self.deg_t = deg_mu, deg_t
@@ -325,9 +325,17 @@ class Form:
         return BASE + (C.reshape(self.shape) * self.basis(mu, t)).sum(axis=(1, 2))
 
 
+# The uniform share is at least this times −d: wherever the lobe is clipped (d < 0) the
+# mixture has density on the whole hemisphere, so that no fit, between its grid points or
+# beyond, leaves a direction with f > 0 unsampled (a bias, and an infinite variance).
+UNIFORM_PER_CLIP = 0.1
+
+
 def clamp_params(p):
+    """`CltcFit::sampler`'s clamps on the raw form."""
     a, b, c, d, pu = p
-    return (max(a, 0.05), b, max(c, 0.05), min(d, 0.0), min(max(pu, 0.0), 0.9))
+    d = min(d, 0.0)
+    return (max(a, 0.05), b, max(c, 0.05), d, min(max(pu, -UNIFORM_PER_CLIP * d), 0.9))
 
 
 def stage2(form, X, mus, ts):
@@ -356,9 +364,9 @@ def point_gradient(fc, grid, p, h=1e-5):
     for k in range(5):
         dp = np.zeros(5)
         dp[k] = h
-        vp = variance(fc, clamp_params(p + dp), grid)
-        vm = variance(fc, clamp_params(p - dp), grid)
-        g[k] = (np.log(vp) - np.log(vm)) / (2 * h)
+        lp = np.log(variance(fc, clamp_params(p + dp), grid))
+        lm = np.log(variance(fc, clamp_params(p - dp), grid))
+        g[k] = (lp - lm) / (2 * h)
     return np.log(v0), g
 
 
@@ -427,3 +435,295 @@ def bfgs(obj, x0, iters=200, log=None, gtol=1e-6):
         if np.linalg.norm(g) < gtol or improvement < 1e-9:
             break
     return x, f
+
+
+# ---------------------------------------------------------------- EON's fit as a baseline --
+
+def eon_params(r, mu):
+    """EON's CLTC (`rust/brdf/eon.rs`, `EonKernel::sampler`) at roughness r."""
+    poly2 = lambda c0, c1, c2: c0 + c1 * mu + c2 * mu * mu  # noqa: E731
+    a = 1 + r * (poly2(0.303392, -0.518982, 0.111709) + r * (-0.276266 + 0.335918 * mu))
+    b = r * ((-1.16407 + 1.15859 * mu) + r * (0.150815 - 0.150105 * mu)) / (mu ** 3 - 1.43545)
+    c = 1 + r * poly2(0.20013, -0.506373, 0.261777)
+    d = r * poly2(0.540852, -1.01625, 0.475392) / poly2(-1.0743, 0.0725628, 1.0)
+    pu = r ** 0.125 * (0.162925 - 0.372058 * mu + 0.538233 * mu ** 2 - 0.290822 * mu ** 3)
+    return (a, b, c, min(d, 0.0), pu)
+
+
+def best_eon_roughness(fcs, mus, grid):
+    """The EON roughness r ∈ [0, 1] whose sampler minimises the mean log variance over the
+    incidences of `fcs` (golden-section search): EON's fit reused with the best mapping any
+    roughness conversion could give, per roughness."""
+    def cost(r):
+        vs = [variance(fc, eon_params(r, mu), grid) for fc, mu in zip(fcs, mus) if mu < 1.0]
+        return np.mean(np.log(np.maximum(vs, 1e-300)))
+    lo, hi = 0.0, 1.0
+    k = (np.sqrt(5.0) - 1.0) / 2.0
+    x1, x2 = hi - k * (hi - lo), lo + k * (hi - lo)
+    f1, f2 = cost(x1), cost(x2)
+    for _ in range(30):
+        if f1 < f2:
+            hi, x2, f2 = x2, x1, f1
+            x1 = hi - k * (hi - lo)
+            f1 = cost(x1)
+        else:
+            lo, x1, f1 = x1, x2, f2
+            x2 = lo + k * (hi - lo)
+            f2 = cost(x2)
+    return 0.5 * (lo + hi)
+
+
+# ---------------------------------------------------------------- the models fitted --------
+
+REPORT_THETA = [0.0, 15.0, 30.0, 45.0, 60.0, 70.0, 75.0, 80.0, 85.0, 89.0]
+
+
+class Model:
+    """One model to fit: `name` (the Rust constant), how f is had at (t, μ's) on a grid, its
+    roughness parameter and the map to t."""
+
+    def __init__(self, name, label, f_at, param, t_of, form):
+        self.name, self.label, self.f_at, self.param, self.t_of, self.form = name, label, f_at, param, t_of, form
+
+    def fcs(self, ts, mus, grid, tag):
+        return [[f * grid.wo[:, 2] for f in self.f_at(t, mus, grid, tag)] for t in ts]
+
+
+def analytic(f):
+    return lambda t, mus, grid, tag: np.array([f(t, wi_of(mu), grid.wo) for mu in mus])
+
+
+def from_cli(cli, bsdf, extra):
+    def f_at(t, mus, grid, tag):
+        params = [("roughness", f"{m_of_t(t):.9g}")] + extra
+        return cli.f(bsdf, params, mus, grid, tag)
+    return f_at
+
+
+def models(cli):
+    on_form = Form(DEG_MU, DEG_T)
+    # van Ginneken's lobe is not the cosine at normal incidence (f varies with θo there):
+    # a = c may differ from 1 at μ = 1.
+    vg_form = Form(DEG_MU, DEG_T, free_at_normal=(0, 2))
+    return [
+        Model("OREN_NAYAR_QUALITATIVE", "Oren–Nayar qualitative", analytic(on_qualitative_f), "sigma", t_of_sigma,
+              on_form),
+        Model("OREN_NAYAR_FULL", "Oren–Nayar full (ρ = 1)", analytic(on_full_f), "sigma", t_of_sigma, on_form),
+        Model("GINNEKEN_VGINNEKEN", "van Ginneken, shadowing = vginneken",
+              from_cli(cli, "ginneken", [("shadowing", "vginneken")]), "roughness", t_of_m, vg_form),
+        Model("GINNEKEN_HEIGHT_CORRELATED", "van Ginneken, shadowing = height_correlated",
+              from_cli(cli, "ginneken", [("shadowing", "height_correlated")]), "roughness", t_of_m, vg_form),
+    ]
+
+
+DEG_MU, DEG_T = 3, 2
+FIT_GRID = (96, 96)
+REPORT_GRID = (256, 256)
+
+
+def round_coefficients(C):
+    """The coefficients as written into the Rust file (10 significant digits)."""
+    return np.array([float(f"{c:.10g}") for c in C])
+
+
+def fit(model, cli, cache, log):
+    grid = Grid(*FIT_GRID)
+    mus = [np.cos(np.radians(th)) for th in FIT_THETA]
+    fcs = model.fcs(FIT_T, mus, grid, f"fit{FIT_GRID[0]}")
+    path = os.path.join(cache, f"fit_{model.name}_{DEG_MU}{DEG_T}_{FIT_GRID[0]}.npz")
+    if os.path.exists(path):
+        d = np.load(path)
+        return d["C"], d["V"], d["Vc"], float(d["J"]), float(d["J_opt"])
+    s1 = os.path.join(cache, f"stage1_{model.name}_{FIT_GRID[0]}.npz")
+    if os.path.exists(s1):
+        d = np.load(s1)
+        X, V, Vc = d["X"], d["V"], d["Vc"]
+    else:
+        log(f"{model.label}: per-point optima")
+        X, V, Vc = stage1(fcs, grid, log=log)
+        np.savez(s1, X=X, V=V, Vc=Vc)
+    C = stage2(model.form, X, mus, FIT_T)
+    obj = Objective(model.form, fcs, grid, mus, FIT_T, V)
+    log(f"{model.label}: refining the {model.form.size()} coefficients")
+    C, J = bfgs(obj, C, iters=400, log=log)
+    C = round_coefficients(C)
+    J = obj.value(C)
+    J_opt = np.mean([np.log(V[a, j]) for a in range(len(FIT_T)) for j in range(len(mus)) if V[a, j] > 1e-10])
+    np.savez(path, C=C, V=V, Vc=Vc, J=J, J_opt=J_opt)
+    return C, V, Vc, J, J_opt
+
+
+# ---------------------------------------------------------------- checks and report --------
+
+def dense_check(model, C, log):
+    """The form over a dense (t, θi) grid on a coarse quadrature: the weight's variance must
+    be finite everywhere (a clipped lobe needs a uniform share), and the worst ratio
+    cosine/fitted is printed (where the fit gains least or loses)."""
+    grid = Grid(48, 48)
+    ts = np.linspace(0.05, 1.0, 20)
+    thetas = np.linspace(0.0, 89.5, 37)
+    mus = [np.cos(np.radians(th)) for th in thetas]
+    worst = (np.inf, None)
+    worst_far = (np.inf, None)
+    for t in ts:
+        for th, mu, fc in zip(thetas, mus, model.fcs([t], mus, grid, "dense48")[0]):
+            vc = cosine_variance(fc, grid)
+            v = variance(fc, clamp_params(model.form.raw(C, mu, t)), grid)
+            if not np.isfinite(v):
+                raise SystemExit(f"{model.name}: infinite variance at t={t:.3f} θi={th:.1f}")
+            e2 = (fc.sum() * grid.weight) ** 2
+            if vc <= 1e-6 * e2:
+                continue
+            ratio = vc / max(v, 1e-300)
+            if ratio < worst[0]:
+                worst = (ratio, (t, th))
+            if th >= 45.0 and ratio < worst_far[0]:
+                worst_far = (ratio, (t, th))
+    log(f"  dense check: smallest ratio cosine/fitted {worst[0]:.2f} at t, θi = {worst[1]}; "
+        f"for θi ≥ 45°: {worst_far[0]:.2f} at {worst_far[1]}")
+    return worst, worst_far
+
+
+def report(model, C, log):
+    """Rows per roughness 0.3 and 1 (in the model's own parameter) and REPORT_THETA: the
+    weight's variance under the cosine, the fitted sampler and EON's fit at the best
+    roughness, on the REPORT_GRID quadrature."""
+    grid = Grid(*REPORT_GRID)
+    mus = [np.cos(np.radians(th)) for th in REPORT_THETA]
+    out = []
+    for rough in (0.3, 1.0):
+        t = model.t_of(rough)
+        fcs = model.fcs([t], mus, grid, f"report{REPORT_GRID[0]}")[0]
+        r_eon = best_eon_roughness(fcs, mus, grid)
+        rows = []
+        for th, mu, fc in zip(REPORT_THETA, mus, fcs):
+            e = fc.sum() * grid.weight
+            vc = cosine_variance(fc, grid)
+            v = variance(fc, clamp_params(model.form.raw(C, mu, t)), grid)
+            ve = variance(fc, eon_params(r_eon, mu), grid)
+            rows.append(dict(theta_i=th, albedo=e, var_cosine=vc, var_fit=v, var_eon=ve))
+        out.append(dict(roughness=rough, t=t, eon_r=r_eon, rows=rows))
+    return out
+
+
+def ratio_text(vc, v, e):
+    floor = 1e-6 * e * e
+    return "—" if vc <= floor or v <= floor else f"{vc / v:.2f}"
+
+
+def markdown(model, rep):
+    """The docs' table: per incidence, the variance ratios cosine/fitted and cosine/EON's fit
+    at both roughnesses."""
+    p = model.param
+    head = "| θi |" + "".join(
+        f" Var cosine, {p} = {r['roughness']:g} | ratio fitted | ratio EON fit (r = {r['eon_r']:.2f}) |" for r in rep)
+    lines = [head, "|---" * (1 + 3 * len(rep)) + "|"]
+    for k, th in enumerate(REPORT_THETA):
+        cells = []
+        for r in rep:
+            row = r["rows"][k]
+            vc, e = row["var_cosine"], row["albedo"]
+            cells.append("0" if vc <= 1e-6 * e * e else f"{vc:.3e}")
+            cells.append(ratio_text(vc, row["var_fit"], e))
+            cells.append(ratio_text(vc, row["var_eon"], e))
+        lines.append(f"| {th:.0f}° | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def screen(cli, log):
+    """Wolff and Burley: the per-point optimum CLTC at REPORT_THETA, an upper bound on what
+    a fitted sampler could gain over the cosine."""
+    grid = Grid(*FIT_GRID)
+    mus = [np.cos(np.radians(th)) for th in REPORT_THETA]
+    out = {}
+    for bsdf, params in (("wolff", []), ("wolff", [("int_ior", "2.4")]), ("burley", [("roughness", "0.3")]),
+                         ("burley", [("roughness", "1")])):
+        F = cli.f(bsdf, params, mus, grid, f"screen{FIT_GRID[0]}")
+        x = x_of_params((1.0, 0.0, 1.0, 0.0, 1e-6))
+        ratios = []
+        for mu, f in zip(mus, F):
+            fc = f * grid.wo[:, 2]
+            vc = cosine_variance(fc, grid)
+            x, v = optimum(fc, grid, [x])
+            ratios.append(ratio_text(vc, max(v, 0.0), fc.sum() * grid.weight))
+        label = " ".join([bsdf] + [f"{k}={v}" for k, v in params])
+        out[label] = ratios
+        log(f"  {label}: optimum ratio cosine/CLTC at θi = {REPORT_THETA}: {ratios}")
+    return out
+
+
+# ---------------------------------------------------------------- the Rust file ------------
+
+def rust_file(fitted):
+    """`rust/brdf/sampler_fits.rs`: one `CltcFit` per model."""
+    lines = [
+        "//! Generated by `validation/fit_samplers.py`; do not edit (rerun the script). The",
+        "//! importance samplers fitted to the rough models: clipped linearly transformed cosines",
+        "//! with a uniform share ([`CltcFit`], `rust/brdf/cltc.rs`) whose five parameters are",
+        f"//! polynomials of degree {DEG_MU} in μ = cos θi and {DEG_T} in the model's roughness variable t,",
+        "//! fitted to minimise the exact variance of the sampling weight f cos θo / pdf (ρ = 1)",
+        f"//! over θi ∈ {{{', '.join(f'{t:g}' for t in FIT_THETA)}}}° and",
+        f"//! t ∈ {{{', '.join(f'{t:g}' for t in FIT_T)}}} (`docs/sampling.md`).",
+        "",
+        "use super::cltc::CltcFit;",
+    ]
+    for model, C, note in fitted:
+        shape = model.form.shape
+        Cr = np.asarray(C).reshape(shape)
+        lines += ["", f"/// {model.label}: {note}",
+                  f"pub const {model.name}: CltcFit<{shape[1]}, {shape[2]}> = CltcFit {{",
+                  "    coefficients: ["]
+        for k in range(5):
+            lines.append(f"        // {NAMES[k]}")
+            lines.append("        [")
+            for i in range(shape[1]):
+                lines.append("            [" + ", ".join(f"{float(c):.10e}" for c in Cr[k, i]) + "],")
+            lines.append("        ],")
+        free = ", ".join("true" if k in model.form.free_at_normal else "false" for k in range(5))
+        lines += ["    ],", f"    free_at_normal: [{free}],", "};"]
+    return "\n".join(lines) + "\n"
+
+
+# ---------------------------------------------------------------- main ---------------------
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--matte", default="target/release/matte", help="the matte CLI (for van Ginneken's f)")
+    ap.add_argument("--cache", default="target/fit_samplers", help="f on the quadrature grids and the fits")
+    ap.add_argument("--out", default="rust/brdf/sampler_fits.rs")
+    ap.add_argument("--report", default=None, help="also write the tables (Markdown) and the fits (JSON) here")
+    ap.add_argument("--no-screen", action="store_true", help="skip the Wolff and Burley screening")
+    args = ap.parse_args()
+    log = lambda s: print(s, file=sys.stderr, flush=True)  # noqa: E731
+    cli = Cli(args.matte, args.cache)
+    fitted, text, summary = [], [], {}
+    for model in models(cli):
+        C, V, Vc, J, J_opt = fit(model, cli, args.cache, log)
+        loss = np.exp(J - J_opt)
+        log(f"{model.label}: {model.form.size()} coefficients; mean variance over the per-point optima "
+            f"×{loss:.3f} (geometric mean over the fitting grid)")
+        worst, worst_far = dense_check(model, C, log)
+        rep = report(model, C, log)
+        table = markdown(model, rep)
+        text.append(f"### {model.label}\n\n{table}\n")
+        print(f"\n### {model.label}\n\n{table}\n", flush=True)
+        note = (f"t = {'σ²/(σ² + 0.09)' if model.param == 'sigma' else '(m/(1 + m))/0.8'}; "
+                f"geometric-mean variance ×{loss:.3f} of the per-point optima.")
+        fitted.append((model, C, note))
+        summary[model.name] = dict(coefficients=np.asarray(C).tolist(), loss=loss, report=rep,
+                                   worst_ratio=worst[0], worst_ratio_at=worst[1], worst_ratio_45=worst_far[0])
+    if not args.no_screen:
+        summary["screen"] = screen(cli, log)
+    with open(args.out, "w") as f:
+        f.write(rust_file(fitted))
+    log(f"wrote {args.out}")
+    if args.report:
+        os.makedirs(args.report, exist_ok=True)
+        with open(os.path.join(args.report, "fit_samplers.md"), "w") as f:
+            f.write("\n".join(text))
+        with open(os.path.join(args.report, "fit_samplers.json"), "w") as f:
+            json.dump(summary, f, indent=1, default=float)
+
+
+if __name__ == "__main__":
+    main()

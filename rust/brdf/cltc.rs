@@ -128,9 +128,10 @@ impl<T: Real> ClippedLtc<T> {
 ///
 /// with `base = (1, 0, 1, 0, 0)` (the cosine: the sampler at t = 0), `g_k = sin θi` (the
 /// cosine's value at normal incidence too) or 1 (`free_at_normal[k]`), and `t ∈ [0, 1]` the
-/// model's roughness variable. Then `a, c ≥ 0.05` and `p_uniform ∈ [0, 0.9]`; `d ≤ 0` is
-/// [`ClippedLtc::new`]'s. Polynomials only (Horner, no gathers, no division): cheap in every
-/// [`Real`], and finite for every input.
+/// model's roughness variable. Then `a, c ≥ 0.05`, `d ≤ 0` and `p_uniform ∈ [−0.1 d, 0.9]`:
+/// wherever the lobe is clipped the uniform share is positive, so that no direction is left
+/// unsampled, whatever the polynomials do between the fit's grid points. Polynomials only
+/// (Horner, no gathers, no division): cheap in every [`Real`], and finite for every input.
 #[derive(Clone, Copy, Debug)]
 pub struct CltcFit<const NMU: usize, const NT: usize> {
     /// `C[k][i][j]`, k over (a, b, c, d, p_uniform), i the power of μ, j the power of t.
@@ -158,13 +159,9 @@ impl<const NMU: usize, const NT: usize> CltcFit<NMU, NT> {
             acc * if self.free_at_normal[k] { t } else { sin_t }
         };
         let one = T::c(1.0);
-        ClippedLtc::new(
-            (one + term(0)).max(T::c(0.05)),
-            term(1),
-            (one + term(2)).max(T::c(0.05)),
-            term(3),
-            term(4).clamp_to(0.0, 0.9),
-        )
+        let d = term(3).min(T::c(0.0));
+        let p_uniform = term(4).max(d.scale(-0.1)).min(T::c(0.9));
+        ClippedLtc::new((one + term(0)).max(T::c(0.05)), term(1), (one + term(2)).max(T::c(0.05)), d, p_uniform)
     }
 }
 
