@@ -9,15 +9,30 @@
 //! `cos²θ_d = (1 + wi·wo)/2` (no normalisation, no square root). Reciprocal; not energy
 //! conserving (the retro-reflection adds light at grazing for large r), as published.
 
+use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
+use super::sampler_fits::BURLEY;
 
 /// Burley's diffuse with its roughness in any [`Real`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BurleyKernel<T> {
     pub roughness: T,
+    /// Sample the fitted lobe ([`BurleyKernel::sampler`]) rather than the cosine (the
+    /// `sampling` parameter). Not a coefficient: the model sets it.
+    pub cltc: bool,
+}
+
+impl<T: Real> BurleyKernel<T> {
+    /// The importance sampler at `μ = cos θi`: the CLTC fitted to the model
+    /// (`rust/brdf/sampler_fits.rs`, `validation/fit_samplers.py`), polynomial in μ and the
+    /// roughness r (clamped into [0, 1]); the cosine at r = 0.
+    #[inline(always)]
+    pub fn sampler(&self, mu: T) -> ClippedLtc<T> {
+        BURLEY.sampler(mu, self.roughness)
+    }
 }
 
 /// `(1 − μ)⁵`, with μ clamped into [0, 1].
@@ -41,17 +56,37 @@ impl<T: Real> Kernel<T> for BurleyKernel<T> {
         let g = f_diffuse + f_retro;
         rho.map(|r| r * g)
     }
+
+    #[inline(always)]
+    fn cosine_sampling(&self) -> bool {
+        !self.cltc
+    }
+
+    #[inline(always)]
+    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| self.sampler(mu))
+    }
+
+    #[inline(always)]
+    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| self.sampler(mu))
+    }
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Burley {
     kernel: BurleyKernel<f32>,
+    sampling: Sampling,
 }
 
 impl Burley {
     pub fn new(roughness: f64) -> Result<Self, ParamError> {
+        Self::with_sampling(roughness, Sampling::Cltc)
+    }
+
+    pub fn with_sampling(roughness: f64, sampling: Sampling) -> Result<Self, ParamError> {
         let r = Self::SPEC.params[0].check(roughness)?;
-        Ok(Self { kernel: BurleyKernel { roughness: r as f32 } })
+        Ok(Self { kernel: BurleyKernel { roughness: r as f32, cltc: sampling == Sampling::Cltc }, sampling })
     }
 
     pub fn roughness(&self) -> f32 {
@@ -65,8 +100,13 @@ impl Registered for Burley {
         name: "burley",
         label: "Burley",
         summary: "Burley 2012 (Disney): Lambert with Fresnel-like grazing factors and a roughness-driven retro-reflection; `principled`'s diffuse lobe",
-        params: &[ParamSpec::unit_interval("roughness", 0.5, "roughness r ∈ [0, 1] (Disney's, as `principled`'s)")],
-        examples: &[&[("roughness", "1.0")]],
+        params: &[
+            ParamSpec::unit_interval("roughness", 0.5, "roughness r ∈ [0, 1] (Disney's, as `principled`'s)"),
+            cltc::sampling_param(
+                "`cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model; `cosine`: as `diffuse`",
+            ),
+        ],
+        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cosine")]],
         in_study: true,
     };
 
@@ -76,11 +116,11 @@ impl Registered for Burley {
     type Lane<'t, T: Real + 't> = BurleyKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        Self::new(v.number("roughness"))
+        Self::with_sampling(v.number("roughness"), Sampling::parse(v.choice("sampling")))
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.kernel.roughness as f64)]
+        vec![ParamValue::Number(self.kernel.roughness as f64), ParamValue::Text(self.sampling.as_str().into())]
     }
 
     fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
@@ -90,6 +130,6 @@ impl Registered for Burley {
 
     fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<BurleyKernel<T>> {
         let [roughness] = first(c)?;
-        Some(BurleyKernel { roughness })
+        Some(BurleyKernel { roughness, cltc: self.kernel.cltc })
     }
 }

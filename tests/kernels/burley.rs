@@ -62,7 +62,10 @@ fn normal_incidence_and_grazing_limits() {
 #[test]
 fn defaults_and_errors() {
     let m = DiffuseModel::from_params("burley", Params::new()).unwrap();
-    assert_eq!(m.parameters(), vec![("roughness", ParamValue::Number(0.5))]);
+    assert_eq!(
+        m.parameters(),
+        vec![("roughness", ParamValue::Number(0.5)), ("sampling", ParamValue::Text("cltc".into()))]
+    );
     for bad in [-0.1, 1.1, f64::NAN] {
         let e = DiffuseModel::from_params("burley", Params::new().with("roughness", ParamValue::Number(bad)))
             .expect_err("out of range");

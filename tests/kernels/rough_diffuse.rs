@@ -1,5 +1,5 @@
 //! Mitsuba 0.6's `roughdiffuse` (`src/bsdfs/roughdiffuse.cpp`): Oren–Nayar with σ = α/√2, the
-//! full model unless `use_fast_approx`; 0.6-style XML (`useFastApprox`, version 0.6.0) loads
+//! full model unless `use_fast_approx`, sampled with Oren–Nayar's fitted sampler; 0.6-style XML (`useFastApprox`, version 0.6.0) loads
 //! through the version upgrade.
 
 use crate::common;
@@ -27,6 +27,8 @@ fn alpha_is_oren_nayar_sigma_times_one_over_sqrt2() {
                     on.eval(wi, wo, [0.3, 0.7, 1.0]),
                     "alpha {alpha} fast {fast}"
                 );
+                // Oren–Nayar's sampler too.
+                assert_eq!(rd.pdf(wi, wo), on.pdf(wi, wo), "alpha {alpha} fast {fast}: pdf");
             }
         }
     }
@@ -37,7 +39,11 @@ fn defaults_are_mitsuba_0_6s() {
     let rd = common::model("roughdiffuse", &[]);
     assert_eq!(
         rd.parameters(),
-        vec![("alpha", ParamValue::Number(0.2f32 as f64)), ("use_fast_approx", ParamValue::Text("false".into()))]
+        vec![
+            ("alpha", ParamValue::Number(0.2f32 as f64)),
+            ("use_fast_approx", ParamValue::Text("false".into())),
+            ("sampling", ParamValue::Text("cltc".into()))
+        ]
     );
 }
 
@@ -66,6 +72,10 @@ fn mitsuba_0_6_xml_loads_through_the_upgrade() {
     assert_eq!(model.kind(), "roughdiffuse");
     assert_eq!(
         model.parameters(),
-        vec![("alpha", ParamValue::Number(0.4f32 as f64)), ("use_fast_approx", ParamValue::Text("true".into()))]
+        vec![
+            ("alpha", ParamValue::Number(0.4f32 as f64)),
+            ("use_fast_approx", ParamValue::Text("true".into())),
+            ("sampling", ParamValue::Text("cltc".into()))
+        ]
     );
 }

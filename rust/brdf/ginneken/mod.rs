@@ -22,7 +22,7 @@ use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
-use super::sampler_fits::{GINNEKEN_HEIGHT_CORRELATED, GINNEKEN_VGINNEKEN};
+use super::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
@@ -42,15 +42,12 @@ pub fn sampler_roughness<T: Real>(m: T) -> T {
 }
 
 /// The importance sampler at `μ = cos θi` and roughness variable `t`
-/// ([`sampler_roughness`]): the CLTC fitted to the model with this shadowing
-/// (`rust/brdf/sampler_fits.rs`, `validation/fit_samplers.py`), polynomial in μ and t, no
-/// table. The cosine at t = 0.
+/// ([`sampler_roughness`]): the CLTC fitted to the model (`rust/brdf/sampler_fits.rs`,
+/// `validation/fit_samplers.py`), polynomial in μ and t, no table; the cosine at t = 0. One
+/// fit serves both shadowing options (fitted to each, they differ by 2–3 % in variance).
 #[inline(always)]
-pub fn sampler<T: Real>(shadowing: Shadowing, mu: T, t: T) -> ClippedLtc<T> {
-    match shadowing {
-        Shadowing::VanGinneken => GINNEKEN_VGINNEKEN.sampler(mu, t),
-        Shadowing::HeightCorrelated => GINNEKEN_HEIGHT_CORRELATED.sampler(mu, t),
-    }
+pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
+    GINNEKEN.sampler(mu, t)
 }
 
 /// van Ginneken's tables and options in any [`Real`], and its evaluation (the fast path).
@@ -105,12 +102,12 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
 
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(self.shadowing, mu, self.sampler_t))
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(mu, self.sampler_t))
     }
 
     #[inline(always)]
     fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(self.shadowing, mu, self.sampler_t))
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(mu, self.sampler_t))
     }
 }
 

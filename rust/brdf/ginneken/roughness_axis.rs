@@ -195,12 +195,12 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
 
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(self.shadowing, mu, self.sampler_t))
+        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(mu, self.sampler_t))
     }
 
     #[inline(always)]
     fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(self.shadowing, mu, self.sampler_t))
+        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(mu, self.sampler_t))
     }
 }
 
