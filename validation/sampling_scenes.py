@@ -2,7 +2,7 @@
 "Scene level"), in Mitsuba's `llvm_ad_rgb` (symbolic, the plugin users run) and in matte's
 renderer, measured in one run on one machine.
 
-For every model with its own sampler (`matte types --json`: "sampler": "own"), each scene
+For every model that offers a sampler besides the cosine (`matte types --json`: "samplers"), each scene
 (the study's four and mitsuba_scenes/sampling/grazing.xml), roughness 0.3 and 1.0, and each
 `sampling` (the model's own, `cosine`): K independent renders (seeds 1..K) at a small spp;
 V = the per-pixel variance across the renders (unbiased, mean over pixels and channels), T =
@@ -65,7 +65,7 @@ def variance_and_mean(images):
 
 def mitsuba_renders(mi, path, kind, params, seeds, spp, res):
     folder = os.path.dirname(os.path.join(REPO, path))
-    mi.Thread.thread().file_resolver().prepend(folder)
+    mi.file_resolver().prepend(folder)
     scene = mi.load_string(scene_text(path, kind, params), spp=str(spp), res=str(res))
     mi.render(scene, spp=spp, seed=0).numpy()  # compiles the kernels
     images, seconds = [], []
@@ -112,24 +112,24 @@ def main():
     matte_mitsuba.register()
 
     types = json.loads(subprocess.run([MATTE, "types", "--json"], check=True, capture_output=True, text=True).stdout)
-    own = [m for m in types if m.get("sampler") == "own"]
+    own = [(m, s) for m in types for s in m["samplers"] if s != "cosine"]
     seeds = list(range(1, a.renders + 1))
     rows = []
-    for m in own:
+    for m, own_sampler in own:
         rough = next(p["name"] for p in m["params"] if p["kind"]["type"] == "number")
         for scene in a.scenes.split(","):
             for r in (0.3, 1.0):
                 for renderer, run in (("mitsuba llvm_ad_rgb", mitsuba_renders), ("matte", matte_renders)):
                     got = {}
-                    for sampling in ("cltc", "cosine"):
+                    for sampling in (own_sampler, "cosine"):
                         images, seconds = run(mi, SCENES[scene], m["name"], {rough: r, "sampling": sampling},
                                               seeds, a.spp, a.res)
                         v, mean, var = variance_and_mean(images)
                         got[sampling] = (v, seconds, mean, var)
-                    (v1, t1, m1, s1), (v0, t0, m0, s0) = got["cltc"], got["cosine"]
+                    (v1, t1, m1, s1), (v0, t0, m0, s0) = got[own_sampler], got["cosine"]
                     se = np.sqrt((s1 + s0) / len(seeds)).mean()
                     z = float(abs(m1.mean() - m0.mean()) / (np.sqrt(((s1 + s0) / len(seeds)).mean() / m1.size)))
-                    row = {"model": m["name"], "scene": scene, "roughness": r, "renderer": renderer,
+                    row = {"model": m["name"], "sampler": own_sampler, "scene": scene, "roughness": r, "renderer": renderer,
                            "variance": v1, "variance_cosine": v0, "seconds": t1, "seconds_cosine": t0,
                            "variance_ratio": v0 / v1, "time_ratio": t1 / t0,
                            "efficiency_gain": (v0 * t0) / (v1 * t1), "mean_difference_z": z,

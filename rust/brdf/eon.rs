@@ -75,7 +75,7 @@ impl<T: Real> EonKernel<T> {
             r,
             // Three square roots (traceable, no pow); the clamp keeps the derivative finite.
             r_eighth: T::select(r.gt(T::c(0.0)), r.max(T::c(1e-12)).sqrt().sqrt().sqrt(), T::c(0.0)),
-            cltc: true,
+            cltc: false,
         }
     }
 
@@ -101,7 +101,7 @@ impl<T: Real> EonKernel<T> {
     pub fn from_coefficients(
         [a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth]: [T; 9],
     ) -> Self {
-        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth, cltc: true }
+        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth, cltc: false }
     }
 
     /// The importance sampler at `μ = cos θi`: EON's CLTC fit (Portsmouth et al. 2025, §4 and
@@ -186,17 +186,18 @@ impl<T: Real> Kernel<T> for EonKernel<T> {
 /// How a model with its own sampler draws directions (its `sampling` parameter).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Sampling {
-    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`), the default.
+    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`).
     Cltc,
-    /// Mitsuba's cosine-weighted sampling, as `diffuse` (for comparisons).
+    /// Mitsuba's cosine-weighted sampling, as `diffuse`: the default (it renders the
+    /// measured scenes as efficiently, `docs/sampling.md#scene-level`).
     Cosine,
 }
 
 impl Sampling {
-    pub const CHOICES: &'static [&'static str] = &["cltc", "cosine"];
+    pub const CHOICES: &'static [&'static str] = &["cosine", "cltc"];
 
     pub fn parse(word: &str) -> Self {
-        if word == "cosine" { Sampling::Cosine } else { Sampling::Cltc }
+        if word == "cltc" { Sampling::Cltc } else { Sampling::Cosine }
     }
 
     pub fn as_str(self) -> &'static str {
@@ -216,7 +217,7 @@ pub struct Eon {
 
 impl Eon {
     pub fn new(r: f64) -> Result<Self, ParamError> {
-        Self::with_sampling(r, Sampling::Cltc)
+        Self::with_sampling(r, Sampling::Cosine)
     }
 
     pub fn with_sampling(r: f64, sampling: Sampling) -> Result<Self, ParamError> {
@@ -251,11 +252,11 @@ impl Registered for Eon {
             ParamSpec::choice(
                 "sampling",
                 Sampling::CHOICES,
-                "cltc",
-                "`cltc`: the paper's clipped linearly transformed cosine with a uniform share; `cosine`: as `diffuse`",
+                "cosine",
+                "`cosine`: as `diffuse`; `cltc`: the paper's clipped linearly transformed cosine with a uniform share (docs/sampling.md)",
             ),
         ],
-        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cosine")]],
+        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
 
