@@ -54,6 +54,11 @@ def gradient_cases(models):
             cases.append((m["name"], {}, "reflectance.value", 1e-2))
             continue
         fixed, h = GRADIENT_OVERRIDES.get(m["name"], ({}, 1e-2))
+        if m.get("sampler", "cosine") != "cosine":
+            # Same-seed finite differences would move the sampled directions with the
+            # parameter: the adjoint is their derivative only under a fixed sampler
+            # (docs/sampling.md#gradients).
+            fixed = {**fixed, "sampling": "cosine"}
         cases.append((m["name"], fixed, numeric[0]["name"], h))
     return cases
 

@@ -114,15 +114,26 @@ pub fn measure(quick: bool) -> Vec<SamplerRow> {
         let roughness = spec.numeric().next().filter(|p| p.name != "int_ior").map(|p| p.name);
         let values: &[f64] = if roughness.is_some() { &[0.3, 1.0] } else { &[0.0] };
         for &r in values {
-            let mut params: Vec<(&str, String)> = roughness.map(|name| (name, r.to_string())).into_iter().collect();
-            let Some(model) = build(spec.name, &params) else { continue };
-            let own = model.own_sampler();
-            let cosine = if own {
-                params.push(("sampling", "cosine".into()));
-                build(spec.name, &params).unwrap_or_else(|| model.clone())
-            } else {
-                model.clone()
+            let params: Vec<(&str, String)> = roughness.map(|name| (name, r.to_string())).into_iter().collect();
+            // The model's own sampler where it offers one (its `sampling` choices), and the cosine.
+            let own_name = match spec.param("sampling").map(|p| &p.kind) {
+                Some(crate::brdf::registry::ParamKind::Choice { choices, .. }) => {
+                    choices.iter().find(|c| **c != "cosine")
+                }
+                _ => None,
             };
+            let with = |sampling: &str| {
+                let mut p = params.clone();
+                p.push(("sampling", sampling.to_string()));
+                build(spec.name, &p)
+            };
+            let (Some(model), Some(cosine)) = (
+                own_name.map_or_else(|| build(spec.name, &params), |s| with(s)),
+                own_name.map_or_else(|| build(spec.name, &params), |_| with("cosine")),
+            ) else {
+                continue;
+            };
+            let own = model.own_sampler();
             let lobe = THETA_I
                 .iter()
                 .map(|&t| {

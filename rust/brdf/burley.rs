@@ -81,7 +81,7 @@ pub struct Burley {
 
 impl Burley {
     pub fn new(roughness: f64) -> Result<Self, ParamError> {
-        Self::with_sampling(roughness, Sampling::Cltc)
+        Self::with_sampling(roughness, Sampling::Cosine)
     }
 
     pub fn with_sampling(roughness: f64, sampling: Sampling) -> Result<Self, ParamError> {
@@ -103,10 +103,10 @@ impl Registered for Burley {
         params: &[
             ParamSpec::unit_interval("roughness", 0.5, "roughness r ∈ [0, 1] (Disney's, as `principled`'s)"),
             cltc::sampling_param(
-                "`cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model; `cosine`: as `diffuse`",
+                "`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model",
             ),
         ],
-        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cosine")]],
+        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
 

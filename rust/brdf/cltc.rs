@@ -168,17 +168,18 @@ impl<const NMU: usize, const NT: usize> CltcFit<NMU, NT> {
 /// How a model with its own sampler draws directions (its `sampling` parameter).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Sampling {
-    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`), the default.
+    /// The model's clipped linearly transformed cosine (`rust/brdf/cltc.rs`).
     Cltc,
-    /// Mitsuba's cosine-weighted sampling, as `diffuse` (for comparisons).
+    /// Mitsuba's cosine-weighted sampling, as `diffuse`: the default (it renders the
+    /// measured scenes as efficiently, `docs/sampling.md#scene-level`).
     Cosine,
 }
 
 impl Sampling {
-    pub const CHOICES: &'static [&'static str] = &["cltc", "cosine"];
+    pub const CHOICES: &'static [&'static str] = &["cosine", "cltc"];
 
     pub fn parse(word: &str) -> Self {
-        if word == "cosine" { Sampling::Cosine } else { Sampling::Cltc }
+        if word == "cltc" { Sampling::Cltc } else { Sampling::Cosine }
     }
 
     pub fn as_str(self) -> &'static str {
@@ -189,9 +190,10 @@ impl Sampling {
     }
 }
 
-/// The `sampling` parameter of a model with its own sampler; `doc` says what `cltc` is.
+/// The `sampling` parameter of a model with its own sampler (default `cosine`); `doc` says
+/// what `cltc` is.
 pub const fn sampling_param(doc: &'static str) -> ParamSpec {
-    ParamSpec::choice("sampling", Sampling::CHOICES, "cltc", doc)
+    ParamSpec::choice("sampling", Sampling::CHOICES, "cosine", doc)
 }
 
 /// [`super::kernel::Kernel::sample_wo`] of a model with a CLTC sampler: `sampler(μ)`'s

@@ -75,7 +75,7 @@ impl<T: Real> EonKernel<T> {
             r,
             // Three square roots (traceable, no pow); the clamp keeps the derivative finite.
             r_eighth: T::select(r.gt(T::c(0.0)), r.max(T::c(1e-12)).sqrt().sqrt().sqrt(), T::c(0.0)),
-            cltc: true,
+            cltc: false,
         }
     }
 
@@ -101,7 +101,7 @@ impl<T: Real> EonKernel<T> {
     pub fn from_coefficients(
         [a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth]: [T; 9],
     ) -> Self {
-        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth, cltc: true }
+        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth, cltc: false }
     }
 
     /// The importance sampler at `μ = cos θi`: EON's CLTC fit (Portsmouth et al. 2025, §4 and
@@ -185,7 +185,7 @@ pub struct Eon {
 
 impl Eon {
     pub fn new(r: f64) -> Result<Self, ParamError> {
-        Self::with_sampling(r, Sampling::Cltc)
+        Self::with_sampling(r, Sampling::Cosine)
     }
 
     pub fn with_sampling(r: f64, sampling: Sampling) -> Result<Self, ParamError> {
@@ -218,10 +218,10 @@ impl Registered for Eon {
         params: &[
             ParamSpec::unit_interval("roughness", 0.3, "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)"),
             cltc::sampling_param(
-                "`cltc`: the paper's clipped linearly transformed cosine with a uniform share; `cosine`: as `diffuse`",
+                "`cosine`: as `diffuse`; `cltc`: the paper's clipped linearly transformed cosine with a uniform share",
             ),
         ],
-        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cosine")]],
+        examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
 

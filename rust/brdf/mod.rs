@@ -46,8 +46,8 @@ impl DiffuseModel {
         self.spec().name
     }
 
-    /// Whether the model draws directions with its own sampler rather than the cosine
-    /// (`docs/sampling.md`).
+    /// Whether the model, as configured, draws directions with its own sampler rather than the
+    /// cosine (`docs/sampling.md`).
     pub fn own_sampler(&self) -> bool {
         use kernel::Kernel;
         use registry::Registered;

@@ -59,7 +59,7 @@ impl<T: Real> OrenNayarKernel<T> {
             c3: ratio(0.125, 0.09),
             l2: ratio(0.17, 0.13),
             model,
-            cltc: true,
+            cltc: false,
         }
     }
 
@@ -73,7 +73,7 @@ impl<T: Real> OrenNayarKernel<T> {
     }
 
     pub fn from_coefficients([a, b, c3, l2]: [T; 4], model: OrenNayarModel) -> Self {
-        Self { a, b, c3, l2, model, cltc: true }
+        Self { a, b, c3, l2, model, cltc: false }
     }
 
     /// The importance sampler at `μ = cos θi`: the CLTC fitted to the model
@@ -171,7 +171,7 @@ pub struct OrenNayar {
 
 impl OrenNayar {
     pub fn new(sigma: f64, model: OrenNayarModel) -> Result<Self, ParamError> {
-        Self::with_sampling(sigma, model, Sampling::Cltc)
+        Self::with_sampling(sigma, model, Sampling::Cosine)
     }
 
     pub fn with_sampling(sigma: f64, model: OrenNayarModel, sampling: Sampling) -> Result<Self, ParamError> {
@@ -222,9 +222,9 @@ impl Registered for OrenNayar {
                 "qualitative",
                 "`qualitative` (eq. 30) or `full` (C1–C3 and the ρ² interreflection term)",
             ),
-            cltc::sampling_param("`cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model; `cosine`: as `diffuse`"),
+            cltc::sampling_param("`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model"),
         ],
-        examples: &[&[("sigma", "0.8"), ("model", "full")], &[("sigma", "1.0"), ("sampling", "cosine")]],
+        examples: &[&[("sigma", "0.8"), ("model", "full")], &[("sigma", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
 

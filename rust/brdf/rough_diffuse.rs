@@ -27,7 +27,7 @@ impl RoughDiffuse {
     }
 
     pub fn new(alpha: f64, use_fast_approx: bool) -> Result<Self, ParamError> {
-        Self::with_sampling(alpha, use_fast_approx, Sampling::Cltc)
+        Self::with_sampling(alpha, use_fast_approx, Sampling::Cosine)
     }
 
     /// With Oren–Nayar's sampler (`Sampling::Cltc`) or the cosine.
@@ -63,7 +63,7 @@ impl Registered for RoughDiffuse {
         params: &[
             ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)"),
             ParamSpec::flag("use_fast_approx", false, "the qualitative model instead of the full one"),
-            cltc::sampling_param("`cltc`: Oren–Nayar's fitted sampler; `cosine`: as `diffuse`"),
+            cltc::sampling_param("`cosine`: as `diffuse`; `cltc`: Oren–Nayar's fitted sampler"),
         ],
         examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
         in_study: false,

@@ -26,14 +26,19 @@ pub fn run(a: &TypesArgs) -> Result<(), String> {
     Ok(())
 }
 
-/// The registry as JSON: every declaration, plus `"sampler"`: `"own"` where the model (at its
-/// defaults) samples its own lobe, else `"cosine"`.
+/// The registry as JSON: every declaration, plus `"samplers"`, the samplers the model offers
+/// (the choices of its `sampling` parameter, else only `"cosine"`), and `"sampler"`, its
+/// default's.
 pub fn json() -> serde_json::Value {
+    use crate::brdf::registry::ParamKind;
     let mut all = serde_json::to_value(crate::brdf::MODELS).expect("the declarations serialise");
     for (value, spec) in all.as_array_mut().expect("an array").iter_mut().zip(crate::brdf::MODELS) {
-        let own = crate::brdf::DiffuseModel::from_params(spec.name, crate::brdf::Params::new())
-            .is_ok_and(|m| m.own_sampler());
-        value["sampler"] = (if own { "own" } else { "cosine" }).into();
+        let (samplers, default): (&[&str], &str) = match spec.param("sampling").map(|p| &p.kind) {
+            Some(ParamKind::Choice { choices, default }) => (choices, default),
+            _ => (&["cosine"], "cosine"),
+        };
+        value["samplers"] = samplers.into();
+        value["sampler"] = default.into();
     }
     all
 }

@@ -19,8 +19,9 @@ fn direction(theta_deg: f32, phi_deg: f32) -> Vec3 {
     Vec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos())
 }
 
+/// EON with its own sampler (the default is the cosine).
 fn eon(r: f32) -> matte::brdf::DiffuseModel {
-    model("eon", &[("roughness", &r.to_string())])
+    model("eon", &[("roughness", &r.to_string()), ("sampling", "cltc")])
 }
 
 #[test]

@@ -8,10 +8,10 @@ import pytest
 
 from conftest import MODELS
 
-# Every model whose sampler is not the cosine, at two roughnesses (its first numeric
-# parameter, as the registry declares it).
-OWN = [m for m in MODELS if m.get("sampler", "cosine") != "cosine"]
-CASES = [(m["name"], {p["name"]: r}) for m in OWN for p in m["params"][:1] for r in (0.3, 1.0)]
+# Every model that offers a sampler besides the cosine, with it, at two roughnesses (its first
+# numeric parameter, as the registry declares it).
+OWN = [(m, s) for m in MODELS for s in m["samplers"] if s != "cosine"]
+CASES = [(m["name"], {m["params"][0]["name"]: r, "sampling": s}) for m, s in OWN for r in (0.3, 1.0)]
 ANGLES = [30.0, 85.0, 89.0]
 
 
@@ -26,7 +26,7 @@ def direction(theta_deg):
 
 
 def test_some_model_has_its_own_sampler():
-    assert CASES, "no registered model declares a sampler other than the cosine"
+    assert CASES, "no registered model offers a sampler other than the cosine"
 
 
 @pytest.mark.parametrize("theta", ANGLES)
@@ -35,7 +35,8 @@ def test_some_model_has_its_own_sampler():
 def test_chi2(mi_variant, case, theta):
     mi = mi_variant
     kind, params = case
-    xml = "".join(f'<float name="{k}" value="{v}"/>' for k, v in params.items())
+    xml = "".join(f'<float name="{k}" value="{v}"/>' if isinstance(v, float) else f'<string name="{k}" value="{v}"/>'
+                  for k, v in params.items())
     sample_func, pdf_func = mi.chi2.BSDFAdapter(kind, xml, wi=direction(theta))
     chi2 = mi.chi2.ChiSquareTest(domain=mi.chi2.SphericalDomain(), sample_func=sample_func,
                                  pdf_func=pdf_func, sample_dim=3)

@@ -1300,7 +1300,7 @@ fn diffuse_reflectance_colours() {
 
 #[test]
 fn matte_models_with_documented_defaults() {
-    // docs/models.md: reflectance 0.5; oren_nayar σ 0.3 qualitative; eon r 0.3; wolff int 1.4,
+    // docs/models.md: reflectance 0.5; oren_nayar σ 0.3 qualitative; eon r 0.3 cosine; wolff int 1.4,
     // ext 1.0, physical; ginneken m 0.3, vginneken.
     use ParamValue::{Number, Text};
     let num = |x: f64| Number(x as f32 as f64);
@@ -1313,8 +1313,12 @@ fn matte_models_with_documented_defaults() {
             "<float name=\"sigma\" value=\"0.5\"/><string name=\"model\" value=\"full\"/>",
             vec![("sigma", num(0.5)), ("model", Text("full".into()))],
         ),
-        ("eon", "", vec![("roughness", num(0.3))]),
-        ("eon", "<float name=\"roughness\" value=\"0.6\"/>", vec![("roughness", num(0.6))]),
+        ("eon", "", vec![("roughness", num(0.3)), ("sampling", Text("cosine".into()))]),
+        (
+            "eon",
+            "<float name=\"roughness\" value=\"0.6\"/><string name=\"sampling\" value=\"cltc\"/>",
+            vec![("roughness", num(0.6)), ("sampling", Text("cltc".into()))],
+        ),
         ("wolff", "", vec![("int_ior", num(1.4)), ("ext_ior", num(1.0)), ("normalization", Text("physical".into()))]),
         // Named IORs from Mitsuba's table (§10): water 1.3330, an integer is a number too.
         (

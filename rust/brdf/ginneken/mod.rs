@@ -158,7 +158,7 @@ impl PartialEq for Ginneken {
 
 impl Ginneken {
     pub fn new(m: f64, shadowing: Shadowing) -> Result<Self, ParamError> {
-        Self::with_sampling(m, shadowing, Sampling::Cltc)
+        Self::with_sampling(m, shadowing, Sampling::Cosine)
     }
 
     pub fn with_sampling(m: f64, shadowing: Shadowing, sampling: Sampling) -> Result<Self, ParamError> {
@@ -282,7 +282,7 @@ impl Registered for Ginneken {
                 "vginneken",
                 "the shadowing-masking term: the paper's or height-correlated Smith",
             ),
-            cltc::sampling_param("`cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model; `cosine`: as `diffuse`"),
+            cltc::sampling_param("`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model"),
         ],
         examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
         in_study: true,

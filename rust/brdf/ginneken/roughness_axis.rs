@@ -153,7 +153,7 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
             weights,
             shadowing,
             sampler_t: u.scale(1.25),
-            cltc: true,
+            cltc: false,
         }
     }
 

@@ -53,9 +53,8 @@ fn make<T: FromProps + Into<Bsdf>>(p: &mut PluginProps) -> Result<Bsdf, SceneErr
     T::from_props(p).map(Into::into)
 }
 
-/// The plugin names matte builds, each with its type (matte's models, [`BSDF_TYPES`], build
-/// [`Matte`]).
-const PLUGINS: &[(&str, Constructor)] = &[
+/// Mitsuba 3.9.1's BSDF plugins matte builds, each with its type.
+const MITSUBA: [(&str, Constructor); 16] = [
     ("diffuse", make::<Diffuse>),
     ("twosided", make::<TwoSided>),
     ("dielectric", make::<Dielectric>),
@@ -72,17 +71,32 @@ const PLUGINS: &[(&str, Constructor)] = &[
     ("blendbsdf", make::<Blend>),
     ("principled", make::<Principled>),
     ("principledthin", make::<PrincipledThin>),
-    ("tabulated_brdf", make::<TabulatedBrdf>),
 ];
+
+/// matte's own BSDF plugins besides the registered diffuse models ([`BSDF_TYPES`], built as
+/// [`Matte`]).
+const MATTE: [(&str, Constructor); 1] = [("tabulated_brdf", make::<TabulatedBrdf>)];
+
+/// The names of [`MITSUBA`]: the bsdf entry of [`super::MITSUBA_PLUGINS`].
+pub(super) const MITSUBA_NAMES: [&str; MITSUBA.len()] = {
+    let mut names = [""; MITSUBA.len()];
+    let mut i = 0;
+    while i < MITSUBA.len() {
+        names[i] = MITSUBA[i].0;
+        i += 1;
+    }
+    names
+};
 
 /// Builds the BSDF of `obj` (nested BSDFs are built by their wrapper's `from_props`).
 pub(crate) fn build(b: &Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
     let name = obj.plugin.as_str();
-    let constructor = match PLUGINS.iter().find(|(n, _)| *n == name) {
+    let plugins = || MITSUBA.iter().chain(MATTE.iter());
+    let constructor = match plugins().find(|(n, _)| *n == name) {
         Some(&(_, c)) => c,
         None if BSDF_TYPES.contains(&name) => make::<Matte>,
         None => {
-            let names: Vec<&str> = PLUGINS.iter().map(|(n, _)| *n).chain(BSDF_TYPES.iter().copied()).collect();
+            let names: Vec<&str> = plugins().map(|(n, _)| *n).chain(BSDF_TYPES.iter().copied()).collect();
             return Err(super::err(
                 obj,
                 format!("unsupported bsdf type \"{name}\" (matte renders: {})", names.join(", ")),

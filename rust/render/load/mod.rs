@@ -38,27 +38,7 @@ use std::rc::Rc;
 /// on top; what is refused by scope is in [`scope`].
 pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("scene", &["scene"]),
-    (
-        "bsdf",
-        &[
-            "blendbsdf",
-            "bumpmap",
-            "conductor",
-            "dielectric",
-            "diffuse",
-            "mask",
-            "normalmap",
-            "null",
-            "plastic",
-            "principled",
-            "principledthin",
-            "roughconductor",
-            "roughdielectric",
-            "roughplastic",
-            "thindielectric",
-            "twosided",
-        ],
-    ),
+    ("bsdf", &bsdf::MITSUBA_NAMES),
     ("emitter", &["area", "constant", "directional", "envmap", "point", "projector", "spot"]),
     ("film", &["hdrfilm"]),
     ("integrator", &["direct", "moment", "path", "ptracer", "volpath", "volpathmis"]),

@@ -30,19 +30,12 @@ from pathlib import Path
 import numpy as np
 import mitsuba as mi
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
+from reference_check import check, finish  # noqa: E402
+
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
 TMP = Path(tempfile.mkdtemp(prefix="matte-bitmap-ref-"))
-FAILED = []
-
-
-def check(label, got, want, tol=0.0):
-    got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
-    ok = got.shape == want.shape and bool(np.all(np.abs(got - want) <= tol))
-    if not ok:
-        FAILED.append(label)
-    g = np.array2string(got, precision=7, separator=", ", max_line_width=10**6)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {g}" + ("" if ok else f", test holds {want.tolist()}"))
 
 
 def image(name, texels, dtype=np.uint8):
@@ -121,5 +114,4 @@ check("1×1 grey 128 at (0.9, 0.1)", ev(texture(image("one.png", [[GRAY]])), 0.9
 t = texture(image("tall.png", [[RED], [BLUE]]), filter_type="nearest")
 check("1×2 red / blue, nearest, (0.9, 0.9)", ev(t, 0.9, 0.9), Z)
 
-print(f"{len(FAILED)} mismatches")
-sys.exit(1 if FAILED else 0)
+finish()

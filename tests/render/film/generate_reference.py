@@ -26,22 +26,16 @@ Covered (test constant or function → what Mitsuba is asked):
 Prints one line per check and exits 1 if any differs.
 """
 import sys
+from pathlib import Path
 
 import numpy as np
 import mitsuba as mi
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
+from reference_check import check, finish  # noqa: E402
+
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
-FAILED = []
-
-
-def check(label, got, want, tol=0.0):
-    got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
-    ok = got.shape == want.shape and bool(np.all(np.abs(got - want) <= tol))
-    if not ok:
-        FAILED.append(label)
-    g = np.array2string(got, precision=7, separator=", ", max_line_width=10**6)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {g}" + ("" if ok else f", test holds {want.tolist()}"))
 
 
 # MITSUBA_GAUSSIAN_TABLE (tests/render/film.rs), 5 decimals.
@@ -137,5 +131,4 @@ check("edge: left of the edge, both rows", mean[:, 3], [0.8339, 0.8339], 2e-3)
 check("edge: right of the edge, both rows", mean[:, 4], [0.1661, 0.1661], 2e-3)
 check("edge: outer pixels", [mean[:, 0], mean[:, 7]], [[1.0, 1.0], [0.0, 0.0]], 1e-6)
 
-print(f"{len(FAILED)} mismatches")
-sys.exit(1 if FAILED else 0)
+finish()

@@ -45,27 +45,14 @@ from pathlib import Path
 import numpy as np
 import mitsuba as mi
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
+from reference_check import check, check_true, finish  # noqa: E402
+
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
 TMP = Path(tempfile.mkdtemp(prefix="matte-load-ref-"))
-FAILED = []
 SENSOR = ('<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/>'
           '<integer name="height" value="2"/></film></sensor>')
-
-
-def check(label, got, want, tol=0.0):
-    got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
-    ok = got.shape == want.shape and bool(np.all(np.abs(got - want) <= tol))
-    if not ok:
-        FAILED.append(label)
-    g = np.array2string(got.ravel() if got.ndim > 1 else got, precision=7, separator=", ", max_line_width=10**6)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {g}" + ("" if ok else f", test holds {want.tolist()}"))
-
-
-def check_true(label, ok, shown=""):
-    if not ok:
-        FAILED.append(label)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}{': ' + shown if shown else ''}")
 
 
 def load(body, **kw):
@@ -369,5 +356,4 @@ for x in (0.05, 0.95):
     for y, tri in ((0.2, 0), (0.3, 1)):
         check(f"two-triangle OBJ sample_position({x}, {y}): triangle (z)", mesh.sample_position(0.0, [x, y]).p[2], tri, 1e-6)
 
-print(f"{len(FAILED)} mismatches")
-sys.exit(1 if FAILED else 0)
+finish()

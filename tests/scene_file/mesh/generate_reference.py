@@ -30,22 +30,19 @@ from pathlib import Path
 import numpy as np
 import mitsuba as mi
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
+from functools import partial  # noqa: E402
+
+from reference_check import check as _check, finish  # noqa: E402
+
+check = partial(_check, threshold=12)
+
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
 
 ROOT = Path(__file__).resolve().parents[3]
 TEST = ROOT / "tests" / "scene_file" / "mesh.rs"
 TMP = Path(tempfile.mkdtemp(prefix="matte-mesh-ref-"))
-FAILED = []
-
-
-def check(label, got, want, tol=0.0):
-    got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
-    ok = got.shape == want.shape and np.all(np.abs(got - want) <= tol)
-    if not ok:
-        FAILED.append(label)
-    g = np.array2string(got.ravel() if got.ndim > 1 else got, precision=7, separator=", ", max_line_width=10**6, threshold=12)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {g}" + ("" if ok else f", test holds {want.tolist()}"))
 
 
 def obj(name, text):
@@ -134,5 +131,4 @@ for to_world, cases, area in [
             check(f"{name} at ({x}, {y}): prim_index", si.prim_index, prim)
     check(f"{name}: surface_area", scene.shapes()[0].surface_area(), area)
 
-print(f"{len(FAILED)} mismatches")
-sys.exit(1 if FAILED else 0)
+finish()

@@ -22,23 +22,21 @@ Prints one line per check and exits 1 if any differs.
 """
 import math
 import sys
+from pathlib import Path
 
 import numpy as np
 import mitsuba as mi
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
+from functools import partial  # noqa: E402
+
+from reference_check import check as _check, finish  # noqa: E402
+
+check = partial(_check, precision=16)
+
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
 CONFIG = mi.parser.ParserConfig("scalar_rgb")
-FAILED = []
-
-
-def check(label, got, want, tol=0.0):
-    got, want = np.asarray(got, dtype=np.float64), np.asarray(want, dtype=np.float64)
-    ok = got.shape == want.shape and bool(np.all(np.abs(got - want) <= tol))
-    if not ok:
-        FAILED.append(label)
-    g = np.array2string(got.ravel() if got.ndim > 1 else got, precision=16, separator=", ", max_line_width=10**6)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {g}" + ("" if ok else f", test holds {want.tolist()}"))
 
 
 def props(body, plugin="rectangle", tag="shape"):
@@ -149,5 +147,4 @@ for name, use, want, tol in [
 ]:
     check(f"<spectrum {name}> {use}", color(p, name, use), want, tol)
 
-print(f"{len(FAILED)} mismatches")
-sys.exit(1 if FAILED else 0)
+finish()
