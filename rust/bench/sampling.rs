@@ -116,12 +116,7 @@ pub fn measure(quick: bool) -> Vec<SamplerRow> {
         for &r in values {
             let params: Vec<(&str, String)> = roughness.map(|name| (name, r.to_string())).into_iter().collect();
             // The model's own sampler where it offers one (its `sampling` choices), and the cosine.
-            let own_name = match spec.param("sampling").map(|p| &p.kind) {
-                Some(crate::brdf::registry::ParamKind::Choice { choices, .. }) => {
-                    choices.iter().find(|c| **c != "cosine")
-                }
-                _ => None,
-            };
+            let own_name = spec.own_sampler();
             let with = |sampling: &str| {
                 let mut p = params.clone();
                 p.push(("sampling", sampling.to_string()));

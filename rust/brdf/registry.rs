@@ -180,6 +180,15 @@ impl ModelSpec {
         self.params.iter().find(|p| p.name == name)
     }
 
+    /// The model's own sampler, the choice of its `sampling` parameter that is not the cosine
+    /// (`docs/sampling.md`), if it offers one.
+    pub fn own_sampler(&self) -> Option<&'static str> {
+        match self.param("sampling")?.kind {
+            ParamKind::Choice { choices, .. } => choices.iter().copied().find(|c| *c != "cosine"),
+            _ => None,
+        }
+    }
+
     /// The numeric parameters in order: the order per-lane values are given in.
     pub fn numeric(&self) -> impl Iterator<Item = &'static ParamSpec> {
         self.params.iter().filter(|p| p.is_numeric())

@@ -64,7 +64,7 @@ fn defaults_and_errors() {
     let m = DiffuseModel::from_params("burley", Params::new()).unwrap();
     assert_eq!(
         m.parameters(),
-        vec![("roughness", ParamValue::Number(0.5)), ("sampling", ParamValue::Text("cltc".into()))]
+        vec![("roughness", ParamValue::Number(0.5)), ("sampling", ParamValue::Text("cosine".into()))]
     );
     for bad in [-0.1, 1.1, f64::NAN] {
         let e = DiffuseModel::from_params("burley", Params::new().with("roughness", ParamValue::Number(bad)))

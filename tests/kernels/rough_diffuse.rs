@@ -42,7 +42,7 @@ fn defaults_are_mitsuba_0_6s() {
         vec![
             ("alpha", ParamValue::Number(0.2f32 as f64)),
             ("use_fast_approx", ParamValue::Text("false".into())),
-            ("sampling", ParamValue::Text("cltc".into()))
+            ("sampling", ParamValue::Text("cosine".into()))
         ]
     );
 }
@@ -75,7 +75,7 @@ fn mitsuba_0_6_xml_loads_through_the_upgrade() {
         vec![
             ("alpha", ParamValue::Number(0.4f32 as f64)),
             ("use_fast_approx", ParamValue::Text("true".into())),
-            ("sampling", ParamValue::Text("cltc".into()))
+            ("sampling", ParamValue::Text("cosine".into()))
         ]
     );
 }

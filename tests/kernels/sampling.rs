@@ -65,19 +65,19 @@ fn every_density_integrates_to_one() {
 /// The roughnesses the sampler tests sweep, in each model's own roughness parameter.
 const ROUGHNESS: [&str; 4] = ["0.05", "0.3", "0.7", "1.0"];
 
-/// Every model with its own sampler, at each of [`ROUGHNESS`] (its first numeric parameter)
+/// Every model with its own sampler (its `sampling` parameter set to it), at each of [`ROUGHNESS`] (its first numeric parameter)
 /// and each variant its examples declare (the other words and flags: Oren–Nayar's `model`,
 /// van Ginneken's `shadowing`, roughdiffuse's `use_fast_approx`), its defaults otherwise.
 fn own_samplers() -> Vec<(String, DiffuseModel)> {
     let mut out: Vec<(String, DiffuseModel)> = Vec::new();
     for spec in MODELS {
         let Some(roughness) = spec.numeric().next().map(|p| p.name) else { continue };
-        if !model(spec.name, &[]).own_sampler() {
-            continue;
-        }
-        let mut variants: Vec<Vec<(&str, &str)>> = vec![vec![]];
+        let Some(own) = spec.own_sampler() else { continue };
+        let mut variants: Vec<Vec<(&str, &str)>> = vec![vec![("sampling", own)]];
         for example in spec.examples {
-            let words: Vec<(&str, &str)> = example.iter().copied().filter(|(n, _)| *n != roughness).collect();
+            let mut words: Vec<(&str, &str)> =
+                example.iter().copied().filter(|(n, _)| *n != roughness && *n != "sampling").collect();
+            words.push(("sampling", own));
             if !variants.contains(&words) {
                 variants.push(words);
             }
@@ -211,6 +211,7 @@ fn the_fitted_samplers_lower_the_weight_variance() {
         let at = |r: &str| {
             let mut p = words.to_vec();
             p.push((roughness, r));
+            p.push(("sampling", "cltc"));
             model(kind, &p)
         };
         for ti in [45.0, 60.0, 85.0] {

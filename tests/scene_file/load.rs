@@ -1307,11 +1307,15 @@ fn matte_models_with_documented_defaults() {
     type Case = (&'static str, &'static str, Vec<(&'static str, ParamValue)>);
     let cases: [Case; 9] = [
         ("lambert", "", vec![]),
-        ("oren_nayar", "", vec![("sigma", num(0.3)), ("model", Text("qualitative".into()))]),
         (
             "oren_nayar",
-            "<float name=\"sigma\" value=\"0.5\"/><string name=\"model\" value=\"full\"/>",
-            vec![("sigma", num(0.5)), ("model", Text("full".into()))],
+            "",
+            vec![("sigma", num(0.3)), ("model", Text("qualitative".into())), ("sampling", Text("cosine".into()))],
+        ),
+        (
+            "oren_nayar",
+            "<float name=\"sigma\" value=\"0.5\"/><string name=\"model\" value=\"full\"/><string name=\"sampling\" value=\"cltc\"/>",
+            vec![("sigma", num(0.5)), ("model", Text("full".into())), ("sampling", Text("cltc".into()))],
         ),
         ("eon", "", vec![("roughness", num(0.3)), ("sampling", Text("cosine".into()))]),
         (
@@ -1326,11 +1330,19 @@ fn matte_models_with_documented_defaults() {
             "<string name=\"int_ior\" value=\"water\"/><integer name=\"ext_ior\" value=\"1\"/><string name=\"normalization\" value=\"raw\"/>",
             vec![("int_ior", num(1.333)), ("ext_ior", num(1.0)), ("normalization", Text("raw".into()))],
         ),
-        ("ginneken", "", vec![("roughness", num(0.3)), ("shadowing", Text("vginneken".into()))]),
+        (
+            "ginneken",
+            "",
+            vec![("roughness", num(0.3)), ("shadowing", Text("vginneken".into())), ("sampling", Text("cosine".into()))],
+        ),
         (
             "ginneken",
             "<float name=\"roughness\" value=\"0.1\"/><string name=\"shadowing\" value=\"height_correlated\"/>",
-            vec![("roughness", num(0.1)), ("shadowing", Text("height_correlated".into()))],
+            vec![
+                ("roughness", num(0.1)),
+                ("shadowing", Text("height_correlated".into())),
+                ("sampling", Text("cosine".into())),
+            ],
         ),
     ];
     for (kind, props, want) in cases {
