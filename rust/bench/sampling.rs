@@ -123,7 +123,7 @@ pub fn measure(quick: bool) -> Vec<SamplerRow> {
                 build(spec.name, &p)
             };
             let (Some(model), Some(cosine)) = (
-                own_name.map_or_else(|| build(spec.name, &params), |s| with(s)),
+                own_name.map_or_else(|| build(spec.name, &params), &with),
                 own_name.map_or_else(|| build(spec.name, &params), |_| with("cosine")),
             ) else {
                 continue;
