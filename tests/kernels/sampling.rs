@@ -197,7 +197,9 @@ fn oren_nayar_samplers_are_the_cosine_at_normal_incidence() {
 #[test]
 fn the_fitted_samplers_lower_the_weight_variance() {
     use matte::bench::sampling::weight_variance;
-    let cases: [(&str, &[(&str, &str)], &str); 6] = [
+    // (type, other parameters, the roughness parameter)
+    type Case = (&'static str, &'static [(&'static str, &'static str)], &'static str);
+    let cases: [Case; 6] = [
         ("oren_nayar", &[], "sigma"),
         ("oren_nayar", &[("model", "full")], "sigma"),
         ("roughdiffuse", &[], "alpha"),
