@@ -26,6 +26,7 @@ public:
     virtual uint32_t floor(uint32_t a) const = 0;
     virtual uint32_t fma(uint32_t a, uint32_t b, uint32_t c) const = 0;
     virtual void sincos(uint32_t a, uint32_t &s, uint32_t &c) const = 0;
+    virtual uint32_t exp(uint32_t a) const = 0;
     virtual uint32_t lt(uint32_t a, uint32_t b) const = 0;
     virtual uint32_t le(uint32_t a, uint32_t b) const = 0;
     virtual uint32_t gt(uint32_t a, uint32_t b) const = 0;

@@ -43,6 +43,7 @@ public:
     uint32_t fma(uint32_t a, uint32_t b, uint32_t c) const override {
         return push(drjit::fmadd(f(a), f(b), f(c)));
     }
+    uint32_t exp(uint32_t a) const override { return push(drjit::exp(f(a))); }
     void sincos(uint32_t a, uint32_t &s, uint32_t &c) const override {
         auto [sv, cv] = drjit::sincos(f(a));
         s = push(std::move(sv));

@@ -101,6 +101,10 @@ impl Real for Dual {
         let (s, c) = self.v.sin_cos();
         (Dual { v: s, d: c * self.d }, Dual { v: c, d: -s * self.d })
     }
+    fn exp(self) -> Self {
+        let e = self.v.exp();
+        Dual { v: e, d: e * self.d }
+    }
     fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {
         <Dual as Real>::c(table.at(idx.v as usize + offset as usize) as f64)
     }

@@ -46,6 +46,9 @@ pub trait Real:
     /// `(sin x, cos x)`: Cephes' single-precision scheme on the CPU (what Dr.Jit evaluates,
     /// `sampling::sincos_cephes`), Dr.Jit's own `sincos` when traced.
     fn sincos(self) -> (Self, Self);
+    /// `e^x`: the standard library's on the CPU, Dr.Jit's `exp` when traced (they differ by
+    /// an ulp or so).
+    fn exp(self) -> Self;
     /// `table[idx + offset]` for a non-negative integer-valued `idx` (exact below 2²⁴); out of
     /// range gives the last node on the CPU (callers clamp, so this never happens). The constant `offset`
     /// is separate so that the CPU converts `idx` to an integer once for all of a cell's corners.
@@ -151,6 +154,10 @@ macro_rules! cpu_real {
             fn sincos(self) -> (Self, Self) {
                 let (s, c) = crate::brdf::sampling::sincos_cephes(self as f32);
                 (s as $t, c as $t)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                <$t>::exp(self)
             }
             #[inline(always)]
             fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {

@@ -185,6 +185,10 @@ impl Real for F32x8 {
         (F32x8::new(sc.map(|p| p.0)), F32x8::new(sc.map(|p| p.1)))
     }
     #[inline(always)]
+    fn exp(self) -> Self {
+        F32x8::new(self.to_array().map(f32::exp))
+    }
+    #[inline(always)]
     fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {
         let idx = idx.to_array();
         F32x8::new(idx.map(|i| <f32 as Real>::gather(table, i, offset)))

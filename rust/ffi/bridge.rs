@@ -47,6 +47,7 @@ pub mod ffi {
         fn floor(self: &Arena, a: u32) -> u32;
         fn fma(self: &Arena, a: u32, b: u32, c: u32) -> u32;
         fn sincos(self: &Arena, a: u32, s: &mut u32, c: &mut u32);
+        fn exp(self: &Arena, a: u32) -> u32;
         fn lt(self: &Arena, a: u32, b: u32) -> u32;
         fn le(self: &Arena, a: u32, b: u32) -> u32;
         fn gt(self: &Arena, a: u32, b: u32) -> u32;

@@ -229,6 +229,9 @@ impl<'a> Real for Traced<'a> {
             }
         }
     }
+    fn exp(self) -> Self {
+        self.unary(f32::exp, Arena::exp)
+    }
     /// Dr.Jit's `squared_norm` order for JIT arrays: `fmadd(y, y, x·x)`.
     fn squared_norm_2d(x: Self, y: Self) -> Self {
         y.fma(y, x * x)

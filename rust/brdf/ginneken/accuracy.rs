@@ -44,8 +44,8 @@ pub fn fast_path_accuracy(model: &Ginneken, max_theta_deg: f64, samples: usize) 
     FastPathAccuracy { max_relative: max_rel, mean_relative: sum_rel / samples as f64, worst, samples }
 }
 
-/// How well the traced kernels' roughness gradient (the `∂/∂m` tables, first order around the
-/// tables' m₀) matches the true derivative.
+/// How well the traced kernels' roughness gradient (the slope table's `∂/∂m` table, first
+/// order around the table's m₀, and μΛ's closed form) matches the true derivative.
 #[derive(Clone, Copy, Debug)]
 pub struct RoughnessGradientAccuracy {
     /// Largest error of the elasticity `∂ ln f / ∂ ln m` (the derivative's error relative to
@@ -58,8 +58,8 @@ pub struct RoughnessGradientAccuracy {
     pub samples: usize,
 }
 
-/// The kernel's `∂f/∂m` from the derivative tables, evaluated with dual numbers over the
-/// tables ([`Dual`]: the same code the plugin traces, `m − m₀` as the variable), against
+/// The kernel's `∂f/∂m` (the slope table's derivative table, μΛ's closed form), evaluated
+/// with dual numbers ([`Dual`]: the same code the plugin traces, `m − m₀` as the variable), against
 /// central differences (`m (1 ± 10⁻³)`) of [`Ginneken::eval_reference`], at `samples`
 /// quasi-random configurations with θi, θo ≤ `max_theta_deg`.
 pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples: usize) -> RoughnessGradientAccuracy {
@@ -70,12 +70,8 @@ pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples
     let t = model.table();
     let kernel = GinnekenKernel::<Dual> {
         slope: Nodes::new(t.slope_nodes()),
-        mu_lambda: Nodes::new(t.mu_lambda_nodes()),
-        roughness_derivative: Some((
-            Nodes::new(t.slope_derivative_nodes()),
-            Nodes::new(t.mu_lambda_derivative_nodes()),
-            Dual::variable(0.0),
-        )),
+        m: Dual::c(m) + Dual::variable(0.0),
+        roughness_derivative: Some((Nodes::new(t.slope_derivative_nodes()), Dual::variable(0.0))),
         shadowing: model.shadowing(),
         sampler_t: Dual::c(super::sampler_roughness(m)),
         cltc: false,

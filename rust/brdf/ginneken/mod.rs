@@ -24,10 +24,12 @@ use super::real::{Nodes, Real, V3};
 use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
 use super::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
-use shadowing::{Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction};
+use shadowing::{
+    Shadowing, azimuth_correlation, mu_lambda, mu_lambda_closed, visibility_denominator, visibility_fraction,
+};
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
 use std::sync::Arc;
-use table::{SlopeTable, axis_of_cos, lookup_in, mu_lambda_in};
+use table::{SlopeTable, axis_of_cos, lookup_in};
 
 /// Cosines are clamped to this before entering `1/(μi μo)`-type terms: f stays finite (the
 /// model's back-scattering peak grows like 1/μ at grazing) without affecting any angle a
@@ -50,18 +52,19 @@ pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
     GINNEKEN.sampler(mu, t)
 }
 
-/// van Ginneken's tables and options in any [`Real`], and its evaluation (the fast path).
-/// The tables are built for one roughness m₀; the traced kernels may carry `∂/∂m` tables and
-/// `dm = m − m₀` (zero in value, the roughness parameter's gradient in derivative), so that
-/// `I(m) ≈ I(m₀) + dm ∂I/∂m` gives the exact value and the first-order roughness gradient.
+/// van Ginneken's table and options in any [`Real`], and its evaluation (the fast path).
+/// The slope table is built for one roughness m₀; the traced kernels may carry its `∂/∂m`
+/// table and `dm = m − m₀` (zero in value, the roughness parameter's gradient in derivative),
+/// so that `I(m) ≈ I(m₀) + dm ∂I/∂m` gives the exact value and the first-order roughness
+/// gradient. `μΛ` is evaluated in closed form at `m` ([`mu_lambda_closed`]).
 #[derive(Clone, Copy)]
 pub struct GinnekenKernel<'t, T: Real> {
     /// `I` at the nodes ([`SlopeTable::slope_nodes`]).
     pub slope: T::Table<'t>,
-    /// `μΛ` at the nodes ([`SlopeTable::mu_lambda_nodes`]).
-    pub mu_lambda: T::Table<'t>,
-    /// `(∂I/∂m table, ∂(μΛ)/∂m table, m − m₀)` when the roughness gradient is wanted.
-    pub roughness_derivative: Option<(T::Table<'t>, T::Table<'t>, T)>,
+    /// The roughness: `m₀ + dm` when the roughness gradient is wanted, else `m₀`.
+    pub m: T,
+    /// `(∂I/∂m table, dm = m − m₀)` when the roughness gradient is wanted.
+    pub roughness_derivative: Option<(T::Table<'t>, T)>,
     pub shadowing: Shadowing,
     /// The sampler's roughness variable ([`sampler_roughness`] of the tables' m₀).
     pub sampler_t: T,
@@ -74,16 +77,7 @@ impl<'t, T: Real> GinnekenKernel<'t, T> {
     fn slope_integral(&self, x_i: T, x_o: T, cos_phi: T) -> T {
         let v = lookup_in(self.slope, x_i, x_o, cos_phi);
         match self.roughness_derivative {
-            Some((d_slope, _, dm)) => dm.fma(lookup_in(d_slope, x_i, x_o, cos_phi), v),
-            None => v,
-        }
-    }
-
-    #[inline(always)]
-    fn mu_lambda(&self, x: T) -> T {
-        let v = mu_lambda_in(self.mu_lambda, x);
-        match self.roughness_derivative {
-            Some((_, d_mu_lambda, dm)) => dm.fma(mu_lambda_in(d_mu_lambda, x), v),
+            Some((d_slope, dm)) => dm.fma(lookup_in(d_slope, x_i, x_o, cos_phi), v),
             None => v,
         }
     }
@@ -92,7 +86,7 @@ impl<'t, T: Real> GinnekenKernel<'t, T> {
 impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        reduced_with(self.shadowing, wi, wo, rho, |x| self.mu_lambda(x), |x_i, x_o, c| self.slope_integral(x_i, x_o, c))
+        reduced_with(self.shadowing, wi, wo, rho, self.m, |x_i, x_o, c| self.slope_integral(x_i, x_o, c))
     }
 
     #[inline(always)]
@@ -111,30 +105,32 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     }
 }
 
-/// `π f` given how `μΛ` (at an axis coordinate) and the slope integral `I` (at both axis
-/// coordinates and cos Δφ) are looked up: one table ([`GinnekenKernel`]) or a table over m
-/// too ([`roughness_axis::GinnekenAxisKernel`]).
+/// `π f` at roughness `m` (for `μΛ`, in closed form) given how the slope integral `I` (at both
+/// axis coordinates and cos Δφ) is looked up: one table ([`GinnekenKernel`]) or a table over
+/// m too ([`roughness_axis::GinnekenAxisKernel`]).
 #[inline(always)]
 pub(crate) fn reduced_with<T: Real, const N: usize>(
     shadowing: Shadowing,
     wi: V3<T>,
     wo: V3<T>,
     rho: [T; N],
-    mu_lambda: impl Fn(T) -> T,
+    m: T,
     slope_integral: impl Fn(T, T, T) -> T,
 ) -> [T; N] {
     let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
-    // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo; the product of the sines is one
-    // square root of the product of the squared sines. Δφ itself (for the visibility) is
-    // the angle of (s, c) with c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos
-    // after this square root and division, which would make the chain longer.
+    // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo, with the sines (which μΛ needs too)
+    // from the directions' xy. Δφ itself (for the visibility) is the angle of (s, c) with
+    // c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos after the division, which
+    // would make the chain longer.
     let s = azimuthal_dot(wi, wo);
-    let sin2_prod = (wi.x * wi.x + wi.y * wi.y) * (wo.x * wo.x + wo.y * wo.y);
-    let defined = sin2_prod.gt(T::c(1e-24));
-    let cos_phi = T::select(defined, (s / sin2_prod.max(T::c(1e-24)).sqrt()).clamp_to(-1.0, 1.0), T::c(1.0));
+    let (sin_i, sin_o) = ((wi.x * wi.x + wi.y * wi.y).sqrt(), (wo.x * wo.x + wo.y * wo.y).sqrt());
+    let sin_prod = sin_i * sin_o;
+    let defined = sin_prod.gt(T::c(1e-12));
+    let cos_phi = T::select(defined, (s / sin_prod.max(T::c(1e-12))).clamp_to(-1.0, 1.0), T::c(1.0));
     let phi = T::select(defined, approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s), T::c(0.0));
     let (x_i, x_o) = (axis_of_cos(mu_i), axis_of_cos(mu_o));
-    let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, mu_lambda(x_i), mu_lambda(x_o), phi);
+    let (ml_i, ml_o) = (mu_lambda_closed(mu_i, sin_i, m), mu_lambda_closed(mu_o, sin_o, m));
+    let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, ml_i, ml_o, phi);
     // num/den does not wait for the table lookup (usually a cache miss).
     let g = slope_integral(x_i, x_o, cos_phi) * (num / den);
     rho.map(|r| r * g)
@@ -206,7 +202,7 @@ impl Ginneken {
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
         GinnekenKernel {
             slope: Nodes::new(self.table.slope_nodes()),
-            mu_lambda: Nodes::new(self.table.mu_lambda_nodes()),
+            m: self.m,
             roughness_derivative: None,
             shadowing: self.shadowing,
             sampler_t: self.sampler_t,
@@ -322,22 +318,23 @@ impl Registered for Ginneken {
         Some(vec![clamp_roughness(m)])
     }
 
-    /// `tables`: `I`, `∂I/∂m`, `μΛ`, `∂(μΛ)/∂m` ([`Self::tables`], or the stacks over m of
+    /// `tables`: `I`, `∂I/∂m` ([`Self::tables`], or the stacks over m of
     /// [`Self::lane_tables`] when `lane`).
     fn kernel_from<'t, T: Real + 't>(&self, c: &[T], tables: &[T::Table<'t>], lane: bool) -> Option<GinnekenLane<'t, T>> {
-        let [slope, d_slope, mu_lambda, d_mu_lambda]: [T::Table<'t>; 4] = first(tables)?;
+        let [slope, d_slope]: [T::Table<'t>; 2] = first(tables)?;
         let cltc = self.sampling == Sampling::Cltc;
         Some(if lane {
             let [m] = first(c)?;
-            let tables = [slope, d_slope, mu_lambda, d_mu_lambda];
-            GinnekenLane::Axis(GinnekenAxisKernel::new(tables, m, self.shadowing).with_sampling(self.sampling))
+            GinnekenLane::Axis(GinnekenAxisKernel::new([slope, d_slope], m, self.shadowing).with_sampling(self.sampling))
         } else {
             // The sampler's roughness is the tables' m₀, a constant: the sampling density is
             // not differentiated (`docs/sampling.md#gradients`).
+            let m0 = T::c(self.m as f64);
+            let dm: Option<[T; 1]> = first(c);
             GinnekenLane::Fixed(GinnekenKernel {
                 slope,
-                mu_lambda,
-                roughness_derivative: first(c).map(|[dm]| (d_slope, d_mu_lambda, dm)),
+                m: dm.map_or(m0, |[dm]| m0 + dm),
+                roughness_derivative: dm.map(|[dm]| (d_slope, dm)),
                 shadowing: self.shadowing,
                 sampler_t: T::c(self.sampler_t as f64),
                 cltc,
@@ -347,12 +344,12 @@ impl Registered for Ginneken {
 
     fn tables(&self) -> Vec<&[f32]> {
         let t = &self.table;
-        vec![t.slope_nodes(), t.slope_derivative_nodes(), t.mu_lambda_nodes(), t.mu_lambda_derivative_nodes()]
+        vec![t.slope_nodes(), t.slope_derivative_nodes()]
     }
 
     fn lane_tables(&self) -> Vec<&'static [f32]> {
         let t = RoughnessAxisTables::shared();
-        (0..4).map(|k| t.table(k)).collect()
+        (0..2).map(|k| t.table(k)).collect()
     }
 }
 
@@ -363,7 +360,7 @@ mod tests {
     use crate::brdf::model::DiffuseBrdf;
     use crate::brdf::frame::spherical_direction_f64;
     use glam::DVec3;
-    use table::{C_NODES, LAMBDA_NODES, U_NODES};
+    use table::{C_NODES, U_NODES};
 
     /// The fast path written the plain way in f64 on the same table: two-square-root axis,
     /// `acos` for Δφ, nested linear interpolations, [`visibility_denominator`].
@@ -386,11 +383,9 @@ mod tests {
         let ((i, fi), (o, fo), (c, fc)) = (cell(xi, U_NODES), cell(xo, U_NODES), cell(0.5 * (cos_phi + 1.0), C_NODES));
         let at = |i: usize, o: usize| lerp(t.node(i, o, c) as f64, t.node(i, o, c + 1) as f64, fc);
         let integral = lerp(lerp(at(i, o), at(i, o + 1), fo), lerp(at(i + 1, o), at(i + 1, o + 1), fo), fi);
-        let ml = |x: f64| {
-            let (k, f) = cell(x, LAMBDA_NODES);
-            lerp(t.lambda_node(k) as f64, t.lambda_node(k + 1) as f64, f)
-        };
-        let den = visibility_denominator(g.shadowing, mu_i, mu_o, ml(xi), ml(xo), || azimuth_correlation(cos_phi));
+        let m = g.m as f64;
+        let (ml_i, ml_o) = (mu_lambda(mu_i, si, m), mu_lambda(mu_o, so, m));
+        let den = visibility_denominator(g.shadowing, mu_i, mu_o, ml_i, ml_o, || azimuth_correlation(cos_phi));
         integral / (std::f64::consts::PI * den)
     }
 

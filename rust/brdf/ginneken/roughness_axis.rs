@@ -4,18 +4,19 @@
 //!
 //! Axis: `u = m/(1 + m)`, [`M_NODES`] nodes uniform in u from m = [`M_MIN`] to [`M_MAX`]
 //! (denser at small m, where `I` changes fastest relative to m; no logarithm, which the
-//! traced scalar lacks). Every node stores `I` and `μΛ` and their m-derivatives (the same
-//! semi-analytic integrals as the single-roughness tables' `∂/∂m`), so the interpolation in u
+//! traced scalar lacks). Every node stores `I` and its m-derivative (the same semi-analytic
+//! integrals as the single-roughness tables' `∂/∂m`), so the interpolation in u
 //! is **cubic Hermite**: value and slope match at both ends of a cell. The value is then
 //! accurate to a few 1e-4 between nodes, and its m-derivative (the texture's gradient, exact
-//! derivative of the interpolant) is continuous. Measured against
+//! derivative of the interpolant) is continuous. `μΛ` is evaluated in closed form at the
+//! lane's m. Measured against
 //! [`super::Ginneken::eval_reference`] by [`axis_accuracy`] (`tests/kernels/ginneken_fast_path.rs`; docs/models.md).
 //!
 //! A texture value outside [M_MIN, M_MAX] is clamped into it (NaN gives M_MIN). The stack is
 //! built once per process, on first use (M_NODES single-roughness builds, a few seconds).
 
 use super::shadowing::Shadowing;
-use super::table::{LAMBDA_NODES, SLOPE_NODES, SlopeTable, lookup_layer_in, mu_lambda_layer_in};
+use super::table::{SLOPE_NODES, SlopeTable, lookup_layer_in};
 use super::{Ginneken, reduced_with, sampler};
 use crate::brdf::cltc::{self, Sampling};
 use crate::brdf::frame::spherical_direction_f64;
@@ -29,9 +30,8 @@ pub const M_MAX: f64 = 4.0;
 /// Nodes on the roughness axis.
 pub const M_NODES: usize = 13;
 
-/// Nodes of the stacked slope tables and of the stacked `μΛ` tables.
+/// Nodes of the stacked slope tables.
 pub const AXIS_SLOPE_NODES: usize = M_NODES * SLOPE_NODES;
-pub const AXIS_LAMBDA_NODES: usize = M_NODES * LAMBDA_NODES;
 
 fn u_of_m(m: f64) -> f64 {
     m / (1.0 + m)
@@ -57,8 +57,6 @@ pub fn m_of_node(j: usize) -> f64 {
 pub struct RoughnessAxisTables {
     pub slope: Box<[f32; AXIS_SLOPE_NODES]>,
     pub d_slope: Box<[f32; AXIS_SLOPE_NODES]>,
-    pub mu_lambda: Box<[f32; AXIS_LAMBDA_NODES]>,
-    pub d_mu_lambda: Box<[f32; AXIS_LAMBDA_NODES]>,
 }
 
 impl RoughnessAxisTables {
@@ -67,17 +65,14 @@ impl RoughnessAxisTables {
             v.into_boxed_slice().try_into().expect("stack size")
         }
         let (mut slope, mut d_slope) = (Vec::with_capacity(AXIS_SLOPE_NODES), Vec::with_capacity(AXIS_SLOPE_NODES));
-        let (mut ml, mut d_ml) = (Vec::with_capacity(AXIS_LAMBDA_NODES), Vec::with_capacity(AXIS_LAMBDA_NODES));
         for j in 0..M_NODES {
             let m = m_of_node(j);
             let scale = du() * (1.0 + m) * (1.0 + m);
             let t = SlopeTable::build(m);
             slope.extend_from_slice(t.slope_nodes());
             d_slope.extend(t.slope_derivative_nodes().iter().map(|&d| (d as f64 * scale) as f32));
-            ml.extend_from_slice(t.mu_lambda_nodes());
-            d_ml.extend(t.mu_lambda_derivative_nodes().iter().map(|&d| (d as f64 * scale) as f32));
         }
-        Self { slope: boxed(slope), d_slope: boxed(d_slope), mu_lambda: boxed(ml), d_mu_lambda: boxed(d_ml) }
+        Self { slope: boxed(slope), d_slope: boxed(d_slope) }
     }
 
     /// The process's tables, built on first use.
@@ -86,21 +81,19 @@ impl RoughnessAxisTables {
         TABLES.get_or_init(RoughnessAxisTables::build)
     }
 
-    /// The four stacks in the order the traced kernel registers them: `I`, its scaled
-    /// derivative, `μΛ`, its scaled derivative.
+    /// The two stacks in the order the traced kernel registers them: `I`, its scaled
+    /// derivative.
     pub fn table(&self, k: usize) -> &[f32] {
         match k {
             0 => &self.slope[..],
             1 => &self.d_slope[..],
-            2 => &self.mu_lambda[..],
-            3 => &self.d_mu_lambda[..],
             _ => &[],
         }
     }
 
-    /// The four stacks as CPU tables, in [`Self::table`]'s order.
-    pub fn nodes(&'static self) -> [Nodes<'static>; 4] {
-        [Nodes::new(&self.slope), Nodes::new(&self.d_slope), Nodes::new(&self.mu_lambda), Nodes::new(&self.d_mu_lambda)]
+    /// The two stacks as CPU tables, in [`Self::table`]'s order.
+    pub fn nodes(&'static self) -> [Nodes<'static>; 2] {
+        [Nodes::new(&self.slope), Nodes::new(&self.d_slope)]
     }
 }
 
@@ -111,14 +104,15 @@ pub fn clamp_roughness<T: Real>(m: T) -> T {
 }
 
 /// van Ginneken at one roughness per lane: the stacked tables, the lane's layer (index of the
-/// lower node's first entry, in slope and μΛ tables) and Hermite weights.
+/// lower node's first entry) and Hermite weights, and the lane's roughness (for `μΛ`).
 #[derive(Clone, Copy)]
 pub struct GinnekenAxisKernel<'t, T: Real> {
-    /// `I`, scaled `∂I/∂m`, `μΛ`, scaled `∂(μΛ)/∂m` (see [`RoughnessAxisTables`]).
-    tables: [T::Table<'t>; 4],
-    /// First node of the lower layer in the slope stacks and in the μΛ stacks.
+    /// `I`, scaled `∂I/∂m` (see [`RoughnessAxisTables`]).
+    tables: [T::Table<'t>; 2],
+    /// First node of the lower layer in the slope stacks.
     slope_base: T,
-    lambda_base: T,
+    /// The clamped roughness.
+    m: T,
     /// Hermite basis `h00, h10, h01, h11` at the lane's position in its cell.
     weights: [T; 4],
     shadowing: Shadowing,
@@ -131,7 +125,7 @@ pub struct GinnekenAxisKernel<'t, T: Real> {
 impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
     /// The kernel at roughness `m` (clamped into the axis), with the stacks `tables`.
     #[inline(always)]
-    pub fn new(tables: [T::Table<'t>; 4], m: T, shadowing: Shadowing) -> Self {
+    pub fn new(tables: [T::Table<'t>; 2], m: T, shadowing: Shadowing) -> Self {
         let one = T::c(1.0);
         let m = clamp_roughness(m);
         let u = m / (m + one);
@@ -149,7 +143,7 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
         Self {
             tables,
             slope_base: j.scale(SLOPE_NODES as f64),
-            lambda_base: j.scale(LAMBDA_NODES as f64),
+            m,
             weights,
             shadowing,
             sampler_t: u.scale(1.25),
@@ -164,11 +158,12 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
 
     /// Hermite combination of the lower (`+0`) and upper (`+1` layer) values and slopes.
     #[inline(always)]
-    fn hermite(&self, base: T, layer: usize, at: impl Fn(T::Table<'t>, T) -> T, value: usize, slope: usize) -> T {
+    fn hermite(&self, at: impl Fn(T::Table<'t>, T) -> T) -> T {
         let [h00, h10, h01, h11] = self.weights;
-        let upper = base + T::c(layer as f64);
-        let a = h00 * at(self.tables[value], base) + h10 * at(self.tables[slope], base);
-        let b = h01 * at(self.tables[value], upper) + h11 * at(self.tables[slope], upper);
+        let [value, slope] = self.tables;
+        let (base, upper) = (self.slope_base, self.slope_base + T::c(SLOPE_NODES as f64));
+        let a = h00 * at(value, base) + h10 * at(slope, base);
+        let b = h01 * at(value, upper) + h11 * at(slope, upper);
         a + b
     }
 }
@@ -181,10 +176,8 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
             wi,
             wo,
             rho,
-            |x| self.hermite(self.lambda_base, LAMBDA_NODES, |t, b| mu_lambda_layer_in(t, Some(b), x), 2, 3),
-            |x_i, x_o, c| {
-                self.hermite(self.slope_base, SLOPE_NODES, |t, b| lookup_layer_in(t, Some(b), x_i, x_o, c), 0, 1)
-            },
+            self.m,
+            |x_i, x_o, c| self.hermite(|t, b| lookup_layer_in(t, Some(b), x_i, x_o, c)),
         )
     }
 

@@ -13,7 +13,6 @@
 //!
 //! `I(θi, θo, Δφ) = I(θo, θi, Δφ)`, so only `x_i ≤ x_o` is integrated and the rest mirrored.
 
-use super::shadowing::{d_mu_lambda_dm, mu_lambda};
 use super::slope_integral::SlopeIntegrator;
 use crate::brdf::real::Real;
 use rayon::prelude::*;
@@ -24,9 +23,6 @@ use std::sync::{Arc, Mutex, OnceLock, Weak};
 pub const U_NODES: usize = 80;
 /// Nodes along the `cos Δφ` axis.
 pub const C_NODES: usize = 32;
-/// Nodes of the 1-D table of `μΛ(μ)` (same axis): replaces `erfc` and `exp` per direction;
-/// interpolation error < 1e-6 of the denominator it enters (covered by the fast-path test).
-pub const LAMBDA_NODES: usize = 1024;
 /// Gauss–Legendre nodes per radial piece when building (converged to ~1e-7, see tests).
 const BUILD_NODES: usize = 24;
 
@@ -46,10 +42,6 @@ pub struct SlopeTable {
     data: Box<Grid>,
     /// `∂I/∂m` at the same nodes (the traced kernels' roughness gradient).
     d_data: Box<Grid>,
-    /// `μΛ(μ)` at [`LAMBDA_NODES`] points of the direction axis.
-    mu_lambda: Box<[f32; LAMBDA_NODES]>,
-    /// `∂(μΛ)/∂m` at the same points.
-    d_mu_lambda: Box<[f32; LAMBDA_NODES]>,
 }
 
 impl SlopeTable {
@@ -85,18 +77,7 @@ impl SlopeTable {
                 }
             }
         }
-        let on_axis = |f: &dyn Fn(f64, f64) -> f64| {
-            Box::new(std::array::from_fn(|k| {
-                let mu = cos_of_axis(k as f64 / (LAMBDA_NODES - 1) as f64);
-                f(mu, (1.0 - mu * mu).max(0.0).sqrt()) as f32
-            }))
-        };
-        Self {
-            data,
-            d_data,
-            mu_lambda: on_axis(&|mu, sin| mu_lambda(mu, sin, m)),
-            d_mu_lambda: on_axis(&|mu, sin| d_mu_lambda_dm(mu, sin, m)),
-        }
+        Self { data, d_data }
     }
 
     /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_in`] gathers from).
@@ -107,16 +88,6 @@ impl SlopeTable {
     /// `∂I/∂m` at the nodes, flat as [`Self::slope_nodes`].
     pub fn slope_derivative_nodes(&self) -> &[f32; SLOPE_NODES] {
         &self.d_data
-    }
-
-    /// `μΛ` at the nodes of its axis.
-    pub fn mu_lambda_nodes(&self) -> &[f32; LAMBDA_NODES] {
-        &self.mu_lambda
-    }
-
-    /// `∂(μΛ)/∂m` at the nodes of its axis.
-    pub fn mu_lambda_derivative_nodes(&self) -> &[f32; LAMBDA_NODES] {
-        &self.d_mu_lambda
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -174,26 +145,6 @@ pub fn lookup_layer_in<T: Real>(table: T::Table<'_>, layer_base: Option<T>, u_i:
     v0 + v1
 }
 
-/// A [`SlopeTable::mu_lambda_nodes`]-shaped table at axis coordinate `x` ([`axis_of_cos`]),
-/// linearly interpolated, in any [`Real`].
-#[inline(always)]
-pub fn mu_lambda_in<T: Real>(table: T::Table<'_>, x: T) -> T {
-    mu_lambda_layer_in(table, None, x)
-}
-
-/// [`mu_lambda_in`] on one layer of a stack of such tables (`layer_base` as in
-/// [`lookup_layer_in`]).
-#[inline(always)]
-pub fn mu_lambda_layer_in<T: Real>(table: T::Table<'_>, layer_base: Option<T>, x: T) -> T {
-    let (i, f) = cell(x.scale((LAMBDA_NODES - 1) as f64), LAMBDA_NODES);
-    let i = match layer_base {
-        Some(l) => i + l,
-        None => i,
-    };
-    let (a, b) = (T::gather(table, i, 0), T::gather(table, i, 1));
-    f.fma(b - a, a)
-}
-
 /// Table coordinate of a direction with cosine `mu`: `x = a/(a+b)`, `a = √(1−μ)`, `b = √μ`.
 /// Near the normal `x ≈ a ≈ θ/√2` (uniform in angle); near grazing `μ ≈ (1−x)²`, so the
 /// nodes crowd towards the horizon where forward scattering makes `I` fall off like a power
@@ -218,11 +169,6 @@ impl SlopeTable {
     /// `I` at node `(iu_i, iu_o, ic)`, for tests that re-interpolate the table independently.
     pub(crate) fn node(&self, iu_i: usize, iu_o: usize, ic: usize) -> f32 {
         self.data[node_index(iu_i, iu_o, ic)]
-    }
-
-    /// `μΛ` at node `k` of its axis.
-    pub(crate) fn lambda_node(&self, k: usize) -> f32 {
-        self.mu_lambda[k]
     }
 }
 
