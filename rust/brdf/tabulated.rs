@@ -26,6 +26,10 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+/// The plugin name of a table file as a BSDF (`<bsdf type="tabulated_brdf">`, in `matte
+/// render` and the Mitsuba plugin).
+pub const PLUGIN_NAME: &str = "tabulated_brdf";
+
 /// The file's `format` value.
 pub const FORMAT: &str = "matte-tabulated-brdf";
 /// The file format's version.
@@ -310,6 +314,8 @@ impl Axis {
 #[derive(Clone, Debug)]
 pub struct TableModel {
     table: Arc<BrdfTable>,
+    /// The file it was read from (empty for a table built in memory).
+    path: std::path::PathBuf,
     theta: Axis,
     delta_phi: Axis,
     reflectance: Axis,
@@ -325,12 +331,18 @@ impl TableModel {
             delta_phi: Axis::new(&table.delta_phi_deg, rad, 1),
             reflectance: Axis::new(&table.reflectance, 1.0, nt * nt * np),
             table: Arc::new(table),
+            path: std::path::PathBuf::new(),
         }
     }
 
     /// Reads and checks a table file ([`BrdfTable::read`]).
     pub fn read(path: &std::path::Path) -> Result<Self, String> {
-        BrdfTable::read(path).map(Self::new)
+        BrdfTable::read(path).map(|t| Self { path: path.to_path_buf(), ..Self::new(t) })
+    }
+
+    /// The file the table was read from (empty if built in memory).
+    pub fn path(&self) -> &std::path::Path {
+        &self.path
     }
 
     pub fn table(&self) -> &BrdfTable {
