@@ -37,7 +37,7 @@ CASES = [
     ("ginneken", {"roughness": 0.4}, {"reflectance.value": 1e-2, "roughness": 4e-3}),
     ("ginneken", {"roughness": 0.4, "shadowing": "height_correlated"}, {"roughness": 4e-3}),
     # The white walls' reflectance (0.885, 0.698, 0.666) ± 1e-2 stays inside the table's cells.
-    ("tabulated_brdf", {"filename": os.path.join(REPO, "mitsuba_scenes", "assets", "v_cavities_table.json")},
+    ("tabulated_brdf", {"filename": os.path.join(REPO, "validation", "ground_truth", "v_cavities_sigma0.3.json")},
      {"reflectance.value": 1e-2}),
 ]
 # Every other registered model at its defaults: reflectance and each numeric parameter.

@@ -5,7 +5,8 @@ with a reflectance that varies per lane and crosses the reflectance nodes; the g
 respect to the reflectance against central differences; Mitsuba's χ² test of the sampling; no
 NaN at grazing, normal, coincident and below-horizon directions; file errors as one line
 naming the file. The render gradient is in `test_gradients.py`, plugin against renderer in
-`matte validate` (`mitsuba_scenes/sphere_tabulated_brdf.xml`)."""
+`matte validate` (`mitsuba_scenes/sphere_tabulated_brdf.xml`). The tables are the two in
+`validation/ground_truth/`."""
 import json
 import os
 
@@ -15,7 +16,9 @@ import pytest
 
 from conftest import REPO, random_pairs
 
-TABLE = os.path.join(REPO, "mitsuba_scenes", "assets", "v_cavities_table.json")
+GROUND_TRUTH = os.path.join(REPO, "validation", "ground_truth")
+TABLE = os.path.join(GROUND_TRUTH, "v_cavities_sigma0.3.json")
+TABLES = [TABLE, os.path.join(GROUND_TRUTH, "height_field_m0.3.json")]
 VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
 
 
@@ -58,14 +61,18 @@ def reference_f(table, wi, wo, rho):
     return np.where(above[:, None], out, 0.0)
 
 
-@pytest.fixture(scope="module")
-def table():
-    with open(TABLE) as f:
+def read(path):
+    with open(path) as f:
         return json.load(f)
 
 
-def load(mi, reflectance):
-    return mi.load_dict({"type": "tabulated_brdf", "filename": TABLE, "reflectance": reflectance})
+@pytest.fixture(scope="module")
+def table():
+    return read(TABLE)
+
+
+def load(mi, reflectance, path=TABLE):
+    return mi.load_dict({"type": "tabulated_brdf", "filename": path, "reflectance": reflectance})
 
 
 def interactions(mi, wi, uv):
@@ -103,13 +110,15 @@ def lane_reflectance(mi):
     return {"type": "bitmap", "bitmap": mi.Bitmap(data), "filter_type": "nearest", "raw": True}
 
 
+@pytest.mark.parametrize("path", TABLES, ids=os.path.basename)
 @pytest.mark.parametrize("mi_variant", VARIANTS, indirect=True)
-def test_values_equal_the_tables_interpolation(mi_variant, table):
+def test_values_equal_the_tables_interpolation(mi_variant, path):
     mi = mi_variant
+    table = read(path)
     n = 4000 if mi.variant().startswith("scalar") else 100_000
     wi, wo = random_pairs(n, seed=17)
     uv = np.random.default_rng(3).uniform(0, 1, (n, 2)).astype(np.float32)
-    bsdf = load(mi, lane_reflectance(mi))
+    bsdf = load(mi, lane_reflectance(mi), path)
     value, pdf, rho = evaluate(mi, bsdf, wi, wo, uv)
     assert np.all(np.isfinite(value)) and np.all(np.isfinite(pdf))
     assert len(np.unique(np.round(rho[:, 0], 4))) >= 10, "the reflectance does not vary per lane"
