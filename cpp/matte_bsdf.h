@@ -14,8 +14,13 @@
  * eval/sample/pdf (rust/brdf/lane.rs; docs/models.md#spatially-varying-parameters), traversed
  * as the texture (gradients reach its data). Constant parameters keep the per-value constants.
  *
+ * `tabulated_brdf` is a table file (`filename`, resolved by Mitsuba's file resolver; Rust reads
+ * and checks it, errors are one line naming the file): the same class, its values one
+ * registered table the traced kernel gathers from, its interpolation in the reflectance per
+ * lane and channel (differentiable), no numeric parameters (rust/ffi/mod.rs, `Bsdf`).
+ *
  * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
- * cosine-weighted. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
+ * cosine-weighted by default. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
  *
  * Variants: every variant of the wheel. Scalar variants call the f32 kernels per call. JIT
  * variants (llvm_ad_*, cuda_ad_*, rgb, mono, spectral and polarized) *trace* the same Rust
@@ -30,6 +35,7 @@
  */
 #pragma once
 
+#include <mitsuba/core/fresolver.h>
 #include <mitsuba/core/properties.h>
 #include <mitsuba/core/string.h>
 #include <mitsuba/render/bsdf.h>
@@ -79,7 +85,14 @@ public:
                     m_params.push_back(number_param(name, props.get<double>(name)));
                     break;
                 case Properties::Type::String:
-                    m_params.push_back(text_param(name, props.get<std::string>(name)));
+                    if (name == "filename") {
+                        // A file (tabulated_brdf's table): resolved as Mitsuba resolves files
+                        // (next to the scene, then the search path); Rust reads it.
+                        fs::path path = file_resolver()->resolve(props.get<std::string>(name));
+                        m_params.push_back(text_param(name, path.string()));
+                    } else {
+                        m_params.push_back(text_param(name, props.get<std::string>(name)));
+                    }
                     break;
                 case Properties::Type::Bool:
                     m_params.push_back(text_param(name, props.get<bool>(name) ? "true" : "false"));

@@ -5,13 +5,30 @@
 //! interpolant. Built from a simulated microsurface by `matte microgeometry --table`, or from
 //! any function (a closed-form model, for tests).
 //!
+//! Two evaluations of the same interpolant:
+//! - [`BrdfTable`]'s own ([`BrdfTable::eval_angles`], its [`DiffuseBrdf`]): angles in f64
+//!   degrees, nodes located by search. The reference, and what the microgeometry tools use.
+//! - [`TableModel`]: the kernel written over [`Real`] ([`TableKernel`]), branch-free, which
+//!   `matte render`'s `tabulated_brdf` runs in f32 and the Mitsuba plugin runs in f32 (scalar
+//!   variants) and traced into Dr.Jit (JIT variants, the values a gathered table, gradients
+//!   with respect to the reflectance through the interpolation weights).
+//!
 //! `f/ρ` rather than `f` is stored because a microsurface's BRDF is not linear in its facet
 //! albedo (interreflections go as ρ², ρ³ …) but `f/ρ` is smooth and finite down to ρ = 0
 //! (where it is the single-scattering BRDF of a white surface), so a few ρ nodes interpolate it.
 
-use super::DiffuseBrdf;
-use glam::Vec3;
+use super::approx::{acos_unit, angle};
+use super::kernel::{self, Kernel};
+use super::real::{Nodes, Real, V3};
+use super::{BrdfSample, DiffuseBrdf};
+use glam::{Vec2, Vec3};
 use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+/// The plugin name of a table file as a BSDF (`<bsdf type="tabulated_brdf">`, in `matte
+/// render` and the Mitsuba plugin).
+pub const PLUGIN_NAME: &str = "tabulated_brdf";
 
 /// The file's `format` value.
 pub const FORMAT: &str = "matte-tabulated-brdf";
@@ -244,5 +261,171 @@ impl DiffuseBrdf for BrdfTable {
         }
         let (ti, to, dp) = (theta_deg(wi), theta_deg(wo), delta_phi_deg(wi, wo));
         reflectance.map(|rho| self.eval_angles(ti, to, dp, rho))
+    }
+}
+
+/// One axis of the table as the kernel locates a coordinate on it: the cells' lower nodes and
+/// inverse widths (f64, rounded to the kernel's type when used), the last cell index and the
+/// stride of the axis in the value layout.
+#[derive(Clone, Debug, PartialEq)]
+struct Axis {
+    lower: Vec<f64>,
+    inv_width: Vec<f64>,
+    /// The stride of the axis in [`BrdfTable::f_over_reflectance`].
+    stride: u32,
+}
+
+impl Axis {
+    fn new(nodes: &[f64], scale: f64, stride: usize) -> Self {
+        let n: Vec<f64> = nodes.iter().map(|x| x * scale).collect();
+        Axis {
+            lower: n.windows(2).map(|w| w[0]).collect(),
+            inv_width: n.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect(),
+            stride: stride as u32,
+        }
+    }
+
+    /// The offset of a cell's upper node (0 for a single-node axis, whose weight is 0).
+    fn upper(&self) -> u32 {
+        if self.lower.is_empty() { 0 } else { self.stride }
+    }
+
+    /// `(k, w)`: the cell of `x` and the weight of its upper node, clamped to the first and
+    /// last node (NaN gives the first). The fractional node index is the sum over cells of
+    /// `clamp((x − xₖ)/(xₖ₊₁ − xₖ), 0, 1)`: exactly 1 below the cell of `x`, 0 above it.
+    /// Branch-free, and differentiable in `x` (the reflectance axis) through the active cell.
+    #[inline(always)]
+    fn locate<T: Real>(&self, x: T) -> (T, T) {
+        let zero = T::c(0.0);
+        if self.lower.is_empty() {
+            return (zero, zero);
+        }
+        let mut u = zero;
+        for (&a, &inv) in self.lower.iter().zip(&self.inv_width) {
+            u = u + ((x - T::c(a)) * T::c(inv)).clamp_to(0.0, 1.0);
+        }
+        let k = u.floor().min(T::c((self.lower.len() - 1) as f64));
+        (k, u - k)
+    }
+}
+
+/// A table ready for evaluation: the values and the kernel's view of the nodes. `tabulated_brdf`
+/// in `matte render` and in the Mitsuba plugin.
+#[derive(Clone, Debug)]
+pub struct TableModel {
+    table: Arc<BrdfTable>,
+    /// The file it was read from (empty for a table built in memory).
+    path: std::path::PathBuf,
+    theta: Axis,
+    delta_phi: Axis,
+    reflectance: Axis,
+}
+
+impl TableModel {
+    /// The model of a checked table.
+    pub fn new(table: BrdfTable) -> Self {
+        let (nt, np) = (table.theta_deg.len(), table.delta_phi_deg.len());
+        let rad = PI / 180.0;
+        TableModel {
+            theta: Axis::new(&table.theta_deg, rad, np),
+            delta_phi: Axis::new(&table.delta_phi_deg, rad, 1),
+            reflectance: Axis::new(&table.reflectance, 1.0, nt * nt * np),
+            table: Arc::new(table),
+            path: std::path::PathBuf::new(),
+        }
+    }
+
+    /// Reads and checks a table file ([`BrdfTable::read`]).
+    pub fn read(path: &std::path::Path) -> Result<Self, String> {
+        BrdfTable::read(path).map(|t| Self { path: path.to_path_buf(), ..Self::new(t) })
+    }
+
+    /// The file the table was read from (empty if built in memory).
+    pub fn path(&self) -> &std::path::Path {
+        &self.path
+    }
+
+    pub fn table(&self) -> &BrdfTable {
+        &self.table
+    }
+
+    /// The values the kernel gathers from: [`BrdfTable::f_over_reflectance`].
+    pub fn values(&self) -> &[f32] {
+        &self.table.f_over_reflectance
+    }
+
+    /// The kernel reading `values` (the CPU's slice of [`Self::values`], or the plugin's
+    /// registered Dr.Jit buffer).
+    pub fn kernel<'t, T: Real + 't>(&'t self, values: T::Table<'t>) -> TableKernel<'t, T> {
+        TableKernel { model: self, values }
+    }
+
+    /// The f32 kernel.
+    pub fn f32_kernel(&self) -> TableKernel<'_, f32> {
+        // `check` guarantees at least one value.
+        self.kernel(Nodes::from_slice(self.values()).expect("a checked table has values"))
+    }
+}
+
+/// The interpolation over [`Real`]: θi, θo and Δφ from the directions (`acos` and `atan2` by
+/// the polynomials of [`super::approx`]), the cells located on the nodes ([`Axis::locate`]),
+/// the eight corners of the (θi, θo, Δφ) cell gathered at the two reflectance nodes around
+/// each channel's ρ: 16 gathers per channel.
+#[derive(Clone, Copy)]
+pub struct TableKernel<'t, T: Real + 't> {
+    model: &'t TableModel,
+    values: T::Table<'t>,
+}
+
+impl<'t, T: Real + 't> Kernel<T> for TableKernel<'t, T> {
+    #[inline(always)]
+    fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
+        let m = self.model;
+        let (i, wti) = m.theta.locate(acos_unit(wi.z));
+        let (o, wto) = m.theta.locate(acos_unit(wo.z));
+        // Δφ = atan2(|wi × wo|_z, wi·wo in the plane): 0 when either direction is the normal.
+        let cross = wi.x * wo.y - wi.y * wo.x;
+        let (p, wp) = m.delta_phi.locate(angle(cross.abs(), wi.x * wo.x + wi.y * wo.y));
+        let (st, sp) = (T::c(m.theta.stride as f64), T::c(m.delta_phi.stride as f64));
+        // The (θi, θo, Δφ) cell's lower corner at reflectance node 0.
+        let base = i * T::c((m.theta.stride as usize * m.table.theta_deg.len()) as f64) + o * st + p * sp;
+        let (ui, uo, up) = (m.theta.upper() * m.table.theta_deg.len() as u32, m.theta.upper(), m.delta_phi.upper());
+        let one = T::c(1.0);
+        let corners = [(one - wti, 0), (wti, ui)].map(|(a, da)| {
+            [(one - wto, 0), (wto, uo)]
+                .map(|(b, db)| [(one - wp, 0), (wp, up)].map(|(c, dc)| (a * b * c, da + db + dc)))
+        });
+        let ur = m.reflectance.upper();
+        let sr = T::c(m.reflectance.stride as f64);
+        rho.map(|x| {
+            let (r, wr) = m.reflectance.locate(x);
+            let idx = r.fma(sr, base);
+            let at = |dr: u32| {
+                let mut sum = T::c(0.0);
+                for (w, off) in corners.iter().flatten().flatten() {
+                    sum = w.fma(T::gather(self.values, idx, off + dr), sum);
+                }
+                sum
+            };
+            let f_over_rho = (one - wr) * at(0) + wr * at(ur);
+            x * f_over_rho * T::c(PI)
+        })
+    }
+}
+
+impl DiffuseBrdf for TableModel {
+    #[inline]
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        kernel::eval(&self.f32_kernel(), wi.into(), wo.into(), reflectance)
+    }
+
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        kernel::pdf(&self.f32_kernel(), wi.into(), wo.into())
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        BrdfSample::from_kernel(kernel::sample(&self.f32_kernel(), wi.into(), u.x, u.y, reflectance))
     }
 }

@@ -15,7 +15,8 @@ pub mod traced;
 mod traced_entry;
 
 use crate::brdf::kernel;
-use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use crate::brdf::tabulated::{self, TableModel};
+use crate::brdf::{BrdfSample, DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use bridge::ffi::{Channels, Param, Vec3f};
 use glam::{Vec2, Vec3};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -24,7 +25,61 @@ pub use bridge::ffi;
 
 /// A constructed model as the plugin holds it.
 pub struct Model {
-    bsdf: DiffuseModel,
+    bsdf: Bsdf,
+}
+
+/// What a plugin name builds: a registered model (`crate::brdf::MODELS`), or
+/// `tabulated_brdf`, a table file ([`TableModel`]; its only parameter is the file, so it has no
+/// kernel constants and no textured parameters). Both run generic kernels, in f32 here and
+/// traced in [`traced_entry`].
+enum Bsdf {
+    Model(DiffuseModel),
+    Table(TableModel),
+}
+
+impl DiffuseBrdf for Bsdf {
+    #[inline]
+    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
+        match self {
+            Bsdf::Model(m) => m.eval(wi, wo, reflectance),
+            Bsdf::Table(t) => t.eval(wi, wo, reflectance),
+        }
+    }
+
+    #[inline]
+    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
+        match self {
+            Bsdf::Model(m) => m.pdf(wi, wo),
+            Bsdf::Table(t) => t.pdf(wi, wo),
+        }
+    }
+
+    #[inline]
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
+        match self {
+            Bsdf::Model(m) => m.sample(wi, u, reflectance),
+            Bsdf::Table(t) => t.sample(wi, u, reflectance),
+        }
+    }
+}
+
+/// `tabulated_brdf` from its parameters: `filename` (required; the plugin resolves it with
+/// Mitsuba's file resolver first), nothing else. Errors are one line naming the file.
+fn table_new(params: &[Param]) -> Result<TableModel, String> {
+    let mut filename = None;
+    for p in params {
+        match (p.name.as_str(), p.is_number) {
+            ("filename", false) => filename = Some(p.text.as_str()),
+            ("filename", true) => return Err("parameter \"filename\": must be a file name".into()),
+            (other, _) => return Err(format!("unknown parameter \"{other}\" (known: filename)")),
+        }
+    }
+    let filename =
+        filename.ok_or("missing parameter \"filename\" (a table file, docs/microgeometry.md#file-format)")?;
+    TableModel::read(std::path::Path::new(filename)).map_err(|e| {
+        let line = e.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
+        format!("parameter \"filename\": {line}")
+    })
 }
 
 /// Largest number of spectral channels a variant uses (Mitsuba's spectral variants: 4).
@@ -37,13 +92,16 @@ fn v3(v: &Vec3f) -> Vec3 {
 
 fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
     let built = catch_unwind(AssertUnwindSafe(|| {
+        if kind == tabulated::PLUGIN_NAME {
+            return table_new(params).map(Bsdf::Table);
+        }
         let mut p = Params::new();
         for param in params {
             let value =
                 if param.is_number { ParamValue::Number(param.number) } else { ParamValue::Text(param.text.clone()) };
             p.push(&param.name, value);
         }
-        DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
+        DiffuseModel::from_params(kind, p).map(Bsdf::Model).map_err(|e| e.to_string())
     }));
     match built {
         Ok(Ok(bsdf)) => Ok(Box::new(Model { bsdf })),
@@ -80,7 +138,7 @@ fn used(c: &Channels) -> &[f32] {
 
 /// Evaluates `bsdf` for 1, 3 or 4 channels (Mitsuba's mono, RGB and spectral variants).
 #[inline]
-fn eval_channels(bsdf: &DiffuseModel, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; MAX_CHANNELS] {
+fn eval_channels(bsdf: &impl DiffuseBrdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; MAX_CHANNELS] {
     match *rho {
         [a] => {
             let [x] = bsdf.eval(wi, wo, [a]);
@@ -99,14 +157,26 @@ fn eval_channels(bsdf: &DiffuseModel, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f32; 
 }
 
 impl Model {
+    /// The per-lane f32 kernel of a registered model for the values `params`; `None` for a
+    /// table (which has no numeric parameters) or short `params`.
+    fn lane_kernel_f32(&self, params: &[f32]) -> Option<crate::brdf::LaneKernel<'static, f32>> {
+        match &self.bsdf {
+            Bsdf::Model(m) => m.lane_kernel_f32(params),
+            Bsdf::Table(_) => None,
+        }
+    }
+
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
         self.describe_parameters().into_iter().filter(|p| p.is_number).collect()
     }
 
     fn describe_parameters(&self) -> Vec<Param> {
-        self.bsdf
-            .parameters()
+        let parameters = match &self.bsdf {
+            Bsdf::Model(m) => m.parameters(),
+            Bsdf::Table(t) => vec![("filename", ParamValue::Text(t.path().display().to_string()))],
+        };
+        parameters
             .into_iter()
             .map(|(name, value)| match value {
                 ParamValue::Number(x) => Param { name: name.into(), is_number: true, number: x, text: String::new() },
@@ -127,7 +197,7 @@ impl Model {
             return self.bsdf.pdf(wi, wo);
         }
         f.v = [0.0; MAX_CHANNELS];
-        let Some(k) = self.bsdf.lane_kernel_f32(params) else {
+        let Some(k) = self.lane_kernel_f32(params) else {
             return 0.0;
         };
         f.v = kernel::eval(&k, wi.into(), wo.into(), padded(reflectance));
@@ -139,7 +209,7 @@ impl Model {
         if params.is_empty() {
             return self.bsdf.pdf(wi, wo);
         }
-        self.bsdf.lane_kernel_f32(params).map_or(0.0, |k| kernel::pdf(&k, wi.into(), wo.into()))
+        self.lane_kernel_f32(params).map_or(0.0, |k| kernel::pdf(&k, wi.into(), wo.into()))
     }
 
     /// Samples `wo`; writes it and the weight `f cos θo / pdf`; returns the pdf (0: no sample).
@@ -168,7 +238,7 @@ impl Model {
                 _ => self.bsdf.sample(wi, u, padded(reflectance)).map(|s| (s.wo, s.pdf, s.weight)),
             }
         } else {
-            self.bsdf.lane_kernel_f32(params).and_then(|k| {
+            self.lane_kernel_f32(params).and_then(|k| {
                 let (dir, w, pdf) = kernel::sample(&k, wi.into(), u1, u2, padded(reflectance));
                 (pdf > 0.0).then_some((dir.into(), pdf, w))
             })

@@ -8,16 +8,56 @@
 //!
 //! Slices of unexpected lengths (a bug in the C++ caller) give zeros, never a panic.
 
-use super::Model;
 use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
-use crate::brdf::kernel;
+use super::{Bsdf, Model};
+use crate::brdf::kernel::{self, Kernel};
 use crate::brdf::real::V3;
 use crate::brdf::registry::Registered;
+use crate::brdf::tabulated::TableKernel;
 use crate::brdf::{LaneKernel, dispatch};
 
-/// One model's kernel with traced constants.
-type TracedKernel<'a> = LaneKernel<'a, Traced<'a>>;
+/// The traced kernel of what the plugin built: a registered model's (traced constants), or a
+/// table's (`'m`: the borrow of the table's nodes).
+enum TracedKernel<'m, 'a: 'm> {
+    Model(LaneKernel<'a, Traced<'a>>),
+    Table(TableKernel<'m, Traced<'a>>),
+}
+
+impl<'m, 'a: 'm> Kernel<Traced<'a>> for TracedKernel<'m, 'a> {
+    fn reduced_f<const N: usize>(
+        &self,
+        wi: V3<Traced<'a>>,
+        wo: V3<Traced<'a>>,
+        rho: [Traced<'a>; N],
+    ) -> [Traced<'a>; N] {
+        match self {
+            TracedKernel::Model(k) => k.reduced_f(wi, wo, rho),
+            TracedKernel::Table(k) => k.reduced_f(wi, wo, rho),
+        }
+    }
+
+    fn cosine_sampling(&self) -> bool {
+        match self {
+            TracedKernel::Model(k) => k.cosine_sampling(),
+            TracedKernel::Table(k) => k.cosine_sampling(),
+        }
+    }
+
+    fn sample_wo(&self, wi: V3<Traced<'a>>, u1: Traced<'a>, u2: Traced<'a>) -> (V3<Traced<'a>>, Traced<'a>) {
+        match self {
+            TracedKernel::Model(k) => k.sample_wo(wi, u1, u2),
+            TracedKernel::Table(k) => k.sample_wo(wi, u1, u2),
+        }
+    }
+
+    fn pdf_wo(&self, wi: V3<Traced<'a>>, wo: V3<Traced<'a>>) -> Traced<'a> {
+        match self {
+            TracedKernel::Model(k) => k.pdf_wo(wi, wo),
+            TracedKernel::Table(k) => k.pdf_wo(wi, wo),
+        }
+    }
+}
 
 /// The first `N` indices of `ids` as traced values, or `None` if there are fewer.
 fn nodes<'a, const N: usize>(arena: &'a Arena, ids: &[u32]) -> Option<[Traced<'a>; N]> {
@@ -57,16 +97,23 @@ impl Model {
     /// with `lane` the per-lane kernel's ([`Registered::lane_tables`]: van Ginneken's four
     /// roughness-axis stacks, built on first use).
     pub(super) fn table_count(&self, lane: bool) -> usize {
-        dispatch!(&self.bsdf, m => if lane { m.lane_tables().len() } else { m.tables().len() })
+        match &self.bsdf {
+            Bsdf::Model(b) => dispatch!(b, m => if lane { m.lane_tables().len() } else { m.tables().len() }),
+            Bsdf::Table(_) => 1,
+        }
     }
 
     /// Table `k` in the order the traced kernel gathers them (van Ginneken: `I`, `∂I/∂m`,
-    /// `μΛ`, `∂(μΛ)/∂m`); empty past the end.
+    /// `μΛ`, `∂(μΛ)/∂m`; `tabulated_brdf`: its values); empty past the end.
     pub(super) fn table(&self, k: usize, lane: bool) -> &[f32] {
-        dispatch!(&self.bsdf, m => {
-            let t = if lane { m.lane_tables() } else { m.tables() };
-            t.get(k).copied().unwrap_or(&[])
-        })
+        match &self.bsdf {
+            Bsdf::Model(b) => dispatch!(b, m => {
+                let t = if lane { m.lane_tables() } else { m.tables() };
+                t.get(k).copied().unwrap_or(&[])
+            }),
+            Bsdf::Table(t) if k == 0 => t.values(),
+            Bsdf::Table(_) => &[],
+        }
     }
 
     /// The kernel constants for the numeric parameters `params` (traced, in the order of
@@ -80,8 +127,11 @@ impl Model {
         lane: bool,
         differentiable: bool,
     ) -> Vec<u32> {
+        let Bsdf::Model(b) = &self.bsdf else {
+            return vec![]; // a table has no constants
+        };
         let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
-        let c = dispatch!(&self.bsdf, m => if lane {
+        let c = dispatch!(b, m => if lane {
             m.lane_coefficients(&values)
         } else {
             m.constant_coefficients(&values, differentiable)
@@ -91,11 +141,20 @@ impl Model {
 
     /// The kernel with the constants `coefficients` and the registered tables
     /// ([`Self::table`] of the same `lane`).
-    fn traced_kernel<'a>(&self, arena: &'a Arena, coefficients: &[u32], lane: bool) -> Option<TracedKernel<'a>> {
+    fn traced_kernel<'m, 'a: 'm>(
+        &'m self,
+        arena: &'a Arena,
+        coefficients: &[u32],
+        lane: bool,
+    ) -> Option<TracedKernel<'m, 'a>> {
+        let b = match &self.bsdf {
+            Bsdf::Model(b) => b,
+            Bsdf::Table(t) => return Some(TracedKernel::Table(t.kernel(TracedTable { arena, id: 0 }))),
+        };
         let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
         let tables: Vec<TracedTable<'a>> =
             (0..self.table_count(lane) as u32).map(|id| TracedTable { arena, id }).collect();
-        dispatch!(&self.bsdf, m => m.kernel_from(&c, &tables, lane), lane)
+        dispatch!(b, m => m.kernel_from(&c, &tables, lane), lane).map(TracedKernel::Model)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs

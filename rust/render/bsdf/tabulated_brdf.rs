@@ -2,11 +2,12 @@
 //! (`crate::brdf::tabulated`, `docs/microgeometry.md#the-tabulated-ground-truth-brdf`), such as
 //! the simulated microsurface `matte microgeometry --table` writes. Reflectance per RGB channel
 //! (the table is non-linear in ρ), one-sided like the matte models, cosine-weighted sampling.
+//! The interpolation is the generic kernel the Mitsuba plugin runs ([`TableModel`]).
 //! Properties: `filename` (required) and `reflectance` (a texture, default 0.5).
 
 use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::DiffuseBrdf;
-use crate::brdf::tabulated::BrdfTable;
+use crate::brdf::tabulated::TableModel;
 use crate::render::load::props::{FromProps, PluginProps};
 use crate::render::shape::SurfaceInteraction;
 use crate::render::texture::Texture;
@@ -17,7 +18,7 @@ use std::sync::Arc;
 /// `tabulated_brdf`: the table and the reflectance ρ.
 #[derive(Clone, Debug)]
 pub struct TabulatedBrdf {
-    pub table: Arc<BrdfTable>,
+    pub table: Arc<TableModel>,
     pub reflectance: Texture,
 }
 
@@ -27,14 +28,14 @@ impl FromProps for TabulatedBrdf {
         let filename = p.string_opt("filename")?.ok_or_else(|| p.err("missing property \"filename\""))?;
         let path = p.resolve(&filename);
         let table =
-            BrdfTable::read(&path).map_err(|e| p.prop_err("filename", crate::render::load::values::one_line(&e)))?;
+            TableModel::read(&path).map_err(|e| p.prop_err("filename", crate::render::load::values::one_line(&e)))?;
         Ok(TabulatedBrdf { table: Arc::new(table), reflectance })
     }
 }
 
 /// `(f·cos θo, pdf)`.
 #[inline]
-pub fn eval_pdf(table: &BrdfTable, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
+pub fn eval_pdf(table: &TableModel, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
     if wi.z <= 0.0 || wo.z <= 0.0 {
         return (Vec3::ZERO, 0.0);
     }
@@ -42,7 +43,7 @@ pub fn eval_pdf(table: &BrdfTable, rho: Vec3, wi: Vec3, wo: Vec3) -> (Vec3, f32)
 }
 
 #[inline]
-pub fn sample(table: &BrdfTable, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
+pub fn sample(table: &TableModel, rho: Vec3, wi: Vec3, u: Vec2) -> Option<BsdfSample> {
     if wi.z <= 0.0 {
         return None;
     }
