@@ -13,7 +13,7 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first};
 use super::sampler_fits::BURLEY;
 
 /// Burley's diffuse with its roughness in any [`Real`].
@@ -95,6 +95,12 @@ impl Burley {
 }
 
 
+impl KernelBrdf for Burley {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
+}
+
 impl Registered for Burley {
     const SPEC: ModelSpec = ModelSpec {
         name: "burley",
@@ -109,10 +115,6 @@ impl Registered for Burley {
         examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        &self.kernel
-    }
     type Lane<'t, T: Real + 't> = BurleyKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

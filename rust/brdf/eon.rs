@@ -10,7 +10,7 @@ pub use super::cltc::Sampling;
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first};
 use std::f64::consts::PI;
 
 const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
@@ -210,6 +210,21 @@ impl Eon {
 }
 
 
+impl KernelBrdf for Eon {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
+
+    /// `E = ρ E_F(μi) + ρ_ms (1 − E_F(μi))` (Portsmouth et al. 2025, eq. 17).
+    fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
+        let e_f = self.fon_albedo(cos_theta_i as f32) as f64;
+        let rho = reflectance as f64;
+        let e_avg = self.kernel.e_avg as f64;
+        let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
+        Some(rho * e_f + rho_ms * (1.0 - e_f))
+    }
+}
+
 impl Registered for Eon {
     const SPEC: ModelSpec = ModelSpec {
         name: "eon",
@@ -224,19 +239,6 @@ impl Registered for Eon {
         examples: &[&[("roughness", "1.0")], &[("roughness", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        &self.kernel
-    }
-
-    /// `E = ρ E_F(μi) + ρ_ms (1 − E_F(μi))` (Portsmouth et al. 2025, eq. 17).
-    fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
-        let e_f = self.fon_albedo(cos_theta_i as f32) as f64;
-        let rho = reflectance as f64;
-        let e_avg = self.kernel.e_avg as f64;
-        let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
-        Some(rho * e_f + rho_ms * (1.0 - e_f))
-    }
     type Lane<'t, T: Real + 't> = EonKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -4,7 +4,7 @@
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, Registered, Values};
+use super::registry::{KernelBrdf, ModelSpec, Registered, Values};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Lambert;
@@ -17,6 +17,16 @@ impl<T: Real> Kernel<T> for Lambert {
 }
 
 
+impl KernelBrdf for Lambert {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        *self
+    }
+
+    fn closed_form_albedo(&self, _cos_theta_i: f64, rho: f32) -> Option<f64> {
+        Some(rho as f64)
+    }
+}
+
 impl Registered for Lambert {
     const SPEC: ModelSpec = ModelSpec {
         name: "lambert",
@@ -26,14 +36,6 @@ impl Registered for Lambert {
         examples: &[],
         in_study: true,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        *self
-    }
-
-    fn closed_form_albedo(&self, _cos_theta_i: f64, rho: f32) -> Option<f64> {
-        Some(rho as f64)
-    }
     type Lane<'t, T: Real + 't> = Lambert;
 
     fn build(_: &Values) -> Result<Self, ParamError> {

@@ -50,7 +50,7 @@ impl DiffuseModel {
     /// cosine (`docs/sampling.md`).
     pub fn own_sampler(&self) -> bool {
         use kernel::Kernel;
-        use registry::Registered;
+        use registry::KernelBrdf;
         dispatch!(self, m => !m.f32_kernel().cosine_sampling())
     }
 

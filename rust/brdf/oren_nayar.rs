@@ -9,7 +9,7 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
 use super::sampler_fits::{OREN_NAYAR_FULL, OREN_NAYAR_QUALITATIVE};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
@@ -203,6 +203,12 @@ impl OrenNayar {
 }
 
 
+impl KernelBrdf for OrenNayar {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
+}
+
 impl Registered for OrenNayar {
     const SPEC: ModelSpec = ModelSpec {
         name: "oren_nayar",
@@ -227,10 +233,6 @@ impl Registered for OrenNayar {
         examples: &[&[("sigma", "0.8"), ("model", "full")], &[("sigma", "1.0"), ("sampling", "cltc")]],
         in_study: true,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        &self.kernel
-    }
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -279,20 +279,8 @@ impl Values {
 /// What a model implements to be registered; everything else about it is derived. `T` in the
 /// kernel methods is any [`Real`]: f32 and f64 on the CPU, `F32x8`, and the plugin's traced
 /// Dr.Jit values (`crate::ffi::traced`), so one implementation serves all of them.
-pub trait Registered: Clone + Debug + PartialEq + Sized + 'static {
+pub trait Registered: KernelBrdf + Clone + Debug + PartialEq + Sized + 'static {
     const SPEC: ModelSpec;
-
-    /// The model's kernel in f32 with its constants: what every [`DiffuseBrdf`] method of the
-    /// model runs (the blanket implementation below).
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_;
-
-    /// The directional albedo for a grey reflectance `rho` in closed form, where the model has
-    /// one; `None` (the default) lets [`DiffuseBrdf::albedo`] integrate numerically. Called
-    /// with `cos_theta_i > 0` only (the albedo is 0 below the surface).
-    fn closed_form_albedo(&self, cos_theta_i: f64, rho: f32) -> Option<f64> {
-        let _ = (cos_theta_i, rho);
-        None
-    }
 
     /// The model's kernel with its constants in `T`, built by [`Self::kernel_from`].
     type Lane<'t, T: Real + 't>: Kernel<T> + Copy;
@@ -500,9 +488,25 @@ macro_rules! models {
 }
 pub(crate) use models;
 
-/// Every registered model is a [`DiffuseBrdf`] through its f32 kernel: evaluation, density and
+/// A BRDF given by an f32 [`Kernel`]: every registered model, and matte's tabulated BRDF
+/// (`super::tabulated::TableModel`). Each is a [`DiffuseBrdf`] through the blanket
+/// implementation below.
+pub trait KernelBrdf {
+    /// The kernel in f32 with its constants: what every [`DiffuseBrdf`] method runs.
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_;
+
+    /// The directional albedo for a grey reflectance `rho` in closed form, where the model has
+    /// one; `None` (the default) lets [`DiffuseBrdf::albedo`] integrate numerically. Called
+    /// with `cos_theta_i > 0` only (the albedo is 0 below the surface).
+    fn closed_form_albedo(&self, cos_theta_i: f64, rho: f32) -> Option<f64> {
+        let _ = (cos_theta_i, rho);
+        None
+    }
+}
+
+/// Every [`KernelBrdf`] is a [`DiffuseBrdf`] through its f32 kernel: evaluation, density and
 /// sampling are [`kernel`]'s, the albedo the model's closed form or quadrature.
-impl<M: Registered> DiffuseBrdf for M {
+impl<M: KernelBrdf> DiffuseBrdf for M {
     /// `inline(always)`: with the full Oren–Nayar body the function exceeds the inliner's
     /// threshold, and a call would cost the default (qualitative) model a third of its time.
     #[inline(always)]

@@ -10,7 +10,7 @@ use super::kernel::Kernel;
 use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarModel};
 use super::params::{ParamError, ParamValue};
 use super::real::Real;
-use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
 use std::f64::consts::FRAC_1_SQRT_2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,6 +55,12 @@ impl RoughDiffuse {
 }
 
 
+impl KernelBrdf for RoughDiffuse {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        self.oren_nayar.kernel()
+    }
+}
+
 impl Registered for RoughDiffuse {
     const SPEC: ModelSpec = ModelSpec {
         name: "roughdiffuse",
@@ -68,10 +74,6 @@ impl Registered for RoughDiffuse {
         examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
         in_study: false,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        self.oren_nayar.kernel()
-    }
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -17,11 +17,12 @@
 //! albedo (interreflections go as ρ², ρ³ …) but `f/ρ` is smooth and finite down to ρ = 0
 //! (where it is the single-scattering BRDF of a white surface), so a few ρ nodes interpolate it.
 
+use super::DiffuseBrdf;
 use super::approx::{acos_unit, angle};
-use super::kernel::{self, Kernel};
+use super::kernel::Kernel;
 use super::real::{Nodes, Real, V3};
-use super::{BrdfSample, DiffuseBrdf};
-use glam::{Vec2, Vec3};
+use super::registry::KernelBrdf;
+use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -359,9 +360,11 @@ impl TableModel {
     pub fn kernel<'t, T: Real + 't>(&'t self, values: T::Table<'t>) -> TableKernel<'t, T> {
         TableKernel { model: self, values }
     }
+}
 
-    /// The f32 kernel.
-    pub fn f32_kernel(&self) -> TableKernel<'_, f32> {
+/// The renderer's and the scalar plugin's f32 kernel; [`DiffuseBrdf`] through it.
+impl KernelBrdf for TableModel {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
         // `check` guarantees at least one value.
         self.kernel(Nodes::from_slice(self.values()).expect("a checked table has values"))
     }
@@ -410,22 +413,5 @@ impl<'t, T: Real + 't> Kernel<T> for TableKernel<'t, T> {
             let f_over_rho = (one - wr) * at(0) + wr * at(ur);
             x * f_over_rho * T::c(PI)
         })
-    }
-}
-
-impl DiffuseBrdf for TableModel {
-    #[inline]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        kernel::eval(&self.f32_kernel(), wi.into(), wo.into(), reflectance)
-    }
-
-    #[inline]
-    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        kernel::pdf(&self.f32_kernel(), wi.into(), wo.into())
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        BrdfSample::from_kernel(kernel::sample(&self.f32_kernel(), wi.into(), u.x, u.y, reflectance))
     }
 }

@@ -21,7 +21,7 @@ use super::fresnel_fit::diffuse_fresnel_external_fit;
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WolffNormalization {
@@ -174,6 +174,18 @@ impl Wolff {
 }
 
 
+impl KernelBrdf for Wolff {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        &self.kernel
+    }
+
+    /// `E(θi) = K T(θi) π (1 − F_dr,ext)`, since `∫ T(θo) cos θo dωo = π (1 − F_dr,ext)`.
+    fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
+        let t_i = 1.0 - dielectric_reflectance(cos_theta_i, self.eta as f64);
+        Some(self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64))
+    }
+}
+
 impl Registered for Wolff {
     const SPEC: ModelSpec = ModelSpec {
         name: "wolff",
@@ -192,16 +204,6 @@ impl Registered for Wolff {
         examples: &[&[("int_ior", "bk7"), ("ext_ior", "1.1"), ("normalization", "normal")], &[("int_ior", "1.8"), ("normalization", "raw")]],
         in_study: true,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        &self.kernel
-    }
-
-    /// `E(θi) = K T(θi) π (1 − F_dr,ext)`, since `∫ T(θo) cos θo dωo = π (1 − F_dr,ext)`.
-    fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
-        let t_i = 1.0 - dielectric_reflectance(cos_theta_i, self.eta as f64);
-        Some(self.kernel.k_pi(reflectance) as f64 * t_i * (1.0 - self.f_dr_ext as f64))
-    }
     type Lane<'t, T: Real + 't> = WolffKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {

@@ -21,7 +21,7 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
-use super::registry::{ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
 use super::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{
@@ -258,6 +258,12 @@ impl<'t, T: Real> Kernel<T> for GinnekenLane<'t, T> {
     }
 }
 
+impl KernelBrdf for Ginneken {
+    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
+        self.kernel()
+    }
+}
+
 impl Registered for Ginneken {
     const SPEC: ModelSpec = ModelSpec {
         name: "ginneken",
@@ -283,10 +289,6 @@ impl Registered for Ginneken {
         examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
         in_study: true,
     };
-
-    fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
-        self.kernel()
-    }
     type Lane<'t, T: Real + 't> = GinnekenLane<'t, T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
