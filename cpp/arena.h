@@ -39,6 +39,9 @@ public:
     /// `table[idx + offset]` from the buffer the plugin registered as table number `table`
     /// (`idx` an integer-valued float, `offset` a constant).
     virtual uint32_t gather(uint32_t table, uint32_t idx, uint32_t offset) const = 0;
+    /// The packet `table[8 idx .. 8 idx + 8]` (Dr.Jit's packet gather): the eight values are
+    /// stored as consecutive entries; returns the index of the first.
+    virtual uint32_t gather8(uint32_t table, uint32_t idx) const = 0;
 };
 
 } // namespace matte

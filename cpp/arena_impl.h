@@ -65,6 +65,19 @@ public:
             return push(Float(0.f));
         return push(drjit::gather<Float>((*m_tables)[table], UInt32(f(idx)) + offset));
     }
+    uint32_t gather8(uint32_t table, uint32_t idx) const override {
+        uint32_t first = (uint32_t) m_f.size();
+        if (!m_tables || table >= m_tables->size()) {
+            for (int k = 0; k < 8; ++k)
+                push(Float(0.f));
+            return first;
+        }
+        // A target of 8 Floats from a flat source: jit_var_gather_packet / ad_var_gather_packet.
+        auto v = drjit::gather<drjit::Array<Float, 8>>((*m_tables)[table], UInt32(f(idx)));
+        for (size_t k = 0; k < 8; ++k)
+            push(std::move(v[k]));
+        return first;
+    }
 
 private:
     uint32_t push_mask(Mask v) const {

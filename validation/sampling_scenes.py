@@ -3,7 +3,7 @@
 renderer, measured in one run on one machine.
 
 For every model that offers a sampler besides the cosine (`matte types --json`: "samplers"), each scene
-(the study's four and mitsuba_scenes/sampling/grazing.xml), roughness 0.3 and 1.0, and each
+(the study's four, mitsuba_scenes/sampling/grazing.xml and indirect.xml), roughness 0.3 and 1.0, and each
 `sampling` (the model's own, `cosine`): K independent renders (seeds 1..K) at a small spp;
 V = the per-pixel variance across the renders (unbiased, mean over pixels and channels), T =
 the mean time of one render. Efficiency = 1 / (V T); the gain is the own sampler's over the
@@ -34,6 +34,7 @@ SCENES = {
     "room": "mitsuba_scenes/study/room.xml",
     "curved": "mitsuba_scenes/study/curved.xml",
     "grazing": "mitsuba_scenes/sampling/grazing.xml",
+    "indirect": "mitsuba_scenes/sampling/indirect.xml",
 }
 
 

@@ -108,4 +108,7 @@ impl Real for Dual {
     fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {
         <Dual as Real>::c(table.at(idx.v as usize + offset as usize) as f64)
     }
+    fn gather8(table: Nodes<'_>, idx: Self) -> [Self; 8] {
+        table.packet8(idx.v as usize).map(|v| <Dual as Real>::c(v as f64))
+    }
 }

@@ -53,6 +53,11 @@ pub trait Real:
     /// range gives the last node on the CPU (callers clamp, so this never happens). The constant `offset`
     /// is separate so that the CPU converts `idx` to an integer once for all of a cell's corners.
     fn gather(table: Self::Table<'_>, idx: Self, offset: u32) -> Self;
+    /// The packet `table[8·idx .. 8·idx + 8]` for a non-negative integer-valued `idx`: values
+    /// a lookup always needs together (a cell's eight corners), stored side by side so that
+    /// one index and one contiguous load fetch them (Dr.Jit's packet gather when traced,
+    /// instead of eight random gathers). Out of range gives the last packet on the CPU.
+    fn gather8(table: Self::Table<'_>, idx: Self) -> [Self; 8];
     /// The mask as a literal (for masks that do not depend on any value).
     fn mask(v: bool) -> Self::Mask;
 
@@ -163,6 +168,10 @@ macro_rules! cpu_real {
             fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {
                 table.at(idx as usize + offset as usize) as $t
             }
+            #[inline(always)]
+            fn gather8(table: Nodes<'_>, idx: Self) -> [Self; 8] {
+                table.packet8(idx as usize).map(|v| v as $t)
+            }
         }
     };
 }
@@ -198,6 +207,18 @@ impl<'t> Nodes<'t> {
     pub fn at(self, i: usize) -> f32 {
         // SAFETY: `min(i, last)` ≤ `last` = `data.len() − 1`, and `data` is not empty.
         unsafe { *self.data.get_unchecked(i.min(self.last)) }
+    }
+
+    /// The nodes `8i .. 8i + 8`, or the last eight for a packet past the end (callers clamp,
+    /// so this only guards memory safety); a table of fewer than eight nodes repeats its last.
+    #[inline(always)]
+    pub fn packet8(self, i: usize) -> [f32; 8] {
+        if self.last < 7 {
+            return std::array::from_fn(|k| self.at(i.saturating_mul(8) + k));
+        }
+        let start = i.saturating_mul(8).min(self.last - 7);
+        // SAFETY: `start + 7 ≤ last` = `data.len() − 1`; `[f32; 8]` has f32's alignment.
+        unsafe { *(self.data.as_ptr().add(start) as *const [f32; 8]) }
     }
 }
 

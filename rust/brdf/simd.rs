@@ -193,4 +193,10 @@ impl Real for F32x8 {
         let idx = idx.to_array();
         F32x8::new(idx.map(|i| <f32 as Real>::gather(table, i, offset)))
     }
+    /// One contiguous load per lane, then the 8 × 8 transpose.
+    #[inline(always)]
+    fn gather8(table: Nodes<'_>, idx: Self) -> [Self; 8] {
+        let rows = idx.to_array().map(|i| table.packet8(i as usize));
+        std::array::from_fn(|k| F32x8::new(std::array::from_fn(|lane| rows[lane][k])))
+    }
 }

@@ -58,6 +58,7 @@ pub mod ffi {
         fn mask_not(self: &Arena, a: u32) -> u32;
         fn select(self: &Arena, m: u32, t: u32, f: u32) -> u32;
         fn gather(self: &Arena, table: u32, idx: u32, offset: u32) -> u32;
+        fn gather8(self: &Arena, table: u32, idx: u32) -> u32;
     }
 
     extern "Rust" {

@@ -239,4 +239,9 @@ impl<'a> Real for Traced<'a> {
     fn gather(table: TracedTable<'a>, idx: Self, offset: u32) -> Self {
         Traced::Node(table.arena, table.arena.gather(table.id, idx.id(table.arena), offset))
     }
+    /// Dr.Jit's packet gather: the arena pushes the eight values as consecutive entries.
+    fn gather8(table: TracedTable<'a>, idx: Self) -> [Self; 8] {
+        let first = table.arena.gather8(table.id, idx.id(table.arena));
+        std::array::from_fn(|k| Traced::Node(table.arena, first + k as u32))
+    }
 }

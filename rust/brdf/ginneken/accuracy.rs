@@ -69,9 +69,9 @@ pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples
     let minus = Ginneken::new(m - h, model.shadowing()).expect("valid roughness");
     let t = model.table();
     let kernel = GinnekenKernel::<Dual> {
-        slope: Nodes::new(t.slope_nodes()),
+        slope: Nodes::new(t.slope_cells()),
         m: Dual::c(m) + Dual::variable(0.0),
-        roughness_derivative: Some((Nodes::new(t.slope_derivative_nodes()), Dual::variable(0.0))),
+        roughness_derivative: Some((Nodes::new(t.slope_derivative_cells()), Dual::variable(0.0))),
         shadowing: model.shadowing(),
         sampler_t: Dual::c(super::sampler_roughness(m)),
         cltc: false,

@@ -59,11 +59,11 @@ pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
 /// gradient. `μΛ` is evaluated in closed form at `m` ([`mu_lambda_closed`]).
 #[derive(Clone, Copy)]
 pub struct GinnekenKernel<'t, T: Real> {
-    /// `I` at the nodes ([`SlopeTable::slope_nodes`]).
+    /// `I` as cell corners ([`SlopeTable::slope_cells`]).
     pub slope: T::Table<'t>,
     /// The roughness: `m₀ + dm` when the roughness gradient is wanted, else `m₀`.
     pub m: T,
-    /// `(∂I/∂m table, dm = m − m₀)` when the roughness gradient is wanted.
+    /// `(∂I/∂m cell table, dm = m − m₀)` when the roughness gradient is wanted.
     pub roughness_derivative: Option<(T::Table<'t>, T)>,
     pub shadowing: Shadowing,
     /// The sampler's roughness variable ([`sampler_roughness`] of the tables' m₀).
@@ -201,7 +201,7 @@ impl Ginneken {
     #[inline(always)]
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
         GinnekenKernel {
-            slope: Nodes::new(self.table.slope_nodes()),
+            slope: Nodes::new(self.table.slope_cells()),
             m: self.m,
             roughness_derivative: None,
             shadowing: self.shadowing,
@@ -346,7 +346,7 @@ impl Registered for Ginneken {
 
     fn tables(&self) -> Vec<&[f32]> {
         let t = &self.table;
-        vec![t.slope_nodes(), t.slope_derivative_nodes()]
+        vec![t.slope_cells(), t.slope_derivative_cells()]
     }
 
     fn lane_tables(&self) -> Vec<&'static [f32]> {

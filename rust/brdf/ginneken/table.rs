@@ -29,8 +29,15 @@ const BUILD_NODES: usize = 24;
 /// Nodes of the slope table: `I` at `[iu_i][iu_o][ic]`, flat in that order.
 pub const SLOPE_NODES: usize = U_NODES * U_NODES * C_NODES;
 
+/// Cells of the slope table (node `(i, o, c)` is the low corner of cell `(i, o, c)`).
+pub const SLOPE_CELLS: usize = (U_NODES - 1) * (U_NODES - 1) * (C_NODES - 1);
+/// Values of the cell-corner table: eight per cell ([`SlopeTable::slope_cells`]).
+pub const SLOPE_CELL_VALUES: usize = 8 * SLOPE_CELLS;
+
 /// `I` (or `∂I/∂m`) at the nodes. A fixed size, so that lookups know the length at compile time.
 type Grid = [f32; SLOPE_NODES];
+/// The same, as each cell's eight corners side by side.
+type CellGrid = [f32; SLOPE_CELL_VALUES];
 
 /// Flat index of node `(iu_i, iu_o, ic)`.
 const fn node_index(iu_i: usize, iu_o: usize, ic: usize) -> usize {
@@ -42,6 +49,9 @@ pub struct SlopeTable {
     data: Box<Grid>,
     /// `∂I/∂m` at the same nodes (the traced kernels' roughness gradient).
     d_data: Box<Grid>,
+    /// `data` and `d_data` as cell corners ([`Self::slope_cells`]), made on first use.
+    cells: OnceLock<Box<CellGrid>>,
+    d_cells: OnceLock<Box<CellGrid>>,
 }
 
 impl SlopeTable {
@@ -77,10 +87,11 @@ impl SlopeTable {
                 }
             }
         }
-        Self { data, d_data }
+        Self { data, d_data, cells: OnceLock::new(), d_cells: OnceLock::new() }
     }
 
-    /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_in`] gathers from).
+    /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_layer_in`]
+    /// gathers from, in the stacks over m).
     pub fn slope_nodes(&self) -> &[f32; SLOPE_NODES] {
         &self.data
     }
@@ -88,6 +99,18 @@ impl SlopeTable {
     /// `∂I/∂m` at the nodes, flat as [`Self::slope_nodes`].
     pub fn slope_derivative_nodes(&self) -> &[f32; SLOPE_NODES] {
         &self.d_data
+    }
+
+    /// `I` as cell corners (what [`lookup_in`] gathers from): cell `(i, o, c)`, flat in that
+    /// order, holds the eight nodes `(i + a, o + b, c + d)` at `8·cell + 4a + 2b + d`. Eight
+    /// times the nodes (6.2 MB), for one packet load per lookup instead of eight scattered ones.
+    pub fn slope_cells(&self) -> &[f32; SLOPE_CELL_VALUES] {
+        self.cells.get_or_init(|| corners_of(&self.data))
+    }
+
+    /// `∂I/∂m` as cell corners, laid out as [`Self::slope_cells`].
+    pub fn slope_derivative_cells(&self) -> &[f32; SLOPE_CELL_VALUES] {
+        self.d_cells.get_or_init(|| corners_of(&self.d_data))
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -109,18 +132,46 @@ impl SlopeTable {
     }
 }
 
-/// Trilinear interpolation of a flat [`SlopeTable::slope_nodes`]-shaped table at axis
-/// coordinates `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`, in any [`Real`]. Written as
-/// the weighted sum of the eight corners: the weights are ready before the (usually
-/// cache-missing) loads return, after which only a product and a sum remain (nested lerps
-/// would leave three dependent levels).
-#[inline(always)]
-pub fn lookup_in<T: Real>(table: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
-    lookup_layer_in(table, None, u_i, u_o, c)
+/// A node table rearranged as cell corners ([`SlopeTable::slope_cells`]).
+fn corners_of(nodes: &Grid) -> Box<CellGrid> {
+    let mut cells = vec![0.0f32; SLOPE_CELL_VALUES];
+    for i in 0..U_NODES - 1 {
+        for o in 0..U_NODES - 1 {
+            for c in 0..C_NODES - 1 {
+                let cell = (i * (U_NODES - 1) + o) * (C_NODES - 1) + c;
+                for k in 0..8 {
+                    cells[8 * cell + k] = nodes[node_index(i + (k >> 2), o + ((k >> 1) & 1), c + (k & 1))];
+                }
+            }
+        }
+    }
+    cells.into_boxed_slice().try_into().expect("SLOPE_CELL_VALUES values")
 }
 
-/// [`lookup_in`] on one layer of a stack of slope tables: `layer_base` is the index of the
-/// layer's first node (an integer-valued float), `None` for a single table.
+/// Trilinear interpolation of a [`SlopeTable::slope_cells`]-shaped table at axis coordinates
+/// `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`, in any [`Real`]: one packet gather of the
+/// cell's eight corners. Written as the weighted sum of the corners: the weights are ready
+/// before the (usually cache-missing) load returns, after which only a product and a sum
+/// remain (nested lerps would leave three dependent levels).
+#[inline(always)]
+pub fn lookup_in<T: Real>(cells: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
+    let one = T::c(1.0);
+    let (i0, fi) = cell(u_i.scale((U_NODES - 1) as f64), U_NODES);
+    let (o0, fo) = cell(u_o.scale((U_NODES - 1) as f64), U_NODES);
+    let half = T::c(0.5 * (C_NODES - 1) as f64);
+    let (c0, fc) = cell(c.fma(half, half), C_NODES);
+    let (gi, go, gc) = (one - fi, one - fo, one - fc);
+    let index = (i0.scale((U_NODES - 1) as f64) + o0).fma(T::c((C_NODES - 1) as f64), c0);
+    let [v000, v001, v010, v011, v100, v101, v110, v111] = T::gather8(cells, index);
+    let pair = |w: T, a: T, b: T| (w * gc).fma(a, (w * fc) * b);
+    let v0 = pair(gi * go, v000, v001) + pair(gi * fo, v010, v011);
+    let v1 = pair(fi * go, v100, v101) + pair(fi * fo, v110, v111);
+    v0 + v1
+}
+
+/// [`lookup_in`] on one layer of a stack of node tables ([`SlopeTable::slope_nodes`]-shaped,
+/// eight gathers): `layer_base` is the index of the layer's first node (an integer-valued
+/// float), `None` for a single table.
 #[inline(always)]
 pub fn lookup_layer_in<T: Real>(table: T::Table<'_>, layer_base: Option<T>, u_i: T, u_o: T, c: T) -> T {
     let one = T::c(1.0);
