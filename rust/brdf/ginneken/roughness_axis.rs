@@ -177,7 +177,7 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
             wo,
             rho,
             self.m,
-            |x_i, x_o, c| self.hermite(|t, b| lookup_layer_in(t, Some(b), x_i, x_o, c)),
+            |x_i, x_o, c| self.hermite(|t, b| lookup_layer_in(t, b, x_i, x_o, c)),
         )
     }
 

@@ -150,49 +150,51 @@ fn corners_of(nodes: &Grid) -> Box<CellGrid> {
 
 /// Trilinear interpolation of a [`SlopeTable::slope_cells`]-shaped table at axis coordinates
 /// `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`, in any [`Real`]: one packet gather of the
-/// cell's eight corners. Written as the weighted sum of the corners: the weights are ready
-/// before the (usually cache-missing) load returns, after which only a product and a sum
-/// remain (nested lerps would leave three dependent levels).
+/// cell's eight corners.
 #[inline(always)]
 pub fn lookup_in<T: Real>(cells: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
-    let one = T::c(1.0);
-    let (i0, fi) = cell(u_i.scale((U_NODES - 1) as f64), U_NODES);
-    let (o0, fo) = cell(u_o.scale((U_NODES - 1) as f64), U_NODES);
-    let half = T::c(0.5 * (C_NODES - 1) as f64);
-    let (c0, fc) = cell(c.fma(half, half), C_NODES);
-    let (gi, go, gc) = (one - fi, one - fo, one - fc);
-    let index = (i0.scale((U_NODES - 1) as f64) + o0).fma(T::c((C_NODES - 1) as f64), c0);
-    let [v000, v001, v010, v011, v100, v101, v110, v111] = T::gather8(cells, index);
-    let pair = |w: T, a: T, b: T| (w * gc).fma(a, (w * fc) * b);
-    let v0 = pair(gi * go, v000, v001) + pair(gi * fo, v010, v011);
-    let v1 = pair(fi * go, v100, v101) + pair(fi * fo, v110, v111);
-    v0 + v1
+    let (cell, fractions) = locate(u_i, u_o, c);
+    let index = (cell[0].scale((U_NODES - 1) as f64) + cell[1]).fma(T::c((C_NODES - 1) as f64), cell[2]);
+    blend(T::gather8(cells, index), fractions)
 }
 
 /// [`lookup_in`] on one layer of a stack of node tables ([`SlopeTable::slope_nodes`]-shaped,
 /// eight gathers): `layer_base` is the index of the layer's first node (an integer-valued
-/// float), `None` for a single table.
+/// float).
 #[inline(always)]
-pub fn lookup_layer_in<T: Real>(table: T::Table<'_>, layer_base: Option<T>, u_i: T, u_o: T, c: T) -> T {
-    let one = T::c(1.0);
+pub fn lookup_layer_in<T: Real>(table: T::Table<'_>, layer_base: T, u_i: T, u_o: T, c: T) -> T {
+    let (cell, fractions) = locate(u_i, u_o, c);
+    let base = (cell[0].scale(U_NODES as f64) + cell[1]).fma(T::c(C_NODES as f64), cell[2]) + layer_base;
+    let at = |k: usize| {
+        let offset = (k >> 2) * U_NODES * C_NODES + ((k >> 1) & 1) * C_NODES + (k & 1);
+        T::gather(table, base, offset as u32)
+    };
+    blend(std::array::from_fn(at), fractions)
+}
+
+/// The cell `[i, o, c]` (lower node indices, integer-valued floats) holding the point and the
+/// point's fractions `[fi, fo, fc]` in it.
+#[inline(always)]
+fn locate<T: Real>(u_i: T, u_o: T, c: T) -> ([T; 3], [T; 3]) {
     let (i0, fi) = cell(u_i.scale((U_NODES - 1) as f64), U_NODES);
     let (o0, fo) = cell(u_o.scale((U_NODES - 1) as f64), U_NODES);
     let half = T::c(0.5 * (C_NODES - 1) as f64);
     let (c0, fc) = cell(c.fma(half, half), C_NODES);
+    ([i0, o0, c0], [fi, fo, fc])
+}
+
+/// The trilinear interpolant of a cell's corners (`corners[4a + 2b + d]` at node
+/// `(i + a, o + b, c + d)`), written as their weighted sum: the weights are ready before the
+/// (usually cache-missing) loads return, after which only a product and a sum remain (nested
+/// lerps would leave three dependent levels).
+#[inline(always)]
+fn blend<T: Real>(corners: [T; 8], [fi, fo, fc]: [T; 3]) -> T {
+    let one = T::c(1.0);
     let (gi, go, gc) = (one - fi, one - fo, one - fc);
-    let base = (i0.scale(U_NODES as f64) + o0).fma(T::c(C_NODES as f64), c0);
-    let base = match layer_base {
-        Some(l) => base + l,
-        None => base,
-    };
-    let pair = |offset: usize, w: T| {
-        let offset = offset as u32;
-        (w * gc).fma(T::gather(table, base, offset), (w * fc) * T::gather(table, base, offset + 1))
-    };
-    let row = C_NODES;
-    let plane = U_NODES * C_NODES;
-    let v0 = pair(0, gi * go) + pair(row, gi * fo);
-    let v1 = pair(plane, fi * go) + pair(plane + row, fi * fo);
+    let [v000, v001, v010, v011, v100, v101, v110, v111] = corners;
+    let pair = |w: T, a: T, b: T| (w * gc).fma(a, (w * fc) * b);
+    let v0 = pair(gi * go, v000, v001) + pair(gi * fo, v010, v011);
+    let v1 = pair(fi * go, v100, v101) + pair(fi * fo, v110, v111);
     v0 + v1
 }
 
