@@ -72,7 +72,8 @@ def test_sdist_holds_what_builds_and_nothing_else():
         top = n.split("/")[0]
         assert top in {"Cargo.toml", "Cargo.lock", "build.rs", "rustfmt.toml", "setup.py", "setup.cfg", "pyproject.toml",
                        "README.md", "LICENSE", "MANIFEST.in", "PKG-INFO", "rust", "cpp", "benches", "python",
-                       "matte_mitsuba.egg-info"} or (n.startswith("validation/ground_truth/") and n.endswith(".json")), n
+                       "matte_mitsuba.egg-info"} or n in ("validation", "validation/ground_truth") \
+            or (n.startswith("validation/ground_truth/") and n.endswith(".json")), n
         assert not n.endswith((".png", ".exr", ".so", ".a", ".o")), n
         assert not n.startswith("python/") or n.startswith("python/matte_mitsuba"), n
 
