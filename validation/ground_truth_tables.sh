@@ -8,7 +8,7 @@
 set -euo pipefail
 MATTE=${MATTE:-target/release/matte}
 OUT=${1:-validation/ground_truth}
-ROUGHNESS="0.1 0.2 0.3 0.5 0.7 1.0"
+ROUGHNESS="0.1 0.2 0.3 0.5 0.7 1.0"   # also in tests/kernels/ground_truth_tables.rs (12 files: check_wheel.py)
 VC_PHOTONS=2000000 VC_SEED=5                          # per θi node
 HF_PHOTONS=96000 HF_SEED=6 HF_CELLS=256 HF_REALISATIONS=8  # per θi node, split over the realisations
 mkdir -p "$OUT"
