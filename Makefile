@@ -5,13 +5,16 @@
 # and two more (not set-up commands; they need the same things as main):
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
 #   make dist   the release files in dist/: the sdist and the manylinux wheel (auditwheel)
-.PHONY: main test bench venv plugin dist
+# and one that recomputes data the repository holds:
+#   make ground-truth  the simulated microsurfaces' BRDF tables in validation/ground_truth/
+.PHONY: main test bench venv plugin dist ground-truth
 
 PY     := .venv/bin/python
 # The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv.
 WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
 SOURCES := $(shell find rust cpp python/matte_mitsuba -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
-	-not -name '_build.py' -not -path '*__pycache__*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py
+	-not -name '_build.py' -not -path '*__pycache__*' -not -path '*/ground_truth/*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py \
+	$(wildcard validation/ground_truth/*.json)
 
 main: plugin
 	./target/release/matte validate --all -o validate_out
@@ -24,6 +27,12 @@ test: plugin dist
 	cargo clippy --quiet --all-targets -- -D warnings
 	cargo test --quiet
 	$(PY) -m pytest -q tests/plugin tests/renderer
+
+# Every table with its fixed seed and photon count (docs/microgeometry.md, "The tabulated
+# ground-truth BRDF"; about 22 min on 2 shared cores).
+ground-truth:
+	cargo build --release --quiet
+	validation/ground_truth_tables.sh
 
 # Debian's libllvm19, .venv with the pinned wheels (fast when already done).
 venv:

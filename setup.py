@@ -1,6 +1,6 @@
 """The wheel's build step (pyproject.toml has the metadata): build the plugins and the `matte`
-binary with cpp/build_plugin.sh against the Mitsuba of the building Python, put the binary into
-the package, and tag the wheel for this platform (it holds native code, but no Python
+binary with cpp/build_plugin.sh against the Mitsuba of the building Python, put the binary and
+the ground-truth tables (validation/ground_truth/*.json) into the package, and tag the wheel for this platform (it holds native code, but no Python
 extension: any Python 3 that runs Mitsuba can load it)."""
 import os
 import shutil
@@ -22,6 +22,10 @@ class BuildPlugins(build_py):
         os.makedirs(os.path.dirname(binary), exist_ok=True)
         shutil.copy2(os.path.join(ROOT, "target", "release", "matte"), binary)
         subprocess.check_call(["strip", binary])
+        tables = os.path.join(ROOT, "python", "matte_mitsuba", "ground_truth")
+        shutil.rmtree(tables, ignore_errors=True)
+        shutil.copytree(os.path.join(ROOT, "validation", "ground_truth"), tables,
+                        ignore=lambda folder, names: [n for n in names if not n.endswith(".json")])
         super().run()
 
 

@@ -3,7 +3,8 @@ checkout (run it with the Python of the environment the wheel is installed in, f
 folder): `wolff` and `roughdiffuse` render in llvm_ad_rgb with Dr.Jit's defaults and in
 scalar_rgb; `roughdiffuse` with alpha = a evaluates as `oren_nayar` with sigma = a/√2, full
 model; `mitsuba -a "$(python -m matte_mitsuba)" scene.xml` renders with the tool's defaults;
-`matte brdf --bsdf roughdiffuse` answers. Prints one line per check; exits non-zero on failure.
+`matte brdf --bsdf roughdiffuse` answers; every packaged ground-truth table loads as a
+`tabulated_brdf` (`matte_mitsuba.ground_truth_path`) and evaluates to a positive value. Prints one line per check; exits non-zero on failure.
 
     python validation/check_wheel.py
 """
@@ -92,6 +93,14 @@ def main():
                           "--theta-i", "60", "--theta-o", "60", "--phi", "180"], capture_output=True, text=True)
     ok = run.returncode == 0 and json.loads(run.stdout)["bsdf"] == "roughdiffuse"
     check("matte brdf --bsdf roughdiffuse answers", ok, run.stdout.strip() if ok else run.stderr.strip())
+    mi.set_variant("scalar_rgb")
+    names = sorted(f[:-5] for f in os.listdir(matte_mitsuba.GROUND_TRUTH) if f.endswith(".json"))
+    si = dr.zeros(mi.SurfaceInteraction3f)
+    si.wi = mi.Vector3f(0.5, 0, 0.75 ** 0.5)
+    values = [mi.load_dict({"type": "tabulated_brdf", "filename": matte_mitsuba.ground_truth_path(n), "reflectance": 0.8})
+              .eval(mi.BSDFContext(), si, mi.Vector3f(-0.5, 0, 0.75 ** 0.5))[0] for n in names]
+    check(f"the {len(names)} packaged ground-truth tables load as tabulated_brdf",
+          len(names) == 12 and all(math.isfinite(v) and v > 0 for v in values), ", ".join(names))
 
 
 if __name__ == "__main__":

@@ -38,6 +38,22 @@ def _built_plugins():
 #: The ``<bsdf type=...>`` names this package provides (the plugin files the build wrote).
 BSDF_TYPES = _built_plugins()
 
+#: Folder of the simulated microsurfaces' BRDF tables, files for ``tabulated_brdf``
+#: (``v_cavities_sigma<σ>.json``, ``height_field_m<m>.json``; matte's docs/microgeometry.md).
+GROUND_TRUTH = _os.path.join(PLUGIN_ROOT, "ground_truth")
+
+
+def ground_truth_path(name):
+    """The path of the packaged table ``name`` (e.g. ``"v_cavities_sigma0.3"``, ``.json``
+    optional), for ``tabulated_brdf``'s ``filename``. Raises ``ValueError`` naming the tables
+    there are if there is none of that name."""
+    path = _os.path.join(GROUND_TRUTH, name if name.endswith(".json") else name + ".json")
+    if not _os.path.isfile(path):
+        have = sorted(f[:-5] for f in _os.listdir(GROUND_TRUTH) if f.endswith(".json")) if _os.path.isdir(GROUND_TRUTH) else []
+        raise ValueError("matte_mitsuba: no ground-truth table %r in %s (there are: %s)"
+                         % (name, GROUND_TRUTH, ", ".join(have) or "none"))
+    return path
+
 
 def numeric_parameters(model):
     """The parameters of ``model`` (an entry of :data:`MODELS`) a texture may give, in order."""

@@ -7,6 +7,7 @@ mod common;
 mod burley;
 mod chi_square;
 mod ginneken_fast_path;
+mod ground_truth_tables;
 mod kernel_precision;
 mod parameters;
 mod properties;

@@ -3,7 +3,8 @@ holds what builds and nothing else; the wheel is platlib, repaired to a manylinu
 library grafted in but Mitsuba's, which it loads from the mitsuba/drjit wheels); the repaired
 wheel installed with `pip install --no-index --find-links dist` (Mitsuba from the registry) in a
 fresh virtual environment outside the checkout (validation/check_wheel.py: renders in llvm_ad_rgb
-and scalar_rgb, roughdiffuse = oren_nayar with σ = α/√2, the mitsuba tool, the matte tool);
+and scalar_rgb, roughdiffuse = oren_nayar with σ = α/√2, the mitsuba tool, the matte tool, the
+packaged ground-truth tables);
 import before or after `mi.set_variant`; a Mitsuba other than the one it was built against is
 refused at import naming both versions."""
 import glob
@@ -62,14 +63,17 @@ def test_sdist_holds_what_builds_and_nothing_else():
                    "python/matte_mitsuba/__init__.py", "PKG-INFO"):
         assert needed in files, f"{needed} missing from the sdist"
     # Every Rust and C++ source of the checkout is in it.
-    tracked = subprocess.run(["git", "ls-files", "rust", "cpp"], capture_output=True, text=True, cwd=REPO).stdout.split()
+    # So is every ground-truth table (the wheel ships them).
+    tracked = subprocess.run(["git", "ls-files", "rust", "cpp", "validation/ground_truth"], capture_output=True, text=True,
+                             cwd=REPO).stdout.split()
     assert tracked and set(tracked) <= files, sorted(set(tracked) - files)[:10]
     # Nothing else: no tests, scenes, docs, images, build outputs or compiled plugins.
     for n in names:
         top = n.split("/")[0]
         assert top in {"Cargo.toml", "Cargo.lock", "build.rs", "rustfmt.toml", "setup.py", "setup.cfg", "pyproject.toml",
                        "README.md", "LICENSE", "MANIFEST.in", "PKG-INFO", "rust", "cpp", "benches", "python",
-                       "matte_mitsuba.egg-info"}, n
+                       "matte_mitsuba.egg-info"} or n in ("validation", "validation/ground_truth") \
+            or (n.startswith("validation/ground_truth/") and n.endswith(".json")), n
         assert not n.endswith((".png", ".exr", ".so", ".a", ".o")), n
         assert not n.startswith("python/") or n.startswith("python/matte_mitsuba"), n
 
@@ -134,4 +138,4 @@ def test_wheel_in_a_fresh_environment_outside_the_checkout(tmp_path):
     check = subprocess.run([py, os.path.join(REPO, "validation", "check_wheel.py")], capture_output=True, text=True, cwd=tmp_path)
     print(check.stdout)
     assert check.returncode == 0, check.stdout + check.stderr
-    assert check.stdout.count("\nok") + check.stdout.startswith("ok") == 7, check.stdout
+    assert check.stdout.count("\nok") + check.stdout.startswith("ok") == 8, check.stdout

@@ -25,14 +25,14 @@ def test_readme_example(monkeypatch):
     assert np.isfinite(np.array(image)).all()
 
     params = mi.traverse(scene)
-    keys = [k for k in params.keys() if k.endswith(('.sigma', '.roughness', '.int_ior', '.ext_ior', 'reflectance.value'))]
+    keys = [k for k in params.keys() if k.endswith(('.sigma', '.roughness', '.alpha', '.int_ior', '.ext_ior', 'reflectance.value'))]
     for k in keys:
         dr.enable_grad(params[k])
     params.update()
     image = mi.render(scene, params, integrator=mi.load_dict({'type': 'prb'}), spp=16)
     dr.backward(dr.mean(image, axis=None))
-    # every matte parameter of the scene: 8 reflectances, 2 sigma, 3 roughness, 2×2 IORs
-    assert len(keys) == 17, keys
+    # every matte parameter of the scene: 11 reflectances, 2 sigma, 4 roughness, 1 alpha, 2×2 IORs
+    assert len(keys) == 22, keys
     for k in keys:
         g = np.array(dr.grad(params[k]))
         assert np.isfinite(g).all() and np.any(g != 0), (k, g)
@@ -40,7 +40,8 @@ def test_readme_example(monkeypatch):
 
 
 # The README's shell examples that name files of the checkout, verbatim, run in a scratch folder
-# that links the checkout's .venv, target and mitsuba_scenes (so that outputs land there).
+# that links the checkout's .venv, target, mitsuba_scenes and validation (the scenes' tables), so
+# that outputs land there.
 SHELL_EXAMPLES = [
     ('.venv/bin/mitsuba -a "$(.venv/bin/python -m matte_mitsuba)" -o all_types.exr mitsuba_scenes/all_types.xml',
      ["all_types.exr"]),
@@ -60,7 +61,7 @@ def readme_shell_lines():
 @pytest.mark.parametrize("command,outputs", SHELL_EXAMPLES, ids=["mitsuba tool", "matte validate", "matte render"])
 def test_readme_shell_example(tmp_path, command, outputs):
     assert command in readme_shell_lines(), f"not in the README any more: {command}"
-    for name in (".venv", "target", "mitsuba_scenes"):
+    for name in (".venv", "target", "mitsuba_scenes", "validation"):
         (tmp_path / name).symlink_to(os.path.join(REPO, name))
     r = subprocess.run(["bash", "-c", command], cwd=tmp_path, capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stdout + r.stderr

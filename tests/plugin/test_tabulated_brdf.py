@@ -5,8 +5,10 @@ with a reflectance that varies per lane and crosses the reflectance nodes; the g
 respect to the reflectance against central differences; Mitsuba's χ² test of the sampling; no
 NaN at grazing, normal, coincident and below-horizon directions; file errors as one line
 naming the file. The render gradient is in `test_gradients.py`, plugin against renderer in
-`matte validate` (`mitsuba_scenes/sphere_tabulated_brdf.xml`). The tables are the two in
-`validation/ground_truth/`."""
+`matte validate` (`mitsuba_scenes/sphere_tabulated_brdf.xml`). The values are checked on every
+table in `validation/ground_truth/`, the rest on the V-cavities at σ = 0.3; the installed package
+ships the same files (`matte_mitsuba.ground_truth_path`)."""
+import glob
 import json
 import os
 
@@ -18,7 +20,7 @@ from conftest import REPO, random_pairs
 
 GROUND_TRUTH = os.path.join(REPO, "validation", "ground_truth")
 TABLE = os.path.join(GROUND_TRUTH, "v_cavities_sigma0.3.json")
-TABLES = [TABLE, os.path.join(GROUND_TRUTH, "height_field_m0.3.json")]
+TABLES = sorted(glob.glob(os.path.join(GROUND_TRUTH, "*.json")))
 VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]
 
 
@@ -239,3 +241,14 @@ def test_file_errors_are_one_line_naming_the_file(mi_variant, tmp_path, table):
     with pytest.raises(Exception) as e:
         mi.load_dict({"type": "tabulated_brdf", "filename": TABLE, "sigma": 0.3})
     assert 'unknown parameter "sigma"' in str(e.value)
+
+
+def test_the_package_ships_every_table():
+    import matte_mitsuba
+    names = sorted(os.path.basename(p) for p in TABLES)
+    assert sorted(f for f in os.listdir(matte_mitsuba.GROUND_TRUTH) if f.endswith(".json")) == names
+    for name in names:
+        with open(os.path.join(GROUND_TRUTH, name), "rb") as a, open(matte_mitsuba.ground_truth_path(name[:-5]), "rb") as b:
+            assert a.read() == b.read(), f"the installed {name} differs from the checkout's (make plugin)"
+    with pytest.raises(ValueError, match="no ground-truth table 'v_cavities_sigma9'.*v_cavities_sigma0.3"):
+        matte_mitsuba.ground_truth_path("v_cavities_sigma9")
