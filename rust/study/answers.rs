@@ -21,8 +21,8 @@ fn decimals(hw: f64, min: usize) -> usize {
     ((-hw.log10().floor()) as i64).clamp(min as i64, min as i64 + 3) as usize
 }
 
-/// `ratio ± half-width`.
-fn ci(r: Ratio) -> String {
+/// `ratio ± half-width`, with the decimals its half-width needs.
+pub(crate) fn ci(r: Ratio) -> String {
     let d = decimals(r.half_width, 3);
     format!("{:.*} ± {:.*}", d, r.value, d, r.half_width)
 }
@@ -202,6 +202,13 @@ pub fn truth_answers(t: &TruthStudy) -> Vec<String> {
             ),
         });
     }
+    out.extend(closest_answers(t));
+    out
+}
+
+/// Per lighting: the model closest to its own surface, and by how much.
+pub fn closest_answers(t: &TruthStudy) -> Vec<String> {
+    let mut out = Vec::new();
     let lightings: &[Lighting] =
         if t.direct_only { &[Lighting::Direct] } else { &[Lighting::Global, Lighting::Direct] };
     for &l in lightings {

@@ -306,12 +306,7 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
 /// `<out>/<rel_dir>/<key>.xml` (path returned relative to the output folder): its property
 /// in every `<bsdf type="$bsdf">`, or for a true surface its table, copied beside the derived
 /// scene and named by its absolute path (both renderers load it from there).
-pub(crate) fn derived_scene(
-    scene: &Path,
-    c: Configuration,
-    opts: &StudyOptions,
-    rel_dir: &Path,
-) -> Result<PathBuf, String> {
+pub fn derived_scene(scene: &Path, c: Configuration, opts: &StudyOptions, rel_dir: &Path) -> Result<PathBuf, String> {
     let dir = opts.out.join(rel_dir);
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
     let mut properties: Vec<DerivedProperty> =

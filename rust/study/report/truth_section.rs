@@ -3,9 +3,9 @@
 //! global illumination), the closest model per scene, the heatmap strips (model − surface) /
 //! surface, and the BRDF slices of the models against the simulated surfaces.
 
-use super::ratio_cell;
 use crate::markup::escape;
 use crate::study::configuration::{Configuration, TRUTHS, main_run};
+use crate::study::ratio::Ratio;
 use crate::study::truth::TruthStudy;
 use crate::study::{Lighting, answers};
 use serde::Serialize;
@@ -189,14 +189,13 @@ Rank: 1 = the model closest to its own surface in that scene and lighting. {} de
         for c in comparisons(t) {
             let _ = write!(
                 h,
-                "<tr><td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>{}{}<td>{:+.4} ± {:.4}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td></tr>",
+                "<tr><td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td></tr>",
                 escape(c.label),
                 escape(c.truth_label),
                 escape(&t.scene_name),
-                ratio_cell(crate::study::ratio::Ratio::new(c.ratio_global, c.ratio_global_ci99)),
-                ratio_cell(crate::study::ratio::Ratio::new(c.ratio_direct, c.ratio_direct_ci99)),
-                c.growth,
-                c.growth_ci99,
+                answers::ci(Ratio::new(c.ratio_global, c.ratio_global_ci99)),
+                answers::ci(Ratio::new(c.ratio_direct, c.ratio_direct_ci99)),
+                if t.direct_only { "—".to_string() } else { answers::ci(Ratio::new(c.growth, c.growth_ci99)) },
                 c.verdict,
                 c.rank_global,
                 c.rank_direct
@@ -205,7 +204,7 @@ Rank: 1 = the model closest to its own surface in that scene and lighting. {} de
     }
     h.push_str("</table><ul>");
     for t in truths {
-        for a in answers::truth_answers(t) {
+        for a in answers::closest_answers(t) {
             let _ = write!(h, "<li>{}</li>", escape(&a));
         }
     }
