@@ -156,7 +156,7 @@ pub fn run(
                 let what = format!("{} {} {}", study.name, lighting.name(), full.label());
                 let defines = super::image_defines(opts, full.bsdf(), lighting);
                 let side = super::render_side(
-                    &opts.out.join(&*file),
+                    &opts.out.join(file),
                     opts,
                     defines,
                     &regions,
