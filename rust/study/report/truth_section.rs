@@ -12,13 +12,16 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// The BRDF slices of `docs/microgeometry/` shown in the section: roughness 0.3 (the study's),
-/// facet albedo 0.8 and 0.3.
-pub const SLICES: [&str; 4] = [
+/// The BRDF slices of `docs/microgeometry/` shown in the section, at the study's roughness 0.3
+/// and facet albedo 0.8: per model, the slice through its largest error against its surface
+/// (`validation/truth_error_slices.py`), then both surfaces against every model.
+pub const SLICES: [&str; 6] = [
+    "truth_slice_oren_nayar_qualitative.png",
+    "truth_slice_oren_nayar_full.png",
+    "truth_slice_eon.png",
+    "truth_slice_ginneken.png",
     "slices_v_cavities_r0.3_rho0.8.png",
     "slices_gaussian_height_field_r0.3_rho0.8.png",
-    "slices_v_cavities_r0.3_rho0.3.png",
-    "slices_gaussian_height_field_r0.3_rho0.3.png",
 ];
 
 /// Where the report's copies of [`SLICES`] go, relative to the output folder.
@@ -223,10 +226,12 @@ Rank: 1 = the model closest to its own surface in that scene and lighting. {} de
         }
     }
     if !slices.is_empty() {
-        h.push_str(r#"<h3>The BRDFs against the simulated surfaces</h3><p>Slices of f through (θi, θo, Δφ) at roughness 0.3: the simulated surface (points, 99 % intervals; all bounces and first bounce) and the models (lines), from <code>docs/microgeometry/</code> (docs/microgeometry.md, comparison).</p>"#);
+        h.push_str(r#"<h3>The BRDFs against the simulated surfaces</h3><p>Facet albedo ρ = 0.8, roughness 0.3, from <code>docs/microgeometry/</code>. First, per model, the slice through the (θi, θo, Δφ) node (θ ≤ 80°) where it differs most from its surface's table (<code>validation/truth_error_slices.py</code>); then every model against each surface (points: the simulation with 99 % intervals, all bounces and first bounce; docs/microgeometry.md, comparison).</p>"#);
+        h.push_str("<p>");
         for s in slices {
-            let _ = write!(h, r#"<img src="{}"><br>"#, escape(&s.display().to_string()));
+            let _ = write!(h, r#"<img src="{}"> "#, escape(&s.display().to_string()));
         }
+        h.push_str("</p>");
     }
     h.push_str("</div>");
     h
