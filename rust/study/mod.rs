@@ -242,6 +242,10 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
     let mut configurations: Vec<(Configuration, PathBuf)> =
         main_run().into_iter().map(|m| (m, scene.to_path_buf())).collect();
     let truth_dir = PathBuf::from(&name).join("truth");
+    // A missing table is an error; a scene that cannot be derived only loses the surfaces.
+    for file in TRUTHS.iter().filter_map(|t| t.table()) {
+        truth::table_source(file)?;
+    }
     let truths: Result<Vec<_>, String> =
         TRUTHS.iter().map(|t| derived_scene(scene, *t, opts, &truth_dir).map(|f| (*t, opts.out.join(f)))).collect();
     match truths {
