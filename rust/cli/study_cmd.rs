@@ -3,7 +3,7 @@
 //! series of the regions that ask for one.
 
 use super::render_cmd::parse_defines;
-use crate::study::{self, Study, StudyOptions, convergence, variants};
+use crate::study::{self, Study, StudyOptions, convergence, truth, variants};
 use crate::validate::passes::Renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -83,14 +83,17 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         convergence_spp: if a.no_convergence { Vec::new() } else { a.convergence_spp.clone() },
         mitsuba_variant: a.variant.clone(),
     };
-    // Progress total: main run, variants, convergence series.
-    let mut total = (scenes.len() * study::configuration::main_run().len() * 2) as u64 * a.passes as u64;
+    // Progress total: main run (models and true surfaces), variants, true-surface comparison,
+    // convergence series.
+    let per_scene = study::configuration::main_run().len() + study::configuration::TRUTHS.len();
+    let mut total = (scenes.len() * per_scene * 2) as u64 * a.passes as u64;
     let mut series_regions = Vec::new();
     for scene in &scenes {
         let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
         if opts.variants_for(&name) {
             total += variants::pass_count(a.passes);
         }
+        total += truth::pass_count(&opts, &name);
         if !opts.convergence_spp.is_empty() {
             for r in study::load_regions(scene)
                 .map_err(|e| format!("{}: {e}", scene.display()))?
@@ -114,12 +117,20 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     };
     let mut studies = Vec::new();
     let mut variant_studies = Vec::new();
+    let mut truth_studies = Vec::new();
     for scene in &scenes {
         let s = study::study_scene(scene, &opts, &progress).map_err(|e| format!("{}: {e}", scene.display()))?;
-        if opts.variants_for(&s.name) {
-            variant_studies
-                .push(variants::run(&s, &opts, &progress).map_err(|e| format!("{}: variants: {e}", scene.display()))?);
+        let v = if opts.variants_for(&s.name) {
+            Some(variants::run(&s, &opts, &progress).map_err(|e| format!("{}: variants: {e}", scene.display()))?)
+        } else {
+            None
+        };
+        if let Some(t) = truth::run(&s, v.as_ref(), &opts, &progress)
+            .map_err(|e| format!("{}: true surfaces: {e}", scene.display()))?
+        {
+            truth_studies.push(t);
         }
+        variant_studies.extend(v);
         studies.push(s);
     }
     let mut series = Vec::new();
@@ -140,6 +151,7 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         spp: a.spp,
         scenes: studies,
         variants: variant_studies,
+        truths: truth_studies,
         convergence: series,
     };
     study::report::write(&a.out, &study)?;

@@ -4,6 +4,7 @@
 use super::configuration::{Configuration, VARIANTS, main_run};
 use super::convergence::Series;
 use super::ratio::{Ratio, Relation};
+use super::truth::{TruthStudy, Verdict};
 use super::variants::VariantStudy;
 use super::{Lighting, SceneStudy, Study};
 
@@ -20,8 +21,8 @@ fn decimals(hw: f64, min: usize) -> usize {
     ((-hw.log10().floor()) as i64).clamp(min as i64, min as i64 + 3) as usize
 }
 
-/// `ratio ± half-width`.
-fn ci(r: Ratio) -> String {
+/// `ratio ± half-width`, with the decimals its half-width needs.
+pub(crate) fn ci(r: Ratio) -> String {
     let d = decimals(r.half_width, 3);
     format!("{:.*} ± {:.*}", d, r.value, d, r.half_width)
 }
@@ -40,6 +41,10 @@ fn change(r: Ratio) -> Ratio {
 /// One sentence per observation that the measurements at hand can answer.
 pub fn answers(study: &Study) -> Vec<String> {
     let mut out = scene_answers(&study.scenes);
+    out.extend(truth_summary(&study.truths));
+    for t in &study.truths {
+        out.extend(truth_answers(t));
+    }
     for v in &study.variants {
         out.extend(variant_answers(v));
     }
@@ -89,7 +94,8 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
             });
         }
         // The paper's "Ginneken darkest": van Ginneken's rank among the models (1 = darkest).
-        let mut global: Vec<_> = s.results.iter().filter(|r| r.lighting == Lighting::Global).collect();
+        let mut global: Vec<_> =
+            s.results.iter().filter(|r| r.lighting == Lighting::Global && !r.model.is_truth()).collect();
         global.sort_by(|a, b| a.ratio.value.total_cmp(&b.ratio.value));
         if let (Some(rank), Some(on)) = (
             global.iter().position(|r| r.model == Configuration::Ginneken),
@@ -109,7 +115,7 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
         let darkest = s
             .results
             .iter()
-            .filter(|r| r.lighting == Lighting::Global)
+            .filter(|r| r.lighting == Lighting::Global && !r.model.is_truth())
             .min_by(|a, b| a.ratio.value.total_cmp(&b.ratio.value))
             .map(|r| (r.model.label(), r.ratio));
         if let Some((label, r)) = darkest {
@@ -135,6 +141,96 @@ fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
                 ));
             }
         }
+    }
+    out
+}
+
+/// The paper's question against the true surfaces, over every scene lit globally.
+pub fn truth_summary(truths: &[TruthStudy]) -> Option<String> {
+    let verdicts: Vec<Verdict> = truths
+        .iter()
+        .flat_map(|t| t.models().into_iter().filter_map(|m| t.growth(m).map(|g| g.1)))
+        .filter(|v| *v != Verdict::DirectOnly)
+        .collect();
+    if verdicts.is_empty() {
+        return None;
+    }
+    let count = |v: Verdict| verdicts.iter().filter(|x| **x == v).count();
+    Some(format!(
+        "Question against the true surfaces (does a rough model's difference from the surface it describes grow under global illumination?): it grows in {} of {} scene×model cases, shrinks in {} and is undecided in {} (99 % interval of Δ; scenes lit directly only left out).",
+        count(Verdict::Grows),
+        verdicts.len(),
+        count(Verdict::Shrinks),
+        count(Verdict::Undecided)
+    ))
+}
+
+/// The paper's question against the true surfaces: per model, its ratio to its own surface
+/// and whether the difference grows under global illumination; per lighting, the closest model.
+pub fn truth_answers(t: &TruthStudy) -> Vec<String> {
+    let mut out = Vec::new();
+    for m in t.models() {
+        let (Some(g), Some(d), Some((delta, verdict))) =
+            (t.comparison(m, Lighting::Global), t.comparison(m, Lighting::Direct), t.growth(m))
+        else {
+            continue;
+        };
+        let surface = g.truth.label();
+        out.push(match verdict {
+            Verdict::DirectOnly => format!(
+                "{}: {} / its surface, {surface}, = {} (the scene is lit directly only).",
+                t.scene_name,
+                m.label(),
+                ci(g.ratio)
+            ),
+            Verdict::Undecided => format!(
+                "{}: {} / its surface, {surface}, = {} under global illumination and {} under direct lighting; whether the difference grows under global illumination is undecided (Δ = {}, the interval contains 0).",
+                t.scene_name,
+                m.label(),
+                ci(g.ratio),
+                ci(d.ratio),
+                pct_ci(delta)
+            ),
+            v => format!(
+                "{}: {} / its surface, {surface}, = {} under global illumination and {} under direct lighting; the difference from the surface {} under global illumination (Δ = {}).",
+                t.scene_name,
+                m.label(),
+                ci(g.ratio),
+                ci(d.ratio),
+                v.name(),
+                pct_ci(delta)
+            ),
+        });
+    }
+    out.extend(closest_answers(t));
+    out
+}
+
+/// Per lighting: the model closest to its own surface, and by how much.
+pub fn closest_answers(t: &TruthStudy) -> Vec<String> {
+    let mut out = Vec::new();
+    let lightings: &[Lighting] =
+        if t.direct_only { &[Lighting::Direct] } else { &[Lighting::Global, Lighting::Direct] };
+    for &l in lightings {
+        let ranking = t.ranking(l);
+        let Some(best) = ranking.first() else { continue };
+        let setting = if t.direct_only { String::new() } else { format!(", {} lighting", l.name()) };
+        let next = match ranking.get(1) {
+            Some(n) => format!(
+                "; the next, {}, is {} off its surface, {:.1} percentage points further",
+                n.model.label(),
+                pct_ci(change(n.ratio)),
+                100.0 * ((n.ratio.value - 1.0).abs() - (best.ratio.value - 1.0).abs())
+            ),
+            None => String::new(),
+        };
+        out.push(format!(
+            "{}{setting}: the model closest to its own surface is {}, {} off {}{next}.",
+            t.scene_name,
+            best.model.label(),
+            pct_ci(change(best.ratio)),
+            best.truth.label()
+        ));
     }
     out
 }

@@ -2,7 +2,9 @@
 //! that distinguishes a variant, and the names the report, the strips and study.json use.
 //! The main run ([`main_run`]: the paper's models, then every other registered model marked
 //! `in_study`), the model variants ([`VARIANTS`]) and the convergence series ([`SERIES`]) are
-//! lists of these configurations.
+//! lists of these configurations. The true surfaces ([`TRUTHS`]: the simulated microsurfaces
+//! as `tabulated_brdf` tables, `docs/microgeometry.md`) are configurations too, rendered
+//! beside the main run; [`Configuration::true_surface`] names each model's own.
 //!
 //! What the variants mean: `docs/models.md#oren-nayar-qualitative`, `#oren-nayar-full` and
 //! `#wolff-normalisations` (Wolff's constant K).
@@ -20,6 +22,10 @@ pub enum Configuration {
     Eon,
     /// Another registered model (`crate::brdf::MODELS`, by plugin name) at its defaults.
     Registered(&'static str),
+    /// The true surface of Oren–Nayar and EON: V-cavities, σ = 0.3, as a `tabulated_brdf`.
+    TruthVCavities,
+    /// The true surface of van Ginneken: a Gaussian height field, m = 0.3, as a `tabulated_brdf`.
+    TruthHeightField,
 }
 
 /// The paper's four models (its column order) and EON as a fifth, each with the plugin's
@@ -57,6 +63,14 @@ pub const VARIANTS: [Configuration; 5] = [
 /// tracked over spp.
 pub const SERIES: [Configuration; 3] =
     [Configuration::Lambert, Configuration::OrenNayarQualitative, Configuration::OrenNayarFull];
+
+/// The simulated surfaces the study renders beside the models (`validation/ground_truth/`).
+pub const TRUTHS: [Configuration; 2] = [Configuration::TruthVCavities, Configuration::TruthHeightField];
+
+/// The models that describe a simulated surface, each compared with its own
+/// ([`Configuration::true_surface`]); Lambert and Wolff describe none.
+pub const WITH_TRUTH: [Configuration; 4] =
+    [Configuration::OrenNayarQualitative, Configuration::OrenNayarFull, Configuration::Eon, Configuration::Ginneken];
 
 struct Entry {
     key: &'static str,
@@ -135,6 +149,22 @@ impl Configuration {
                 property: None,
                 meaning: "Energy-preserving Oren–Nayar (Portsmouth et al. 2025).",
             },
+            TruthVCavities => Entry {
+                key: "truth_v_cavities",
+                bsdf: "tabulated_brdf",
+                label: "V-cavities σ=0.3",
+                tile: "V-cav",
+                property: None,
+                meaning: "Oren & Nayar's surface, simulated: long symmetric V-cavities with Lambertian facets, Gaussian slope angles σ = 0.3, all interreflections (validation/ground_truth/v_cavities_sigma0.3.json).",
+            },
+            TruthHeightField => Entry {
+                key: "truth_height_field",
+                bsdf: "tabulated_brdf",
+                label: "height field m=0.3",
+                tile: "H-field",
+                property: None,
+                meaning: "van Ginneken's surface, simulated: a Gaussian random height field with Lambertian facets, rms slope m = 0.3, all interreflections (validation/ground_truth/height_field_m0.3.json).",
+            },
             Registered(name) => {
                 let spec = crate::brdf::spec(name).expect("a registered model");
                 Entry {
@@ -179,6 +209,30 @@ impl Configuration {
         self.entry().meaning
     }
 
+    /// The table file of a true surface, in `validation/ground_truth/`.
+    pub fn table(self) -> Option<&'static str> {
+        match self {
+            Configuration::TruthVCavities => Some("v_cavities_sigma0.3.json"),
+            Configuration::TruthHeightField => Some("height_field_m0.3.json"),
+            _ => None,
+        }
+    }
+
+    /// Whether this is a simulated surface rather than a model.
+    pub fn is_truth(self) -> bool {
+        self.table().is_some()
+    }
+
+    /// The simulated surface this model describes, at the study's roughness 0.3 (σ, m, r).
+    pub fn true_surface(self) -> Option<Configuration> {
+        use Configuration::*;
+        match self {
+            OrenNayarQualitative | OrenNayarFull | Eon => Some(TruthVCavities),
+            Ginneken => Some(TruthHeightField),
+            _ => None,
+        }
+    }
+
     /// Whether the plugin's defaults give this configuration, so the main run already
     /// rendered it (no derived scene needed).
     pub fn is_main_run(self) -> bool {
@@ -204,8 +258,20 @@ mod tests {
     }
 
     #[test]
+    fn models_with_a_truth_are_those_whose_surface_is_simulated() {
+        for c in [main_run().as_slice(), &VARIANTS].concat() {
+            assert_eq!(c.true_surface().is_some(), WITH_TRUTH.contains(&c), "{c:?}");
+        }
+        for t in TRUTHS {
+            assert!(t.is_truth() && t.true_surface().is_none() && !main_run().contains(&t));
+            let file = crate::validate::passes::repo_root().join("validation/ground_truth").join(t.table().unwrap());
+            assert!(file.is_file(), "{}", file.display());
+        }
+    }
+
+    #[test]
     fn keys_are_unique() {
-        let all = [main_run().as_slice(), &VARIANTS, &SERIES].concat();
+        let all = [main_run().as_slice(), &VARIANTS, &SERIES, &TRUTHS].concat();
         for a in &all {
             for b in &all {
                 assert!(a == b || a.key() != b.key(), "{a:?} and {b:?} share a key");

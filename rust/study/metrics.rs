@@ -41,9 +41,24 @@ pub fn luminance_ratio(model: &Moments, lambert: &Moments) -> Ratio {
 
 /// Mean and 99 % interval of the per-pass luminance ratios of paired pass means.
 pub fn paired_luminance_ratio(model: &[DVec3], lambert: &[DVec3]) -> Ratio {
-    let ratios: Vec<f64> =
-        model.iter().zip(lambert).map(|(m, l)| luminance_d(*m) / luminance_d(*l).max(1e-12)).collect();
-    mean_ci99(&ratios)
+    mean_ci99(&pass_ratios(model, lambert))
+}
+
+/// The per-pass luminance ratios of paired pass means, model / reference.
+pub fn pass_ratios(model: &[DVec3], reference: &[DVec3]) -> Vec<f64> {
+    model.iter().zip(reference).map(|(m, r)| luminance_d(*m) / luminance_d(*r).max(1e-12)).collect()
+}
+
+/// Δ = |r_global − 1| − |r_direct − 1| with its 99 % interval, from the per-pass ratios of
+/// both lightings (pass k of each shares its seed). Each |· − 1| takes its sign from the mean
+/// ratio, so Δ is linear in the passes: the mean of the per-pass
+/// `s_g (r_global,k − 1) − s_d (r_direct,k − 1)` is Δ exactly, and its Student-t interval is
+/// paired per seed. Positive: further from the reference under global illumination.
+pub fn growth(global: &[f64], direct: &[f64]) -> Ratio {
+    let sign = |xs: &[f64]| if xs.iter().sum::<f64>() / xs.len() as f64 >= 1.0 { 1.0 } else { -1.0 };
+    let (sg, sd) = (sign(global), sign(direct));
+    let d: Vec<f64> = global.iter().zip(direct).map(|(g, d)| sg * (g - 1.0) - sd * (d - 1.0)).collect();
+    mean_ci99(&d)
 }
 
 /// Per-pixel relative luminance difference (model − Lambert) / Lambert; pixels darker than

@@ -11,6 +11,10 @@
 //! ([`variant_scene`]), paired with the main run's Lambert; [`convergence`] renders a
 //! region's Oren–Nayar / Lambert ratio at increasing spp with both renderers (is the paper's
 //! "glow" real or a bias?).
+//!
+//! The true surfaces ([`configuration::TRUTHS`], simulated microsurfaces as tabulated BRDFs)
+//! are rendered beside the models through derived scenes, with the same seeds; [`truth`]
+//! restates the paper's question against them: each rough model / its own surface.
 
 pub mod answers;
 pub mod configuration;
@@ -20,6 +24,7 @@ pub mod metrics;
 pub mod ratio;
 pub mod report;
 pub mod strip;
+pub mod truth;
 pub mod variant_scene;
 pub mod variants;
 
@@ -27,9 +32,11 @@ use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
 use crate::validate::passes::Renderer;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
-use configuration::{Configuration, main_run};
+use configuration::{Configuration, TRUTHS, main_run};
+use glam::DVec3;
 use ratio::{Ratio, RegionRatio};
 use std::path::{Path, PathBuf};
+use variant_scene::{Derivation, DerivedProperty};
 
 /// Global illumination (scene's max_depth) or direct lighting (max_depth 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -79,6 +86,8 @@ pub struct ModelResult {
     pub model: Configuration,
     pub lighting: Lighting,
     pub mean: Image,
+    /// Per-pass image means, in seed order (for ratios paired with other configurations).
+    pub pass_means: Vec<DVec3>,
     /// Luminance ratio to Lambert (same lighting) with its 99 % interval.
     pub ratio: Ratio,
     /// Mean |relative difference| to Lambert on edge pixels and on flat pixels.
@@ -155,6 +164,9 @@ pub struct SceneStudy {
     pub difference_ranges: Vec<(Lighting, f32)>,
     /// Lambert's passes per lighting: the variants are paired with them.
     pub lambert: Vec<(Lighting, Side)>,
+    /// What could not be rendered, and why (e.g. a scene whose `$bsdf` is in an included file
+    /// cannot take a true surface's table).
+    pub notes: Vec<String>,
 }
 
 impl SceneStudy {
@@ -174,6 +186,8 @@ pub struct Study {
     pub spp: u32,
     pub scenes: Vec<SceneStudy>,
     pub variants: Vec<variants::VariantStudy>,
+    /// Per scene with true surfaces: the models against them.
+    pub truths: Vec<truth::TruthStudy>,
     pub convergence: Vec<convergence::Series>,
 }
 
@@ -223,13 +237,28 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
     let mut ranges = Vec::new();
     let mut lamberts = Vec::new();
     let regions = load_regions(scene)?;
+    let mut notes = Vec::new();
+    // The models on the scene itself, then the true surfaces on their derived scenes.
+    let mut configurations: Vec<(Configuration, PathBuf)> =
+        main_run().into_iter().map(|m| (m, scene.to_path_buf())).collect();
+    let truth_dir = PathBuf::from(&name).join("truth");
+    // A missing table is an error; a scene that cannot be derived only loses the surfaces.
+    for file in TRUTHS.iter().filter_map(|t| t.table()) {
+        truth::table_source(file)?;
+    }
+    let truths: Result<Vec<_>, String> =
+        TRUTHS.iter().map(|t| derived_scene(scene, *t, opts, &truth_dir).map(|f| (*t, opts.out.join(f)))).collect();
+    match truths {
+        Ok(t) => configurations.extend(t),
+        Err(e) => notes.push(format!("The true surfaces were not rendered: {e}")),
+    }
     for lighting in [Lighting::Global, Lighting::Direct] {
         let mut sides: Vec<(Configuration, Side)> = Vec::new();
-        for model in main_run() {
+        for (model, file) in &configurations {
             let defines = image_defines(opts, model.bsdf(), lighting);
             let what = format!("{name} {} {}", lighting.name(), model.label());
-            let side = render_side(scene, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
-            sides.push((model, side));
+            let side = render_side(file, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
+            sides.push((*model, side));
         }
         let lambert = &sides[0].1;
         let lambert_img = lambert.moments.mean_image();
@@ -241,13 +270,14 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
         let mut tiles = Vec::new();
         let mut diff_tiles = Vec::new();
         for (((model, side), mean), rel) in sides.iter().zip(means).zip(&rels) {
-            let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.bsdf()));
+            let exr = PathBuf::from(&name).join(format!("{}_{}.exr", lighting.name(), model.key()));
             image_io::write_exr(&opts.out.join(&exr), &mean)?;
             tiles.push(strip::StripTile::from_image(model.tile(), &mean));
             diff_tiles.push(strip::StripTile::from_difference(model.tile(), mean.width, mean.height, rel, range));
             results.push(ModelResult {
                 model: *model,
                 lighting,
+                pass_means: side.moments.pass_means.clone(),
                 ratio: metrics::luminance_ratio(&side.moments, &lambert.moments),
                 edge_flat: metrics::edge_vs_flat(rel, &edges),
                 seconds: side.seconds,
@@ -265,7 +295,36 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
             lamberts.push((lighting, side));
         }
     }
-    Ok(SceneStudy { scene: scene.to_path_buf(), name, results, strips, difference_ranges: ranges, lambert: lamberts })
+    Ok(SceneStudy {
+        scene: scene.to_path_buf(),
+        name,
+        results,
+        strips,
+        difference_ranges: ranges,
+        lambert: lamberts,
+        notes,
+    })
+}
+
+/// The derived scene of a configuration that is not the plugin's defaults, written to
+/// `<out>/<rel_dir>/<key>.xml` (path returned relative to the output folder): its property
+/// in every `<bsdf type="$bsdf">`, or for a true surface its table, copied beside the derived
+/// scene and named by its absolute path (both renderers load it from there).
+pub fn derived_scene(scene: &Path, c: Configuration, opts: &StudyOptions, rel_dir: &Path) -> Result<PathBuf, String> {
+    let dir = opts.out.join(rel_dir);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let mut properties: Vec<DerivedProperty> =
+        c.property().map(|(k, x)| vec![DerivedProperty::string(k, x)]).unwrap_or_default();
+    if let Some(file) = c.table() {
+        let source = truth::table_source(file)?;
+        let copy = std::path::absolute(dir.join(file)).map_err(|e| format!("{}: {e}", dir.display()))?;
+        std::fs::copy(&source, &copy).map_err(|e| format!("{} → {}: {e}", source.display(), copy.display()))?;
+        properties.push(DerivedProperty::string("filename", &copy.to_string_lossy()));
+    }
+    let scene_file = rel_dir.join(format!("{}.xml", c.key()));
+    let derivation = Derivation { bsdf: Some(c.bsdf().into()), bsdf_properties: properties, ..Default::default() };
+    variant_scene::write_derived(scene, &opts.out.join(&scene_file), &derivation)?;
+    Ok(scene_file)
 }
 
 /// Each region's luminance ratio of `side` to Lambert's passes (paired by pass).

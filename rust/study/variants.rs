@@ -10,10 +10,10 @@
 
 use super::configuration::{Configuration, VARIANTS};
 use super::ratio::{Ratio, RegionRatio};
-use super::variant_scene::{self, Derivation, DerivedProperty};
 use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
 use crate::render::film::Image;
 use crate::render::image_io;
+use glam::DVec3;
 use std::path::PathBuf;
 
 /// One variant in one lighting setting.
@@ -24,6 +24,10 @@ pub struct VariantResult {
     pub ratio: Ratio,
     /// Per named region: ratio to Lambert.
     pub regions: Vec<RegionRatio>,
+    /// Per-pass image means, in seed order.
+    pub pass_means: Vec<DVec3>,
+    /// Mean image.
+    pub mean: Image,
     /// Render time; `None` for the main run's images.
     pub seconds: Option<f64>,
     /// Mean image (EXR), relative to the output folder.
@@ -63,17 +67,11 @@ pub fn run(study: &SceneStudy, opts: &StudyOptions, progress: &dyn Fn(&str, u32)
         let lambert_img = lambert.moments.mean_image();
         let mut images: Vec<(&str, Image)> = vec![("Lambert", lambert_img.clone())];
         for v in VARIANTS {
-            let (ratio, regs, seconds, exr, scene_file, mean) = if v.is_main_run() {
+            let (ratio, regs, seconds, exr, scene_file, mean, pass_means) = if v.is_main_run() {
                 let r = study.result(v, lighting).ok_or_else(|| format!("the main run has no {} image", v.label()))?;
-                (r.ratio, r.regions.clone(), None, r.exr.clone(), None, r.mean.clone())
+                (r.ratio, r.regions.clone(), None, r.exr.clone(), None, r.mean.clone(), r.pass_means.clone())
             } else {
-                let scene_file = rel_dir.join(format!("{}.xml", v.key()));
-                let derivation = Derivation {
-                    bsdf: Some(v.bsdf().into()),
-                    bsdf_properties: v.property().map(|(k, x)| vec![DerivedProperty::string(k, x)]).unwrap_or_default(),
-                    ..Default::default()
-                };
-                variant_scene::write_derived(&study.scene, &opts.out.join(&scene_file), &derivation)?;
+                let scene_file = super::derived_scene(&study.scene, v, opts, &rel_dir)?;
                 let what = format!("{} {} {}", study.name, lighting.name(), v.label());
                 let defines = super::image_defines(opts, v.bsdf(), lighting);
                 let side = super::render_side(
@@ -95,10 +93,21 @@ pub fn run(study: &SceneStudy, opts: &StudyOptions, progress: &dyn Fn(&str, u32)
                     exr,
                     Some(scene_file),
                     mean,
+                    side.moments.pass_means,
                 )
             };
-            images.push((v.tile(), mean));
-            results.push(VariantResult { variant: v, lighting, ratio, regions: regs, seconds, exr, scene_file });
+            images.push((v.tile(), mean.clone()));
+            results.push(VariantResult {
+                variant: v,
+                lighting,
+                ratio,
+                regions: regs,
+                pass_means,
+                mean,
+                seconds,
+                exr,
+                scene_file,
+            });
         }
         let rels: Vec<Vec<f32>> =
             images.iter().map(|(_, m)| metrics::relative_difference(m, &lambert_img, 1e-4)).collect();

@@ -55,6 +55,9 @@ fn study_run_writes_strips_report_and_sane_numbers() {
         refs += 1;
     }
     assert_eq!(refs, 4, "two strips and two heatmap strips");
+    // The scene's $bsdf is in an included file: no true surfaces, and the report says why.
+    assert!(j["scenes"][0]["notes"][0].as_str().is_some_and(|n| n.contains("$bsdf")), "{}", j["scenes"][0]["notes"]);
+    assert!(j["truths"]["scenes"].as_array().is_some_and(Vec::is_empty));
     let _ = std::fs::remove_dir_all(&out);
 }
 
@@ -412,4 +415,136 @@ fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
     }
     let _ = std::fs::remove_dir_all(&out);
     let _ = std::fs::remove_dir_all(&no_venv);
+}
+
+// ---- True surfaces ---------------------------------------------------------------------------
+
+fn study_options(out: &Path) -> matte::study::StudyOptions {
+    matte::study::StudyOptions {
+        out: out.to_path_buf(),
+        passes: 2,
+        spp: 2,
+        seed: 0,
+        res: None,
+        renderer: matte::validate::passes::Renderer::Matte,
+        defines: Vec::new(),
+        variant_scenes: Vec::new(),
+        convergence_spp: Vec::new(),
+        mitsuba_variant: "scalar_rgb".into(),
+    }
+}
+
+#[test]
+fn derived_true_surface_scene_names_its_table_by_an_absolute_existing_path() {
+    use matte::study::configuration::TRUTHS;
+    let out = temp_dir("truth_scene");
+    let cornell = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/study/cornell.xml");
+    for t in TRUTHS {
+        let file =
+            matte::study::derived_scene(&cornell, t, &study_options(&out), Path::new("cornell/truth")).expect("derive");
+        let text = std::fs::read_to_string(out.join(&file)).unwrap();
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let default = doc.descendants().find(|n| n.has_tag_name("default") && n.attribute("name") == Some("bsdf"));
+        assert_eq!(default.and_then(|d| d.attribute("value")), Some("tabulated_brdf"));
+        let mut n = 0;
+        for b in doc.descendants().filter(|b| b.attribute("type") == Some("$bsdf")) {
+            let f = b.children().find(|c| c.attribute("name") == Some("filename")).expect("a filename in every $bsdf");
+            let path = PathBuf::from(f.attribute("value").unwrap());
+            assert!(path.is_absolute() && path.is_file(), "{}", path.display());
+            assert_eq!(path.file_name().and_then(|s| s.to_str()), t.table());
+            n += 1;
+        }
+        assert_eq!(n, 3, "cornell's white, green and red");
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn truth_ratio_and_growth_match_hand_computed_values() {
+    use glam::DVec3;
+    use matte::study::metrics::{growth, mean_ci99, pass_ratios};
+    use matte::study::truth::Verdict;
+    // Per-pass model / surface: global 0.90, 0.92, 0.94, 0.96 (mean 0.93, s² = 0.002/3);
+    // direct 0.95, 0.96, 0.97, 0.96 (mean 0.96). Luminance of a grey (x, x, x) is x.
+    let truth: Vec<DVec3> = [2.0, 3.0, 4.0, 5.0].iter().map(|&x| DVec3::splat(x)).collect();
+    let scaled = |r: [f64; 4]| -> Vec<DVec3> { truth.iter().zip(r).map(|(t, r)| *t * r).collect() };
+    let g = pass_ratios(&scaled([0.90, 0.92, 0.94, 0.96]), &truth);
+    let d = pass_ratios(&scaled([0.95, 0.96, 0.97, 0.96]), &truth);
+    let t995 = 5.840909; // Student t, 3 degrees of freedom, 0.995
+    let r = mean_ci99(&g);
+    assert!((r.value - 0.93).abs() < 1e-12 && (r.half_width - t995 * (0.002f64 / 3.0 / 4.0).sqrt()).abs() < 1e-6);
+    // Δ_k = −(g_k − 1) + (d_k − 1) = 0.05, 0.04, 0.03, 0.00: mean 0.03 = |0.93 − 1| − |0.96 − 1|,
+    // s² = 0.0014/3.
+    let delta = growth(&g, &d);
+    assert!((delta.value - 0.03).abs() < 1e-12, "{delta:?}");
+    assert!((delta.half_width - t995 * (0.0014f64 / 3.0 / 4.0).sqrt()).abs() < 1e-6, "{delta:?}");
+    assert_eq!(Verdict::of(delta, false), Verdict::Undecided);
+    // Above 1 under global illumination: its sign flips, Δ = (1.10 − 1) − |0.96 − 1| = 0.06.
+    let g_up = pass_ratios(&scaled([1.09, 1.10, 1.11, 1.10]), &truth);
+    let up = growth(&g_up, &d);
+    assert!((up.value - 0.06).abs() < 1e-12, "{up:?}");
+    assert_eq!(Verdict::of(up, false), Verdict::Grows);
+    assert_eq!(Verdict::of(growth(&d, &g_up), false), Verdict::Shrinks);
+    assert_eq!(Verdict::of(up, true), Verdict::DirectOnly);
+}
+
+#[test]
+fn study_compares_each_rough_model_with_its_own_surface() {
+    let out = temp_dir("e2e_truth");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/study/cornell.xml");
+    let o = Command::new(env!("CARGO_BIN_EXE_matte"))
+        .args(["study", scene, "--spp", "4", "--passes", "2", "--res", "16", "--no-variants", "--no-convergence"])
+        .args(["-q", "-o"])
+        .arg(&out)
+        .output()
+        .expect("run matte");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+    let models = j["scenes"][0]["models"].as_array().expect("models");
+    let by_key = |k: &str| models.iter().find(|m| m["key"] == k).unwrap_or_else(|| panic!("no {k} in {models:?}"));
+    for k in ["truth_v_cavities", "truth_height_field"] {
+        assert!(by_key(k)["ratio_global"].as_f64().is_some_and(f64::is_finite), "{k}: its ratio to Lambert");
+    }
+    let truth = &j["truths"]["scenes"][0];
+    let comparisons = truth["comparisons"].as_array().expect("comparisons");
+    let keys: Vec<&str> = comparisons.iter().map(|c| c["model"].as_str().unwrap()).collect();
+    assert_eq!(keys, ["oren_nayar_qualitative", "oren_nayar_full", "eon", "ginneken"]);
+    assert_eq!(j["truths"]["without_surface"][0], "lambert");
+    for c in comparisons {
+        for k in ["ratio_global", "ratio_global_ci99", "ratio_direct", "growth", "growth_ci99"] {
+            assert!(c[k].as_f64().is_some_and(f64::is_finite), "{k} of {c}");
+        }
+        assert!(["grows", "shrinks", "undecided"].contains(&c["verdict"].as_str().unwrap()), "{c}");
+        if c["model"] == "oren_nayar_full" {
+            continue; // rendered for the comparison only, not in the main run
+        }
+        // Per pass, model / surface = (model / Lambert) / (surface / Lambert) up to rounding.
+        let (m, t) = (by_key(c["model"].as_str().unwrap()), by_key(c["truth"].as_str().unwrap()));
+        for l in ["global", "direct"] {
+            let key = format!("pass_ratios_{l}");
+            let (direct, ml, tl) =
+                (c[&key].as_array().unwrap(), m[&key].as_array().unwrap(), t[&key].as_array().unwrap());
+            assert_eq!(direct.len(), 2);
+            for ((r, a), b) in direct.iter().zip(ml).zip(tl) {
+                let (r, via) = (r.as_f64().unwrap(), a.as_f64().unwrap() / b.as_f64().unwrap());
+                assert!((r / via - 1.0).abs() < 1e-12, "{} {l}: {r} vs {via}", c["model"]);
+            }
+        }
+    }
+    let full = truth["scene_file"].as_str().expect("Oren–Nayar full's derived scene");
+    assert!(out.join(full).is_file());
+    assert!(
+        j["answers"].as_array().unwrap().iter().any(|a| a.as_str().unwrap().contains("closest to its own surface"))
+    );
+    let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
+    assert!(html.contains("model / surface, global") && html.contains("describe no simulated surface"));
+    let mut truth_strips = 0;
+    for part in html.split("src=\"").skip(1) {
+        let file = part.split('"').next().unwrap();
+        assert!(out.join(file).is_file(), "report names a missing file {file}");
+        truth_strips += file.starts_with("cornell/truth/difference_") as usize;
+    }
+    assert_eq!(truth_strips, 2, "a (model − surface) heatmap strip per lighting");
+    assert!(out.join("truth.json").is_file());
+    let _ = std::fs::remove_dir_all(&out);
 }

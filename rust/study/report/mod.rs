@@ -1,18 +1,21 @@
 //! `study.json` and `report.html`. The page has one section per kind of result, each in its
 //! own file with both its JSON and its HTML: the main run per scene ([`scenes`]: strips,
 //! heatmaps, ratios to Lambert under global and direct lighting), the model variants
-//! ([`variants_section`]) and the convergence series ([`convergence_section`], with its plot in [`plot`]).
+//! ([`variants_section`]), the models against their true surfaces ([`truth_section`]) and the
+//! convergence series ([`convergence_section`], with its plot in [`plot`]). The true-surface
+//! part is also written on its own as `truth.json`.
 
 pub mod convergence_section;
 pub mod plot;
 pub mod scenes;
+pub mod truth_section;
 pub mod variants_section;
 
 use super::{Lighting, Study};
 use crate::markup::escape;
 use serde::Serialize;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// study.json.
 #[derive(Serialize)]
@@ -24,6 +27,8 @@ pub struct StudyJson {
     pub answers: Vec<String>,
     pub scenes: Vec<scenes::SceneJson>,
     pub variants: Vec<variants_section::VariantsJson>,
+    /// The rough models against the surfaces they describe.
+    pub truths: truth_section::TruthsJson,
     pub convergence: Vec<convergence_section::SeriesJson>,
 }
 
@@ -72,6 +77,7 @@ pub fn json(study: &Study) -> StudyJson {
         answers: super::answers::answers(study),
         scenes: study.scenes.iter().map(scenes::json).collect(),
         variants: study.variants.iter().map(variants_section::json).collect(),
+        truths: truth_section::json(&study.truths),
         convergence: study.convergence.iter().map(convergence_section::json).collect(),
     }
 }
@@ -93,7 +99,8 @@ pub(super) fn ratio_cell(r: super::ratio::Ratio) -> String {
     format!("<td>{:.4} ± {:.4}</td>", r.value, r.half_width)
 }
 
-pub fn html(study: &Study) -> String {
+/// report.html; `slices` are the BRDF slice plots copied next to it (relative to it).
+pub fn html(study: &Study, slices: &[PathBuf]) -> String {
     let mut h = String::new();
     let _ = write!(
         h,
@@ -117,6 +124,9 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
         let _ = write!(h, "<li>{}</li>", escape(&a));
     }
     h.push_str("</ul>");
+    if !study.truths.is_empty() {
+        h.push_str(&truth_section::html(&study.truths, slices));
+    }
     for s in &study.scenes {
         h.push_str(&scenes::html(s));
     }
@@ -131,7 +141,14 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
 }
 
 pub fn write(out: &Path, study: &Study) -> Result<(), String> {
-    let j = serde_json::to_string_pretty(&json(study)).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("study.json"), j).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("report.html"), html(study)).map_err(|e| e.to_string())
+    let j = json(study);
+    let text = serde_json::to_string_pretty(&j).map_err(|e| e.to_string())?;
+    std::fs::write(out.join("study.json"), text).map_err(|e| e.to_string())?;
+    let truth = serde_json::to_string_pretty(&serde_json::json!({
+        "renderer": j.renderer, "passes": j.passes, "spp": j.spp, "truths": j.truths,
+    }))
+    .map_err(|e| e.to_string())?;
+    std::fs::write(out.join("truth.json"), truth).map_err(|e| e.to_string())?;
+    let slices = if study.truths.is_empty() { Vec::new() } else { truth_section::copy_slices(out) };
+    std::fs::write(out.join("report.html"), html(study, &slices)).map_err(|e| e.to_string())
 }

@@ -5,8 +5,8 @@
 
 use super::{RegionJson, StripJson, ratio_cell, strips_html};
 use crate::markup::escape;
-use crate::study::configuration::main_run;
-use crate::study::{Lighting, ModelResult, SceneStudy};
+use crate::study::configuration::{TRUTHS, main_run};
+use crate::study::{Lighting, ModelResult, SceneStudy, metrics};
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -16,6 +16,8 @@ pub struct SceneJson {
     pub scene: PathBuf,
     pub strips: Vec<StripJson>,
     pub models: Vec<ModelJson>,
+    /// What could not be rendered, and why.
+    pub notes: Vec<String>,
 }
 
 /// One model in both lightings.
@@ -23,11 +25,16 @@ pub struct SceneJson {
 pub struct ModelJson {
     /// The plugin name.
     pub model: &'static str,
+    /// The configuration's key (the two true surfaces share the plugin `tabulated_brdf`).
+    pub key: &'static str,
     pub label: &'static str,
     pub ratio_global: f64,
     pub ratio_global_ci99: f64,
     pub ratio_direct: f64,
     pub ratio_direct_ci99: f64,
+    /// The per-pass ratios to Lambert, in seed order.
+    pub pass_ratios_global: Vec<f64>,
+    pub pass_ratios_direct: Vec<f64>,
     /// |ratio_global − 1| − |ratio_direct − 1|: positive when the difference to Lambert grows
     /// under global illumination.
     pub abs_difference_global_minus_direct: f64,
@@ -42,15 +49,24 @@ pub struct ModelJson {
     pub regions: Vec<RegionJson>,
 }
 
-/// Each main-run model with its global and direct results, in the table's order.
+/// Each main-run model, then each true surface, with its global and direct results, in the
+/// table's order.
 fn both_lightings(s: &SceneStudy) -> impl Iterator<Item = (&ModelResult, &ModelResult)> {
-    main_run().into_iter().filter_map(|m| Some((s.result(m, Lighting::Global)?, s.result(m, Lighting::Direct)?)))
+    main_run()
+        .into_iter()
+        .chain(TRUTHS)
+        .filter_map(|m| Some((s.result(m, Lighting::Global)?, s.result(m, Lighting::Direct)?)))
 }
 
 /// The paper's question for one model: does the difference to Lambert grow with global
 /// illumination?
 fn growth(g: &ModelResult, d: &ModelResult) -> f64 {
     (g.ratio.value - 1.0).abs() - (d.ratio.value - 1.0).abs()
+}
+
+/// A result's per-pass ratios to Lambert's passes in the same lighting.
+fn lambert_ratios(s: &SceneStudy, r: &ModelResult) -> Vec<f64> {
+    s.lambert(r.lighting).map(|l| metrics::pass_ratios(&r.pass_means, &l.moments.pass_means)).unwrap_or_default()
 }
 
 fn range_of(s: &SceneStudy, l: Lighting) -> f32 {
@@ -73,11 +89,14 @@ pub fn json(s: &SceneStudy) -> SceneJson {
         models: both_lightings(s)
             .map(|(g, d)| ModelJson {
                 model: g.model.bsdf(),
+                key: g.model.key(),
                 label: g.model.label(),
                 ratio_global: g.ratio.value,
                 ratio_global_ci99: g.ratio.half_width,
                 ratio_direct: d.ratio.value,
                 ratio_direct_ci99: d.ratio.half_width,
+                pass_ratios_global: lambert_ratios(s, g),
+                pass_ratios_direct: lambert_ratios(s, d),
                 abs_difference_global_minus_direct: growth(g, d),
                 edge_mean_abs_rel_diff_global: g.edge_flat.0,
                 flat_mean_abs_rel_diff_global: g.edge_flat.1,
@@ -90,6 +109,7 @@ pub fn json(s: &SceneStudy) -> SceneJson {
                 regions: RegionJson::pair(&g.regions, &d.regions),
             })
             .collect(),
+        notes: s.notes.clone(),
     }
 }
 
@@ -103,7 +123,8 @@ pub fn html(s: &SceneStudy) -> String {
     for (g, d) in both_lightings(s) {
         let _ = write!(
             h,
-            "<tr><td>{}</td>{}{}<td>{:+.4}</td><td>{:.3} / {:.3}</td><td>{:.3} / {:.3}</td></tr>",
+            "<tr><td>{}{}</td>{}{}<td>{:+.4}</td><td>{:.3} / {:.3}</td><td>{:.3} / {:.3}</td></tr>",
+            if g.model.is_truth() { "true surface: " } else { "" },
             escape(g.model.label()),
             ratio_cell(g.ratio),
             ratio_cell(d.ratio),
@@ -134,6 +155,9 @@ pub fn html(s: &SceneStudy) -> String {
             );
         }
         h.push_str("</table>");
+    }
+    for n in &s.notes {
+        let _ = write!(h, r#"<p class="note">{}</p>"#, escape(n));
     }
     h.push_str("</div>");
     h

@@ -1,0 +1,254 @@
+//! The true-surface section ([`crate::study::truth`]): the answer table model × scene ×
+//! lighting (ratio to its own surface, 99 % CI, Δ and whether the difference grows under
+//! global illumination), the closest model per scene, the heatmap strips (model − surface) /
+//! surface, and the BRDF slices of the models against the simulated surfaces.
+
+use crate::markup::escape;
+use crate::study::configuration::{Configuration, TRUTHS, main_run};
+use crate::study::ratio::Ratio;
+use crate::study::truth::TruthStudy;
+use crate::study::{Lighting, answers};
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// The BRDF slices of `docs/microgeometry/` shown in the section, at the study's roughness 0.3
+/// and facet albedo 0.8: per model, the slice through its largest error against its surface
+/// (`validation/truth_error_slices.py`), then both surfaces against every model.
+pub const SLICES: [&str; 6] = [
+    "truth_slice_oren_nayar_qualitative.png",
+    "truth_slice_oren_nayar_full.png",
+    "truth_slice_eon.png",
+    "truth_slice_ginneken.png",
+    "slices_v_cavities_r0.3_rho0.8.png",
+    "slices_gaussian_height_field_r0.3_rho0.8.png",
+];
+
+/// Where the report's copies of [`SLICES`] go, relative to the output folder.
+pub fn slices_dir() -> PathBuf {
+    PathBuf::from("truth_slices")
+}
+
+/// The true surfaces, over every scene.
+#[derive(Serialize)]
+pub struct TruthsJson {
+    /// The surfaces and their tables.
+    pub surfaces: Vec<SurfaceJson>,
+    /// The models rendered in the main run that describe no simulated surface.
+    pub without_surface: Vec<&'static str>,
+    pub scenes: Vec<TruthJson>,
+}
+
+#[derive(Serialize)]
+pub struct SurfaceJson {
+    pub key: &'static str,
+    pub label: &'static str,
+    pub table: &'static str,
+    pub models: Vec<&'static str>,
+}
+
+/// One scene's models against their surfaces.
+#[derive(Serialize)]
+pub struct TruthJson {
+    pub scene: String,
+    /// Global and direct lighting are one image (the scene's own max_depth is 2).
+    pub direct_only: bool,
+    pub strips: Vec<TruthStripJson>,
+    /// Oren–Nayar full's derived scene, when rendered for this comparison.
+    pub scene_file: Option<PathBuf>,
+    pub comparisons: Vec<ComparisonJson>,
+    pub answers: Vec<String>,
+}
+
+#[derive(Serialize)]
+pub struct TruthStripJson {
+    pub lighting: &'static str,
+    /// Heatmap strip (model − surface) / surface.
+    pub difference: PathBuf,
+    pub difference_range: f32,
+}
+
+/// One model against its surface in both lightings.
+#[derive(Serialize)]
+pub struct ComparisonJson {
+    pub model: &'static str,
+    pub label: &'static str,
+    pub truth: &'static str,
+    pub truth_label: &'static str,
+    /// Image-mean luminance ratio model / surface (paired passes), 99 % half-width.
+    pub ratio_global: f64,
+    pub ratio_global_ci99: f64,
+    pub ratio_direct: f64,
+    pub ratio_direct_ci99: f64,
+    /// The per-pass ratios model / surface, in seed order.
+    pub pass_ratios_global: Vec<f64>,
+    pub pass_ratios_direct: Vec<f64>,
+    /// Δ = |ratio_global − 1| − |ratio_direct − 1| and its 99 % half-width.
+    pub growth: f64,
+    pub growth_ci99: f64,
+    /// `grows`, `shrinks`, `undecided` or `direct only`.
+    pub verdict: &'static str,
+    /// Rank from the closest to its surface (1) in each lighting.
+    pub rank_global: usize,
+    pub rank_direct: usize,
+}
+
+fn comparisons(t: &TruthStudy) -> Vec<ComparisonJson> {
+    let rank = |m: Configuration, l: Lighting| t.ranking(l).iter().position(|c| c.model == m).map_or(0, |i| i + 1);
+    t.models()
+        .into_iter()
+        .filter_map(|m| {
+            let g = t.comparison(m, Lighting::Global)?;
+            let d = t.comparison(m, Lighting::Direct)?;
+            let (delta, verdict) = t.growth(m)?;
+            Some(ComparisonJson {
+                model: m.key(),
+                label: m.label(),
+                truth: g.truth.key(),
+                truth_label: g.truth.label(),
+                ratio_global: g.ratio.value,
+                ratio_global_ci99: g.ratio.half_width,
+                ratio_direct: d.ratio.value,
+                ratio_direct_ci99: d.ratio.half_width,
+                pass_ratios_global: g.pass_ratios.clone(),
+                pass_ratios_direct: d.pass_ratios.clone(),
+                growth: delta.value,
+                growth_ci99: delta.half_width,
+                verdict: verdict.name(),
+                rank_global: rank(m, Lighting::Global),
+                rank_direct: rank(m, Lighting::Direct),
+            })
+        })
+        .collect()
+}
+
+pub fn json(truths: &[TruthStudy]) -> TruthsJson {
+    TruthsJson {
+        surfaces: TRUTHS
+            .iter()
+            .map(|t| SurfaceJson {
+                key: t.key(),
+                label: t.label(),
+                table: t.table().unwrap_or_default(),
+                models: crate::study::configuration::WITH_TRUTH
+                    .iter()
+                    .filter(|m| m.true_surface() == Some(*t))
+                    .map(|m| m.key())
+                    .collect(),
+            })
+            .collect(),
+        without_surface: without_surface().iter().map(|m| m.key()).collect(),
+        scenes: truths
+            .iter()
+            .map(|t| TruthJson {
+                scene: t.scene_name.clone(),
+                direct_only: t.direct_only,
+                strips: t
+                    .strips
+                    .iter()
+                    .map(|(l, p, r)| TruthStripJson { lighting: l.name(), difference: p.clone(), difference_range: *r })
+                    .collect(),
+                scene_file: t.scene_file.clone(),
+                comparisons: comparisons(t),
+                answers: answers::truth_answers(t),
+            })
+            .collect(),
+    }
+}
+
+/// The main run's models with no simulated surface.
+fn without_surface() -> Vec<Configuration> {
+    main_run().into_iter().filter(|m| m.true_surface().is_none()).collect()
+}
+
+/// The section; `slices` are the copied slice plots (relative to the output folder).
+pub fn html(truths: &[TruthStudy], slices: &[PathBuf]) -> String {
+    let mut h = String::new();
+    h.push_str(r#"<div class="scene"><h2>The rough models against the surfaces they describe</h2><p>"#);
+    for t in TRUTHS {
+        let models: Vec<&str> = crate::study::configuration::WITH_TRUTH
+            .iter()
+            .filter(|m| m.true_surface() == Some(t))
+            .map(|m| m.label())
+            .collect();
+        let _ = write!(
+            h,
+            "<b>{}</b>, the surface of {}: {} ",
+            escape(t.label()),
+            escape(&models.join(", ")),
+            escape(t.meaning())
+        );
+    }
+    let none: Vec<&str> = without_surface().iter().map(|m| m.label()).collect();
+    let _ = write!(
+        h,
+        r#"Each surface is a <code>tabulated_brdf</code> in a derived copy of the scene (<code>&lt;scene&gt;/truth/*.xml</code>, the table beside it), rendered with the models' seeds, so model / surface is paired per pass (99 % Student-t interval over the passes).
+Δ = |ratio<sub>global</sub> − 1| − |ratio<sub>direct</sub> − 1|, the signs taken from the mean ratios, with its 99 % interval paired per seed: <i>grows</i> when the interval lies above 0 (the model is further from its surface under global illumination), <i>shrinks</i> below 0, <i>undecided</i> when it contains 0.
+Rank: 1 = the model closest to its own surface in that scene and lighting. {} describe no simulated surface and have no row.</p>"#,
+        escape(&none.join(", "))
+    );
+    h.push_str("<table><tr><th>model</th><th>surface</th><th>scene</th><th>model / surface, global</th><th>model / surface, direct</th><th>Δ</th><th>difference under GI</th><th>rank, global</th><th>rank, direct</th></tr>");
+    for t in truths {
+        for c in comparisons(t) {
+            let _ = write!(
+                h,
+                "<tr><td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td></tr>",
+                escape(c.label),
+                escape(c.truth_label),
+                escape(&t.scene_name),
+                answers::ci(Ratio::new(c.ratio_global, c.ratio_global_ci99)),
+                answers::ci(Ratio::new(c.ratio_direct, c.ratio_direct_ci99)),
+                if t.direct_only { "—".to_string() } else { answers::ci(Ratio::new(c.growth, c.growth_ci99)) },
+                c.verdict,
+                c.rank_global,
+                c.rank_direct
+            );
+        }
+    }
+    h.push_str("</table><ul>");
+    for t in truths {
+        for a in answers::closest_answers(t) {
+            let _ = write!(h, "<li>{}</li>", escape(&a));
+        }
+    }
+    h.push_str("</ul><h3>Where the models go wrong: (model − surface) / surface</h3>");
+    for t in truths {
+        for (l, path, range) in &t.strips {
+            let _ = write!(
+                h,
+                r#"<h4>{}, {} lighting</h4><img src="{}"><p>Each model against its own surface, blue −{:.0} % … red +{:.0} %.</p>"#,
+                escape(&t.scene_name),
+                l.name(),
+                escape(&path.display().to_string()),
+                range * 100.0,
+                range * 100.0
+            );
+        }
+    }
+    if !slices.is_empty() {
+        h.push_str(r#"<h3>The BRDFs against the simulated surfaces</h3><p>Facet albedo ρ = 0.8, roughness 0.3, from <code>docs/microgeometry/</code>. First, per model, the slice through the (θi, θo, Δφ) node (θ ≤ 80°) where it differs most from its surface's table (<code>validation/truth_error_slices.py</code>); then every model against each surface (points: the simulation with 99 % intervals, all bounces and first bounce; docs/microgeometry.md, comparison).</p>"#);
+        h.push_str("<p>");
+        for s in slices {
+            let _ = write!(h, r#"<img src="{}"> "#, escape(&s.display().to_string()));
+        }
+        h.push_str("</p>");
+    }
+    h.push_str("</div>");
+    h
+}
+
+/// Copies [`SLICES`] from `docs/microgeometry/` into the output folder; returns the copies
+/// (relative to `out`) that exist.
+pub fn copy_slices(out: &Path) -> Vec<PathBuf> {
+    let roots = [crate::validate::passes::repo_root(), PathBuf::from(env!("CARGO_MANIFEST_DIR"))];
+    let dir = out.join(slices_dir());
+    SLICES
+        .iter()
+        .filter_map(|name| {
+            let src = roots.iter().map(|r| r.join("docs/microgeometry").join(name)).find(|p| p.is_file())?;
+            std::fs::create_dir_all(&dir).ok()?;
+            std::fs::copy(&src, dir.join(name)).ok()?;
+            Some(slices_dir().join(name))
+        })
+        .collect()
+}
