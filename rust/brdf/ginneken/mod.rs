@@ -11,6 +11,7 @@
 //! angles of eqs. 2–3", i.e. the facet-local cosines: that is the integrand of `I`.
 
 pub mod accuracy;
+mod mu_lambda_fit;
 pub mod roughness_axis;
 pub mod shadowing;
 pub mod slope_integral;
