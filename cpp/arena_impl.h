@@ -63,7 +63,13 @@ public:
     uint32_t gather(uint32_t table, uint32_t idx, uint32_t offset) const override {
         if (!m_tables || table >= m_tables->size())
             return push(Float(0.f));
-        return push(drjit::gather<Float>((*m_tables)[table], UInt32(f(idx)) + offset));
+        // Clamped to the table as an integer, like gather8's packet index.
+        const Float &source = (*m_tables)[table];
+        uint32_t size = (uint32_t) drjit::width(source);
+        if (size == 0)
+            return push(Float(0.f));
+        UInt32 at = drjit::minimum(UInt32(f(idx)) + offset, UInt32(size - 1));
+        return push(drjit::gather<Float>(source, at));
     }
     uint32_t gather8(uint32_t table, uint32_t idx) const override {
         uint32_t first = (uint32_t) m_f.size();
@@ -73,7 +79,18 @@ public:
             return first;
         }
         // A target of 8 Floats from a flat source: jit_var_gather_packet / ad_var_gather_packet.
-        auto v = drjit::gather<drjit::Array<Float, 8>>((*m_tables)[table], UInt32(f(idx)));
+        // The packet index is clamped to the table as an integer: the packet load reads whole
+        // packets and has no bounds check (not even in Dr.Jit's debug mode), so an index that
+        // a NaN made undefined in the float → int conversion must not leave the table.
+        const Float &source = (*m_tables)[table];
+        uint32_t packets = (uint32_t) (drjit::width(source) / 8);
+        if (packets == 0) {
+            for (int k = 0; k < 8; ++k)
+                push(Float(0.f));
+            return first;
+        }
+        UInt32 packet = drjit::minimum(UInt32(f(idx)), UInt32(packets - 1));
+        auto v = drjit::gather<drjit::Array<Float, 8>>(source, packet);
         for (size_t k = 0; k < 8; ++k)
             push(std::move(v[k]));
         return first;
