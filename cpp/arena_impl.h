@@ -60,43 +60,40 @@ public:
     uint32_t select(uint32_t mi, uint32_t t, uint32_t e) const override {
         return push(drjit::select(m(mi), f(t), f(e)));
     }
+    // Both gathers clamp their index to the table as an integer: the index comes from a float
+    // (an integer-valued one, clamped by the lookups), and a lane whose float was NaN converts
+    // to an arbitrary integer. The packet load has no bounds check at all (not even in Dr.Jit's
+    // debug mode), so such a lane would read outside the table.
     uint32_t gather(uint32_t table, uint32_t idx, uint32_t offset) const override {
-        if (!m_tables || table >= m_tables->size())
+        const Float *source = table_of(table, 1);
+        if (!source)
             return push(Float(0.f));
-        // Clamped to the table as an integer, like gather8's packet index.
-        const Float &source = (*m_tables)[table];
-        uint32_t size = (uint32_t) drjit::width(source);
-        if (size == 0)
-            return push(Float(0.f));
-        UInt32 at = drjit::minimum(UInt32(f(idx)) + offset, UInt32(size - 1));
-        return push(drjit::gather<Float>(source, at));
+        UInt32 last = UInt32((uint32_t) drjit::width(*source) - 1);
+        return push(drjit::gather<Float>(*source, drjit::minimum(UInt32(f(idx)) + offset, last)));
     }
     uint32_t gather8(uint32_t table, uint32_t idx) const override {
         uint32_t first = (uint32_t) m_f.size();
-        if (!m_tables || table >= m_tables->size()) {
+        const Float *source = table_of(table, 8);
+        if (!source) {
             for (int k = 0; k < 8; ++k)
                 push(Float(0.f));
             return first;
         }
         // A target of 8 Floats from a flat source: jit_var_gather_packet / ad_var_gather_packet.
-        // The packet index is clamped to the table as an integer: the packet load reads whole
-        // packets and has no bounds check (not even in Dr.Jit's debug mode), so an index that
-        // a NaN made undefined in the float → int conversion must not leave the table.
-        const Float &source = (*m_tables)[table];
-        uint32_t packets = (uint32_t) (drjit::width(source) / 8);
-        if (packets == 0) {
-            for (int k = 0; k < 8; ++k)
-                push(Float(0.f));
-            return first;
-        }
-        UInt32 packet = drjit::minimum(UInt32(f(idx)), UInt32(packets - 1));
-        auto v = drjit::gather<drjit::Array<Float, 8>>(source, packet);
+        UInt32 last = UInt32((uint32_t) (drjit::width(*source) / 8) - 1);
+        auto v = drjit::gather<drjit::Array<Float, 8>>(*source, drjit::minimum(UInt32(f(idx)), last));
         for (size_t k = 0; k < 8; ++k)
             push(std::move(v[k]));
         return first;
     }
 
 private:
+    /// The registered table number `table` when it holds at least `n` values, else null.
+    const Float *table_of(uint32_t table, size_t n) const {
+        if (!m_tables || table >= m_tables->size() || drjit::width((*m_tables)[table]) < n)
+            return nullptr;
+        return &(*m_tables)[table];
+    }
     uint32_t push_mask(Mask v) const {
         m_m.push_back(std::move(v));
         return (uint32_t) m_m.size() - 1;

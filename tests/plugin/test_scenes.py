@@ -4,11 +4,14 @@ variant of the wheel (Dr.Jit's default symbolic mode), also with the `mitsuba` c
 tool and its defaults; `reflectance` as a bitmap texture renders and shows the texture."""
 import os
 import re
+import sys
 
 import numpy as np
 import pytest
 
-from conftest import SCENES
+from conftest import REPO, SCENES
+
+sys.path.insert(0, os.path.join(REPO, "validation"))
 
 
 class Capture:
@@ -103,17 +106,14 @@ def test_study_scene_curved_with_table_models(mi_variant):
     `tabulated_brdf` renders, finite, in symbolic llvm: the table gathers' indices stay inside
     their tables on every lane, whatever an inactive lane's directions hold (an unclamped packet
     index once read outside the slope table here and crashed the process)."""
+    import sampling_scenes  # validation/: the scene with its `$bsdf` surfaces substituted
     mi = mi_variant
-    path = os.path.join(SCENES, "study", "curved.xml")
-    text = open(path).read()
-    table = os.path.join(os.path.dirname(SCENES), "validation", "ground_truth", "height_field_m0.3.json")
-    for kind, extra in (("ginneken", '<string name="sampling" value="cosine"/>'),
-                        ("ginneken", '<string name="sampling" value="cltc"/>'),
-                        ("tabulated_brdf", f'<string name="filename" value="{table}"/>')):
-        xml = re.sub(r'(<bsdf type=")\$bsdf("[^>]*>)', lambda m: f"{m.group(1)}{kind}{m.group(2)}{extra}", text)
-        xml = xml.replace('type="$bsdf"', f'type="{kind}"')
-        mi.file_resolver().prepend(os.path.dirname(path))
-        scene = mi.load_string(xml, spp="16", res="96")
+    path = sampling_scenes.SCENES["curved"]
+    table = os.path.join(REPO, "validation", "ground_truth", "height_field_m0.3.json")
+    mi.file_resolver().prepend(os.path.dirname(os.path.join(REPO, path)))
+    for kind, params in (("ginneken", {"sampling": "cosine"}), ("ginneken", {"sampling": "cltc"}),
+                         ("tabulated_brdf", {"filename": table})):
+        scene = mi.load_string(sampling_scenes.scene_text(path, kind, params), spp="16", res="96")
         img = np.array(mi.render(scene, seed=1))
         assert np.isfinite(img).all(), kind
         assert img.mean() > 0.01, (kind, img.mean())
