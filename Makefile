@@ -6,21 +6,27 @@
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
 #   make dist   the release files in dist/: the sdist and the manylinux wheel (auditwheel)
 # and one that recomputes data the repository holds:
-#   make ground-truth  the simulated microsurfaces' BRDF tables in validation/ground_truth/
+#   make ground-truth  the simulated microsurfaces' BRDF tables in python/matte_mitsuba/ground_truth/
 .PHONY: main test bench venv plugin dist ground-truth
 
 PY     := .venv/bin/python
 # The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv.
 WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
-SOURCES := $(shell find rust cpp python/matte_mitsuba -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
-	-not -name '_build.py' -not -path '*__pycache__*' -not -path '*/ground_truth/*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py \
-	$(wildcard validation/ground_truth/*.json)
+# The wheel's inputs: sources, the package with its tables, and the package data setup.py copies
+# in (the bundled scenes, the study report's slices); not the copies themselves.
+SOURCES := $(shell find rust cpp python/matte_mitsuba mitsuba_scenes -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
+	-not -name '_build.py' -not -path '*__pycache__*' -not -path 'python/matte_mitsuba/scenes/*' \
+	-not -path 'python/matte_mitsuba/truth_slices/*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py MANIFEST.in \
+	$(wildcard docs/microgeometry/truth_slice_*.png docs/microgeometry/slices_*_r0.3_rho0.8.png)
+# The installed `matte` command (the wheel's, in .venv): the checkout is one more environment
+# where matte is installed, and its commands find their Mitsuba side as a user's do.
+MATTE  := .venv/bin/matte
 
 main: plugin
-	./target/release/matte validate --all -o validate_out
+	$(MATTE) validate --all -o validate_out
 
 bench: plugin
-	./target/release/matte bench -o bench_out
+	$(MATTE) bench -o bench_out
 
 test: plugin dist
 	cargo fmt --check
@@ -32,11 +38,11 @@ test: plugin dist
 # ground-truth BRDF"; about 22 min on 2 shared cores).
 ground-truth:
 	cargo build --release --quiet
-	validation/ground_truth_tables.sh
+	validation/generators/ground_truth_tables.sh
 
 # Debian's libllvm19, .venv with the pinned wheels (fast when already done).
 venv:
-	@validation/setup_venv.sh
+	@validation/setup/setup_venv.sh
 
 plugin: venv $(WHEEL)
 
@@ -55,7 +61,7 @@ dist: plugin
 
 # `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.sh); here
 # against the venv's own Mitsuba (no build isolation), then installed into the venv.
-$(WHEEL): $(SOURCES) validation/requirements.txt
+$(WHEEL): $(SOURCES) validation/setup/requirements.txt
 	@rm -f dist/matte_mitsuba-*.whl
 	$(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
 	$(PY) -m pip install --force-reinstall --no-deps -q --disable-pip-version-check $(WHEEL)

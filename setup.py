@@ -1,7 +1,10 @@
 """The wheel's build step (pyproject.toml has the metadata): build the plugins and the `matte`
-binary with cpp/build_plugin.sh against the Mitsuba of the building Python, put the binary and
-the ground-truth tables (validation/ground_truth/*.json) into the package, and tag the wheel for this platform (it holds native code, but no Python
-extension: any Python 3 that runs Mitsuba can load it)."""
+binary with cpp/build_plugin.sh against the Mitsuba of the building Python, put into the package
+what the `matte` tool reads at run time besides the ground-truth tables it already holds (the
+binary, the bundled scenes of mitsuba_scenes/ as `scenes/`, the study report's BRDF slices of
+docs/microgeometry/ as `truth_slices/`), and tag the wheel for this platform (it holds native
+code, but no Python extension: any Python 3 that runs Mitsuba can load it)."""
+import glob
 import os
 import shutil
 import subprocess
@@ -13,6 +16,9 @@ from setuptools.command.build_py import build_py
 from setuptools.dist import Distribution
 
 ROOT = os.path.dirname(os.path.abspath(__file__))
+# The study report's BRDF slices (rust/study/report/truth_section.rs: SLICES): each model's
+# slice of largest error against its surface, and both surfaces at the study's roughness.
+SLICES = ["truth_slice_*.png", "slices_*_r0.3_rho0.8.png"]
 
 
 class BuildPlugins(build_py):
@@ -22,10 +28,17 @@ class BuildPlugins(build_py):
         os.makedirs(os.path.dirname(binary), exist_ok=True)
         shutil.copy2(os.path.join(ROOT, "target", "release", "matte"), binary)
         subprocess.check_call(["strip", binary])
-        tables = os.path.join(ROOT, "python", "matte_mitsuba", "ground_truth")
-        shutil.rmtree(tables, ignore_errors=True)
-        shutil.copytree(os.path.join(ROOT, "validation", "ground_truth"), tables,
-                        ignore=lambda folder, names: [n for n in names if not n.endswith(".json")])
+        package = os.path.join(ROOT, "python", "matte_mitsuba")
+        scenes = os.path.join(package, "scenes")
+        shutil.rmtree(scenes, ignore_errors=True)
+        shutil.copytree(os.path.join(ROOT, "mitsuba_scenes"), scenes,
+                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc", "make_assets.py"))
+        slices = os.path.join(package, "truth_slices")
+        shutil.rmtree(slices, ignore_errors=True)
+        os.makedirs(slices)
+        for pattern in SLICES:
+            for png in glob.glob(os.path.join(ROOT, "docs", "microgeometry", pattern)):
+                shutil.copy2(png, slices)
         super().run()
 
 

@@ -9,6 +9,7 @@
 //! * [`validate`]: per-pixel statistical comparison of the Rust renderer with Mitsuba.
 //! * [`study`]: the seed paper's experiment (scenes × models, strips, measured ratios).
 //! * [`bench`]: the speed targets, matte against Mitsuba in one run (`matte bench`).
+//! * [`installation`]: where the Python side (Mitsuba) and the package data are found at run time.
 //! * [`markup`]: escaping for the HTML reports and derived XML scenes.
 //! * [`microgeometry`]: the virtual gonioreflectometer (ground truth for the rough models).
 
@@ -20,6 +21,7 @@ pub mod bench;
 pub mod brdf;
 pub mod cli;
 pub mod ffi;
+pub mod installation;
 pub mod markup;
 pub mod microgeometry;
 pub mod render;

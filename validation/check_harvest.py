@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mitsuba's own verdict on the harvested property list (validation/harvest_mitsuba_properties.py).
+"""Mitsuba's own verdict on the harvested property list (validation/generators/harvest_mitsuba_properties.py).
 
     MATTE_DUMP_WALK=/tmp/walk cargo test --test scene_file every_harvested
     .venv/bin/python validation/check_harvest.py /tmp/walk

@@ -17,6 +17,13 @@ loops and calls, and ``reflectance`` and the numeric parameters are differentiab
 
 The plugins are compiled against one Mitsuba version (its C++ ABI); another version is refused
 at import with an error naming both.
+
+The package also holds what the ``matte`` command-line tool needs at run time: the Mitsuba
+side of its commands (``python -m matte_mitsuba.passes`` for ``matte validate`` and ``matte
+study``, ``.bench`` for ``matte bench``, ``.fit`` for ``matte fit``), the plugin benchmark
+(``python -m matte_mitsuba.bench_plugin``), the GPU check (``python -m matte_mitsuba.gpu_check``),
+and its data: the bundled scenes (:data:`SCENES`, what ``matte validate --all`` and ``matte
+study`` render) and the simulated surfaces' tables (:data:`GROUND_TRUTH`).
 """
 
 import os as _os
@@ -40,7 +47,13 @@ BSDF_TYPES = _built_plugins()
 
 #: Folder of the simulated microsurfaces' BRDF tables, files for ``tabulated_brdf``
 #: (``v_cavities_sigma<σ>.json``, ``height_field_m<m>.json``; matte's docs/microgeometry.md).
+#: Since the import adds :data:`PLUGIN_ROOT` to Mitsuba's file resolver, a scene may name a
+#: table as ``ground_truth/v_cavities_sigma0.3.json``.
 GROUND_TRUTH = _os.path.join(PLUGIN_ROOT, "ground_truth")
+
+#: Folder of the bundled scenes (``matte validate --all`` renders its ``*.xml``, ``matte
+#: study`` its ``study/*.xml``), with their assets.
+SCENES = _os.path.join(PLUGIN_ROOT, "scenes")
 
 
 def ground_truth_path(name):

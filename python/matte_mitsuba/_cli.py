@@ -1,6 +1,8 @@
-"""The ``matte`` command of the wheel: runs the ``matte`` binary shipped in this package;
-``matte fit`` runs :mod:`matte_mitsuba.fit` in this Python (the binary's own ``fit`` forwards
-to ``python -m matte_mitsuba.fit`` as well)."""
+"""The ``matte`` command of the wheel: runs the ``matte`` binary shipped in this package, telling
+it this Python (``MATTE_LAUNCHER_PYTHON``), which then runs the Mitsuba side of its commands
+unless ``--python`` or ``MATTE_PYTHON`` names another; ``matte fit`` runs
+:mod:`matte_mitsuba.fit` in this Python directly (the binary's own ``fit`` forwards to ``python
+-m matte_mitsuba.fit`` as well)."""
 import os
 import sys
 
@@ -13,4 +15,5 @@ def main():
     if not os.path.exists(binary):
         sys.exit("matte: the command-line tool is not in this installation (%s); it ships in the matte-mitsuba "
                  "wheel, or run target/release/matte in a checkout" % binary)
+    os.environ["MATTE_LAUNCHER_PYTHON"] = sys.executable
     os.execv(binary, [binary] + sys.argv[1:])

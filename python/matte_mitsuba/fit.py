@@ -27,7 +27,7 @@ with Mitsuba's ``prb`` integrator and ``mi.ad.Adam`` so that renders match the t
   ``loss.png``, ``param_error.png`` (when the truth is known), final render / target PNGs per
   configuration, and ``index.html`` tying them together.
 
-Plots need matplotlib (pinned in ``validation/requirements.txt``).
+Plots need matplotlib (pinned in ``validation/setup/requirements.txt``).
 """
 import argparse
 import html

@@ -1,15 +1,14 @@
-//! Mitsuba 3.9.1's side of `matte bench`, run by `validation/bench_mitsuba.py` in the
-//! project's `.venv`: render times per job and variant, and each matte plugin's render time
+//! Mitsuba's side of `matte bench`, run as `python -m matte_mitsuba.bench` in the Python
+//! environment matte is installed in ([`crate::installation`]): render times per job and variant, and each matte plugin's render time
 //! against the built-in `diffuse` (llvm_ad_rgb, symbolic, one process per type).
 
 use super::render::RenderJob;
-use crate::validate::passes::repo_root;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 
-/// One entry of the job list `bench_mitsuba.py --jobs` reads.
+/// One entry of the job list `matte_mitsuba.bench --jobs` reads.
 #[derive(Serialize)]
 struct JobJson<'a> {
     name: &'a str,
@@ -18,7 +17,7 @@ struct JobJson<'a> {
     spp: u32,
 }
 
-/// What `bench_mitsuba.py` prints.
+/// What `matte_mitsuba.bench` prints.
 #[derive(Deserialize)]
 struct TimesJson {
     renders: Vec<RenderTimeJson>,
@@ -71,11 +70,8 @@ pub fn time_mitsuba(
     plugin: Option<(u32, u32)>,
     work: &Path,
 ) -> Result<MitsubaTimes, String> {
-    let root = repo_root();
-    let python = root.join(".venv/bin/python");
-    if !python.exists() {
-        return Err(format!("{} not found: run `make venv` (or `make main`) first", python.display()));
-    }
+    let python = crate::installation::python_side()?;
+    python.mitsuba_version()?;
     let list: Vec<JobJson> = jobs
         .iter()
         .map(|j| JobJson {
@@ -89,23 +85,17 @@ pub fn time_mitsuba(
     let jobs_file = work.join("mitsuba_jobs.json");
     let text = serde_json::to_string_pretty(&list).map_err(|e| format!("{}: {e}", jobs_file.display()))?;
     std::fs::write(&jobs_file, text).map_err(|e| format!("{}: {e}", jobs_file.display()))?;
-    let mut cmd = Command::new(&python);
-    cmd.arg(root.join("validation/bench_mitsuba.py"))
-        .arg("--jobs")
-        .arg(&jobs_file)
-        .arg("--repeats")
-        .arg(repeats.to_string())
-        .arg("--variants")
-        .args(variants);
+    let mut cmd = python.module("bench");
+    cmd.arg("--jobs").arg(&jobs_file).arg("--repeats").arg(repeats.to_string()).arg("--variants").args(variants);
     if let Some((res, spp)) = plugin {
         cmd.args(["--plugin-res", &res.to_string(), "--plugin-spp", &spp.to_string()]);
     }
-    let out = cmd.stderr(Stdio::inherit()).output().map_err(|e| format!("{}: {e}", python.display()))?;
+    let out = cmd.stderr(Stdio::inherit()).output().map_err(|e| format!("{}: {e}", python.python.display()))?;
     if !out.status.success() {
-        return Err(format!("bench_mitsuba.py failed ({})", out.status));
+        return Err(format!("matte_mitsuba.bench failed ({})", out.status));
     }
     let times: TimesJson =
-        serde_json::from_slice(&out.stdout).map_err(|e| format!("bench_mitsuba.py printed unexpected JSON: {e}"))?;
+        serde_json::from_slice(&out.stdout).map_err(|e| format!("matte_mitsuba.bench printed unexpected JSON: {e}"))?;
     let renders = times.renders.into_iter().map(|r| (r.name, r.variant, r.seconds)).collect();
     let plugin = times.plugin.map(|p| p.seconds.into_iter().collect()).unwrap_or_default();
     Ok(MitsubaTimes { renders, plugin })

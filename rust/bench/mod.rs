@@ -1,5 +1,5 @@
 //! `matte bench`: the speed targets (docs/performance.md) measured in one run on this machine: matte's
-//! renderer against Mitsuba 3.9.1 (`scalar_rgb`, `llvm_ad_rgb` with a warm kernel cache) on
+//! renderer against Mitsuba (`scalar_rgb`, `llvm_ad_rgb` with a warm kernel cache) on
 //! the same scenes at the same spp (and with matte's two tile drivers), samples/s against spp,
 //! BVH build share, each diffuse model's render time against Lambert's, kernel ns/eval against
 //! Lambert, and each traced plugin's render time against Mitsuba's `diffuse` (llvm_ad_rgb).
@@ -12,7 +12,6 @@ pub mod sampling;
 pub mod traversal;
 pub mod wide_kernels;
 
-use crate::validate::passes::repo_root;
 use render::RenderJob;
 use std::path::PathBuf;
 
@@ -21,16 +20,19 @@ pub struct BenchOptions {
     /// Small images and one repeat: checks the machinery, not the targets.
     pub quick: bool,
     pub repeats: u32,
-    /// Time Mitsuba too (needs the `.venv`).
+    /// Time Mitsuba too (needs the Python side, [`crate::installation`]).
     pub mitsuba: bool,
     pub out: PathBuf,
+    /// The bundled scenes (`matte bench` gives the installation's, [`crate::installation::scenes_dir`]).
+    pub scenes: PathBuf,
 }
 
 /// The scenes of the renderer targets, all diffuse surfaces as Mitsuba's built-in `diffuse`
 /// (so Mitsuba runs its own code, not a plugin): the Cornell box with unbounded paths, and
-/// the study's bunny (two point lights, `direct`) and room (glass, metal, unbounded paths).
-pub fn render_jobs(quick: bool) -> Vec<RenderJob> {
-    let root = repo_root().join("mitsuba_scenes");
+/// the study's bunny (two point lights, `direct`) and room (glass, metal, unbounded paths),
+/// from the bundled scenes in `scenes`.
+pub fn render_jobs(quick: bool, scenes: &std::path::Path) -> Vec<RenderJob> {
+    let root = scenes;
     let (res, spp) = if quick { ("32", 4) } else { ("256", 64) };
     let job = |name: &str, file: &str, extra: &[(&str, &str)]| {
         let mut defines = vec![("res".to_string(), res.to_string())];
@@ -64,7 +66,7 @@ pub const MITSUBA_VARIANTS: [&str; 2] = ["scalar_rgb", "llvm_ad_rgb"];
 
 /// Runs every measurement; `progress` gets a line per step.
 pub fn run(opts: &BenchOptions, progress: &dyn Fn(&str)) -> Result<Measurements, String> {
-    let jobs = render_jobs(opts.quick);
+    let jobs = render_jobs(opts.quick, &opts.scenes);
     let repeats = if opts.quick { 1 } else { opts.repeats };
     progress("kernels");
     let kernels = kernels::time_kernels(repeats);
@@ -75,7 +77,11 @@ pub fn run(opts: &BenchOptions, progress: &dyn Fn(&str)) -> Result<Measurements,
         timed.push((job.clone(), render::time_matte(job, repeats)?));
     }
     progress("matte: each diffuse model against Lambert (room)");
-    let models = if opts.quick { render::time_models(16, 2, 1)? } else { render::time_models(128, 64, repeats)? };
+    let models = if opts.quick {
+        render::time_models(&opts.scenes, 16, 2, 1)?
+    } else {
+        render::time_models(&opts.scenes, 128, 64, repeats)?
+    };
     progress("traversal: Embree and CWBVH on the same rays");
     let mut traversal = Vec::new();
     for job in &jobs {

@@ -115,11 +115,11 @@ pub fn other_driver() -> Driver {
 /// one (Lambert first).
 pub const MODELS: &[&str] = crate::brdf::BSDF_TYPES;
 
-/// Render time of the study's room with every diffuse surface as each of [`MODELS`] (its
+/// Render time of the study's room (`scenes/study/room.xml`) with every diffuse surface as each of [`MODELS`] (its
 /// `$bsdf` parameter; the model's default parameters), at `res`² and `spp`, the models taking
 /// turns, best of `repeats` after a warm-up round. Returns `(model, seconds)`.
-pub fn time_models(res: u32, spp: u32, repeats: u32) -> Result<Vec<(String, f64)>, String> {
-    let file = crate::validate::passes::repo_root().join("mitsuba_scenes/study/room.xml");
+pub fn time_models(scenes: &std::path::Path, res: u32, spp: u32, repeats: u32) -> Result<Vec<(String, f64)>, String> {
+    let file = scenes.join("study/room.xml");
     let scenes = MODELS
         .iter()
         .map(|m| {

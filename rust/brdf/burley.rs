@@ -27,7 +27,7 @@ pub struct BurleyKernel<T> {
 
 impl<T: Real> BurleyKernel<T> {
     /// The importance sampler at `μ = cos θi`: the CLTC fitted to the model
-    /// (`rust/brdf/sampler_fits.rs`, `validation/fit_samplers.py`), polynomial in μ and the
+    /// (`rust/brdf/sampler_fits.rs`, `validation/generators/fit_samplers.py`), polynomial in μ and the
     /// roughness r (clamped into [0, 1]); the cosine at r = 0.
     #[inline(always)]
     pub fn sampler(&self, mu: T) -> ClippedLtc<T> {

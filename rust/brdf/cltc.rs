@@ -122,7 +122,7 @@ impl<T: Real> ClippedLtc<T> {
 }
 
 /// A fitted CLTC sampler (`rust/brdf/sampler_fits.rs`, written by
-/// `validation/fit_samplers.py`): each parameter of [`ClippedLtc`] is
+/// `validation/generators/fit_samplers.py`): each parameter of [`ClippedLtc`] is
 ///
 /// `p_k(μ, t) = base_k + t g_k(μ) Σ_ij C[k][i][j] μ^i t^j`
 ///

@@ -77,7 +77,7 @@ impl<T: Real> OrenNayarKernel<T> {
     }
 
     /// The importance sampler at `μ = cos θi`: the CLTC fitted to the model
-    /// (`rust/brdf/sampler_fits.rs`, `validation/fit_samplers.py`), polynomial in μ and in
+    /// (`rust/brdf/sampler_fits.rs`, `validation/generators/fit_samplers.py`), polynomial in μ and in
     /// `t = B/0.45 = σ²/(σ² + 0.09)` ∈ [0, 1), which maps every σ ≥ 0 onto a bounded interval
     /// and is the kernel's own coefficient (traced, no new constant). At σ = 0 it is the
     /// cosine; at normal incidence too (the lobe is then constant).

@@ -1,4 +1,4 @@
-//! `matte bench`: the speed targets, matte against Mitsuba 3.9.1 in one run (table on
+//! `matte bench`: the speed targets, matte against the installed Mitsuba in one run (table on
 //! stdout, `bench.json` in the output folder).
 
 use crate::bench::{self, BenchOptions};
@@ -43,7 +43,8 @@ pub fn run(a: &BenchArgs) -> Result<(), String> {
         print!("{table}");
         return Ok(());
     }
-    let opts = BenchOptions { quick: a.quick, repeats: a.repeats, mitsuba: !a.no_mitsuba, out: a.out.clone() };
+    let scenes = crate::installation::scenes_dir()?;
+    let opts = BenchOptions { quick: a.quick, repeats: a.repeats, mitsuba: !a.no_mitsuba, out: a.out.clone(), scenes };
     let m = bench::run(&opts, &|step| {
         if !a.quiet {
             eprintln!("bench: {step}");

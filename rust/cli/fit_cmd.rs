@@ -1,11 +1,10 @@
 //! `matte fit`: inverse rendering with matte's models. The optimisation runs in Mitsuba 3
 //! (its `prb` integrator and `mi.ad.Adam`, through matte's plugins), so this subcommand only
 //! forwards its arguments to `python -m matte_mitsuba.fit` (`python/matte_mitsuba/fit.py`,
-//! which documents them) with the project's `.venv` Python, or `python3` outside a checkout.
-//! The wheel's own `matte` command runs the same module in-process.
+//! which documents them) in the Python environment matte is installed in
+//! ([`crate::installation`]). The wheel's own `matte` command runs the same module in-process.
 
 use clap::Args;
-use std::process::Command;
 
 #[derive(Args, Debug)]
 pub struct FitArgs {
@@ -15,13 +14,13 @@ pub struct FitArgs {
 }
 
 pub fn run(a: &FitArgs) -> Result<(), String> {
-    let venv = crate::validate::passes::repo_root().join(".venv/bin/python");
-    let python = if venv.exists() { venv } else { "python3".into() };
-    let status = Command::new(&python)
-        .args(["-m", "matte_mitsuba.fit"])
+    let python = crate::installation::python_side()?;
+    python.mitsuba_version()?;
+    let status = python
+        .module("fit")
         .args(&a.args)
         .status()
-        .map_err(|e| format!("cannot start {} for matte fit: {e}", python.display()))?;
+        .map_err(|e| format!("cannot start {} for matte fit: {e}", python.python.display()))?;
     match status.code() {
         Some(0) => Ok(()),
         // The fit printed its own one-line error; keep its exit status.

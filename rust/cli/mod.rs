@@ -22,6 +22,11 @@ use clap::{Parser, Subcommand};
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,
+    /// The Python that runs Mitsuba's side (validate, study, bench, fit) and holds the package
+    /// data: this one, else $MATTE_PYTHON, else the Python of the `matte` command that was run
+    /// (python3 beside it), else python3 on PATH; the first that can import matte_mitsuba.
+    #[arg(long, global = true, value_name = "PATH")]
+    pub python: Option<std::path::PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -35,14 +40,15 @@ pub enum Command {
     Tables(tables::TablesArgs),
     /// Render a Mitsuba 3 XML scene with the Rust path tracer (EXR, optional PNG).
     Render(render_cmd::RenderArgs),
-    /// Render scenes with matte and Mitsuba 3.9.1 and test per pixel whether they agree.
+    /// Render scenes with matte and the installed Mitsuba and test per pixel whether they agree
+    /// (`--all`: every bundled scene, a self-test of the installation).
     Validate(validate_cmd::ValidateArgs),
     /// The seed paper's study: its scenes with every diffuse model, strips and measured ratios.
     Study(study_cmd::StudyArgs),
     /// Simulate a rough model's own microsurface (V-cavities, Gaussian height field) and compare
     /// the models with it (JSON).
     Microgeometry(microgeometry_cmd::MicrogeometryArgs),
-    /// Speed against Mitsuba 3.9.1 (same scenes, same spp, one run) and the speed targets (docs/performance.md).
+    /// Speed against the installed Mitsuba (same scenes, same spp, one run) and the speed targets (docs/performance.md).
     Bench(bench_cmd::BenchArgs),
     /// Inverse rendering: fit scene parameters (textured σ, reflectance, …) to target images
     /// with Mitsuba's prb and Adam (runs `python -m matte_mitsuba.fit`).
@@ -76,6 +82,7 @@ pub fn one_line(message: &str) -> String {
 }
 
 pub fn run(cli: Cli) -> Result<(), String> {
+    crate::installation::set_python_flag(cli.python);
     match cli.command {
         Command::Brdf(a) => brdf_cmd::run_brdf(&a),
         Command::Albedo(a) => brdf_cmd::run_albedo(&a),

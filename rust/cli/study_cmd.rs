@@ -12,7 +12,8 @@ use std::path::PathBuf;
 
 #[derive(Args, Debug)]
 pub struct StudyArgs {
-    /// Scene files (default: every scene in mitsuba_scenes/study/).
+    /// Scene files, or names of the bundled study scenes (`cornell`, `bunny`, `curved`,
+    /// `room`); default: all four.
     pub scenes: Vec<PathBuf>,
     /// Renderer: matte (default) or mitsuba.
     #[arg(long, default_value = "matte")]
@@ -63,7 +64,11 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     if a.passes < 2 || a.spp < a.passes {
         return Err("need --passes ≥ 2 and --spp ≥ --passes".into());
     }
-    let scenes = if a.scenes.is_empty() { study::study_scenes()? } else { a.scenes.clone() };
+    let scenes = if a.scenes.is_empty() {
+        study::study_scenes()?
+    } else {
+        crate::installation::scene_arguments(&a.scenes, "study")
+    };
     if scenes.is_empty() {
         return Err("no study scenes found".into());
     }
@@ -82,6 +87,8 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         variant_scenes: if a.no_variants { Vec::new() } else { a.variant_scenes.clone() },
         convergence_spp: if a.no_convergence { Vec::new() } else { a.convergence_spp.clone() },
         mitsuba_variant: a.variant.clone(),
+        ground_truth: crate::installation::package_dir()?.join("ground_truth"),
+        truth_slices: crate::installation::package_data("truth_slices").ok(),
     };
     // Progress total: main run (models and true surfaces), variants, true-surface comparison,
     // convergence series.
@@ -154,7 +161,7 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         truths: truth_studies,
         convergence: series,
     };
-    study::report::write(&a.out, &study)?;
+    study::report::write(&a.out, &study, opts.truth_slices.as_deref())?;
     println!("{}", serde_json::to_string_pretty(&study::report::json(&study)).expect("json"));
     Ok(())
 }

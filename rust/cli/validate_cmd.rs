@@ -1,4 +1,4 @@
-//! `matte validate`: the Rust renderer against Mitsuba 3.9.1, per pixel, with heatmaps and a
+//! `matte validate`: the Rust renderer against the installed Mitsuba, per pixel, with heatmaps and a
 //! report. Exit status 1 and the failing scenes on stderr when any scene disagrees.
 
 use super::render_cmd::parse_defines;
@@ -11,9 +11,10 @@ use std::path::PathBuf;
 
 #[derive(Args, Debug)]
 pub struct ValidateArgs {
-    /// Scene files (Mitsuba XML).
+    /// Scene files (Mitsuba XML), or names of bundled scenes (`cornell_box`, `sphere_eon`, …).
     pub scenes: Vec<PathBuf>,
-    /// Every scene in mitsuba_scenes/.
+    /// Every bundled scene (the `scenes` folder of the installed matte_mitsuba package): a
+    /// self-test of the installation against the Mitsuba installed beside it.
     #[arg(long)]
     pub all: bool,
     /// Mitsuba variant(s) to compare with (repeatable). Default: llvm_ad_rgb in Dr.Jit's
@@ -73,9 +74,16 @@ pub struct ValidateArgs {
 }
 
 pub fn run(a: &ValidateArgs) -> Result<(), String> {
-    let mut scenes = a.scenes.clone();
+    let mut scenes = crate::installation::scene_arguments(&a.scenes, "");
+    let mut sources = Vec::new();
+    if !a.scenes.is_empty() {
+        sources.push(format!("{} given on the command line", a.scenes.len()));
+    }
     if a.all {
-        scenes.extend(validate::bundled_scenes(&validate::passes::repo_root().join("mitsuba_scenes"))?);
+        let bundled = crate::installation::scenes_dir()?;
+        let found = validate::bundled_scenes(&bundled)?;
+        sources.push(format!("{} bundled with matte_mitsuba ({})", found.len(), bundled.display()));
+        scenes.extend(found);
     }
     if scenes.is_empty() {
         return Err("no scenes: give scene files or --all".into());
@@ -115,6 +123,27 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
     } else {
         a.variants.iter().map(|v| Renderer::Mitsuba(v.clone())).collect()
     };
+    // Mitsuba's side is found before the first render: a missing one is one error, not one per scene.
+    let python = if a.self_check {
+        None
+    } else {
+        let side = crate::installation::python_side()?;
+        side.mitsuba_version()?;
+        Some(side)
+    };
+    let provenance = validate::summary::Provenance {
+        matte: env!("CARGO_PKG_VERSION").into(),
+        mitsuba: python.as_ref().and_then(|p| p.mitsuba.clone()),
+        references: references
+            .iter()
+            .map(|r| match r {
+                Renderer::Mitsuba(v) => format!("mitsuba {v}"),
+                Renderer::Matte => "matte (self-check)".into(),
+            })
+            .collect(),
+        python: python.as_ref().map(|p| p.describe()),
+        scenes: sources.join("; "),
+    };
     let show = !a.quiet && std::io::stderr().is_terminal();
     let mut results: Vec<SceneResult> = Vec::new();
     let mut errors = Vec::new();
@@ -147,9 +176,9 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
             }
         }
     }
-    validate::validation_report::write_run(&a.out, &results)?;
+    validate::validation_report::write_run(&a.out, &results, &provenance)?;
     if a.json {
-        println!("{}", validate::summary::Summary::new(&results).to_json());
+        println!("{}", validate::summary::Summary::new(&results, &provenance).to_json());
     }
     let failed: Vec<String> = results
         .iter()

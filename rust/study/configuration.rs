@@ -64,7 +64,7 @@ pub const VARIANTS: [Configuration; 5] = [
 pub const SERIES: [Configuration; 3] =
     [Configuration::Lambert, Configuration::OrenNayarQualitative, Configuration::OrenNayarFull];
 
-/// The simulated surfaces the study renders beside the models (`validation/ground_truth/`).
+/// The simulated surfaces the study renders beside the models (`python/matte_mitsuba/ground_truth/`).
 pub const TRUTHS: [Configuration; 2] = [Configuration::TruthVCavities, Configuration::TruthHeightField];
 
 /// The models that describe a simulated surface, each compared with its own
@@ -155,7 +155,7 @@ impl Configuration {
                 label: "V-cavities σ=0.3",
                 tile: "V-cav",
                 property: None,
-                meaning: "Oren & Nayar's surface, simulated: long symmetric V-cavities with Lambertian facets, Gaussian slope angles σ = 0.3, all interreflections (validation/ground_truth/v_cavities_sigma0.3.json).",
+                meaning: "Oren & Nayar's surface, simulated: long symmetric V-cavities with Lambertian facets, Gaussian slope angles σ = 0.3, all interreflections (python/matte_mitsuba/ground_truth/v_cavities_sigma0.3.json).",
             },
             TruthHeightField => Entry {
                 key: "truth_height_field",
@@ -163,7 +163,7 @@ impl Configuration {
                 label: "height field m=0.3",
                 tile: "H-field",
                 property: None,
-                meaning: "van Ginneken's surface, simulated: a Gaussian random height field with Lambertian facets, rms slope m = 0.3, all interreflections (validation/ground_truth/height_field_m0.3.json).",
+                meaning: "van Ginneken's surface, simulated: a Gaussian random height field with Lambertian facets, rms slope m = 0.3, all interreflections (python/matte_mitsuba/ground_truth/height_field_m0.3.json).",
             },
             Registered(name) => {
                 let spec = crate::brdf::spec(name).expect("a registered model");
@@ -209,7 +209,7 @@ impl Configuration {
         self.entry().meaning
     }
 
-    /// The table file of a true surface, in `validation/ground_truth/`.
+    /// The table file of a true surface, in `python/matte_mitsuba/ground_truth/`.
     pub fn table(self) -> Option<&'static str> {
         match self {
             Configuration::TruthVCavities => Some("v_cavities_sigma0.3.json"),
@@ -264,7 +264,8 @@ mod tests {
         }
         for t in TRUTHS {
             assert!(t.is_truth() && t.true_surface().is_none() && !main_run().contains(&t));
-            let file = crate::validate::passes::repo_root().join("validation/ground_truth").join(t.table().unwrap());
+            let file = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/python/matte_mitsuba/ground_truth"))
+                .join(t.table().unwrap());
             assert!(file.is_file(), "{}", file.display());
         }
     }

@@ -6,7 +6,7 @@
 //! For each region flagged `"convergence": true` in `<scene>.regions.json`, Lambert, Oren–Nayar
 //! (qualitative, the default) and Oren–Nayar full are rendered under global illumination at
 //! each total spp of the series, with K paired passes per level, by matte and by Mitsuba (the
-//! project's `.venv`). Only the region is rendered: a derived scene ([`super::variant_scene`])
+//! Python environment matte is installed in, [`crate::installation`]). Only the region is rendered: a derived scene ([`super::variant_scene`])
 //! sets the film's crop window to the region's pixels at the study's resolution. Mitsuba
 //! renders a crop as the same sub-window of the full image (`docs/renderer-semantics.md` §6, crop), so the region
 //! keeps the main run's pixels at a fraction of the cost. One difference remains: pixels on
@@ -48,7 +48,7 @@ pub struct Series {
     /// Renderers that ran, in order ("matte", "mitsuba scalar_rgb").
     pub renderers: Vec<String>,
     pub points: Vec<Point>,
-    /// Parts that could not run (e.g. no Mitsuba venv), said in the report.
+    /// Parts that could not run (e.g. no Mitsuba installed), said in the report.
     pub notes: Vec<String>,
 }
 
@@ -82,14 +82,15 @@ impl Series {
     }
 }
 
-/// The project's venv Python, which runs the Mitsuba side.
-fn venv_python() -> PathBuf {
-    passes::repo_root().join(".venv/bin/python")
+/// Why the series cannot have a Mitsuba side (`None`: it can): no Python with matte_mitsuba,
+/// or no Mitsuba in it.
+pub fn mitsuba_missing() -> Option<String> {
+    crate::installation::python_side().and_then(|s| s.mitsuba_version().map(|_| ())).err()
 }
 
-/// Whether the series can have a Mitsuba side (the venv exists).
+/// Whether the series can have a Mitsuba side.
 pub fn mitsuba_available() -> bool {
-    venv_python().exists()
+    mitsuba_missing().is_none()
 }
 
 /// Passes a series renders (for the progress bar).
@@ -138,13 +139,13 @@ pub fn run(
         files.push(file);
     }
     let mitsuba = format!("mitsuba {}", opts.mitsuba_variant);
-    let python = venv_python();
     let mut notes = Vec::new();
     let mut active = vec!["matte".to_string()];
-    if mitsuba_available() {
-        active.push(mitsuba.clone());
-    } else {
-        notes.push(format!("Mitsuba was not run: no venv at {} (run `make venv`). The series is matte only, so it cannot show whether the renderers agree.", python.display()));
+    match mitsuba_missing() {
+        None => active.push(mitsuba.clone()),
+        Some(why) => notes.push(format!(
+            "Mitsuba was not run: {why}. The series is matte only, so it cannot show whether the renderers agree."
+        )),
     }
     let mut points = Vec::new();
     let mut levels = Vec::new();
@@ -169,7 +170,7 @@ pub fn run(
                         progress(&what, k)
                     })
                 } else {
-                    passes::mitsuba_side_in_venv(file, &opts.mitsuba_variant, &plan, &dir.join("work"), &|k| {
+                    passes::mitsuba_side_installed(file, &opts.mitsuba_variant, &plan, &dir.join("work"), &|k| {
                         progress(&what, k)
                     })
                 };

@@ -72,6 +72,12 @@ pub struct StudyOptions {
     pub convergence_spp: Vec<u32>,
     /// Mitsuba variant of the convergence series' Mitsuba side.
     pub mitsuba_variant: String,
+    /// The simulated surfaces' tables (`matte study` gives the installed package's
+    /// `ground_truth/`, [`crate::installation`]).
+    pub ground_truth: PathBuf,
+    /// The report's BRDF slices (the installed package's `truth_slices/`; `None`: the report
+    /// goes without them).
+    pub truth_slices: Option<PathBuf>,
 }
 
 impl StudyOptions {
@@ -223,7 +229,7 @@ pub(crate) fn render_side(
     };
     match &opts.renderer {
         Renderer::Matte => passes::rust_side(scene, &plan, SplatWeights::default(), progress),
-        Renderer::Mitsuba(variant) => passes::mitsuba_side_in_venv(scene, variant, &plan, work, progress),
+        Renderer::Mitsuba(variant) => passes::mitsuba_side_installed(scene, variant, &plan, work, progress),
     }
 }
 
@@ -244,7 +250,7 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
     let truth_dir = PathBuf::from(&name).join("truth");
     // A missing table is an error; a scene that cannot be derived only loses the surfaces.
     for file in TRUTHS.iter().filter_map(|t| t.table()) {
-        truth::table_source(file)?;
+        truth::table_source(&opts.ground_truth, file)?;
     }
     let truths: Result<Vec<_>, String> =
         TRUTHS.iter().map(|t| derived_scene(scene, *t, opts, &truth_dir).map(|f| (*t, opts.out.join(f)))).collect();
@@ -316,7 +322,7 @@ pub fn derived_scene(scene: &Path, c: Configuration, opts: &StudyOptions, rel_di
     let mut properties: Vec<DerivedProperty> =
         c.property().map(|(k, x)| vec![DerivedProperty::string(k, x)]).unwrap_or_default();
     if let Some(file) = c.table() {
-        let source = truth::table_source(file)?;
+        let source = truth::table_source(&opts.ground_truth, file)?;
         let copy = std::path::absolute(dir.join(file)).map_err(|e| format!("{}: {e}", dir.display()))?;
         std::fs::copy(&source, &copy).map_err(|e| format!("{} → {}: {e}", source.display(), copy.display()))?;
         properties.push(DerivedProperty::string("filename", &copy.to_string_lossy()));
@@ -339,7 +345,8 @@ pub(crate) fn region_ratios(regions: &[Region], side: &Side, lambert: &Side) -> 
         .collect()
 }
 
-/// The study scenes: every `*.xml` in `mitsuba_scenes/study/`.
+/// The study scenes: every `*.xml` in the bundled scenes' `study/` folder (the installed
+/// matte_mitsuba package's, [`crate::installation`]).
 pub fn study_scenes() -> Result<Vec<PathBuf>, String> {
-    crate::validate::bundled_scenes(&passes::repo_root().join("mitsuba_scenes/study"))
+    crate::validate::bundled_scenes(&crate::installation::scenes_dir()?.join("study"))
 }

@@ -16,19 +16,13 @@ use super::variants::VariantStudy;
 use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
 use crate::render::film::Image;
 use crate::render::image_io;
-use crate::validate::passes::repo_root;
 use glam::DVec3;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
-/// A true surface's table file: `validation/ground_truth/<file>` under `MATTE_ROOT`, else
-/// under the source tree this binary was built from.
-pub fn table_source(file: &str) -> Result<PathBuf, String> {
-    let roots = [repo_root(), PathBuf::from(env!("CARGO_MANIFEST_DIR"))];
-    let candidates: Vec<PathBuf> = roots.iter().map(|r| r.join("validation/ground_truth").join(file)).collect();
-    candidates.iter().find(|p| p.is_file()).cloned().ok_or_else(|| {
-        let tried: Vec<String> = candidates.iter().map(|p| p.display().to_string()).collect();
-        format!("ground-truth table {file} not found (tried {})", tried.join(", "))
-    })
+/// A true surface's table file: `<folder>/<file>` (the installed package's `ground_truth/`).
+pub fn table_source(folder: &Path, file: &str) -> Result<PathBuf, String> {
+    let path = folder.join(file);
+    if path.is_file() { Ok(path) } else { Err(format!("ground-truth table {file} not found ({})", path.display())) }
 }
 
 /// One model against its true surface in one lighting.

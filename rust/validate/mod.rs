@@ -99,7 +99,7 @@ pub fn validate_scene(
     let ref_plan = plan(scene, &opts.reference_defines, opts.seed + 1_000_003)?;
     let b: Side = match reference {
         Renderer::Mitsuba(variant) => {
-            passes::mitsuba_side_in_venv(scene, variant, &ref_plan, &dir.join("mitsuba_work"), &|i| {
+            passes::mitsuba_side_installed(scene, variant, &ref_plan, &dir.join("mitsuba_work"), &|i| {
                 progress(variant, i, n)
             })?
         }

@@ -1,18 +1,19 @@
 //! The two sides of a validation run: K independent passes of the Rust renderer (in
-//! process) and of Mitsuba 3.9.1 (through `validation/mitsuba_passes.py` in the project's
-//! `.venv`, which only renders and writes each pass image). Everything computed from the
+//! process) and of Mitsuba (`python -m matte_mitsuba.passes` in the Python environment matte
+//! is installed in, [`crate::installation`], which only renders and writes each pass image). Everything computed from the
 //! passes (moments, region means, the spp budget) is computed here, once, for both sides.
 
 use super::crop::pixel_box;
 use super::stats::Moments;
+use crate::installation::PythonSide;
 use crate::render::film::{Image, SplatWeights};
 use crate::render::image_io;
 use crate::render::load;
 use crate::render::renderer;
 use glam::DVec3;
 use std::io::{BufRead, BufReader};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::path::Path;
+use std::process::Stdio;
 use std::time::Instant;
 
 /// The renderer of one side: the Rust renderer (in validation's reference role: itself with
@@ -141,10 +142,10 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, splat: SplatWeights, progress: &
     side_from_images(images, &plan.regions, seconds, spp_used, "matte".into())
 }
 
-/// K passes of Mitsuba in `variant`, run by the Python driver; `work` receives its files.
+/// K passes of Mitsuba in `variant`, run by `matte_mitsuba.passes` in `python`; `work`
+/// receives its files.
 pub fn mitsuba_side(
-    python: &Path,
-    driver: &Path,
+    python: &PythonSide,
     scene: &Path,
     variant: &str,
     plan: &PassPlan,
@@ -152,8 +153,9 @@ pub fn mitsuba_side(
     progress: &dyn Fn(u32),
 ) -> Result<Side, String> {
     let spp = spp_per_pass(scene, plan)?;
-    let mut cmd = Command::new(python);
-    cmd.arg(driver).arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
+    python.mitsuba_version()?;
+    let mut cmd = python.module("passes");
+    cmd.arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
     cmd.arg("--passes").arg(plan.passes.to_string()).arg("--seed").arg(plan.seed.to_string());
     cmd.arg("--spp").arg(spp.to_string());
     for (k, v) in &plan.defines {
@@ -163,7 +165,7 @@ pub fn mitsuba_side(
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
-        .map_err(|e| format!("cannot start {} (run `make venv` first): {e}", python.display()))?;
+        .map_err(|e| format!("cannot start {}: {e}", python.python.display()))?;
     if let Some(out) = child.stdout.take() {
         for line in BufReader::new(out).lines().map_while(Result::ok) {
             if let Some(rest) = line.strip_prefix("pass ")
@@ -199,35 +201,20 @@ struct DriverInfo {
     render_seconds: f64,
 }
 
-/// The file the Mitsuba driver writes pass `k` to (`validation/mitsuba_passes.py`).
+/// The file the Mitsuba driver writes pass `k` to (`matte_mitsuba.passes`).
 pub fn pass_file_name(k: u32) -> String {
     format!("pass_{k:04}.exr")
 }
 
-/// [`mitsuba_side`] with the project's `.venv` and driver; `work` is removed afterwards.
-pub fn mitsuba_side_in_venv(
+/// [`mitsuba_side`] with the installation's Python side; `work` is removed afterwards.
+pub fn mitsuba_side_installed(
     scene: &Path,
     variant: &str,
     plan: &PassPlan,
     work: &Path,
     progress: &dyn Fn(u32),
 ) -> Result<Side, String> {
-    let root = repo_root();
-    let side = mitsuba_side(
-        &root.join(".venv/bin/python"),
-        &root.join("validation/mitsuba_passes.py"),
-        scene,
-        variant,
-        plan,
-        work,
-        progress,
-    );
+    let side = mitsuba_side(&crate::installation::python_side()?, scene, variant, plan, work, progress);
     let _ = std::fs::remove_dir_all(work);
     side
-}
-
-/// The repository root (where `.venv` and `validation/` live): `MATTE_ROOT`, else the
-/// source tree this binary was built from.
-pub fn repo_root() -> PathBuf {
-    std::env::var_os("MATTE_ROOT").map(PathBuf::from).unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")))
 }

@@ -13,7 +13,26 @@ use std::path::Path;
 #[derive(Serialize)]
 pub struct Summary<'a> {
     pub passed: bool,
+    /// What was compared with what: matte's and Mitsuba's versions, the variants, where the
+    /// scenes came from.
+    pub provenance: &'a Provenance,
     pub scenes: Vec<SceneSummary<'a>>,
+}
+
+/// What a validation run compared: matte's version, the Mitsuba it ran (version, variants,
+/// the Python environment) and where the scenes came from. In the summary and the report.
+#[derive(Clone, Debug, Serialize)]
+pub struct Provenance {
+    /// matte's version.
+    pub matte: String,
+    /// The installed Mitsuba's version (`None`: only the Rust renderer ran, `--self-check`).
+    pub mitsuba: Option<String>,
+    /// The references: `mitsuba llvm_ad_rgb`, …, or `matte` for `--self-check`.
+    pub references: Vec<String>,
+    /// The Python side that ran Mitsuba (interpreter, how it was chosen, package folder).
+    pub python: Option<String>,
+    /// Where the scenes came from (the bundled ones with their folder, or the command line).
+    pub scenes: String,
 }
 
 #[derive(Serialize)]
@@ -158,7 +177,7 @@ fn array(v: DVec3) -> [f64; 3] {
 }
 
 impl<'a> Summary<'a> {
-    pub fn new(results: &'a [SceneResult]) -> Summary<'a> {
+    pub fn new(results: &'a [SceneResult], provenance: &'a Provenance) -> Summary<'a> {
         let scenes = results
             .iter()
             .map(|r| {
@@ -216,7 +235,7 @@ impl<'a> Summary<'a> {
                 }
             })
             .collect();
-        Summary { passed: results.iter().all(|r| r.comparison.passed()), scenes }
+        Summary { passed: results.iter().all(|r| r.comparison.passed()), provenance, scenes }
     }
 
     /// The pretty-printed JSON text.

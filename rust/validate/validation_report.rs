@@ -9,6 +9,7 @@ use super::power::Calibration;
 use super::predicted_power::Prediction;
 use super::scales::Rejection;
 use super::stats::ImageComparison;
+use super::summary::Provenance;
 use super::{SceneResult, write_mean};
 use crate::markup::escape;
 use crate::render::film::Image;
@@ -140,7 +141,7 @@ fn rgb(v: glam::DVec3) -> String {
     format!("{:.5} {:.5} {:.5}", v.x, v.y, v.z)
 }
 
-pub fn html(results: &[SceneResult]) -> String {
+pub fn html(results: &[SceneResult], provenance: &Provenance) -> String {
     let mut h = String::new();
     let all = results.iter().all(|r| r.comparison.passed());
     let _ = write!(
@@ -159,6 +160,7 @@ scale rejects anything (docs/validation.md).</p>"#,
         if all { "PASS" } else { "FAIL" },
         results.len()
     );
+    h.push_str(&provenance_html(provenance));
     h.push_str(&summary_table(results));
     for (i, r) in results.iter().enumerate() {
         let c = &r.comparison;
@@ -363,10 +365,27 @@ fn crops_html(r: &SceneResult) -> String {
     h
 }
 
+/// The run's provenance as a small table: matte, Mitsuba, the references, the Python side, the scenes.
+fn provenance_html(p: &Provenance) -> String {
+    let rows = [
+        ("matte", p.matte.clone()),
+        ("Mitsuba", p.mitsuba.clone().unwrap_or_else(|| "not run".into())),
+        ("references", p.references.join(", ")),
+        ("Python side", p.python.clone().unwrap_or_else(|| "not used".into())),
+        ("scenes", p.scenes.clone()),
+    ];
+    let mut h = String::from(r#"<table class="provenance">"#);
+    for (k, v) in rows {
+        let _ = write!(h, "<tr><th>{k}</th><td>{}</td></tr>", escape(&v));
+    }
+    h.push_str("</table>");
+    h
+}
+
 /// summary.json, report.html and the colour bars in `out`.
-pub fn write_run(out: &Path, results: &[SceneResult]) -> Result<(), String> {
+pub fn write_run(out: &Path, results: &[SceneResult], provenance: &Provenance) -> Result<(), String> {
     heatmap::write_colorbars(&out.join("colorbar_difference.png"), &out.join("colorbar_pvalues.png"))?;
-    let json = super::summary::Summary::new(results).to_json();
+    let json = super::summary::Summary::new(results, provenance).to_json();
     std::fs::write(out.join("summary.json"), json).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("report.html"), html(results)).map_err(|e| e.to_string())
+    std::fs::write(out.join("report.html"), html(results, provenance)).map_err(|e| e.to_string())
 }

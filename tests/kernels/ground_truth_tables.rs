@@ -1,4 +1,4 @@
-//! The ground-truth tables the repository ships (`validation/ground_truth/`, `make ground-truth`;
+//! The ground-truth tables the repository ships (`python/matte_mitsuba/ground_truth/`, `make ground-truth`;
 //! `docs/microgeometry.md#the-tabulated-ground-truth-brdf`), read as they are, without
 //! simulating: both surfaces at every documented roughness, each loading in `matte render` on the
 //! nodes `matte microgeometry --table` writes, reciprocal within its intervals, with a white
@@ -13,7 +13,7 @@ use matte::render::bsdf::{Bsdf as RenderBsdf, tabulated_brdf};
 use matte::render::load::load_str;
 use std::path::{Path, PathBuf};
 
-/// The roughness values of both surfaces (`validation/ground_truth_tables.sh`).
+/// The roughness values of both surfaces (`validation/generators/ground_truth_tables.sh`).
 const ROUGHNESS: [&str; 6] = ["0.1", "0.2", "0.3", "0.5", "0.7", "1.0"];
 
 fn folder() -> PathBuf {
@@ -50,7 +50,7 @@ fn every_table_loads_on_the_documented_nodes_reciprocal_and_energy_conserving() 
     have.sort();
     let mut want: Vec<String> = ROUGHNESS.iter().flat_map(|s| [v_cavities(s), height_field(s)]).collect();
     want.sort();
-    assert_eq!(have, want, "the tables in validation/ground_truth/");
+    assert_eq!(have, want, "the tables in python/matte_mitsuba/ground_truth/");
     for s in ROUGHNESS {
         for (name, what) in [
             (v_cavities(s), format!("V-cavities, sigma = {} rad,", s.parse::<f64>().unwrap())),

@@ -7,18 +7,21 @@ built-in plugins and `mitsuba.chi2` where they apply.
 import json
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pytest
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-MATTE = os.path.join(REPO, "target", "release", "matte")
+# The installed `matte` command of the environment running the tests (the checkout's .venv,
+# where `make` installs the wheel): the tool as users run it, finding its Mitsuba side there.
+MATTE = os.path.join(os.path.dirname(sys.executable), "matte")
 SCENES = os.path.join(REPO, "mitsuba_scenes")
 
 
 
 def _registry():
-    """The model registry as the checkout's `matte types --json` prints it."""
+    """The model registry as the installed `matte types --json` prints it."""
     out = subprocess.run([MATTE, "types", "--json"], capture_output=True, text=True, check=True)
     return json.loads(out.stdout)
 

@@ -1,17 +1,13 @@
-"""`validation/gpu_check.py` without a GPU: the no-GPU path says so and exits 0, and the dry
+"""`python -m matte_mitsuba.gpu_check` without a GPU: the no-GPU path says so and exits 0, and the dry
 run on the CPU (`--device-variant llvm_ad_rgb` against `scalar_rgb`, no timings) runs the mean
 and gradient checks and passes."""
-import os
 import subprocess
 import sys
 
-from conftest import REPO
-
-SCRIPT = os.path.join(REPO, "validation", "gpu_check.py")
-
 
 def run(*args):
-    return subprocess.run([sys.executable, SCRIPT, *args], capture_output=True, text=True, cwd=REPO, timeout=900)
+    return subprocess.run([sys.executable, "-m", "matte_mitsuba.gpu_check", *args], capture_output=True, text=True,
+                          timeout=900)
 
 
 def test_without_the_variant_it_says_so_and_exits_0():

@@ -18,8 +18,7 @@ import pytest
 
 from conftest import MODELS, REPO
 
-sys.path.insert(0, os.path.join(REPO, "validation"))
-from gradient_check import adjoint_gradient, central_difference  # noqa: E402
+from matte_mitsuba.gradient_check import adjoint_gradient, central_difference
 
 RES, SPP, SEED = 24, 8, 3
 
@@ -37,7 +36,7 @@ CASES = [
     ("ginneken", {"roughness": 0.4}, {"reflectance.value": 1e-2, "roughness": 4e-3}),
     ("ginneken", {"roughness": 0.4, "shadowing": "height_correlated"}, {"roughness": 4e-3}),
     # The white walls' reflectance (0.885, 0.698, 0.666) ± 1e-2 stays inside the table's cells.
-    ("tabulated_brdf", {"filename": os.path.join(REPO, "validation", "ground_truth", "v_cavities_sigma0.3.json")},
+    ("tabulated_brdf", {"filename": os.path.join(REPO, "python", "matte_mitsuba", "ground_truth", "v_cavities_sigma0.3.json")},
      {"reflectance.value": 1e-2}),
 ]
 # Every other registered model at its defaults: reflectance and each numeric parameter.

@@ -1,4 +1,4 @@
-"""validation/mimicry.py (the model-mimicry table): its error measures against closed forms, and
+"""validation/experiments/mimicry.py (the model-mimicry table): its error measures against closed forms, and
 one diagonal cell end to end: EON fitted to an EON target on the sphere recovers the
 parameters the target was rendered with (the study's r = 0.3 and the sphere's reflectance, the
 oracle), and its residual stays near the noise floor. About 20 s.
@@ -11,8 +11,7 @@ import numpy as np
 import pytest
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-sys.path.insert(0, os.path.join(REPO, "validation"))
-import mimicry  # noqa: E402
+from validation.experiments import mimicry
 
 
 @pytest.fixture

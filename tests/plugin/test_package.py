@@ -1,16 +1,18 @@
 """The matte-mitsuba package as users install it: the release files of `make dist` (the sdist
-holds what builds and nothing else; the wheel is platlib, repaired to a manylinux tag with no
-library grafted in but Mitsuba's, which it loads from the mitsuba/drjit wheels); the repaired
-wheel installed with `pip install --no-index --find-links dist` (Mitsuba from the registry) in a
-fresh virtual environment outside the checkout (validation/check_wheel.py: renders in llvm_ad_rgb
+holds what builds, with the package data, and nothing else; the wheel is platlib, repaired to a
+manylinux tag with no library grafted in but Mitsuba's, which it loads from the mitsuba/drjit
+wheels); the repaired wheel installed with `pip install --no-index --find-links dist` (Mitsuba
+from the registry) in a fresh virtual environment outside the checkout, every command run with
+the checkout hidden behind an empty mount (tests/plugin/wheel_checks.py: renders in llvm_ad_rgb
 and scalar_rgb, roughdiffuse = oren_nayar with σ = α/√2, the mitsuba tool, the matte tool, the
-packaged ground-truth tables);
-import before or after `mi.set_variant`; a Mitsuba other than the one it was built against is
-refused at import naming both versions."""
+packaged ground-truth tables; then `matte validate`, `validate --all`, `study`, `bench` and the
+plugin benchmark); import before or after `mi.set_variant`; a Mitsuba other than the one it was
+built against is refused at import naming both versions."""
 import glob
 import io
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -60,22 +62,25 @@ def test_sdist_holds_what_builds_and_nothing_else():
     files = set(names)
     for needed in ("Cargo.toml", "Cargo.lock", "build.rs", "setup.py", "pyproject.toml", "README.md", "LICENSE",
                    "cpp/build_plugin.sh", "cpp/plugin.cpp", "rust/lib.rs", "rust/main.rs",
-                   "python/matte_mitsuba/__init__.py", "PKG-INFO"):
+                   "python/matte_mitsuba/__init__.py", "python/matte_mitsuba/passes.py", "PKG-INFO"):
         assert needed in files, f"{needed} missing from the sdist"
-    # Every Rust and C++ source of the checkout is in it.
-    # So is every ground-truth table (the wheel ships them).
-    tracked = subprocess.run(["git", "ls-files", "rust", "cpp", "validation/ground_truth"], capture_output=True, text=True,
-                             cwd=REPO).stdout.split()
+    # Every Rust and C++ source of the checkout is in it, the package with its tables, and the
+    # package data the build copies in (the bundled scenes, the study report's slices).
+    tracked = subprocess.run(["git", "ls-files", "rust", "cpp", "python/matte_mitsuba", "mitsuba_scenes"],
+                             capture_output=True, text=True, cwd=REPO).stdout.split()
     assert tracked and set(tracked) <= files, sorted(set(tracked) - files)[:10]
-    # Nothing else: no tests, scenes, docs, images, build outputs or compiled plugins.
+    slices = [n for n in names if n.startswith("docs/") and n.endswith(".png")]
+    assert len(slices) == 6 and all(n.startswith("docs/microgeometry/") and n.endswith(".png") for n in slices), slices
+    # Nothing else: no tests, validation scripts, other docs or images, build outputs or plugins.
     for n in names:
         top = n.split("/")[0]
         assert top in {"Cargo.toml", "Cargo.lock", "build.rs", "rustfmt.toml", "setup.py", "setup.cfg", "pyproject.toml",
                        "README.md", "LICENSE", "MANIFEST.in", "PKG-INFO", "rust", "cpp", "benches", "python",
-                       "matte_mitsuba.egg-info"} or n in ("validation", "validation/ground_truth") \
-            or (n.startswith("validation/ground_truth/") and n.endswith(".json")), n
-        assert not n.endswith((".png", ".exr", ".so", ".a", ".o")), n
+                       "mitsuba_scenes", "docs", "matte_mitsuba.egg-info"}, n
+        assert not n.endswith((".exr", ".so", ".a", ".o")), n
+        assert not n.endswith(".png") or n.startswith(("docs/microgeometry/", "mitsuba_scenes/")), n
         assert not n.startswith("python/") or n.startswith("python/matte_mitsuba"), n
+        assert not n.startswith(("python/matte_mitsuba/scenes/", "python/matte_mitsuba/bin/")), n
 
 
 def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
@@ -121,21 +126,115 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
     assert elves >= 8, elves  # the library, one stub per model, the matte tool
 
 
-def test_wheel_in_a_fresh_environment_outside_the_checkout(tmp_path):
+def hidden_checkout(cmd):
+    """`cmd` run with the checkout hidden: an empty tmpfs mounted over it in a private mount
+    namespace (`unshare -m` as root, `unshare -rm` otherwise). Anything the installation still
+    read from the tree it was built in would be missing there."""
+    mount = "mount -t tmpfs none \"$0\" && exec \"$@\""
+    return ["unshare", "-m" if os.geteuid() == 0 else "-rm", "sh", "-c", mount, REPO, *cmd]
+
+
+def can_hide_the_checkout():
+    r = subprocess.run(hidden_checkout(["sh", "-c", 'test -z "$(ls -A "$1")"', "sh", REPO]), capture_output=True)
+    return r.returncode == 0
+
+
+# A scene of the user's, written by the test: three of matte's BSDFs and a Mitsuba built-in.
+USER_SCENE = """<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="3"/></integrator>
+    <sensor type="perspective">
+        <float name="fov" value="45"/>
+        <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sample_count" value="16"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="24"/></film>
+    </sensor>
+    <shape type="sphere"><point name="center" x="-0.9" y="0" z="0"/><float name="radius" value="0.6"/>
+        <bsdf type="eon"><float name="roughness" value="0.6"/><rgb name="reflectance" value="0.7, 0.5, 0.3"/></bsdf></shape>
+    <shape type="sphere"><point name="center" x="0.4" y="0" z="0"/><float name="radius" value="0.6"/>
+        <bsdf type="ginneken"><float name="roughness" value="0.4"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><scale value="4"/><translate z="-1"/></transform>
+        <bsdf type="wolff"/></shape>
+    <emitter type="constant"><rgb name="radiance" value="0.8"/></emitter>
+</scene>
+"""
+
+
+def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
+    """The wheel in a fresh environment outside the checkout, every command run with the
+    checkout hidden (`hidden_checkout`): the Mitsuba user's checks (tests/plugin/wheel_checks.py),
+    `matte validate` on a scene of the user's, `matte validate --all --quick` (every bundled
+    scene, an installation self-test), `matte study` on one bundled scene, `matte bench` (the
+    matte side, on the bundled scenes) and the plugin benchmark on `tabulated_brdf`."""
+    if not can_hide_the_checkout():
+        if os.geteuid() == 0:
+            pytest.fail("unshare -m cannot mount over the checkout as root")
+        pytest.skip("needs a mount namespace (unshare -rm) to hide the checkout")
     wheel = release_wheel()
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     py = str(venv / "bin" / "python")
     pip = [py, "-m", "pip", "install", "-q", "--disable-pip-version-check"]
-    # The pinned Mitsuba from the registry, then matte only from the release files.
-    r = subprocess.run(pip + ["mitsuba==3.9.1"], capture_output=True, text=True)
+    # The pinned Mitsuba (and numpy) from the registry, then matte only from the release files.
+    r = subprocess.run(pip + ["mitsuba==3.9.1", "numpy"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     r = subprocess.run(pip + ["--no-index", "--find-links", os.path.dirname(wheel), "matte-mitsuba"],
                        capture_output=True, text=True, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     shown = subprocess.run([py, "-m", "pip", "show", "-f", "matte-mitsuba"], capture_output=True, text=True).stdout
     assert "Version: 0.1.0" in shown
-    check = subprocess.run([py, os.path.join(REPO, "validation", "check_wheel.py")], capture_output=True, text=True, cwd=tmp_path)
+    bundled = sorted(f for f in os.listdir(os.path.join(REPO, "mitsuba_scenes")) if f.endswith(".xml"))
+    checks = tmp_path / "wheel_checks.py"
+    shutil.copy(os.path.join(REPO, "tests", "plugin", "wheel_checks.py"), checks)
+    work = tmp_path / "work"
+    work.mkdir()
+    (work / "my_scene.xml").write_text(USER_SCENE)
+    matte = str(venv / "bin" / "matte")
+
+    def run(*cmd, timeout=900):
+        return subprocess.run(hidden_checkout(list(cmd)), capture_output=True, text=True, cwd=work, timeout=timeout,
+                              env={k: v for k, v in os.environ.items() if not k.startswith(("MATTE", "VIRTUAL_ENV"))})
+
+    check = run(py, str(checks))
     print(check.stdout)
     assert check.returncode == 0, check.stdout + check.stderr
     assert check.stdout.count("\nok") + check.stdout.startswith("ok") == 8, check.stdout
+
+    # A scene of the user's, by its file name in the working folder.
+    r = run(matte, "validate", "my_scene.xml", "--quick", "-o", "one")
+    assert r.returncode == 0 and "PASS my_scene.xml vs llvm_ad_rgb" in r.stderr, r.stdout + r.stderr
+    assert (work / "one" / "report.html").is_file()
+    summary = json.loads((work / "one" / "summary.json").read_text())
+    provenance = summary["provenance"]
+    assert summary["passed"] and provenance["mitsuba"] == "3.9.1", provenance
+    assert provenance["python"].startswith(py) and "1 given on the command line" == provenance["scenes"], provenance
+    report = (work / "one" / "report.html").read_text()
+    assert "Mitsuba" in report and "3.9.1" in report and "mitsuba llvm_ad_rgb" in report
+
+    # Every bundled scene: the installation's self-test.
+    r = run(matte, "validate", "--all", "--quick", "-o", "all")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert f"all {len(bundled)} comparison(s) passed" in r.stdout, r.stdout + r.stderr
+    summary = json.loads((work / "all" / "summary.json").read_text())
+    assert sorted(os.path.basename(s["scene"]) for s in summary["scenes"]) == bundled
+    assert all(s["scene"].startswith(str(venv)) for s in summary["scenes"]), summary["scenes"][0]["scene"]
+    assert summary["provenance"]["scenes"].startswith(f"{len(bundled)} bundled with matte_mitsuba ("), summary["provenance"]
+
+    # The paper's study on one bundled scene, by name, with the true surfaces from the package.
+    r = run(matte, "study", "cornell", "--res", "16", "--spp", "4", "--passes", "2", "--no-variants",
+            "--no-convergence", "-q", "-o", "study")
+    assert r.returncode == 0, r.stdout + r.stderr
+    study = json.loads((work / "study" / "study.json").read_text())
+    keys = [m["key"] for m in study["scenes"][0]["models"]]
+    assert "truth_v_cavities" in keys and "truth_height_field" in keys, keys
+    html = (work / "study" / "report.html").read_text()
+    for part in html.split('src="')[1:]:
+        assert (work / "study" / part.split('"')[0]).is_file(), part.split('"')[0]
+    assert "truth_slices/truth_slice_eon.png" in html
+
+    # The benchmarks: matte's side on the bundled scenes, and the plugin benchmark on one type.
+    r = run(matte, "bench", "--quick", "--no-mitsuba", "-q", "-o", "bench")
+    assert r.returncode == 0 and (work / "bench" / "bench.json").is_file(), r.stdout + r.stderr
+    r = run(py, "-m", "matte_mitsuba.bench_plugin", "--types", "tabulated_brdf", "--res", "16", "--spp", "1",
+            "--repeats", "1")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert re.search(r"tabulated_brdf\s+[0-9.]+ s\s+[0-9.]+x diffuse", r.stdout), r.stdout

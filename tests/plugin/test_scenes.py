@@ -11,7 +11,6 @@ import pytest
 
 from conftest import REPO, SCENES
 
-sys.path.insert(0, os.path.join(REPO, "validation"))
 
 
 class Capture:
@@ -106,10 +105,10 @@ def test_study_scene_curved_with_table_models(mi_variant):
     `tabulated_brdf` renders, finite, in symbolic llvm: the table gathers' indices stay inside
     their tables on every lane, whatever an inactive lane's directions hold (an unclamped packet
     index once read outside the slope table here and crashed the process)."""
-    import sampling_scenes  # validation/: the scene with its `$bsdf` surfaces substituted
+    from validation import sampling_scenes  # the scene with its `$bsdf` surfaces substituted
     mi = mi_variant
     path = sampling_scenes.SCENES["curved"]
-    table = os.path.join(REPO, "validation", "ground_truth", "height_field_m0.3.json")
+    table = os.path.join(REPO, "python", "matte_mitsuba", "ground_truth", "height_field_m0.3.json")
     mi.file_resolver().prepend(os.path.dirname(os.path.join(REPO, path)))
     for kind, params in (("ginneken", {"sampling": "cosine"}), ("ginneken", {"sampling": "cltc"}),
                          ("tabulated_brdf", {"filename": table})):

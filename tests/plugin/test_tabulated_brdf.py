@@ -6,7 +6,7 @@ respect to the reflectance against central differences; Mitsuba's χ² test of t
 NaN at grazing, normal, coincident and below-horizon directions; file errors as one line
 naming the file. The render gradient is in `test_gradients.py`, plugin against renderer in
 `matte validate` (`mitsuba_scenes/sphere_tabulated_brdf.xml`). The values are checked on every
-table in `validation/ground_truth/`, the rest on the V-cavities at σ = 0.3; the installed package
+table in `python/matte_mitsuba/ground_truth/`, the rest on the V-cavities at σ = 0.3; the installed package
 ships the same files (`matte_mitsuba.ground_truth_path`)."""
 import glob
 import json
@@ -18,7 +18,7 @@ import pytest
 
 from conftest import REPO, random_pairs
 
-GROUND_TRUTH = os.path.join(REPO, "validation", "ground_truth")
+GROUND_TRUTH = os.path.join(REPO, "python", "matte_mitsuba", "ground_truth")
 TABLE = os.path.join(GROUND_TRUTH, "v_cavities_sigma0.3.json")
 TABLES = sorted(glob.glob(os.path.join(GROUND_TRUTH, "*.json")))
 VARIANTS = ["scalar_rgb", "llvm_ad_rgb"]

@@ -14,8 +14,7 @@ import pytest
 
 from conftest import REPO, random_pairs
 
-sys.path.insert(0, os.path.join(REPO, "validation"))
-from gradient_check import adjoint_gradient, image_mean  # noqa: E402
+from matte_mitsuba.gradient_check import adjoint_gradient, image_mean
 
 N = 4000
 # (type, textured parameter, value, fixed parameters, relative tolerance against the float form)

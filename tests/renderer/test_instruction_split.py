@@ -1,10 +1,9 @@
-"""validation/instruction_split.py's reading of callgrind's listing (the profiling itself needs
+"""validation/experiments/instruction_split.py's reading of callgrind's listing (the profiling itself needs
 valgrind and minutes per scene: docs/performance.md)."""
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "validation"))
-import instruction_split  # noqa: E402
+from validation.experiments import instruction_split
 
 # The shape of `callgrind_annotate --inclusive=no --auto=no` output, lines taken from real runs.
 LISTING = """\

@@ -7,6 +7,7 @@ The per-pixel statistical comparison is `matte validate`'s job.
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 import matte_mitsuba  # noqa: F401  (puts matte's plugins on Mitsuba's search path)
@@ -15,7 +16,8 @@ import numpy as np
 import pytest
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-MATTE = os.path.join(REPO, "target", "release", "matte")
+# The installed `matte` command of the environment running the tests (the checkout's .venv).
+MATTE = os.path.join(os.path.dirname(sys.executable), "matte")
 SCENES = os.path.join(REPO, "mitsuba_scenes")
 
 K = 8

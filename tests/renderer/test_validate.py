@@ -6,13 +6,15 @@ import json
 import os
 import re
 import subprocess
+import sys
 
 import mitsuba as mi
 import numpy as np
 import pytest
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
-MATTE = os.path.join(REPO, "target", "release", "matte")
+# The installed `matte` command of the environment running the tests (the checkout's .venv).
+MATTE = os.path.join(os.path.dirname(sys.executable), "matte")
 SPHERE = os.path.join(REPO, "mitsuba_scenes", "sphere_lambert.xml")
 CORNELL = os.path.join(REPO, "mitsuba_scenes", "cornell_box.xml")
 RES = 48

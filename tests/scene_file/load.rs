@@ -2341,7 +2341,7 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
 }
 
 /// Issue "real scenes": every property that Mitsuba 3.9.1's implementation of a plugin matte
-/// renders reads (harvested from its sources by `validation/harvest_mitsuba_properties.py`)
+/// renders reads (harvested from its sources by `validation/generators/harvest_mitsuba_properties.py`)
 /// is accepted by matte, each alone in a scene that otherwise loads: implemented by the
 /// plugin's builder, or accepted without effect where it cannot change the image
 /// (`load/no_effect.rs`). A property Mitsuba does not read stays an error.

@@ -8,7 +8,8 @@ use std::process::Command;
 #[test]
 fn quick_bench_measures_every_scene_kernel_and_spp() {
     let out = std::env::temp_dir().join("matte_bench_test");
-    let m = run(&BenchOptions { quick: true, repeats: 1, mitsuba: false, out }, &|_| {}).unwrap();
+    let scenes = std::path::PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes"));
+    let m = run(&BenchOptions { quick: true, repeats: 1, mitsuba: false, out, scenes }, &|_| {}).unwrap();
     let names: Vec<&str> = m.jobs.iter().map(|(j, _)| j.name.as_str()).collect();
     assert_eq!(names, ["cornell", "bunny", "room"]);
     for (job, t) in &m.jobs {

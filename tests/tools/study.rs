@@ -27,6 +27,7 @@ fn study_run_writes_strips_report_and_sane_numbers() {
     let out = std::env::temp_dir().join(format!("matte_study_test_{}", std::process::id()));
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/sphere_lambert.xml");
     let o = Command::new(env!("CARGO_BIN_EXE_matte"))
+        .envs(crate::common::source_package_env())
         .args(["study", scene, "--spp", "8", "--passes", "4", "--res", "24", "-q", "-o"])
         .arg(&out)
         .output()
@@ -377,10 +378,9 @@ fn convergence_verdicts_follow_interval_overlap() {
 #[test]
 fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
     let out = temp_dir("e2e_variants");
-    let no_venv = temp_dir("no_venv");
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/study/cornell.xml");
     let o = Command::new(env!("CARGO_BIN_EXE_matte"))
-        .env("MATTE_ROOT", &no_venv)
+        .envs(crate::common::source_package_env())
         .args(["study", scene, "--spp", "4", "--passes", "2", "--res", "16", "--convergence-spp", "2,4", "-q", "-o"])
         .arg(&out)
         .output()
@@ -406,7 +406,11 @@ fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
     let c = &j["convergence"][0];
     assert_eq!(c["renderers"], serde_json::json!(["matte"]));
     assert_eq!(c["points"].as_array().unwrap().len(), 4, "2 levels × (ON, ON full), matte only");
-    assert!(c["notes"][0].as_str().is_some_and(|n| n.contains("no venv")), "{}", c["notes"]);
+    assert!(
+        c["notes"][0].as_str().is_some_and(|n| n.contains("Mitsuba was not run") && n.contains("no Mitsuba")),
+        "{}",
+        c["notes"]
+    );
     let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
     assert!(html.contains("Mitsuba was not run"));
     for part in html.split("src=\"").skip(1).chain(html.split("href=\"").skip(1)) {
@@ -414,7 +418,6 @@ fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
         assert!(out.join(file).is_file(), "report names a missing file {file}");
     }
     let _ = std::fs::remove_dir_all(&out);
-    let _ = std::fs::remove_dir_all(&no_venv);
 }
 
 // ---- True surfaces ---------------------------------------------------------------------------
@@ -431,6 +434,8 @@ fn study_options(out: &Path) -> matte::study::StudyOptions {
         variant_scenes: Vec::new(),
         convergence_spp: Vec::new(),
         mitsuba_variant: "scalar_rgb".into(),
+        ground_truth: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/python/matte_mitsuba/ground_truth")),
+        truth_slices: None,
     }
 }
 
@@ -493,6 +498,7 @@ fn study_compares_each_rough_model_with_its_own_surface() {
     let out = temp_dir("e2e_truth");
     let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/study/cornell.xml");
     let o = Command::new(env!("CARGO_BIN_EXE_matte"))
+        .envs(crate::common::source_package_env())
         .args(["study", scene, "--spp", "4", "--passes", "2", "--res", "16", "--no-variants", "--no-convergence"])
         .args(["-q", "-o"])
         .arg(&out)

@@ -46,7 +46,7 @@ pub fn sampler_roughness<T: Real>(m: T) -> T {
 
 /// The importance sampler at `μ = cos θi` and roughness variable `t`
 /// ([`sampler_roughness`]): the CLTC fitted to the model (`rust/brdf/sampler_fits.rs`,
-/// `validation/fit_samplers.py`), polynomial in μ and t, no table; the cosine at t = 0. One
+/// `validation/generators/fit_samplers.py`), polynomial in μ and t, no table; the cosine at t = 0. One
 /// fit serves both shadowing options (fitted to each, they differ by 2–3 % in variance).
 #[inline(always)]
 pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {

@@ -45,7 +45,7 @@ pub fn mu_lambda(mu: f64, sin: f64, m: f64) -> f64 {
 
 /// `μ Λ(θ)` in any [`Real`], the kernels' form: with `a = μ / (m sin θ)`,
 /// `μΛ = m sin θ · g(a)`, `g(a) = ½ [√(2/π) e^{−a²/2} − a erfc(a/√2)]`, and g by a rational
-/// fit of degrees 5 and 6 (`mu_lambda_fit.rs`, `validation/fit_mu_lambda.py`) whose error is
+/// fit of degrees 5 and 6 (`mu_lambda_fit.rs`, `validation/generators/fit_mu_lambda.py`) whose error is
 /// below 5e-8 of `a + g`, so `μ + μΛ = m sin θ (a + g)`, the sum it enters, is exact to f32
 /// rounding. No `exp`, one division besides `a`'s. `a` is clamped at the fit's end (5,
 /// where `g/a < 1e-8`), so that normal incidence (`sin θ = 0`) gives 0 with a finite

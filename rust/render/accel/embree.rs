@@ -164,11 +164,11 @@ impl EmbreeScene {
         }
         let mut ctx = IntersectContext::incoherent();
         // SAFETY: a committed scene, an initialised context, a 32-byte aligned RTCRayHit8 and
-        // a valid mask for its lanes.
-        unsafe { (self.api.intersect8)(valid.as_ptr(), self.scene, &mut ctx, &mut p) };
+        // a 32-byte aligned valid mask for its lanes.
+        unsafe { (self.api.intersect8)(&valid, self.scene, &mut ctx, &mut p) };
         std::array::from_fn(|i| {
             let geom = p.f[18][i].to_bits();
-            (valid[i] != 0 && geom != rtc::INVALID_GEOMETRY_ID).then(|| Hit {
+            (valid.0[i] != 0 && geom != rtc::INVALID_GEOMETRY_ID).then(|| Hit {
                 t: p.f[8][i],
                 shape: self.shape_of_geometry[geom as usize],
                 prim: p.f[17][i].to_bits(),
@@ -189,8 +189,8 @@ impl EmbreeScene {
         let mut ctx = IntersectContext::incoherent();
         // SAFETY: as in `intersect8`, with a 32-byte aligned RTCRay8; Embree sets `tfar` to
         // −∞ for the blocked lanes.
-        unsafe { (self.api.occluded8)(valid.as_ptr(), self.scene, &mut ctx, &mut p) };
-        std::array::from_fn(|i| valid[i] != 0 && p.f[8][i] == f32::NEG_INFINITY)
+        unsafe { (self.api.occluded8)(&valid, self.scene, &mut ctx, &mut p) };
+        std::array::from_fn(|i| valid.0[i] != 0 && p.f[8][i] == f32::NEG_INFINITY)
     }
 
     /// Whether a mesh blocks `ray` before `maxt`.
@@ -309,8 +309,8 @@ fn traceable(ray: &Ray) -> bool {
 
 /// Embree's valid mask (−1 valid, 0 not) for the active lanes it may be asked about.
 #[inline(always)]
-fn valid_lanes(rays: &[Ray; 8], active: [bool; 8]) -> [i32; 8] {
-    std::array::from_fn(|i| if active[i] && traceable(&rays[i]) { -1 } else { 0 })
+fn valid_lanes(rays: &[Ray; 8], active: [bool; 8]) -> rtc::ValidMask8 {
+    rtc::ValidMask8(std::array::from_fn(|i| if active[i] && traceable(&rays[i]) { -1 } else { 0 }))
 }
 
 /// Writes `r` into lane `i` of Embree's structure-of-arrays ray fields (origin, tnear = 0,

@@ -79,6 +79,16 @@ pub struct RtcRayHit8 {
     pub f: [[f32; 8]; 20],
 }
 
+/// The `valid` mask of `rtcIntersect8` / `rtcOccluded8`: one `int` per lane, -1 = trace, 0 =
+/// skip. Embree loads it as one 32-byte vector and requires 32-byte alignment (a plain
+/// `[c_int; 8]` is 4-byte aligned, and the aligned load faults when it lands elsewhere).
+#[repr(C, align(32))]
+#[derive(Clone, Copy, Debug)]
+pub struct ValidMask8(pub [c_int; 8]);
+
+// The packet structures' alignment is part of Embree's ABI: checked when compiling.
+const _: () = assert!(align_of::<ValidMask8>() == 32 && align_of::<RtcRayHit8>() == 32 && align_of::<RtcRay8>() == 32);
+
 /// `struct RTCRay8`: eight rays in structure-of-arrays layout (the first 12 fields of
 /// [`RtcRayHit8`]).
 #[repr(C, align(32))]
@@ -161,8 +171,8 @@ pub struct Api {
     pub set_geometry_occluded_function: unsafe extern "C" fn(RTCGeometry, UserQueryFn),
     pub intersect1: unsafe extern "C" fn(RTCScene, *mut IntersectContext, *mut RtcRayHit),
     pub occluded1: unsafe extern "C" fn(RTCScene, *mut IntersectContext, *mut RtcRay),
-    pub intersect8: unsafe extern "C" fn(*const c_int, RTCScene, *mut IntersectContext, *mut RtcRayHit8),
-    pub occluded8: unsafe extern "C" fn(*const c_int, RTCScene, *mut IntersectContext, *mut RtcRay8),
+    pub intersect8: unsafe extern "C" fn(*const ValidMask8, RTCScene, *mut IntersectContext, *mut RtcRayHit8),
+    pub occluded8: unsafe extern "C" fn(*const ValidMask8, RTCScene, *mut IntersectContext, *mut RtcRay8),
     /// One device for the process (Embree's thread pool is per device); never released.
     pub device: RTCDevice,
 }

@@ -1,6 +1,6 @@
 //! The properties each Mitsuba 3.9.1 plugin reads, harvested from its sources (the
 //! plugin's `.cpp`, its base-class constructors and the `Properties` helpers it calls) by
-//! `validation/harvest_mitsuba_properties.py`. Generated: do not edit; rerun the script.
+//! `validation/generators/harvest_mitsuba_properties.py`. Generated: do not edit; rerun the script.
 //! `rust/render/load/no_effect.rs` and the builders in `rust/render/load/` decide what matte
 //! does with each; `tests/scene_file/load.rs` walks the whole list.
 

@@ -7,7 +7,7 @@ pub(crate) mod bsdf;
 mod emitter;
 mod instance;
 mod integrator;
-#[allow(clippy::all)] // generated data (validation/harvest_mitsuba_properties.py)
+#[allow(clippy::all)] // generated data (validation/generators/harvest_mitsuba_properties.py)
 #[rustfmt::skip]
 pub mod mitsuba_plugins;
 pub mod no_effect;
@@ -113,22 +113,25 @@ pub(crate) struct ShapeContext {
 
 impl Builder {
     /// An asset path: absolute, or the first existing one relative to a `<path>` folder of the
-    /// main file, the scene file's folder or the working directory (Mitsuba's
-    /// `FileResolver::resolve` with the resolver `load_file` sets up: the scene's folder
-    /// prepended, `<path>` folders in front of it); when none exists, the scene folder's one
-    /// (for the error message).
+    /// main file, the scene file's folder, matte's package folder or the working directory
+    /// (Mitsuba's `FileResolver::resolve` with the resolver `load_file` sets up once
+    /// `matte_mitsuba` is imported: the scene's folder prepended, `<path>` folders in front of
+    /// it, the package folder registered by the import, so `ground_truth/<table>.json` names
+    /// a packaged table); when none exists, the scene folder's one (for the error message).
     pub fn resolve(&self, file: &str) -> PathBuf {
         let p = Path::new(file);
         if p.is_absolute() {
             return p.to_path_buf();
         }
         let in_base = self.base_dir.join(p);
+        let package = || crate::installation::package_dir().ok().map(|d| d.join(p));
         self.search_paths
             .iter()
             .map(|d| d.join(p))
             .chain([in_base.clone()])
-            .chain(std::env::current_dir().ok().map(|d| d.join(p)))
             .find(|c| c.exists())
+            .or_else(|| package().filter(|c| c.exists()))
+            .or_else(|| std::env::current_dir().ok().map(|d| d.join(p)).filter(|c| c.exists()))
             .unwrap_or(in_base)
     }
 }

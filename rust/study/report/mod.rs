@@ -140,7 +140,8 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
     h
 }
 
-pub fn write(out: &Path, study: &Study) -> Result<(), String> {
+/// study.json, truth.json and report.html in `out`; the BRDF slices copied from `slices`.
+pub fn write(out: &Path, study: &Study, slices: Option<&Path>) -> Result<(), String> {
     let j = json(study);
     let text = serde_json::to_string_pretty(&j).map_err(|e| e.to_string())?;
     std::fs::write(out.join("study.json"), text).map_err(|e| e.to_string())?;
@@ -149,6 +150,9 @@ pub fn write(out: &Path, study: &Study) -> Result<(), String> {
     }))
     .map_err(|e| e.to_string())?;
     std::fs::write(out.join("truth.json"), truth).map_err(|e| e.to_string())?;
-    let slices = if study.truths.is_empty() { Vec::new() } else { truth_section::copy_slices(out) };
+    let slices = match slices {
+        Some(from) if !study.truths.is_empty() => truth_section::copy_slices(from, out),
+        _ => Vec::new(),
+    };
     std::fs::write(out.join("report.html"), html(study, &slices)).map_err(|e| e.to_string())
 }

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 /// The BRDF slices of `docs/microgeometry/` shown in the section, at the study's roughness 0.3
 /// and facet albedo 0.8: per model, the slice through its largest error against its surface
-/// (`validation/truth_error_slices.py`), then both surfaces against every model.
+/// (`validation/generators/truth_error_slices.py`), then both surfaces against every model.
 pub const SLICES: [&str; 6] = [
     "truth_slice_oren_nayar_qualitative.png",
     "truth_slice_oren_nayar_full.png",
@@ -226,7 +226,7 @@ Rank: 1 = the model closest to its own surface in that scene and lighting. {} de
         }
     }
     if !slices.is_empty() {
-        h.push_str(r#"<h3>The BRDFs against the simulated surfaces</h3><p>Facet albedo ρ = 0.8, roughness 0.3, from <code>docs/microgeometry/</code>. First, per model, the slice through the (θi, θo, Δφ) node (θ ≤ 80°) where it differs most from its surface's table (<code>validation/truth_error_slices.py</code>); then every model against each surface (points: the simulation with 99 % intervals, all bounces and first bounce; docs/microgeometry.md, comparison).</p>"#);
+        h.push_str(r#"<h3>The BRDFs against the simulated surfaces</h3><p>Facet albedo ρ = 0.8, roughness 0.3, from <code>docs/microgeometry/</code>. First, per model, the slice through the (θi, θo, Δφ) node (θ ≤ 80°) where it differs most from its surface's table (<code>validation/generators/truth_error_slices.py</code>); then every model against each surface (points: the simulation with 99 % intervals, all bounces and first bounce; docs/microgeometry.md, comparison).</p>"#);
         h.push_str("<p>");
         for s in slices {
             let _ = write!(h, r#"<img src="{}"> "#, escape(&s.display().to_string()));
@@ -237,15 +237,15 @@ Rank: 1 = the model closest to its own surface in that scene and lighting. {} de
     h
 }
 
-/// Copies [`SLICES`] from `docs/microgeometry/` into the output folder; returns the copies
-/// (relative to `out`) that exist.
-pub fn copy_slices(out: &Path) -> Vec<PathBuf> {
-    let roots = [crate::validate::passes::repo_root(), PathBuf::from(env!("CARGO_MANIFEST_DIR"))];
+/// Copies [`SLICES`] from `source` (the installed package's `truth_slices/`, copies of
+/// `docs/microgeometry/`'s made by the wheel's build) into the output folder; returns the
+/// copies (relative to `out`) that exist.
+pub fn copy_slices(source: &Path, out: &Path) -> Vec<PathBuf> {
     let dir = out.join(slices_dir());
     SLICES
         .iter()
         .filter_map(|name| {
-            let src = roots.iter().map(|r| r.join("docs/microgeometry").join(name)).find(|p| p.is_file())?;
+            let src = Some(source.join(name)).filter(|p| p.is_file())?;
             std::fs::create_dir_all(&dir).ok()?;
             std::fs::copy(&src, dir.join(name)).ok()?;
             Some(slices_dir().join(name))

@@ -3,7 +3,7 @@
 the simulated surface with its 99 % intervals (all bounces, and the first bounce only) beside
 each model. Reads the JSON `matte microgeometry` prints; draws only (no numbers computed here).
 
-    .venv/bin/python validation/microgeometry_plots.py OUT_DIR COMPARISON.json [...]
+    .venv/bin/python validation/generators/microgeometry_plots.py OUT_DIR COMPARISON.json [...]
 """
 import json
 import sys

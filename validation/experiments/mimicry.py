@@ -1,6 +1,6 @@
 """Can one diffuse model mimic another? The 5×5 mimicry table.
 
-    .venv/bin/python validation/mimicry.py [-o mimicry_out] [--scenes cornell,sphere]
+    .venv/bin/python validation/experiments/mimicry.py [-o mimicry_out] [--scenes cornell,sphere]
 
 For the paper's four models and EON (lambert, wolff, oren_nayar, eon, ginneken) at the study's
 parameters (the plugins' defaults: Wolff IOR 1.4, Oren–Nayar σ 0.3, EON r 0.3, van Ginneken
@@ -60,7 +60,7 @@ import time
 
 import numpy as np
 
-REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 MODELS = ("lambert", "wolff", "oren_nayar", "eon", "ginneken")
 LABELS = {"lambert": "Lambert", "wolff": "Wolff", "oren_nayar": "Oren–Nayar", "eon": "EON",
@@ -78,7 +78,7 @@ BLOCKS = 8  # worst-region blocks per image side
 BLOCK_MIN = 0.25  # blocks darker than this fraction of the image's mean block are skipped
 
 SPHERE = """<scene version="3.0.0">
-    <!-- matte mimicry: a sphere under one directional light (validation/mimicry.py). -->
+    <!-- matte mimicry: a sphere under one directional light (validation/experiments/mimicry.py). -->
     <default name="bsdf" value="lambert"/>
     <default name="res" value="64"/>
     <default name="lx" value="0"/><default name="lz" value="-1"/>

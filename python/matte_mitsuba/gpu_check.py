@@ -1,20 +1,19 @@
-#!/usr/bin/env python3
-"""The plugin on an NVIDIA GPU, in one command (docs/testing.md, "GPU check"). With the
-matte_mitsuba wheel installed next to mitsuba==3.9.1:
+"""The plugin on an NVIDIA GPU, in one command (docs/testing.md, "GPU check"). In the Python
+environment where the matte-mitsuba wheel is installed:
 
-    python validation/gpu_check.py            # exit 0: all agree; 1: a mismatch; 0 without a GPU
+    python -m matte_mitsuba.gpu_check          # exit 0: all agree; 1: a mismatch; 0 without a GPU
 
 Three checks of the `cuda_ad_rgb` variant in Dr.Jit's default (symbolic) mode, each in its
 own process (a symbolic call traces every BSDF type loaded in the process):
 
-1. **Image mean.** `mitsuba_scenes/all_types.xml` (every matte type) rendered with `--seeds`
+1. **Image mean.** The bundled `all_types.xml` (every matte type) rendered with `--seeds`
    seeds in `cuda_ad_rgb` and in `llvm_ad_rgb`: per channel, the two means must agree within
    4.5 standard errors (from the spread over seeds), i.e. the same expectation.
 2. **Gradients.** For one parameter per type, d(image mean)/d(parameter) by `prb` on the
    Cornell box against central finite differences of renders with the same seed, within 1 %
    (as `tests/plugin/test_gradients.py` does in `llvm_ad_rgb`).
 3. **Speed.** Each type's render time on the Cornell box (256², 64 spp, best of 3 after a
-   warm-up; `validation/bench_plugin.py --one`) against Mitsuba's own `diffuse`: reported,
+   warm-up; `python -m matte_mitsuba.bench_plugin --one`) against Mitsuba's own `diffuse`: reported,
    not judged.
 
 Prints one table. Without a GPU (no `cuda_ad_rgb` variant, or no CUDA driver) it says so and
@@ -28,11 +27,10 @@ import subprocess
 import sys
 import time
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-REPO = os.path.dirname(HERE)
-sys.path.insert(0, HERE)
-from gradient_check import adjoint_gradient, central_difference  # noqa: E402
-SCENE = os.path.join(REPO, "mitsuba_scenes", "all_types.xml")
+from . import MODELS, SCENES, bench_plugin
+from .gradient_check import adjoint_gradient, central_difference
+
+SCENE = os.path.join(SCENES, "all_types.xml")
 
 # One differentiable parameter per type, its value and finite-difference step: the first
 # numeric parameter of every registered model (reflectance for a model without one) at its
@@ -63,18 +61,7 @@ def gradient_cases(models):
     return cases
 
 
-def _registry():
-    """The registered models: from the installed package, else the checkout's `matte`."""
-    try:
-        import matte_mitsuba
-        return matte_mitsuba.MODELS
-    except ImportError:
-        out = subprocess.run([os.path.join(REPO, "target", "release", "matte"), "types", "--json"],
-                             capture_output=True, text=True, check=True)
-        return json.loads(out.stdout)
-
-
-GRADIENT_CASES = gradient_cases(_registry())
+GRADIENT_CASES = gradient_cases(MODELS)
 GRADIENT_TOLERANCE = 0.01
 MEAN_Z_LIMIT = 4.5
 
@@ -84,7 +71,6 @@ def child(args):
     import mitsuba as mi
     import numpy as np
     mi.set_variant(args.variant)
-    import matte_mitsuba  # noqa: F401  registers the plugins
     if args.child == "probe":
         print(json.dumps({"ok": True}))
         return
@@ -124,7 +110,7 @@ def child(args):
 
 
 def run_child(variant, what, **extra):
-    cmd = [sys.executable, os.path.abspath(__file__), "--child", what, "--variant", variant]
+    cmd = [sys.executable, "-m", "matte_mitsuba.gpu_check", "--child", what, "--variant", variant]
     for k, v in extra.items():
         cmd += [f"--{k}", str(v)]
     out = subprocess.run(cmd, capture_output=True, text=True)
@@ -175,7 +161,6 @@ def gradient_check(device, types):
 
 
 def speed_table(device, repeats):
-    import bench_plugin
     rows, base = [], None
     for kind in ["diffuse"] + list(bench_plugin.TYPES):
         try:

@@ -1,14 +1,14 @@
 #!/usr/bin/env bash
-# The ground-truth tables in validation/ground_truth/ (docs/microgeometry.md#the-tabulated-ground-truth-brdf):
+# The ground-truth tables in python/matte_mitsuba/ground_truth/ (docs/microgeometry.md#the-tabulated-ground-truth-brdf):
 # V-cavities σ and Gaussian height fields m at each roughness below, all bounces, fixed seeds and
 # photon counts. Prints each table's report (largest E/ρ before matching, half-widths, white
 # albedo) and its wall time.
 #
-#     validation/ground_truth_tables.sh [OUT_DIR]     # `make ground-truth`; MATTE=path overrides the binary
+#     validation/generators/ground_truth_tables.sh [OUT_DIR]     # `make ground-truth`; MATTE=path overrides the binary
 set -euo pipefail
 MATTE=${MATTE:-target/release/matte}
-OUT=${1:-validation/ground_truth}
-ROUGHNESS="0.1 0.2 0.3 0.5 0.7 1.0"   # also in tests/kernels/ground_truth_tables.rs (12 files: check_wheel.py)
+OUT=${1:-python/matte_mitsuba/ground_truth}
+ROUGHNESS="0.1 0.2 0.3 0.5 0.7 1.0"   # also in tests/kernels/ground_truth_tables.rs (12 files: tests/plugin/wheel_checks.py)
 VC_PHOTONS=2000000 VC_SEED=5                          # per θi node
 HF_PHOTONS=96000 HF_SEED=6 HF_CELLS=256 HF_REALISATIONS=8  # per θi node, split over the realisations
 mkdir -p "$OUT"

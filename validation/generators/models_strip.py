@@ -2,7 +2,7 @@
 """The README's picture: one rough sphere per model, side by side, rendered by `matte render`
 under the same light, with the models' names and parameters written below.
 
-    .venv/bin/python validation/models_strip.py [--out docs/models_strip.png] [--spp 256]
+    .venv/bin/python validation/generators/models_strip.py [--out docs/models_strip.png] [--spp 256]
 
 Each panel is the same scene: a sphere of reflectance 0.8 on a grey ground, lit by a small
 area light above and to the right of the camera and a dim environment, path traced: the rough
@@ -17,7 +17,7 @@ import subprocess
 import sys
 import tempfile
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MATTE = os.path.join(REPO, "target", "release", "matte")
 
 # (label, <bsdf> element)

@@ -6,7 +6,7 @@ model; `mitsuba -a "$(python -m matte_mitsuba)" scene.xml` renders with the tool
 `matte brdf --bsdf roughdiffuse` answers; every packaged ground-truth table loads as a
 `tabulated_brdf` (`matte_mitsuba.ground_truth_path`) and evaluates to a positive value. Prints one line per check; exits non-zero on failure.
 
-    python validation/check_wheel.py
+    python tests/plugin/wheel_checks.py
 """
 import json
 import os

@@ -2,7 +2,7 @@
 """Harvests, from Mitsuba 3's C++ sources, the properties each plugin reads, and writes them
 as Rust data: `rust/render/load/mitsuba_plugins.rs`.
 
-    python3 validation/harvest_mitsuba_properties.py MITSUBA_ROOT [-o rust/render/load/mitsuba_plugins.rs]
+    python3 validation/generators/harvest_mitsuba_properties.py MITSUBA_ROOT [-o rust/render/load/mitsuba_plugins.rs]
 
 MITSUBA_ROOT is a checkout (or `git archive`) of mitsuba-renderer/mitsuba3 at tag v3.9.1 with
 `src/` and `include/`. Run by hand when Mitsuba's version changes; tests never run it.
@@ -428,7 +428,7 @@ def opt(s):
 
 HEADER = '''//! The properties each Mitsuba 3.9.1 plugin reads, harvested from its sources (the
 //! plugin's `.cpp`, its base-class constructors and the `Properties` helpers it calls) by
-//! `validation/harvest_mitsuba_properties.py`. Generated: do not edit; rerun the script.
+//! `validation/generators/harvest_mitsuba_properties.py`. Generated: do not edit; rerun the script.
 //! `rust/render/load/no_effect.rs` and the builders in `rust/render/load/` decide what matte
 //! does with each; `tests/scene_file/load.rs` walks the whole list.
 

@@ -3,11 +3,11 @@ variant (matte's plugins loaded) and writes each pass image. It only renders: th
 pass comes from the Rust harness, and every statistic (moments, region means, tests) is
 computed in Rust (`rust/validate/passes.rs`), once for both renderers.
 
-    .venv/bin/python validation/mitsuba_passes.py SCENE.xml --out DIR --spp N
+    python -m matte_mitsuba.passes SCENE.xml --out DIR --spp N
         [--variant scalar_rgb] [--passes K] [--seed S] [-D name=value ...]
 
 Writes DIR/pass_0000.exr ... (RGB float32; pass k uses seed S + k) and DIR/passes.json
-(timings). Prints "pass k/K" lines as it goes (the harness turns them into a progress bar).
+(timings, Mitsuba's version). Prints "pass k/K" lines as it goes (the harness turns them into a progress bar).
 """
 import argparse
 import json
@@ -31,7 +31,6 @@ def main():
 
     import mitsuba as mi
     mi.set_variant(a.variant)
-    import matte_mitsuba  # noqa: F401  (registers the plugins)
     params = {}
     for d in a.defines:
         k, _, v = d.partition("=")
@@ -48,7 +47,7 @@ def main():
         mi.Bitmap(np.ascontiguousarray(img)).write(os.path.join(a.out, f"pass_{k:04d}.exr"))
         print(f"pass {k + 1}/{a.passes}", flush=True)
     with open(os.path.join(a.out, "passes.json"), "w") as f:
-        json.dump({"variant": a.variant, "passes": a.passes, "spp": a.spp, "seed": a.seed,
+        json.dump({"mitsuba": mi.__version__, "variant": a.variant, "passes": a.passes, "spp": a.spp, "seed": a.seed,
                    "load_seconds": load_seconds, "render_seconds": seconds}, f)
 
 

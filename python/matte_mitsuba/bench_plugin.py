@@ -1,24 +1,25 @@
 """Render time of matte's plugins against Mitsuba's built-in `diffuse`, measured in one run on
 this machine: Cornell box (mi.cornell_box(), 256x256, 64 spp), all three materials replaced by
-the plugin under test, in llvm_ad_rgb with Dr.Jit's default (symbolic) mode. Each type runs in
-its own process (a symbolic call traces every BSDF type loaded in the process), and each time
-is the best of `--repeats` after a warm-up render (JIT compilation, table building).
+the plugin under test, in llvm_ad_rgb with Dr.Jit's default (symbolic) mode. Every registered
+type is timed, `tabulated_brdf` on the packaged V-cavity table (σ = 0.3). Each type runs in its
+own process (a symbolic call traces every BSDF type loaded in the process), and each time is
+the best of `--repeats` after a warm-up render (JIT compilation, table building).
 
-    .venv/bin/python validation/bench_plugin.py [--variant llvm_ad_rgb] [--repeats 3]
-    .venv/bin/python validation/bench_plugin.py --one wolff      # one type: JSON on stdout
-    .venv/bin/python validation/bench_plugin.py --one wolff --bitmap   # its int_ior as a bitmap
-    .venv/bin/python validation/bench_plugin.py --float-fast-path OLD/validation [--rounds 2]
+    python -m matte_mitsuba.bench_plugin [--variant llvm_ad_rgb] [--repeats 3]
+    python -m matte_mitsuba.bench_plugin --one wolff      # one type: JSON on stdout
+    python -m matte_mitsuba.bench_plugin --one wolff --bitmap   # its int_ior as a bitmap
+    python -m matte_mitsuba.bench_plugin --float-fast-path OLD [--rounds 2]
 
 ``--bitmap`` gives each type's numeric parameter (``SHAPE_PARAMETER``) as a 16×16 bitmap
 texture holding the default value everywhere, so the image is the float's and only the
-textured code path differs. ``--plugin-root DIR`` imports ``matte_mitsuba`` from DIR (e.g.
-another revision's ``validation`` folder after its ``cpp/build_plugin.sh``); without it, the
-first ``matte_mitsuba`` on the path is used (this script's folder's, where ``make plugin``
-builds the plugins, then the installed one); ``--one`` prints the folder it loaded. ``--float-fast-path OLD`` times, per type, the float parameter with the plugin
-build in OLD (a revision before textured parameters) and with this one, and the bitmap with
-this one; every configuration in its own process, `--rounds` rounds interleaved (machine
-load drifts), best over all, as wall time and as the process's CPU time (less sensitive to
-other work on a shared machine).
+textured code path differs. ``--plugin-root DIR`` runs the timed processes with the
+``matte_mitsuba`` in DIR (a folder holding a ``matte_mitsuba`` package, e.g. another
+revision's ``python`` folder after its ``cpp/build_plugin.sh``) first on ``PYTHONPATH``;
+``--one`` prints the folder it loaded. ``--float-fast-path OLD`` times, per type, the float
+parameter with the plugin build in OLD (a revision before textured parameters) and with this
+one, and the bitmap with this one; every configuration in its own process, `--rounds` rounds
+interleaved (machine load drifts), best over all, as wall time and as the process's CPU time
+(less sensitive to other work on a shared machine).
 """
 import argparse
 import json
@@ -28,23 +29,15 @@ import sys
 import tempfile
 import time
 
-
-
-def _plugin_root_first():
-    """`--plugin-root DIR` puts DIR first on the import path before matte_mitsuba is imported
-    (a matte_mitsuba other than the installed one)."""
-    for i, a in enumerate(sys.argv):
-        if a == "--plugin-root" and i + 1 < len(sys.argv):
-            sys.path.insert(0, os.path.abspath(sys.argv[i + 1]))
-
-
-_plugin_root_first()
-import matte_mitsuba  # noqa: E402
-from matte_mitsuba import BSDF_TYPES as TYPES  # noqa: E402  (the plugin names, as the build wrote them)
+import matte_mitsuba
+from matte_mitsuba import BSDF_TYPES as TYPES  # the plugin names, as the build wrote them
 
 # Each type's first numeric parameter and its default, from the model registry.
 SHAPE_PARAMETER = {m["name"]: (p[0]["name"], p[0]["kind"]["default"])
                    for m in matte_mitsuba.MODELS for p in [matte_mitsuba.numeric_parameters(m)] if p}
+
+#: Properties a type needs beyond its defaults: the table `tabulated_brdf` reads.
+REQUIRED = {"tabulated_brdf": lambda: {"filename": matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")}}
 
 
 def constant_bitmap(mi, value, folder):
@@ -60,6 +53,7 @@ def scene(mi, kind, res, bitmap_folder=None):
     d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = res
     for name in ("white", "red", "green"):
         d[name]["type"] = kind
+        d[name].update(REQUIRED.get(kind, dict)())
         if bitmap_folder is not None:
             param, value = SHAPE_PARAMETER[kind]
             d[name][param] = constant_bitmap(mi, value, bitmap_folder)
@@ -101,20 +95,25 @@ def best_time(kind, variant, res, spp, repeats, bitmap=False):
 
 def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None, both=False):
     """Best wall seconds of one configuration in its own process; (wall, CPU) with `both`."""
+    env = dict(os.environ)
+    if plugin_root:
+        env["PYTHONPATH"] = os.pathsep.join([os.path.abspath(plugin_root)] + [p for p in [env.get("PYTHONPATH")] if p])
+    # This file run as a script (absolute imports only), so that `--plugin-root`'s matte_mitsuba,
+    # first on PYTHONPATH, is the one it imports even when that build has no bench_plugin.
     out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", kind, "--variant", variant,
                           "--res", str(res), "--spp", str(spp), "--repeats", str(repeats)]
-                         + (["--bitmap"] if bitmap else [])
-                         + (["--plugin-root", os.path.abspath(plugin_root)] if plugin_root else []),
-                         capture_output=True, text=True, check=True)
+                         + (["--bitmap"] if bitmap else []),
+                         capture_output=True, text=True, check=True, env=env)
     result = json.loads(out.stdout)
     if plugin_root and not result["plugins"].startswith(os.path.abspath(plugin_root)):
         raise RuntimeError(f"--plugin-root {plugin_root}: the child loaded {result['plugins']}")
     return (result["seconds"], result["cpu_seconds"]) if both else result["seconds"]
 
 
-def time_all(variant, res, spp, repeats, types=TYPES):
+def time_all(variant, res, spp, repeats, types=TYPES, plugin_root=None):
     """{type: best seconds} for `diffuse` and every type, each in its own process."""
-    return {k: time_in_subprocess(k, variant, res, spp, repeats) for k in ["diffuse"] + list(types)}
+    return {k: time_in_subprocess(k, variant, res, spp, repeats, plugin_root=plugin_root)
+            for k in ["diffuse"] + list(types)}
 
 
 def float_fast_path(old_root, variant, res, spp, repeats, rounds, types):
@@ -147,9 +146,9 @@ def main():
     ap.add_argument("--types", nargs="+", default=TYPES, choices=TYPES)
     ap.add_argument("--one", help="time this one type (or diffuse) in this process; print JSON")
     ap.add_argument("--bitmap", action="store_true", help="with --one: the numeric parameter as a constant bitmap")
-    ap.add_argument("--plugin-root", metavar="DIR", help="import matte_mitsuba from DIR (read before the imports)")
+    ap.add_argument("--plugin-root", metavar="DIR", help="the timed processes import matte_mitsuba from DIR")
     ap.add_argument("--float-fast-path", metavar="OLD_ROOT",
-                    help="compare float parameters with the build in OLD_ROOT (its matte_mitsuba's parent folder)")
+                    help="compare float parameters with the build in OLD_ROOT (the folder holding its matte_mitsuba)")
     ap.add_argument("--rounds", type=int, default=2, help="with --float-fast-path: interleaved rounds")
     ap.add_argument("--json", metavar="FILE", help="with --float-fast-path: write the times here")
     a = ap.parse_args()
@@ -179,7 +178,7 @@ def main():
                           indent=1)
         return
     print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats}, one process per type")
-    best = time_all(a.variant, a.res, a.spp, a.repeats, a.types)
+    best = time_all(a.variant, a.res, a.spp, a.repeats, a.types, a.plugin_root)
     print(f"  diffuse     {best['diffuse']:.3f} s")
     for k in a.types:
         print(f"  {k:<11} {best[k]:.3f} s  {best[k] / best['diffuse']:.3f}x diffuse")

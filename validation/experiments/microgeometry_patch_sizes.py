@@ -3,7 +3,7 @@
 point by point. Prints how many grid points (f and albedo, all bounces and first bounce) agree
 within the two pooled 99 % intervals combined, and the mean and largest relative difference.
 
-    .venv/bin/python validation/microgeometry_patch_sizes.py SMALL.json LARGE.json
+    .venv/bin/python validation/experiments/microgeometry_patch_sizes.py SMALL.json LARGE.json
 """
 import json
 import math

@@ -1,7 +1,7 @@
 """Where the instructions of one render go, in matte and in Mitsuba 3.9.1, counted by
 callgrind on the scenes of `matte bench` (docs/performance.md: "what bounds the rest").
 
-    .venv/bin/python validation/instruction_split.py [--jobs bench_out/mitsuba_jobs.json]
+    .venv/bin/python validation/experiments/instruction_split.py [--jobs bench_out/mitsuba_jobs.json]
         [--res 64] [--spp 16] [--scenes cornell bunny room] [--variants llvm_ad_rgb scalar_rgb]
         [--drivers one-path wavefront]
         [-o bench_out/instructions.json]
@@ -33,7 +33,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 LINE = re.compile(r"^\s*([\d,]+)\s+\(\s*[\d.]+%\)\s+(.*)$")
 
 

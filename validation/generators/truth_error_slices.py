@@ -2,14 +2,14 @@
 simulated surface it describes (docs/microgeometry.md, docs/study.md#true-surfaces).
 
 The model is evaluated with `matte brdf --pairs` at every node (θi, θo, Δφ) of its surface's
-table (validation/ground_truth/), at the plugin's defaults (roughness 0.3, as in the study);
+table (python/matte_mitsuba/ground_truth/), at the plugin's defaults (roughness 0.3, as in the study);
 the table's f/ρ is interpolated linearly in ρ, as `tabulated_brdf` does. The node with the
 largest |model − surface| / surface at θi, θo ≤ 80° (the range of docs/microgeometry.md's
 comparison; the table's grazing nodes are noisy) picks the slice: f against θo in the plane of
 that Δφ (negative θo: the opposite azimuth, Δφ + 180°), with the surface's 99 % intervals.
 Writes OUT/truth_slice_<model>.png and OUT/truth_slices.json.
 
-    .venv/bin/python validation/truth_error_slices.py OUT [--reflectance 0.8]
+    .venv/bin/python validation/generators/truth_error_slices.py OUT [--reflectance 0.8]
 """
 import argparse
 import json
@@ -23,9 +23,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 MATTE = Path(os.environ.get("MATTE", ROOT / "target" / "release" / "matte"))
-TRUTH = ROOT / "validation" / "ground_truth"
+TRUTH = ROOT / "python" / "matte_mitsuba" / "ground_truth"
 
 # (study.json key, label, plugin, parameters, table): the study's models with a surface.
 MODELS = [

@@ -1,5 +1,5 @@
 """d(image mean)/d(parameter) two ways, for the gradient checks (`tests/plugin/test_gradients.py`,
-`tests/plugin/test_textured_parameters.py`, `validation/gpu_check.py`):
+`tests/plugin/test_textured_parameters.py`, `python/matte_mitsuba/gpu_check.py`):
 
 * `adjoint_gradient`: Mitsuba's automatic differentiation, the adjoint pass of the scene's
   integrator (e.g. `prb`) run with the primal's seed, so that it is the exact derivative of

@@ -2,7 +2,7 @@
 images, and show how the choice of light/view configurations decides whether σ and ρ can be
 told apart.
 
-    .venv/bin/python validation/fit_showcase.py [-o fit_showcase_out] [--iterations 300]
+    .venv/bin/python validation/experiments/fit_showcase.py [-o fit_showcase_out] [--iterations 300]
 
 The truth: a plane with a 16×16-texel σ map (smooth blobs, 0.1 to 0.8 rad) and a 16×16 RGB
 reflectance map (0.2 to 0.8), qualitative Oren–Nayar, lit by a directional light, seen by a
@@ -32,9 +32,6 @@ import os
 import sys
 
 import numpy as np
-
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)  # matte_mitsuba from the checkout when the wheel is not installed
 
 RES_TEX = 16
 

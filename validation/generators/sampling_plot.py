@@ -3,7 +3,7 @@
 and under the cosine (dashed), from `matte bench --sampling`'s sampling.json.
 
     ./target/release/matte bench --sampling -o bench_out
-    .venv/bin/python validation/sampling_plot.py bench_out/sampling.json docs/sampling/lobe_variance.png
+    .venv/bin/python validation/generators/sampling_plot.py bench_out/sampling.json docs/sampling/lobe_variance.png
 """
 import json
 import sys

@@ -1,10 +1,10 @@
-"""Mitsuba 3.9.1's side of `matte bench`: wall time of `mi.render` for each job and variant
+"""Mitsuba's side of `matte bench`: wall time of `mi.render` for each job and variant
 (scene loaded beforehand, best of `--repeats`, after one warm-up render so that llvm_ad_rgb
 is timed with its kernel cache warm), and optionally the render time of each of matte's
 plugins against the built-in `diffuse` in llvm_ad_rgb's symbolic mode, one process per type
-(bench_plugin.py's Cornell box).
+(:mod:`matte_mitsuba.bench_plugin`'s Cornell box, every registered type).
 
-    .venv/bin/python validation/bench_mitsuba.py --jobs JOBS.json [--variants scalar_rgb llvm_ad_rgb]
+    python -m matte_mitsuba.bench --jobs JOBS.json [--variants scalar_rgb llvm_ad_rgb]
         [--repeats 3] [--plugin-res 256 --plugin-spp 64]
 
 JOBS.json: [{"name": ..., "scene": path, "defines": {name: value}, "spp": N}, ...].
@@ -17,8 +17,7 @@ from pathlib import Path
 
 import mitsuba as mi
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import bench_plugin  # noqa: E402
+from . import bench_plugin
 
 
 def time_job(job, repeats):
@@ -39,8 +38,6 @@ def main():
     out = {"renders": [], "plugin": None}
     for variant in a.variants:
         mi.set_variant(variant)
-        import matte_mitsuba
-        matte_mitsuba.register()
         for job in jobs:
             print(f"mitsuba {variant} {job['name']}", file=sys.stderr, flush=True)
             out["renders"].append({"name": job["name"], "variant": variant, "seconds": time_job(job, a.repeats)})

@@ -5,7 +5,7 @@ luminance (Rec. 709) and the luminance of the region below the green box as rati
 paired per seed, with 99 % Student-t intervals over the passes. Writes OUT/cornell_ground_truth.json
 and OUT/cornell_ground_truth.png (tone-mapped images side by side).
 
-    .venv/bin/python validation/microgeometry_cornell.py OUT [--passes 8] [--spp 32] [--res 128]
+    .venv/bin/python validation/experiments/microgeometry_cornell.py OUT [--passes 8] [--spp 32] [--res 128]
 """
 import argparse
 import json
@@ -20,10 +20,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import mitsuba as mi  # noqa: E402
 import numpy as np  # noqa: E402
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "mitsuba_scenes" / "study" / "cornell.xml"
 MATTE = Path(__import__("os").environ.get("MATTE", ROOT / "target" / "release" / "matte"))
-TRUTH = ROOT / "validation" / "ground_truth"
+TRUTH = ROOT / "python" / "matte_mitsuba" / "ground_truth"
 # t quantile 0.995 for K - 1 degrees of freedom.
 T995 = {3: 5.841, 4: 4.604, 5: 4.032, 7: 3.499, 9: 3.250, 11: 3.106, 15: 2.947}
 

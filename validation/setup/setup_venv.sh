@@ -5,18 +5,18 @@
 #      libembree3-3 (Embree 3.13; matte's renderer loads libembree3.so.3 at run
 #      time for its ray queries, rust/render/accel/embree_api.rs, and falls back
 #      to its own BVH without it);
-#   2. <repo>/.venv with validation/requirements.txt installed, re-installed
+#   2. <repo>/.venv with validation/setup/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
 # Prints one line saying what it did. Safe to run from anywhere, any number of times.
 set -euo pipefail
 
-cd "$(dirname "${BASH_SOURCE[0]}")/.."
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 
 LIBLLVM=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1   # provided by libllvm19
 LIBEMBREE=/usr/lib/x86_64-linux-gnu/libembree3.so.3 # provided by libembree3-3
 VENV=.venv
-REQ=validation/requirements.txt
+REQ=validation/setup/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
 did=()
 
