@@ -288,3 +288,49 @@ fn probe(python: &Path, how: &str) -> Result<PythonSide, String> {
     let mitsuba = lines.next().map(str::trim).filter(|v| !v.is_empty()).map(str::to_string);
     Ok(PythonSide { python: python.to_path_buf(), chosen_by: how.into(), package: PathBuf::from(package), mitsuba })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fake installation `<root>/lib/python3.11/site-packages/matte_mitsuba/bin/matte`.
+    fn fake_install(root: &Path) -> PathBuf {
+        let package = root.join("lib/python3.11/site-packages/matte_mitsuba");
+        std::fs::create_dir_all(package.join("bin")).unwrap();
+        std::fs::write(package.join("__init__.py"), "").unwrap();
+        std::fs::write(package.join("bin/matte"), "").unwrap();
+        package.join("bin/matte")
+    }
+
+    #[test]
+    fn a_binary_in_an_installed_package_knows_its_package_and_environment() {
+        let root = std::env::temp_dir().join(format!("matte_installation_{}", std::process::id()));
+        let binary = fake_install(&root);
+        let root = root.canonicalize().unwrap();
+        let package = root.join("lib/python3.11/site-packages/matte_mitsuba");
+        assert_eq!(package_of_binary(&binary), Some(package.clone()));
+        assert_eq!(installed_prefix(&binary), Some(root.clone()));
+        // Not a package: no `__init__.py`, or another folder name.
+        std::fs::remove_file(package.join("__init__.py")).unwrap();
+        assert_eq!(package_of_binary(&binary), None);
+        assert_eq!(installed_prefix(&binary), None);
+        let _ = std::fs::remove_dir_all(&root);
+    }
+
+    #[test]
+    fn with_nothing_to_try_the_error_names_every_step_and_the_fix() {
+        let e = find_python_side(None, &Environment::default()).unwrap_err();
+        assert!(e.starts_with("no Python with matte_mitsuba found (no --python, no MATTE_PYTHON, no python3"), "{e}");
+        assert!(e.contains("--python PATH or MATTE_PYTHON") && !e.contains('\n'), "{e}");
+    }
+
+    #[test]
+    fn explicit_choices_are_used_as_given() {
+        let missing = Path::new("/nonexistent/python3");
+        let env = Environment { matte_python: Some(PathBuf::from("/also/missing")), ..Default::default() };
+        let e = find_python_side(Some(missing), &env).unwrap_err();
+        assert!(e.starts_with("--python /nonexistent/python3: cannot run it"), "{e}");
+        let e = find_python_side(None, &env).unwrap_err();
+        assert!(e.starts_with("MATTE_PYTHON=/also/missing: cannot run it"), "{e}");
+    }
+}

@@ -27,7 +27,7 @@ with Mitsuba's ``prb`` integrator and ``mi.ad.Adam`` so that renders match the t
   ``loss.png``, ``param_error.png`` (when the truth is known), final render / target PNGs per
   configuration, and ``index.html`` tying them together.
 
-Plots need matplotlib (pinned in ``validation/setup/requirements.txt``).
+Plots need matplotlib: ``pip install 'matte-mitsuba[fit]'`` installs it with the package.
 """
 import argparse
 import html
@@ -465,6 +465,12 @@ Final loss {final:.4e}.</p>
 def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     try:
+        if not args.list:
+            try:
+                import matplotlib  # noqa: F401  (the plots; checked before the first render)
+            except ImportError:
+                raise FitError("the fit's plots need matplotlib, which this Python lacks: "
+                               "pip install 'matte-mitsuba[fit]' (or pip install matplotlib)")
         code = fit(args)
     except FitError as e:
         print(f"matte fit: error: {e}", file=sys.stderr)

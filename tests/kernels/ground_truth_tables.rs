@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 const ROUGHNESS: [&str; 6] = ["0.1", "0.2", "0.3", "0.5", "0.7", "1.0"];
 
 fn folder() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("validation").join("ground_truth")
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("python/matte_mitsuba/ground_truth")
 }
 
 fn v_cavities(s: &str) -> String {

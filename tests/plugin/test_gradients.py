@@ -10,7 +10,6 @@ another estimator: there the 1 % check runs with the cosine, and the own sampler
 averaged over seeds, must equal the cosine's within its Monte Carlo error (the expected image
 does not depend on the sampler)."""
 import os
-import sys
 
 import drjit as dr
 import numpy as np

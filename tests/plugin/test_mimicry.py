@@ -5,7 +5,6 @@ oracle), and its residual stays near the noise floor. About 20 s.
 """
 import json
 import os
-import sys
 
 import numpy as np
 import pytest

@@ -1,10 +1,12 @@
 """The README's examples. The plugin example, as written there: `llvm_ad_rgb` with Dr.Jit's
-defaults renders `all_types.xml`, and `dr.backward` through a `prb` render gives every matte
-parameter a finite, non-zero gradient. The shell examples that name the checkout's files run
-verbatim (the mitsuba tool, `matte validate`, `matte render`)."""
+defaults renders the bundled `all_types.xml`, and `dr.backward` through a `prb` render gives
+every matte parameter a finite, non-zero gradient. The shell examples run verbatim as a user
+of the installed package would, outside the checkout, with the environment's `bin/` on `PATH`
+(the mitsuba tool, `matte validate`, `matte render`) on a small scene of the user's."""
 import os
 import re
 import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -12,15 +14,15 @@ import pytest
 from conftest import REPO
 
 
-def test_readme_example(monkeypatch):
-    monkeypatch.chdir(REPO)
+def test_readme_example(monkeypatch, tmp_path):
+    monkeypatch.chdir(tmp_path)
     import drjit as dr
     import mitsuba as mi
     mi.set_variant('llvm_ad_rgb')            # Dr.Jit's defaults: symbolic loops and calls
     import matte_mitsuba                     # noqa: F401  registers matte's BSDFs in every variant
     assert dr.flag(dr.JitFlag.SymbolicLoops) and dr.flag(dr.JitFlag.SymbolicCalls)
 
-    scene = mi.load_file('mitsuba_scenes/all_types.xml', res=32, spp=4)
+    scene = mi.load_file(os.path.join(matte_mitsuba.SCENES, 'all_types.xml'), res=32, spp=4)
     image = mi.render(scene)
     assert np.isfinite(np.array(image)).all()
 
@@ -36,19 +38,16 @@ def test_readme_example(monkeypatch):
     for k in keys:
         g = np.array(dr.grad(params[k]))
         assert np.isfinite(g).all() and np.any(g != 0), (k, g)
-    assert os.path.exists(os.path.join(REPO, 'mitsuba_scenes', 'all_types.xml'))
+    assert matte_mitsuba.SCENES.startswith(sys.prefix), matte_mitsuba.SCENES  # the installed package's
 
 
-# The README's shell examples that name files of the checkout, verbatim, run in a scratch folder
-# that links the checkout's .venv, target, mitsuba_scenes and validation (the scenes' tables), so
-# that outputs land there.
+# The README's shell examples, verbatim, run in a scratch folder with the environment's `bin/`
+# first on PATH (an activated virtual environment) and a small scene of the user's, copied
+# from the bundled Cornell box at 24² pixels.
 SHELL_EXAMPLES = [
-    ('.venv/bin/mitsuba -a "$(.venv/bin/python -m matte_mitsuba)" -o all_types.exr mitsuba_scenes/all_types.xml',
-     ["all_types.exr"]),
-    ("./target/release/matte validate mitsuba_scenes/cornell_box.xml --quick --variant scalar_rgb",
-     ["validate_out/report.html"]),
-    ("./target/release/matte render mitsuba_scenes/cornell_box.xml -o cornell.exr --png",
-     ["cornell.exr", "cornell.png"]),
+    ('mitsuba -a "$(python -m matte_mitsuba)" scene.xml', ["scene.exr"]),
+    ("matte validate my_scene.xml", ["validate_out/report.html", "validate_out/summary.json"]),
+    ("matte render my_scene.xml -o my_scene.exr --png", ["my_scene.exr", "my_scene.png"]),
 ]
 
 
@@ -61,9 +60,16 @@ def readme_shell_lines():
 @pytest.mark.parametrize("command,outputs", SHELL_EXAMPLES, ids=["mitsuba tool", "matte validate", "matte render"])
 def test_readme_shell_example(tmp_path, command, outputs):
     assert command in readme_shell_lines(), f"not in the README any more: {command}"
-    for name in (".venv", "target", "mitsuba_scenes", "validation"):
-        (tmp_path / name).symlink_to(os.path.join(REPO, name))
-    r = subprocess.run(["bash", "-c", command], cwd=tmp_path, capture_output=True, text=True, timeout=600)
+    import matte_mitsuba
+    cornell = open(os.path.join(matte_mitsuba.SCENES, "cornell_box.xml")).read()
+    small = re.sub(r'<default name="res" value="\d+"/>', '<default name="res" value="24"/>', cornell)
+    small = re.sub(r'<default name="spp" value="\d+"/>', '<default name="spp" value="4"/>', small)
+    assert small != cornell
+    for name in ("scene.xml", "my_scene.xml"):
+        (tmp_path / name).write_text(small)
+    env = {k: v for k, v in os.environ.items() if not k.startswith("MATTE")}
+    env["PATH"] = os.path.dirname(sys.executable) + os.pathsep + env["PATH"]
+    r = subprocess.run(["bash", "-c", command], cwd=tmp_path, capture_output=True, text=True, timeout=600, env=env)
     assert r.returncode == 0, r.stdout + r.stderr
     for out in outputs:
         assert (tmp_path / out).is_file() and (tmp_path / out).stat().st_size > 0, out

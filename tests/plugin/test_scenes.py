@@ -86,7 +86,6 @@ def test_bitmap_reflectance(mi_variant, tmp_path):
 def test_mitsuba_command_line_tool_with_its_defaults(tmp_path):
     """`mitsuba -a <plugins> scene.xml`: the tool's default variant and mode (llvm, symbolic)."""
     import subprocess
-    import sys
     root = subprocess.run([sys.executable, "-m", "matte_mitsuba"], capture_output=True, text=True, check=True).stdout.strip()
     out = str(tmp_path / "all_types.exr")
     tool = os.path.join(os.path.dirname(sys.executable), "mitsuba")

@@ -6,13 +6,11 @@ texture's data through `mi.traverse`), the float form of each parameter (a textu
 same value everywhere must give the float's BSDF and, summed over its texels, the float's
 gradient), and Mitsuba's own error reporting for refused forms.
 """
-import os
-import sys
 
 import numpy as np
 import pytest
 
-from conftest import REPO, random_pairs
+from conftest import random_pairs
 
 from matte_mitsuba.gradient_check import adjoint_gradient, image_mean
 

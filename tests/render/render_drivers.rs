@@ -12,8 +12,22 @@ use matte::render::load::{LoadedScene, load_file};
 use matte::render::renderer::render_with;
 use std::path::Path;
 
+/// A bundled scene, loaded as Mitsuba loads it after `import matte_mitsuba`: the package folder
+/// (here the source tree's `python/matte_mitsuba`, which holds `ground_truth/`) on the file
+/// resolver, as `<path>` folders of a copy beside the scene's own folder.
 fn load(file: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes").join(file);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let scenes = root.join("mitsuba_scenes");
+    let text = std::fs::read_to_string(scenes.join(file)).unwrap();
+    let open = text.find("<scene").and_then(|i| text[i..].find('>').map(|j| i + j + 1)).expect("<scene ...>");
+    let paths = format!(
+        "<path value=\"{}\"/><path value=\"{}\"/>",
+        scenes.join(file).parent().unwrap().display(),
+        root.join("python/matte_mitsuba").display()
+    );
+    let path = std::env::temp_dir().join(format!("matte_render_drivers_{}", std::process::id())).join(file);
+    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+    std::fs::write(&path, format!("{}{paths}{}", &text[..open], &text[open..])).unwrap();
     let defines: Vec<(String, String)> = defines.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect();
     load_file(&path, &defines).unwrap_or_else(|e| panic!("{file}: {e}"))
 }

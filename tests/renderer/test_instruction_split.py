@@ -1,7 +1,5 @@
 """validation/experiments/instruction_split.py's reading of callgrind's listing (the profiling itself needs
 valgrind and minutes per scene: docs/performance.md)."""
-import sys
-from pathlib import Path
 
 from validation.experiments import instruction_split
 
