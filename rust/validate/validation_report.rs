@@ -151,7 +151,7 @@ body{{font-family:system-ui,sans-serif;margin:24px;color:#222}} h1{{margin-botto
 .scene{{border-top:1px solid #ccc;padding:12px 0}} .imgs{{display:flex;gap:12px;flex-wrap:wrap}}
 figure{{margin:0}} figcaption{{font-size:13px;color:#555}} img.r{{width:256px;image-rendering:pixelated;border:1px solid #ddd}}
 table{{border-collapse:collapse;font-size:13px;margin-top:8px}} td,th{{padding:2px 10px;text-align:left;border-bottom:1px solid #eee}}
-.pass{{color:#17803d;font-weight:bold}} .fail{{color:#c0262d;font-weight:bold}} .bar{{width:256px;height:12px;display:block}}
+.pass{{color:#17803d;font-weight:bold}} .fail{{color:#c0262d;font-weight:bold}} .bar{{width:256px;height:12px;display:block}} table.provenance{{margin:4px 0 18px}} table.provenance th{{color:#555;font-weight:normal}}
 </style></head><body><h1>matte validate</h1><p>Overall: <span class="{}">{}</span> — {} scene(s). Welch t-tests between the two renderers' per-pass means
 at several scales: pixels, blocks of 4², 16² and 64² pixels (four half-offset grids each) and the whole image, per channel;
 Šidák-corrected within a scale, Bonferroni over the scales, so the whole family is held at α. A scene passes when no
