@@ -54,17 +54,6 @@ impl PythonSide {
         cmd
     }
 
-    /// Mitsuba's version, or an error saying that this environment has no Mitsuba.
-    pub fn mitsuba_version(&self) -> Result<&str, String> {
-        self.mitsuba.as_deref().ok_or_else(|| {
-            format!(
-                "{} ({}) has matte_mitsuba but no Mitsuba: install it there (pip install matte-mitsuba pulls it)",
-                self.python.display(),
-                self.chosen_by
-            )
-        })
-    }
-
     /// One line for reports: interpreter, how it was chosen, Mitsuba's version.
     pub fn describe(&self) -> String {
         format!(
@@ -97,6 +86,20 @@ pub fn python_side() -> Result<PythonSide, String> {
         .clone()
 }
 
+/// The Python side, when Mitsuba is installed there (what runs Mitsuba's side of a command);
+/// otherwise an error saying which environment lacks it.
+pub fn mitsuba_side() -> Result<PythonSide, String> {
+    let side = python_side()?;
+    if side.mitsuba.is_none() {
+        return Err(format!(
+            "{} ({}) has matte_mitsuba but no Mitsuba: install it there (pip install matte-mitsuba pulls it)",
+            side.python.display(),
+            side.chosen_by
+        ));
+    }
+    Ok(side)
+}
+
 /// The `matte_mitsuba` package folder that holds the data: the one this binary ships in, else
 /// the Python side's (once per process).
 pub fn package_dir() -> Result<PathBuf, String> {
@@ -112,12 +115,20 @@ pub fn package_dir() -> Result<PathBuf, String> {
 
 /// The bundled scenes: `<package>/scenes`.
 pub fn scenes_dir() -> Result<PathBuf, String> {
-    existing_dir(package_dir()?.join("scenes"))
+    package_data("scenes")
 }
 
 /// The packaged folder `<package>/<name>` (for example `truth_slices`).
 pub fn package_data(name: &str) -> Result<PathBuf, String> {
-    existing_dir(package_dir()?.join(name))
+    let dir = package_dir()?.join(name);
+    if dir.is_dir() {
+        Ok(dir)
+    } else {
+        Err(format!(
+            "{} is missing: the matte_mitsuba installation is incomplete (reinstall matte-mitsuba)",
+            dir.display()
+        ))
+    }
 }
 
 /// The scene arguments of a command: each existing file as given; a bare name that is no file
@@ -139,17 +150,6 @@ pub fn scene_arguments(args: &[PathBuf], folder: &str) -> Vec<PathBuf> {
             bundled.unwrap_or_else(|| a.clone())
         })
         .collect()
-}
-
-fn existing_dir(dir: PathBuf) -> Result<PathBuf, String> {
-    if dir.is_dir() {
-        Ok(dir)
-    } else {
-        Err(format!(
-            "{} is missing: the matte_mitsuba installation is incomplete (reinstall matte-mitsuba)",
-            dir.display()
-        ))
-    }
 }
 
 /// `<package>` when `binary` is `<package>/bin/matte` inside a `matte_mitsuba` package.

@@ -70,8 +70,7 @@ pub fn time_mitsuba(
     plugin: Option<(u32, u32)>,
     work: &Path,
 ) -> Result<MitsubaTimes, String> {
-    let python = crate::installation::python_side()?;
-    python.mitsuba_version()?;
+    let python = crate::installation::mitsuba_side()?;
     let list: Vec<JobJson> = jobs
         .iter()
         .map(|j| JobJson {

@@ -30,9 +30,8 @@ pub struct BenchOptions {
 /// The scenes of the renderer targets, all diffuse surfaces as Mitsuba's built-in `diffuse`
 /// (so Mitsuba runs its own code, not a plugin): the Cornell box with unbounded paths, and
 /// the study's bunny (two point lights, `direct`) and room (glass, metal, unbounded paths),
-/// from the bundled scenes in `scenes`.
-pub fn render_jobs(quick: bool, scenes: &std::path::Path) -> Vec<RenderJob> {
-    let root = scenes;
+/// from the bundled scenes in `root`.
+pub fn render_jobs(quick: bool, root: &std::path::Path) -> Vec<RenderJob> {
     let (res, spp) = if quick { ("32", 4) } else { ("256", 64) };
     let job = |name: &str, file: &str, extra: &[(&str, &str)]| {
         let mut defines = vec![("res".to_string(), res.to_string())];

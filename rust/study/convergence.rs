@@ -85,7 +85,7 @@ impl Series {
 /// Why the series cannot have a Mitsuba side (`None`: it can): no Python with matte_mitsuba,
 /// or no Mitsuba in it.
 pub fn mitsuba_missing() -> Option<String> {
-    crate::installation::python_side().and_then(|s| s.mitsuba_version().map(|_| ())).err()
+    crate::installation::mitsuba_side().err()
 }
 
 /// Whether the series can have a Mitsuba side.

@@ -142,8 +142,8 @@ pub fn rust_side(scene: &Path, plan: &PassPlan, splat: SplatWeights, progress: &
     side_from_images(images, &plan.regions, seconds, spp_used, "matte".into())
 }
 
-/// K passes of Mitsuba in `variant`, run by `matte_mitsuba.passes` in `python`; `work`
-/// receives its files.
+/// K passes of Mitsuba in `variant`, run by `matte_mitsuba.passes` in `python` (one with
+/// Mitsuba, [`crate::installation::mitsuba_side`]); `work` receives its files.
 pub fn mitsuba_side(
     python: &PythonSide,
     scene: &Path,
@@ -153,7 +153,6 @@ pub fn mitsuba_side(
     progress: &dyn Fn(u32),
 ) -> Result<Side, String> {
     let spp = spp_per_pass(scene, plan)?;
-    python.mitsuba_version()?;
     let mut cmd = python.module("passes");
     cmd.arg(scene).arg("--out").arg(work).arg("--variant").arg(variant);
     cmd.arg("--passes").arg(plan.passes.to_string()).arg("--seed").arg(plan.seed.to_string());
@@ -214,7 +213,7 @@ pub fn mitsuba_side_installed(
     work: &Path,
     progress: &dyn Fn(u32),
 ) -> Result<Side, String> {
-    let side = mitsuba_side(&crate::installation::python_side()?, scene, variant, plan, work, progress);
+    let side = mitsuba_side(&crate::installation::mitsuba_side()?, scene, variant, plan, work, progress);
     let _ = std::fs::remove_dir_all(work);
     side
 }

@@ -440,6 +440,15 @@ fn study_options(out: &Path) -> matte::study::StudyOptions {
 }
 
 #[test]
+fn every_true_surface_has_its_table_in_the_package() {
+    let tables = Path::new(env!("CARGO_MANIFEST_DIR")).join("python/matte_mitsuba/ground_truth");
+    for t in matte::study::configuration::TRUTHS {
+        let file = tables.join(t.table().expect("a true surface names its table"));
+        assert!(file.is_file(), "{}", file.display());
+    }
+}
+
+#[test]
 fn derived_true_surface_scene_names_its_table_by_an_absolute_existing_path() {
     use matte::study::configuration::TRUTHS;
     let out = temp_dir("truth_scene");
