@@ -34,8 +34,11 @@ public:
     uint32_t sub(uint32_t a, uint32_t b) const override { return push(f(a) - f(b)); }
     uint32_t mul(uint32_t a, uint32_t b) const override { return push(f(a) * f(b)); }
     uint32_t div(uint32_t a, uint32_t b) const override { return push(f(a) / f(b)); }
-    uint32_t minimum(uint32_t a, uint32_t b) const override { return push(drjit::minimum(f(a), f(b))); }
-    uint32_t maximum(uint32_t a, uint32_t b) const override { return push(drjit::maximum(f(a), f(b))); }
+    // A NaN operand gives the other one, as the kernels' clamps need (rust/brdf/real.rs:
+    // `Real::min`): Dr.Jit's fmin/fmax (IEEE 754 minNum/maxNum). Its minimum/maximum
+    // propagate NaN since Dr.Jit 1.5.0.
+    uint32_t minimum(uint32_t a, uint32_t b) const override { return push(drjit::fmin(f(a), f(b))); }
+    uint32_t maximum(uint32_t a, uint32_t b) const override { return push(drjit::fmax(f(a), f(b))); }
     uint32_t neg(uint32_t a) const override { return push(-f(a)); }
     uint32_t abs(uint32_t a) const override { return push(drjit::abs(f(a))); }
     uint32_t sqrt(uint32_t a) const override { return push(drjit::sqrt(f(a))); }

@@ -31,7 +31,8 @@ pub trait Real:
     /// `self · b + c` with one rounding.
     fn fma(self, b: Self, c: Self) -> Self;
     /// `min`/`max` as one instruction: a NaN operand gives the other one (the clamps rely on
-    /// this to map NaN into range), as `minss`/`maxss` and Dr.Jit's `minimum`/`maximum`.
+    /// this to map NaN into range), as `minss`/`maxss` and Dr.Jit's `fmin`/`fmax` (not its
+    /// `minimum`/`maximum`, which propagate NaN).
     fn min(self, o: Self) -> Self;
     fn max(self, o: Self) -> Self;
     fn lt(self, o: Self) -> Self::Mask;

@@ -226,3 +226,43 @@ def test_refused_textures_raise(mi_variant):
     mi = mi_variant
     with pytest.raises(RuntimeError, match='parameter "model": is not a numeric parameter'):
         mi.load_dict({"type": "oren_nayar", "model": {"type": "checkerboard"}})
+
+
+NAN_CASES = sorted({(kind, name) for kind, name, _, _, _ in CASES})
+
+
+@pytest.mark.parametrize("kind, name", NAN_CASES, ids=[f"{k}-{n}" for k, n in NAN_CASES])
+@pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
+def test_nan_texels_clamp_to_the_lower_bound_as_in_scalar(mi_variant, kind, name):
+    """A NaN texel is clamped to the parameter's lower bound (rust/brdf/lane.rs): the traced
+    kernel's `min`/`max` must drop a NaN operand (Dr.Jit's `fmin`/`fmax`; its `minimum` and
+    `maximum` propagate NaN since 1.5.0), as the CPU kernels do. The same texture in
+    llvm_ad_rgb and in scalar_rgb (a separate process) gives the same, finite values."""
+    mi = mi_variant
+    nan = float("nan")
+    bsdf = load(mi, kind, {}, name, bitmap(mi, [[nan, nan], [nan, nan]]))
+    si, wo = interaction(mi, 64, 11)
+    traced = np.array(bsdf.eval(mi.BSDFContext(), si, wo), dtype=np.float64)
+    assert np.isfinite(traced).all(), f"{kind}.{name}: {np.isnan(traced).sum()} NaN values in llvm_ad_rgb"
+    wi, wo_np = random_pairs(64, 11)
+    code = (
+        "import json, sys, numpy as np, mitsuba as mi\n"
+        "mi.set_variant('scalar_rgb')\nimport matte_mitsuba\n"
+        f"b = mi.load_dict({{'type': {kind!r}, 'reflectance': {{'type': 'rgb', 'value': [0.8, 0.5, 0.3]}},"
+        f" {name!r}: {{'type': 'bitmap', 'raw': True, 'bitmap': mi.Bitmap(np.full((2, 2, 1), np.nan, np.float32))}}}})\n"
+        "wi, wo = json.load(sys.stdin)\nout = []\n"
+        "for a, c in zip(wi, wo):\n"
+        "    si = mi.SurfaceInteraction3f(); si.wi = mi.Vector3f(a); si.uv = mi.Point2f(0.5, 0.5)\n"
+        "    si.n = mi.Normal3f(0, 0, 1); si.sh_frame = mi.Frame3f(si.n)\n"
+        "    out.append(list(b.eval(mi.BSDFContext(), si, mi.Vector3f(c))))\n"
+        "print(json.dumps(out))\n")
+    import json
+    import subprocess
+    import sys
+    r = subprocess.run([sys.executable, "-c", code], input=json.dumps([wi.tolist(), wo_np.tolist()]),
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    scalar = np.array(json.loads(r.stdout), dtype=np.float64).T
+    assert np.isfinite(scalar).all()
+    err = np.abs(traced - scalar).max() / max(np.abs(scalar).max(), 1e-12)
+    assert err <= 1e-4, f"{kind}.{name}: llvm_ad_rgb differs from scalar_rgb by {err:.2e}"
