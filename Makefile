@@ -31,6 +31,9 @@ bench: plugin
 test: plugin dist
 	cargo fmt --check
 	cargo clippy --quiet --all-targets -- -D warnings
+	.venv/bin/ruff check --quiet .
+	.venv/bin/ruff format --check --quiet .
+	clang-format --dry-run --Werror cpp/*.h cpp/*.cpp
 	cargo test --quiet
 	$(PY) -m pytest -q tests/plugin tests/renderer
 

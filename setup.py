@@ -4,6 +4,7 @@ what the `matte` tool reads at run time besides the ground-truth tables it alrea
 binary, the bundled scenes of mitsuba_scenes/ as `scenes/`, the study report's BRDF slices of
 docs/microgeometry/ as `truth_slices/`), and tag the wheel for this platform (it holds native
 code, but no Python extension: any Python 3 that runs Mitsuba can load it)."""
+
 import glob
 import os
 import shutil
@@ -23,7 +24,9 @@ SLICES = ["truth_slice_*.png", "slices_*_r0.3_rho0.8.png"]
 
 class BuildPlugins(build_py):
     def run(self):
-        subprocess.check_call([os.path.join(ROOT, "cpp", "build_plugin.sh")], env={**os.environ, "MATTE_PYTHON": sys.executable})
+        subprocess.check_call(
+            [os.path.join(ROOT, "cpp", "build_plugin.sh")], env={**os.environ, "MATTE_PYTHON": sys.executable}
+        )
         binary = os.path.join(ROOT, "python", "matte_mitsuba", "bin", "matte")
         os.makedirs(os.path.dirname(binary), exist_ok=True)
         shutil.copy2(os.path.join(ROOT, "target", "release", "matte"), binary)
@@ -31,8 +34,11 @@ class BuildPlugins(build_py):
         package = os.path.join(ROOT, "python", "matte_mitsuba")
         scenes = os.path.join(package, "scenes")
         shutil.rmtree(scenes, ignore_errors=True)
-        shutil.copytree(os.path.join(ROOT, "mitsuba_scenes"), scenes,
-                        ignore=shutil.ignore_patterns("__pycache__", "*.pyc", "make_assets.py"))
+        shutil.copytree(
+            os.path.join(ROOT, "mitsuba_scenes"),
+            scenes,
+            ignore=shutil.ignore_patterns("__pycache__", "*.pyc", "make_assets.py"),
+        )
         slices = os.path.join(package, "truth_slices")
         shutil.rmtree(slices, ignore_errors=True)
         os.makedirs(slices)

@@ -44,4 +44,4 @@ public:
     virtual uint32_t gather8(uint32_t table, uint32_t idx) const = 0;
 };
 
-} // namespace matte
+}  // namespace matte

@@ -12,7 +12,8 @@
 
 namespace matte {
 
-template <typename Float> class ArenaT final : public Arena {
+template <typename Float>
+class ArenaT final : public Arena {
 public:
     using Mask = drjit::mask_t<Float>;
     using UInt32 = drjit::uint32_array_t<Float>;
@@ -43,9 +44,7 @@ public:
     uint32_t abs(uint32_t a) const override { return push(drjit::abs(f(a))); }
     uint32_t sqrt(uint32_t a) const override { return push(drjit::sqrt(f(a))); }
     uint32_t floor(uint32_t a) const override { return push(drjit::floor(f(a))); }
-    uint32_t fma(uint32_t a, uint32_t b, uint32_t c) const override {
-        return push(drjit::fmadd(f(a), f(b), f(c)));
-    }
+    uint32_t fma(uint32_t a, uint32_t b, uint32_t c) const override { return push(drjit::fmadd(f(a), f(b), f(c))); }
     uint32_t exp(uint32_t a) const override { return push(drjit::exp(f(a))); }
     void sincos(uint32_t a, uint32_t &s, uint32_t &c) const override {
         auto [sv, cv] = drjit::sincos(f(a));
@@ -110,4 +109,4 @@ private:
     const std::vector<Float> *m_tables;
 };
 
-} // namespace matte
+}  // namespace matte

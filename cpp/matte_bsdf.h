@@ -75,9 +75,10 @@ public:
                     // A texture for a numeric parameter (sigma, roughness, alpha, int_ior, ...):
                     // evaluated per lane (docs/models.md#spatially-varying-parameters).
                     if (!matte::ffi::is_numeric_parameter(rust::Str(m_kind.data(), m_kind.size()),
-                                                         rust::Str(name.data(), name.size())))
+                                                          rust::Str(name.data(), name.size())))
                         Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this "
-                              "model, so it cannot be a texture", m_kind, name);
+                              "model, so it cannot be a texture",
+                              m_kind, name);
                     textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
                     break;
                 case Properties::Type::Float:
@@ -105,10 +106,11 @@ public:
         // into the per-lane range, so any texture is accepted: its values are clamped per lane).
         std::vector<matte::ffi::Param> placeholders;
         for (auto &[name, texture] : textured)
-            placeholders.push_back(number_param(name, matte::ffi::textured_placeholder(
-                rust::Str(m_kind.data(), m_kind.size()), rust::Str(name.data(), name.size()),
-                scalar_value(texture->mean()),
-                rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size()))));
+            placeholders.push_back(
+                number_param(name, matte::ffi::textured_placeholder(
+                                       rust::Str(m_kind.data(), m_kind.size()), rust::Str(name.data(), name.size()),
+                                       scalar_value(texture->mean()),
+                                       rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size()))));
         for (auto &p : placeholders)
             m_params.push_back(std::move(p));
         build_model();
@@ -158,17 +160,13 @@ public:
         update_traced_kernel();
     }
 
-    std::pair<BSDFSample3f, Spectrum> sample(const BSDFContext &ctx,
-                                             const SurfaceInteraction3f &si,
-                                             Float /* sample1 */,
-                                             const Point2f &sample2,
-                                             Mask active) const override {
+    std::pair<BSDFSample3f, Spectrum> sample(const BSDFContext &ctx, const SurfaceInteraction3f &si,
+                                             Float /* sample1 */, const Point2f &sample2, Mask active) const override {
         MI_MASKED_FUNCTION(ProfilerPhase::BSDFSample, active);
         Float cos_theta_i = Frame3f::cos_theta(si.wi);
         BSDFSample3f bs = dr::zeros<BSDFSample3f>();
         active &= cos_theta_i > 0.f;
-        if (unlikely(dr::none_or<false>(active) ||
-                     !ctx.is_enabled(BSDFFlags::DiffuseReflection)))
+        if (unlikely(dr::none_or<false>(active) || !ctx.is_enabled(BSDFFlags::DiffuseReflection)))
             return { bs, 0.f };
 
         UnpolarizedSpectrum value = m_reflectance->eval(si, active);
@@ -192,9 +190,9 @@ public:
             std::array<uint32_t, Channels> weight;
             wo.fill(zero);
             weight.fill(zero);
-            uint32_t pdf = (*m_model)->traced_sample(ar, slice(coef), m_any_textured, slice(wi), ar.push(sample2.x()),
-                                                     ar.push(sample2.y()), slice(rho), mut_slice(wo),
-                                                     mut_slice(weight));
+            uint32_t pdf =
+                (*m_model)->traced_sample(ar, slice(coef), m_any_textured, slice(wi), ar.push(sample2.x()),
+                                          ar.push(sample2.y()), slice(rho), mut_slice(wo), mut_slice(weight));
             // Zero on inactive lanes: their parameters (textures evaluated under `active`) are
             // not the material's, so neither is what the sampler drew there.
             bs.wo = dr::select(active, Vector3f(ar.get(wo[0]), ar.get(wo[1]), ar.get(wo[2])), 0.f);
@@ -209,16 +207,15 @@ public:
         return { bs, depolarizer<Spectrum>(value) & (active && bs.pdf > 0.f) };
     }
 
-    Spectrum eval(const BSDFContext &ctx, const SurfaceInteraction3f &si,
-                  const Vector3f &wo, Mask active) const override {
+    Spectrum eval(const BSDFContext &ctx, const SurfaceInteraction3f &si, const Vector3f &wo,
+                  Mask active) const override {
         MI_MASKED_FUNCTION(ProfilerPhase::BSDFEvaluate, active);
         if (!ctx.is_enabled(BSDFFlags::DiffuseReflection))
             return 0.f;
         return eval_pdf_impl(si, wo, active).first;
     }
 
-    Float pdf(const BSDFContext &ctx, const SurfaceInteraction3f &si,
-              const Vector3f &wo, Mask active) const override {
+    Float pdf(const BSDFContext &ctx, const SurfaceInteraction3f &si, const Vector3f &wo, Mask active) const override {
         MI_MASKED_FUNCTION(ProfilerPhase::BSDFEvaluate, active);
         if (!ctx.is_enabled(BSDFFlags::DiffuseReflection))
             return 0.f;
@@ -233,9 +230,7 @@ public:
         }
     }
 
-    std::pair<Spectrum, Float> eval_pdf(const BSDFContext &ctx,
-                                        const SurfaceInteraction3f &si,
-                                        const Vector3f &wo,
+    std::pair<Spectrum, Float> eval_pdf(const BSDFContext &ctx, const SurfaceInteraction3f &si, const Vector3f &wo,
                                         Mask active) const override {
         MI_MASKED_FUNCTION(ProfilerPhase::BSDFEvaluate, active);
         if (!ctx.is_enabled(BSDFFlags::DiffuseReflection))
@@ -243,8 +238,7 @@ public:
         return eval_pdf_impl(si, wo, active);
     }
 
-    Spectrum eval_diffuse_reflectance(const SurfaceInteraction3f &si,
-                                      Mask active) const override {
+    Spectrum eval_diffuse_reflectance(const SurfaceInteraction3f &si, Mask active) const override {
         return m_reflectance->eval(si, active);
     }
 
@@ -285,9 +279,9 @@ private:
 
     void build_model() {
         try {
-            m_model.emplace(matte::ffi::model_new(
-                rust::Str(m_kind.data(), m_kind.size()),
-                rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size())));
+            m_model.emplace(
+                matte::ffi::model_new(rust::Str(m_kind.data(), m_kind.size()),
+                                      rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size())));
         } catch (const rust::Error &e) {
             Throw("bsdf \"%s\": %s", m_kind, e.what());
         }
@@ -354,7 +348,8 @@ private:
     }
 
     /// Puts the components of a JIT vector (or the entries of a list) into the arena.
-    template <typename Vec> static auto ids(const matte::ArenaT<Float> &ar, const Vec &v) {
+    template <typename Vec>
+    static auto ids(const matte::ArenaT<Float> &ar, const Vec &v) {
         if constexpr (std::is_same_v<Vec, std::vector<Float>>) {
             std::vector<uint32_t> out;
             for (const Float &x : v)
@@ -367,10 +362,12 @@ private:
             return out;
         }
     }
-    template <typename C> static rust::Slice<const uint32_t> slice(const C &c) {
+    template <typename C>
+    static rust::Slice<const uint32_t> slice(const C &c) {
         return rust::Slice<const uint32_t>(c.data(), c.size());
     }
-    template <typename C> static rust::Slice<uint32_t> mut_slice(C &c) {
+    template <typename C>
+    static rust::Slice<uint32_t> mut_slice(C &c) {
         return rust::Slice<uint32_t>(c.data(), c.size());
     }
 
@@ -396,14 +393,13 @@ private:
         std::vector<uint32_t> params;
         for (const NumericParameter &n : m_numeric)
             params.push_back(ar.push(n.texture ? n.texture->eval_1(si, active) : n.value));
-        rust::Vec<uint32_t> coef = (*m_model)->traced_coefficients(
-            ar, rust::Slice<const uint32_t>(params.data(), params.size()), true, true);
+        rust::Vec<uint32_t> coef =
+            (*m_model)->traced_coefficients(ar, rust::Slice<const uint32_t>(params.data(), params.size()), true, true);
         return std::vector<uint32_t>(coef.begin(), coef.end());
     }
 
     /// f·cos θo and the pdf: the kernels for every active lane, 0 elsewhere.
-    std::pair<Spectrum, Float> eval_pdf_impl(const SurfaceInteraction3f &si, const Vector3f &wo,
-                                             Mask active) const {
+    std::pair<Spectrum, Float> eval_pdf_impl(const SurfaceInteraction3f &si, const Vector3f &wo, Mask active) const {
         Float cos_theta_i = Frame3f::cos_theta(si.wi), cos_theta_o = Frame3f::cos_theta(wo);
         active &= cos_theta_i > 0.f && cos_theta_o > 0.f;
         if constexpr (!dr::is_jit_v<Float>) {

@@ -6,6 +6,4 @@
 
 extern "C" void matte_register(std::string_view name, mitsuba::PluginRegisterFn fn);
 
-extern "C" MI_EXPORT void init_plugin(std::string_view name, mitsuba::PluginRegisterFn fn) {
-    matte_register(name, fn);
-}
+extern "C" MI_EXPORT void init_plugin(std::string_view name, mitsuba::PluginRegisterFn fn) { matte_register(name, fn); }

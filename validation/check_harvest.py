@@ -10,6 +10,7 @@ them out. This script loads each in Mitsuba (scalar_rgb) and reports the scenes 
 refuses, with its reason: a property harvested wrongly, or one Mitsuba reads only in a branch
 the scene does not take. Exit status 1 if any is refused for an unreferenced property.
 """
+
 import os
 import sys
 
@@ -29,8 +30,10 @@ def main():
         except Exception as e:  # noqa: BLE001 - Mitsuba raises RuntimeError and others
             msg = " ".join(str(e).split())
             (unreferenced if "unreferenced propert" in msg else other).append((f, msg[:300]))
-    print(f"{len(files)} scenes: Mitsuba loads {len(files) - len(unreferenced) - len(other)}, "
-          f"refuses {len(unreferenced)} for an unreferenced property, {len(other)} for another reason")
+    print(
+        f"{len(files)} scenes: Mitsuba loads {len(files) - len(unreferenced) - len(other)}, "
+        f"refuses {len(unreferenced)} for an unreferenced property, {len(other)} for another reason"
+    )
     for f, m in unreferenced + other:
         print(f"  {f}: {m}")
     return 1 if unreferenced else 0

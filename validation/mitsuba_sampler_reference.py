@@ -9,6 +9,7 @@ oracle of tests/render/samplers.rs. Run by hand with the venv's Python:
   next_2d (then `advance()`).
 * "thinlens": rays of a `thinlens` sensor for film and aperture samples.
 """
+
 import json
 import sys
 
@@ -32,8 +33,11 @@ SAMPLER_CASES = [
 ]
 
 # (requested sample_count, plugin) -> Mitsuba's rounded sample_count.
-ROUNDING = [(t, n) for t in ("stratified", "multijitter", "orthogonal", "ldsampler", "independent")
-            for n in (1, 2, 3, 5, 8, 10, 17, 50, 100, 1000)]
+ROUNDING = [
+    (t, n)
+    for t in ("stratified", "multijitter", "orthogonal", "ldsampler", "independent")
+    for n in (1, 2, 3, 5, 8, 10, 17, 50, 100, 1000)
+]
 
 
 def samplers():
@@ -54,19 +58,26 @@ def samplers():
                     row += [float(p[0]), float(p[1])]
             vals.append(row)
             s.advance()
-        out.append({"type": t, "props": props, "n": n, "base": base, "seed": seed,
-                    "count": s.sample_count(), "vals": vals})
+        out.append(
+            {"type": t, "props": props, "n": n, "base": base, "seed": seed, "count": s.sample_count(), "vals": vals}
+        )
     return out
 
 
 def rounding():
-    return [{"type": t, "n": n, "count": mi.load_dict({"type": t, "sample_count": n}).sample_count()}
-            for t, n in ROUNDING]
+    return [
+        {"type": t, "n": n, "count": mi.load_dict({"type": t, "sample_count": n}).sample_count()} for t, n in ROUNDING
+    ]
 
 
 THINLENS = {
-    "type": "thinlens", "fov": 35.0, "fov_axis": "smaller", "aperture_radius": 0.3,
-    "focus_distance": 4.5, "near_clip": 0.05, "far_clip": 80.0,
+    "type": "thinlens",
+    "fov": 35.0,
+    "fov_axis": "smaller",
+    "aperture_radius": 0.3,
+    "focus_distance": 4.5,
+    "near_clip": 0.05,
+    "far_clip": 80.0,
     "to_world": mi.ScalarTransform4f().look_at(origin=[1, 2, 6], target=[0, 0.5, 0], up=[0, 1, 0]),
     "film": {"type": "hdrfilm", "width": 40, "height": 30},
 }
@@ -75,14 +86,28 @@ THINLENS = {
 def thinlens():
     cam = mi.load_dict(THINLENS)
     rays = []
-    for i, (fx, fy, ax, ay) in enumerate([(0.5, 0.5, 0.5, 0.5), (0.1, 0.9, 0.2, 0.7), (0.95, 0.05, 0.99, 0.01),
-                                          (0.3, 0.6, 0.0, 0.0), (0.7, 0.2, 0.6, 0.95)]):
+    for _i, (fx, fy, ax, ay) in enumerate(
+        [
+            (0.5, 0.5, 0.5, 0.5),
+            (0.1, 0.9, 0.2, 0.7),
+            (0.95, 0.05, 0.99, 0.01),
+            (0.3, 0.6, 0.0, 0.0),
+            (0.7, 0.2, 0.6, 0.95),
+        ]
+    ):
         ray, w = cam.sample_ray(0.0, 0.5, mi.Point2f(fx, fy), mi.Point2f(ax, ay))
-        rays.append({"film": [fx, fy], "aperture": [ax, ay], "o": list(map(float, ray.o)),
-                     "d": list(map(float, ray.d)), "maxt": float(ray.maxt), "weight": float(w[0])})
+        rays.append(
+            {
+                "film": [fx, fy],
+                "aperture": [ax, ay],
+                "o": list(map(float, ray.o)),
+                "d": list(map(float, ray.d)),
+                "maxt": float(ray.maxt),
+                "weight": float(w[0]),
+            }
+        )
     props = {k: v for k, v in THINLENS.items() if k not in ("to_world", "film", "type")}
-    return {"props": props, "origin": [1, 2, 6], "target": [0, 0.5, 0], "up": [0, 1, 0],
-            "film": [40, 30], "rays": rays}
+    return {"props": props, "origin": [1, 2, 6], "target": [0, 0.5, 0], "up": [0, 1, 0], "film": [40, 30], "rays": rays}
 
 
 def main():

@@ -114,7 +114,9 @@ def run_scene(mi, matte, scene, out_dir, timeout):
         pass
     img = load_xyz(mi, out)
     if img.shape != ref.shape:
-        row.update(status="rendered", error=f"image shape {img.shape} != reference {ref.shape}", accepted=0.0, passed=False)
+        row.update(
+            status="rendered", error=f"image shape {img.shape} != reference {ref.shape}", accepted=0.0, passed=False
+        )
         return row
     p = p_values(img, spp, ref, ref_var)
     alpha = 1.0 - (1.0 - 0.01) ** (1.0 / pixel_count)
@@ -180,7 +182,11 @@ def markdown(rows):
     mean ratio."""
     out = ["| scene | rendered | accepted % | pass | mean ratio (Y) |", "|---|---|---|---|---|"]
     for r in rows:
-        status = r["status"] if r["status"] != "refused" else "refused: " + r.get("error", "").replace("|", "\\|").replace("matte: error: ", "")
+        status = (
+            r["status"]
+            if r["status"] != "refused"
+            else "refused: " + r.get("error", "").replace("|", "\\|").replace("matte: error: ", "")
+        )
         acc = f"{r['accepted']:.2f}" if "accepted" in r else "–"
         ok = ("yes" if r["passed"] else "**no**") if "passed" in r else "–"
         ratio = f"{r['mean_ratio']:.4f}" if "mean_ratio" in r else "–"

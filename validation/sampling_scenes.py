@@ -14,6 +14,7 @@ sampler): their difference in units of its standard error is printed.
 
 Writes DIR/sampling_scenes.json and prints a Markdown table (with the CPU).
 """
+
 import argparse
 import json
 import os
@@ -53,7 +54,8 @@ def scene_text(path, kind, params):
     text = open(os.path.join(REPO, path)).read()
     extra = "".join(
         f'<float name="{k}" value="{v}"/>' if isinstance(v, float) else f'<string name="{k}" value="{v}"/>'
-        for k, v in params.items())
+        for k, v in params.items()
+    )
     text = re.sub(r'(<bsdf type=")\$bsdf("[^>]*>)', lambda m: f"{m.group(1)}{kind}{m.group(2)}{extra}", text)
     text = text.replace('type="$bsdf"', f'type="{kind}"')
     return text
@@ -89,8 +91,24 @@ def matte_renders(mi, path, kind, params, seeds, spp, res):
             for seed in seeds:
                 out = os.path.join(tmp, f"{seed}.exr")
                 t0 = time.perf_counter()
-                subprocess.run([MATTE, "render", scene, "-q", "--spp", str(spp), "--seed", str(seed),
-                                "-D", f"res={res}", "-o", out], check=True, capture_output=True)
+                subprocess.run(
+                    [
+                        MATTE,
+                        "render",
+                        scene,
+                        "-q",
+                        "--spp",
+                        str(spp),
+                        "--seed",
+                        str(seed),
+                        "-D",
+                        f"res={res}",
+                        "-o",
+                        out,
+                    ],
+                    check=True,
+                    capture_output=True,
+                )
                 seconds.append(time.perf_counter() - t0)
                 images.append(np.array(mi.Bitmap(out))[..., :3])
         finally:
@@ -109,13 +127,20 @@ def main():
     a = ap.parse_args()
 
     import mitsuba as mi
+
     mi.set_variant("llvm_ad_rgb")
     import matte_mitsuba
+
     matte_mitsuba.register()
 
     types = json.loads(subprocess.run([MATTE, "types", "--json"], check=True, capture_output=True, text=True).stdout)
-    own = [(m, s) for m in types for s in m["samplers"] if s != "cosine"
-           if not a.models or m["name"] in a.models.split(",")]
+    own = [
+        (m, s)
+        for m in types
+        for s in m["samplers"]
+        if s != "cosine"
+        if not a.models or m["name"] in a.models.split(",")
+    ]
     seeds = list(range(1, a.renders + 1))
     rows = []
     for m, own_sampler in own:
@@ -125,31 +150,49 @@ def main():
                 for renderer, run in (("mitsuba llvm_ad_rgb", mitsuba_renders), ("matte", matte_renders)):
                     got = {}
                     for sampling in (own_sampler, "cosine"):
-                        images, seconds = run(mi, SCENES[scene], m["name"], {rough: r, "sampling": sampling},
-                                              seeds, a.spp, a.res)
+                        images, seconds = run(
+                            mi, SCENES[scene], m["name"], {rough: r, "sampling": sampling}, seeds, a.spp, a.res
+                        )
                         v, mean, var = variance_and_mean(images)
                         got[sampling] = (v, seconds, mean, var)
                     (v1, t1, m1, s1), (v0, t0, m0, s0) = got[own_sampler], got["cosine"]
                     se = np.sqrt((s1 + s0) / len(seeds)).mean()
                     z = float(abs(m1.mean() - m0.mean()) / (np.sqrt(((s1 + s0) / len(seeds)).mean() / m1.size)))
-                    row = {"model": m["name"], "sampler": own_sampler, "scene": scene, "roughness": r, "renderer": renderer,
-                           "variance": v1, "variance_cosine": v0, "seconds": t1, "seconds_cosine": t0,
-                           "variance_ratio": v0 / v1, "time_ratio": t1 / t0,
-                           "efficiency_gain": (v0 * t0) / (v1 * t1), "mean_difference_z": z,
-                           "pixel_standard_error": float(se)}
+                    row = {
+                        "model": m["name"],
+                        "sampler": own_sampler,
+                        "scene": scene,
+                        "roughness": r,
+                        "renderer": renderer,
+                        "variance": v1,
+                        "variance_cosine": v0,
+                        "seconds": t1,
+                        "seconds_cosine": t0,
+                        "variance_ratio": v0 / v1,
+                        "time_ratio": t1 / t0,
+                        "efficiency_gain": (v0 * t0) / (v1 * t1),
+                        "mean_difference_z": z,
+                        "pixel_standard_error": float(se),
+                    }
                     rows.append(row)
-                    print(f"{m['name']} {scene} r={r} {renderer}: variance ratio {row['variance_ratio']:.2f}, "
-                          f"time ratio {row['time_ratio']:.2f}, gain {row['efficiency_gain']:.2f} (means z={z:.1f})",
-                          file=sys.stderr)
+                    print(
+                        f"{m['name']} {scene} r={r} {renderer}: variance ratio {row['variance_ratio']:.2f}, "
+                        f"time ratio {row['time_ratio']:.2f}, gain {row['efficiency_gain']:.2f} (means z={z:.1f})",
+                        file=sys.stderr,
+                    )
     os.makedirs(a.out, exist_ok=True)
     with open(os.path.join(a.out, "sampling_scenes.json"), "w") as f:
         json.dump({"machine": cpu(), "renders": a.renders, "spp": a.spp, "res": a.res, "rows": rows}, f, indent=1)
     print(f"machine: {cpu()}; {a.renders} renders of {a.spp} spp at {a.res}² per configuration\n")
-    print("| model | scene | roughness | renderer | variance ratio (cosine / own) | time ratio (own / cosine) | efficiency gain |")
+    print(
+        "| model | scene | roughness | renderer | variance ratio (cosine / own) | time ratio (own / cosine) | efficiency gain |"
+    )
     print("|---|---|---|---|---|---|---|")
     for r in rows:
-        print(f"| {r['model']} | {r['scene']} | {r['roughness']} | {r['renderer']} | {r['variance_ratio']:.2f} | "
-              f"{r['time_ratio']:.2f} | {r['efficiency_gain']:.2f} |")
+        print(
+            f"| {r['model']} | {r['scene']} | {r['roughness']} | {r['renderer']} | {r['variance_ratio']:.2f} | "
+            f"{r['time_ratio']:.2f} | {r['efficiency_gain']:.2f} |"
+        )
 
 
 if __name__ == "__main__":

@@ -24,6 +24,7 @@ other BSDFs of §10 (tests/render/mitsuba_bsdfs/generate_reference.py), `bumpmap
 (generate_bumpmap_reference.py there), the `serialized` format (tests/scene_file/serialized/
 make_reference.py), and the PLY attribute naming of §8 (Mitsuba's own test scenes).
 """
+
 import argparse
 import math
 import re
@@ -33,8 +34,8 @@ import time
 import traceback
 from pathlib import Path
 
-import numpy as np
 import mitsuba as mi
+import numpy as np
 
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
@@ -45,15 +46,19 @@ CHECKS = []
 
 def check(name):
     """Registers `fn() -> (ok, detail)` under `name` ("§N: what the doc says")."""
+
     def register(fn):
         CHECKS.append((name, fn))
         return fn
+
     return register
 
 
 def fmt(x):
     x = np.asarray(x, dtype=np.float64)
-    return np.array2string(x.ravel(), precision=6, separator=", ", max_line_width=10**6) if x.ndim else f"{float(x):.6g}"
+    return (
+        np.array2string(x.ravel(), precision=6, separator=", ", max_line_width=10**6) if x.ndim else f"{float(x):.6g}"
+    )
 
 
 def near(got, want, tol):
@@ -102,10 +107,13 @@ def si_at(uv=(0.5, 0.5), wi=(0.0, 0.0, 1.0)):
 
 
 def sensor(origin, target, up=(0, 1, 0), fov=1.0, w=1, h=1, rfilter="box", **film):
-    return {"type": "perspective", "fov": fov,
-            "to_world": T().look_at(origin=list(origin), target=list(target), up=list(up)),
-            "film": {"type": "hdrfilm", "width": w, "height": h, "rfilter": {"type": rfilter}, **film},
-            "sampler": {"type": "independent", "sample_count": 1}}
+    return {
+        "type": "perspective",
+        "fov": fov,
+        "to_world": T().look_at(origin=list(origin), target=list(target), up=list(up)),
+        "film": {"type": "hdrfilm", "width": w, "height": h, "rfilter": {"type": rfilter}, **film},
+        "sampler": {"type": "independent", "sample_count": 1},
+    }
 
 
 def render(d, spp, seeds):
@@ -127,6 +135,7 @@ def pixel(d, spp=4096, seeds=8):
 # ---------------------------------------------------------------------------------------------
 # §0 Constants
 
+
 @check("§0: RayEpsilon = 1500·2⁻²⁴ ≈ 8.9407e-5, ShadowEpsilon = 10·RayEpsilon")
 def _():
     return near([mi.math.RayEpsilon, mi.math.ShadowEpsilon], [1500 * 2**-24, 15000 * 2**-24], 1e-12)
@@ -135,19 +144,24 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §1 XML loading
 
+
 def reflectance_of(xml, **kw):
     return mi.traverse(one(xml, **kw))["reflectance.value"]
 
 
 @check('§1: substitution is plain text, longest key first: with r=0.2, "$r5" → 0.25')
 def _():
-    return near(reflectance_of('<bsdf type="diffuse"><float name="reflectance" value="$r5"/></bsdf>', r="0.2"), 0.25, 1e-7)
+    return near(
+        reflectance_of('<bsdf type="diffuse"><float name="reflectance" value="$r5"/></bsdf>', r="0.2"), 0.25, 1e-7
+    )
 
 
 @check("§1: the first <default> wins and kwargs beat defaults")
 def _():
-    body = ('<default name="a" value="0.1"/><default name="a" value="0.2"/>'
-            '<shape type="sphere"><bsdf type="diffuse"><float name="reflectance" value="$a"/></bsdf></shape>')
+    body = (
+        '<default name="a" value="0.1"/><default name="a" value="0.2"/>'
+        '<shape type="sphere"><bsdf type="diffuse"><float name="reflectance" value="$a"/></bsdf></shape>'
+    )
     got = []
     for kw in ({}, {"a": "0.3"}):
         scene = scene_xml(body, **kw)  # held: Mitsuba's objects die with the scene
@@ -157,8 +171,12 @@ def _():
 
 @check("§1: $x used before its <default> is an undefined-parameter error")
 def _():
-    return raises(lambda: scene_xml('<bsdf type="diffuse"><float name="reflectance" value="$x"/></bsdf>'
-                                    '<default name="x" value="0.5"/>'), "undefined parameter")
+    return raises(
+        lambda: scene_xml(
+            '<bsdf type="diffuse"><float name="reflectance" value="$x"/></bsdf><default name="x" value="0.5"/>'
+        ),
+        "undefined parameter",
+    )
 
 
 @check('§1: an unused kwarg is an error ("Found unused parameters")')
@@ -173,8 +191,10 @@ def _():
 
 @check('§1: <integer value="1.0"> and "+1" are errors')
 def _():
-    results = [raises(lambda v=v: one(f'<film type="hdrfilm"><integer name="width" value="{v}"/></film>'), "")
-               for v in ("1.0", "+1")]
+    results = [
+        raises(lambda v=v: one(f'<film type="hdrfilm"><integer name="width" value="{v}"/></film>'), "")
+        for v in ("1.0", "+1")
+    ]
     return all(r[0] for r in results), "; ".join(r[1] for r in results)
 
 
@@ -200,8 +220,10 @@ def _():
 
 @check("§1: forward references work; duplicate ids are an error; an unreferenced object with an id is a scene child")
 def _():
-    s = scene_xml('<shape type="sphere"><ref id="m"/></shape><bsdf type="diffuse" id="m">'
-                  '<rgb name="reflectance" value="0.25"/></bsdf><bsdf type="diffuse" id="unused"/>')
+    s = scene_xml(
+        '<shape type="sphere"><ref id="m"/></shape><bsdf type="diffuse" id="m">'
+        '<rgb name="reflectance" value="0.25"/></bsdf><bsdf type="diffuse" id="unused"/>'
+    )
     refl = vec(s.shapes()[0].bsdf().eval_diffuse_reflectance(si_at()))
     ok1, d1 = near(refl, [0.25] * 3, 1e-7)
     ok2, d2 = raises(lambda: scene_xml('<bsdf type="diffuse" id="a"/><bsdf type="diffuse" id="a"/>'), "")
@@ -210,9 +232,11 @@ def _():
 
 @check("§1: several sensors are allowed; scene.sensors()[0] (what mi.render uses) is the first in document order")
 def _():
-    s = scene_xml('<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="3"/>'
-                  '<integer name="height" value="2"/></film></sensor><sensor type="perspective"><film type="hdrfilm">'
-                  '<integer name="width" value="5"/><integer name="height" value="2"/></film></sensor>')
+    s = scene_xml(
+        '<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="3"/>'
+        '<integer name="height" value="2"/></film></sensor><sensor type="perspective"><film type="hdrfilm">'
+        '<integer name="width" value="5"/><integer name="height" value="2"/></film></sensor>'
+    )
     return near([len(s.sensors()), s.sensors()[0].film().size()[0]], [2, 3], 0)
 
 
@@ -221,8 +245,9 @@ def _():
     root = TMP / "include_assets"
     (root / "sub").mkdir(parents=True, exist_ok=True)
     tri = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n"
-    (root / "sub/inc.xml").write_text('<scene version="3.0.0"><shape type="obj">'
-                                      '<string name="filename" value="tri.obj"/></shape></scene>')
+    (root / "sub/inc.xml").write_text(
+        '<scene version="3.0.0"><shape type="obj"><string name="filename" value="tri.obj"/></shape></scene>'
+    )
     (root / "main.xml").write_text('<scene version="3.0.0"><include filename="sub/inc.xml"/></scene>')
     (root / "sub/tri.obj").write_text(tri)  # next to the included file only: not found
     ok1, d1 = raises(lambda: mi.load_file(str(root / "main.xml")), "tri.obj")
@@ -234,6 +259,7 @@ def _():
 
 # ---------------------------------------------------------------------------------------------
 # §2 Colours
+
 
 def emissive(prop):
     scene = scene_xml(f'<shape type="rectangle"><emitter type="area">{prop}</emitter></shape>')
@@ -260,8 +286,10 @@ def _():
 
 @check('§2: a bounded <rgb> outside [0, 1] is an error "Invalid RGB reflectance value"; emissive is not clamped')
 def _():
-    ok1, d1 = raises(lambda: one('<bsdf type="diffuse"><rgb name="reflectance" value="1.5 0 0"/></bsdf>'),
-                     "Invalid RGB reflectance value")
+    ok1, d1 = raises(
+        lambda: one('<bsdf type="diffuse"><rgb name="reflectance" value="1.5 0 0"/></bsdf>'),
+        "Invalid RGB reflectance value",
+    )
     ok2, d2 = near(emissive('<rgb name="radiance" value="6 6 5"/>'), [6, 6, 5], 0)
     return ok1 and ok2, f"{d1}; {d2}"
 
@@ -269,10 +297,12 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §3 Transforms
 
+
 def to_world(ops):
-    state = mi.parser.parse_string(mi.parser.ParserConfig("scalar_rgb"),
-                                   f'<scene version="3.0.0"><shape type="rectangle"><transform name="to_world">'
-                                   f'{ops}</transform></shape></scene>')
+    state = mi.parser.parse_string(
+        mi.parser.ParserConfig("scalar_rgb"),
+        f'<scene version="3.0.0"><shape type="rectangle"><transform name="to_world">{ops}</transform></shape></scene>',
+    )
     return np.array(state.nodes[1].props["to_world"].matrix, dtype=np.float64)
 
 
@@ -303,23 +333,30 @@ def _():
 
 @check("§3: sphere = to_world·T(center)·S(radius): center (1,0,0), radius 2, translate y 5 → hit at z = 2 from z = 10")
 def _():
-    s = scene_xml('<shape type="sphere"><point name="center" x="1" y="0" z="0"/><float name="radius" value="2"/>'
-                  '<transform name="to_world"><translate y="5"/></transform></shape>')
+    s = scene_xml(
+        '<shape type="sphere"><point name="center" x="1" y="0" z="0"/><float name="radius" value="2"/>'
+        '<transform name="to_world"><translate y="5"/></transform></shape>'
+    )
     return near(s.ray_intersect(mi.Ray3f([1, 5, 10], [0, 0, -1])).t, 8.0, 1e-5)
 
 
 # ---------------------------------------------------------------------------------------------
 # §4 Sensor
 
+
 def camera(props, w, h):
-    return one(f'<sensor type="perspective">{props}<film type="hdrfilm"><integer name="width" value="{w}"/>'
-               f'<integer name="height" value="{h}"/></film></sensor>')
+    return one(
+        f'<sensor type="perspective">{props}<film type="hdrfilm"><integer name="width" value="{w}"/>'
+        f'<integer name="height" value="{h}"/></film></sensor>'
+    )
 
 
 @check("§4: fov 45 at 768×576: y → 57.8224, diagonal → 36.6674, smaller → 57.8224, larger → 45")
 def _():
-    got = [mi.traverse(camera(f'<float name="fov" value="45"/><string name="fov_axis" value="{a}"/>', 768, 576))["x_fov"]
-           for a in ("y", "diagonal", "smaller", "larger")]
+    got = [
+        mi.traverse(camera(f'<float name="fov" value="45"/><string name="fov_axis" value="{a}"/>', 768, 576))["x_fov"]
+        for a in ("y", "diagonal", "smaller", "larger")
+    ]
     return near(got, [57.8224, 36.6674, 57.8224, 45], 5e-5)
 
 
@@ -331,23 +368,39 @@ def _():
 @check("§4: defaults near_clip 0.01, far_clip 10000, principal point offsets 0")
 def _():
     p = mi.traverse(one('<sensor type="perspective"/>'))
-    return near([p["near_clip"], p["far_clip"], p["principal_point_offset_x"], p["principal_point_offset_y"]],
-                [0.01, 10000, 0, 0], 1e-9)
+    return near(
+        [p["near_clip"], p["far_clip"], p["principal_point_offset_x"], p["principal_point_offset_y"]],
+        [0.01, 10000, 0, 0],
+        1e-9,
+    )
 
 
 @check("§4: fov and focal_length together, and a scale in to_world, are errors")
 def _():
-    ok1, d1 = raises(lambda: one('<sensor type="perspective"><float name="fov" value="45"/>'
-                                 '<string name="focal_length" value="50mm"/></sensor>'), "")
-    ok2, d2 = raises(lambda: one('<sensor type="perspective"><transform name="to_world"><scale value="2"/>'
-                                 '</transform></sensor>'), "scal")
+    ok1, d1 = raises(
+        lambda: one(
+            '<sensor type="perspective"><float name="fov" value="45"/>'
+            '<string name="focal_length" value="50mm"/></sensor>'
+        ),
+        "",
+    )
+    ok2, d2 = raises(
+        lambda: one('<sensor type="perspective"><transform name="to_world"><scale value="2"/></transform></sensor>'),
+        "scal",
+    )
     return ok1 and ok2, f"{d1}; {d2}"
 
 
-@check("§4: camera at (0,0,5) → origin, fov 90, 4×2 film: corner (0,0) gives d = (−0.667, 0.333, −0.667), o on the near plane")
+@check(
+    "§4: camera at (0,0,5) → origin, fov 90, 4×2 film: corner (0,0) gives d = (−0.667, 0.333, −0.667), o on the near plane"
+)
 def _():
-    cam = camera('<float name="fov" value="90"/><transform name="to_world"><lookat origin="0,0,5" target="0,0,0" '
-                 'up="0,1,0"/></transform>', 4, 2)
+    cam = camera(
+        '<float name="fov" value="90"/><transform name="to_world"><lookat origin="0,0,5" target="0,0,0" '
+        'up="0,1,0"/></transform>',
+        4,
+        2,
+    )
     ray, _ = cam.sample_ray(0.0, 0.5, [0.0, 0.0], [0.5, 0.5])
     d = np.array([-2, 1, -2]) / 3
     return near(vec(ray.d) + vec(ray.o), list(d) + list(np.array([0, 0, 5]) + d * 0.01 * 1.5), 1e-6)
@@ -356,27 +409,47 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §5 Samplers
 
+
 @check("§5: sample_count default 4, seed default 0")
 def _():
     s = one('<sampler type="independent"/>')
     return near([s.sample_count(), int("base_seed = 0" in str(s))], [4, 1], 0)
 
 
-@check("§5: Scene::emitters() order (parallel=False): top-level and analytic-shape emitters as declared, then meshes' reversed")
+@check(
+    "§5: Scene::emitters() order (parallel=False): top-level and analytic-shape emitters as declared, then meshes' reversed"
+)
 def _():
     def area(shape, x):
-        return (f'<shape type="{shape}"><transform name="to_world"><translate x="{x}"/></transform>'
-                '<emitter type="area"/></shape>')
-    body = "".join([area("sphere", 0), area("rectangle", 1), '<emitter type="constant"/>', area("sphere", 2),
-                    area("rectangle", 3), '<emitter type="point"/>', area("rectangle", 4)])
+        return (
+            f'<shape type="{shape}"><transform name="to_world"><translate x="{x}"/></transform>'
+            '<emitter type="area"/></shape>'
+        )
+
+    body = "".join(
+        [
+            area("sphere", 0),
+            area("rectangle", 1),
+            '<emitter type="constant"/>',
+            area("sphere", 2),
+            area("rectangle", 3),
+            '<emitter type="point"/>',
+            area("rectangle", 4),
+        ]
+    )
     orders = {}
     for _ in range(100):
         names = []
         scene = scene_xml(body, parallel=False)  # held while its emitters are used
         for e in scene.emitters():
             shape = e.get_shape()
-            names.append(f"a{int(round(float(shape.bbox().center()[0])))}" if shape is not None
-                         else "c" if "Constant" in e.class_name() else "p")
+            names.append(
+                f"a{int(round(float(shape.bbox().center()[0])))}"
+                if shape is not None
+                else "c"
+                if "Constant" in e.class_name()
+                else "p"
+            )
         orders[", ".join(names)] = orders.get(", ".join(names), 0) + 1
     want = "a0, c, a2, p, a4, a3, a1"
     seen = "; ".join(f"{o}: {n}/100" for o, n in sorted(orders.items(), key=lambda kv: -kv[1]))
@@ -387,16 +460,52 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §6 Film and filters
 
-GAUSSIAN_TABLE = [0.99925, 0.99099, 0.96664, 0.92735, 0.87498, 0.81193, 0.74095, 0.66496, 0.58685, 0.50931, 0.43468,
-                  0.36484, 0.30115, 0.24447, 0.19518, 0.15326, 0.11835, 0.08986, 0.06707, 0.04920, 0.03546, 0.02510,
-                  0.01743, 0.01188, 0.00792, 0.00516, 0.00325, 0.00197, 0.00112, 0.00057, 0.00022]
+GAUSSIAN_TABLE = [
+    0.99925,
+    0.99099,
+    0.96664,
+    0.92735,
+    0.87498,
+    0.81193,
+    0.74095,
+    0.66496,
+    0.58685,
+    0.50931,
+    0.43468,
+    0.36484,
+    0.30115,
+    0.24447,
+    0.19518,
+    0.15326,
+    0.11835,
+    0.08986,
+    0.06707,
+    0.04920,
+    0.03546,
+    0.02510,
+    0.01743,
+    0.01188,
+    0.00792,
+    0.00516,
+    0.00325,
+    0.00197,
+    0.00112,
+    0.00057,
+    0.00022,
+]
 
 
 @check("§6: hdrfilm defaults 768×576, gaussian stddev 0.5, pixel_format rgb, no sample_border, no crop")
 def _():
     text = str(one('<film type="hdrfilm"/>'))
-    want = ["size = [768, 576]", "crop_size = [768, 576]", "crop_offset = [0, 0]", "sample_border = 0",
-            "GaussianFilter[stddev=0.50, radius=2.00]", "pixel_format = rgb"]
+    want = [
+        "size = [768, 576]",
+        "crop_size = [768, 576]",
+        "crop_offset = [0, 0]",
+        "sample_border = 0",
+        "GaussianFilter[stddev=0.50, radius=2.00]",
+        "pixel_format = rgb",
+    ]
     missing = [w for w in want if w not in text]
     return not missing, "all present" if not missing else f"missing {missing}"
 
@@ -419,16 +528,25 @@ def _():
 @check("§6: tent: radius 1, tabulated the same way (table[k] = 1 − k/31)")
 def _():
     f = one('<rfilter type="tent"/>')
-    return near([f.radius()] + [f.eval_discretized((k + 0.5) / 31) for k in range(31)],
-                [1.0] + [1 - k / 31 for k in range(31)], 1e-6)
+    return near(
+        [f.radius()] + [f.eval_discretized((k + 0.5) / 31) for k in range(31)],
+        [1.0] + [1 - k / 31 for k in range(31)],
+        1e-6,
+    )
 
 
 def edge_scene(w=8, h=2, rfilter="gaussian", integrator=None, **film):
     """Radiance 1 on world x < 0, seen on the left half of the image."""
-    return {"type": "scene", "integrator": integrator or {"type": "path", "max_depth": 1},
-            "sensor": sensor((0, 0, 5), (0, 0, 0), fov=40, w=w, h=h, rfilter=rfilter, **film),
-            "light": {"type": "rectangle", "to_world": T().translate([-50, 0, 0]).scale([50, 50, 1]),
-                      "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 1.0}}}}
+    return {
+        "type": "scene",
+        "integrator": integrator or {"type": "path", "max_depth": 1},
+        "sensor": sensor((0, 0, 5), (0, 0, 0), fov=40, w=w, h=h, rfilter=rfilter, **film),
+        "light": {
+            "type": "rectangle",
+            "to_world": T().translate([-50, 0, 0]).scale([50, 50, 1]),
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 1.0}},
+        },
+    }
 
 
 @check("§6: 8-pixel half-bright/half-dark image, default Gaussian: 0.8342 / 0.1661 next to the edge")
@@ -447,8 +565,12 @@ def _():
 
 @check("§6: a constant image stays constant at the border (each pixel divided by its own weight sum)")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path"}, "env": {"type": "constant"},
-         "sensor": sensor((0, 0, 5), (0, 0, 0), fov=40, w=6, h=4, rfilter="gaussian")}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "env": {"type": "constant"},
+        "sensor": sensor((0, 0, 5), (0, 0, 0), fov=40, w=6, h=4, rfilter="gaussian"),
+    }
     mean, _ = render(d, 64, 1)
     return near([mean.min(), mean.max()], [1, 1], 1e-6)
 
@@ -470,20 +592,28 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §7 Integrators
 
+
 @check("§7: path defaults max_depth −1, rr_depth 5; direct: emitter_samples = bsdf_samples = 1")
 def _():
     p, d = str(one('<integrator type="path"/>')), str(one('<integrator type="direct"/>'))
-    ok = all(s in p for s in ("max_depth = 4294967295", "rr_depth = 5")) and \
-        all(s in d for s in ("emitter_samples = 1", "bsdf_samples = 1"))
+    ok = all(s in p for s in ("max_depth = 4294967295", "rr_depth = 5")) and all(
+        s in d for s in ("emitter_samples = 1", "bsdf_samples = 1")
+    )
     return ok, " ".join((p + " " + d).split())
 
 
 def closed_box(depth, shape="cube"):
-    return {"type": "scene", "integrator": {"type": "path", "max_depth": depth},
-            "sensor": sensor((0, 0, 0), (0.3, 0.2, 1)),
-            "box": {"type": shape, "flip_normals": True,
-                    "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.5}},
-                    "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 1.0}}}}
+    return {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": depth},
+        "sensor": sensor((0, 0, 0), (0.3, 0.2, 1)),
+        "box": {
+            "type": shape,
+            "flip_normals": True,
+            "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.5}},
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 1.0}},
+        },
+    }
 
 
 @check("§7: closed inward emissive diffuse box (ρ 0.5, Le 1): 1, 1.5, 1.75, 1.875, 2 for max_depth 1, 2, 3, 4, −1")
@@ -494,9 +624,13 @@ def _():
 
 @check("§7: hide_emitters: camera rays pass through area emitters, missed camera rays give 0 even with an environment")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path", "hide_emitters": True}, "env": {"type": "constant"},
-         "sensor": sensor((0, 0, 5), (0, 0, 0)),
-         "light": {"type": "rectangle", "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 3.0}}}}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path", "hide_emitters": True},
+        "env": {"type": "constant"},
+        "sensor": sensor((0, 0, 5), (0, 0, 0)),
+        "light": {"type": "rectangle", "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 3.0}}},
+    }
     hidden = pixel(d, 64, 2)[0][0]
     d["integrator"]["hide_emitters"] = False
     shown = pixel(d, 64, 2)[0][0]
@@ -505,33 +639,52 @@ def _():
 
 @check("§7: a diffuse 0.5 sphere in a constant environment of 1 converges to 0.5")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path"}, "env": {"type": "constant"},
-         "sensor": sensor((0, 0, 5), (0, 0, 0)), "ball": {"type": "sphere"}}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "env": {"type": "constant"},
+        "sensor": sensor((0, 0, 5), (0, 0, 0)),
+        "ball": {"type": "sphere"},
+    }
     m, s = pixel(d, 4096, 8)
     return statistically(m[0], s[0], 0.5, 1e-4)
 
 
 def plane_under_point(integrator, height=2.0, intensity=10.0):
-    return {"type": "scene", "integrator": integrator,
-            "sensor": sensor((0, 0.5, 1), (0, 0, 0), fov=0.5),
-            "plane": {"type": "rectangle", "to_world": T().scale([10, 10, 1]),
-                      "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.5}}},
-            "light": {"type": "point", "position": [0, 0, height], "intensity": {"type": "rgb", "value": intensity}}}
+    return {
+        "type": "scene",
+        "integrator": integrator,
+        "sensor": sensor((0, 0.5, 1), (0, 0, 0), fov=0.5),
+        "plane": {
+            "type": "rectangle",
+            "to_world": T().scale([10, 10, 1]),
+            "bsdf": {"type": "diffuse", "reflectance": {"type": "rgb", "value": 0.5}},
+        },
+        "light": {"type": "point", "position": [0, 0, height], "intensity": {"type": "rgb", "value": intensity}},
+    }
 
 
 @check("§7 pitfall: direct with emitter_samples = 4 makes a point light 4× too bright (0.2847 → 1.1389)")
 def _():
     one_sample = pixel(plane_under_point({"type": "direct"}), 16, 1)[0][0]
     four = pixel(plane_under_point({"type": "direct", "emitter_samples": 4}), 16, 1)[0][0]
-    return abs(four / one_sample - 4) < 1e-4, f"Mitsuba {one_sample:.5f} → {four:.5f} (× {four / one_sample:.5f}), doc × 4"
+    return abs(
+        four / one_sample - 4
+    ) < 1e-4, f"Mitsuba {one_sample:.5f} → {four:.5f} (× {four / one_sample:.5f}), doc × 4"
 
 
 @check("§7: direct has the expectation of path with max_depth 2")
 def _():
-    d = {"type": "scene", "sensor": sensor((0, -2, 2), (0, 0, 0), fov=5),
-         "plane": {"type": "rectangle", "to_world": T().scale([10, 10, 1])},
-         "light": {"type": "rectangle", "to_world": T().translate([0, 0, 3]).rotate([1, 0, 0], 180),
-                   "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 5.0}}}}
+    d = {
+        "type": "scene",
+        "sensor": sensor((0, -2, 2), (0, 0, 0), fov=5),
+        "plane": {"type": "rectangle", "to_world": T().scale([10, 10, 1])},
+        "light": {
+            "type": "rectangle",
+            "to_world": T().translate([0, 0, 3]).rotate([1, 0, 0], 180),
+            "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 5.0}},
+        },
+    }
     d["integrator"] = {"type": "direct"}
     m1, s1 = pixel(d, 1024, 8)
     d["integrator"] = {"type": "path", "max_depth": 2}
@@ -541,6 +694,7 @@ def _():
 
 # ---------------------------------------------------------------------------------------------
 # §8 Shapes
+
 
 @check("§8: a shape without a BSDF gets diffuse 0.5; with an emitter and no BSDF, a black diffuse")
 def _():
@@ -565,8 +719,10 @@ def _():
 
 @check("§8 pitfall: an 8-vertex OBJ cube without normals gets smooth normals: (0.556, 0.556, 0.618) at (0.9, 0.9, 1)")
 def _():
-    (TMP / "cube8.obj").write_text("v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\n"
-                                   "v -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+    (TMP / "cube8.obj").write_text(
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\n"
+        "v -1 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+    )
     s = scene_xml(f'<shape type="obj"><string name="filename" value="{TMP / "cube8.obj"}"/></shape>')
     return near(vec(s.ray_intersect(mi.Ray3f([0.9, 0.9, 5], [0, 0, -1])).sh_frame.n), [0.556, 0.556, 0.618], 5e-4)
 
@@ -574,14 +730,20 @@ def _():
 @check("§8 pitfall: OBJ flip_tex_coords defaults to true (v ← 1 − v), PLY's to false")
 def _():
     (TMP / "uv.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.25 0.2\nvt 0.5 1\nvt 1 0\nf 1/1 2/2 3/3\n")
-    obj = np.array(mi.traverse(one(f'<shape type="obj"><string name="filename" value="{TMP / "uv.obj"}"/></shape>'))
-                   ["vertex_texcoords"])
+    obj = np.array(
+        mi.traverse(one(f'<shape type="obj"><string name="filename" value="{TMP / "uv.obj"}"/></shape>'))[
+            "vertex_texcoords"
+        ]
+    )
     ply = TMP / "uv.ply"
-    ply.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-                   "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\n"
-                   "end_header\n0 0 0 0.25 0.2\n1 0 0 0.5 1\n0 1 0 1 0\n3 0 1 2\n")
-    plyuv = np.array(mi.traverse(one(f'<shape type="ply"><string name="filename" value="{ply}"/></shape>'))
-                     ["vertex_texcoords"])
+    ply.write_text(
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\n"
+        "end_header\n0 0 0 0.25 0.2\n1 0 0 0.5 1\n0 1 0 1 0\n3 0 1 2\n"
+    )
+    plyuv = np.array(
+        mi.traverse(one(f'<shape type="ply"><string name="filename" value="{ply}"/></shape>'))["vertex_texcoords"]
+    )
     return near(list(obj[:2]) + list(plyuv[:2]), [0.25, 0.8, 0.25, 0.2], 1e-7)
 
 
@@ -589,11 +751,15 @@ def _():
 def _():
     m, s = pixel(closed_box(-1, "sphere"), 16384, 8)
     excess = m[0] / 2 - 1
-    return 0.004 <= excess <= 0.012, f"Mitsuba {m[0]:.5f} ± {s[0]:.1g} ({100 * excess:+.2f} %); the cube is the §7 check"
+    return (
+        0.004 <= excess <= 0.012,
+        f"Mitsuba {m[0]:.5f} ± {s[0]:.1g} ({100 * excess:+.2f} %); the cube is the §7 check",
+    )
 
 
 # ---------------------------------------------------------------------------------------------
 # §9 Emitters
+
 
 @check("§9: the selection pmf is uniform, or ∝ sampling_weight (3 and 1 give 0.75 and 0.25)")
 def _():
@@ -604,11 +770,16 @@ def _():
 
 @check("§9: area emitters are one-sided; to_world on an area emitter is an error")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path"}, "sensor": sensor((0, 0, -5), (0, 0, 0)),
-         "light": {"type": "rectangle", "emitter": {"type": "area"}}}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "sensor": sensor((0, 0, -5), (0, 0, 0)),
+        "light": {"type": "rectangle", "emitter": {"type": "area"}},
+    }
     back = pixel(d, 16, 1)[0][0]
-    ok2, d2 = raises(lambda: one('<emitter type="area"><transform name="to_world"><translate x="1"/></transform>'
-                                 '</emitter>'), "")
+    ok2, d2 = raises(
+        lambda: one('<emitter type="area"><transform name="to_world"><translate x="1"/></transform></emitter>'), ""
+    )
     return back == 0 and ok2, f"seen from behind {back}; {d2}"
 
 
@@ -651,9 +822,13 @@ def _():
 
 @check("§10: an emitter of radiance 1 seen inside a bk7 cube renders as (1 − R₀)/η² = 0.424")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path"}, "sensor": sensor((0, 0, 5), (0, 0, 0)),
-         "glass": {"type": "cube", "to_world": T().scale(2), "bsdf": {"type": "dielectric"}},
-         "light": {"type": "rectangle", "to_world": T().scale(0.5), "emitter": {"type": "area"}}}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "sensor": sensor((0, 0, 5), (0, 0, 0)),
+        "glass": {"type": "cube", "to_world": T().scale(2), "bsdf": {"type": "dielectric"}},
+        "light": {"type": "rectangle", "to_world": T().scale(0.5), "emitter": {"type": "area"}},
+    }
     m, s = pixel(d, 16384, 4)
     return statistically(m[0], s[0], 0.424, 5e-4)
 
@@ -661,18 +836,24 @@ def _():
 @check('§10: conductor: the default material "none" (η 0, k 1) is a perfect mirror; eta/k with a material is an error')
 def _():
     w = vec(one('<bsdf type="conductor"/>').sample(CTX, si_at(), 0.5, [0.5, 0.5])[1])
-    ok2, d2 = raises(lambda: one('<bsdf type="conductor"><string name="material" value="Au"/>'
-                                 '<float name="eta" value="1.5"/></bsdf>'), "")
+    ok2, d2 = raises(
+        lambda: one(
+            '<bsdf type="conductor"><string name="material" value="Au"/><float name="eta" value="1.5"/></bsdf>'
+        ),
+        "",
+    )
     ok1, d1 = near(w, [1, 1, 1], 1e-7)
     return ok1 and ok2, f"{d1}; {d2}"
 
 
 @check("§10: named conductors' RGB (η, k) to ~1e-5 (Au, Cu, Ag, Al)")
 def _():
-    table = {"Au": ([0.143036, 0.375307, 1.442045], [3.982997, 2.385556, 1.603359]),
-             "Cu": ([0.201005, 0.923750, 1.102215], [3.913262, 2.453045, 2.142090]),
-             "Ag": ([0.155276, 0.116728, 0.138388], [4.828355, 3.122222, 2.146901]),
-             "Al": ([1.657501, 0.880405, 0.521244], [9.223811, 6.269502, 4.837004])}
+    table = {
+        "Au": ([0.143036, 0.375307, 1.442045], [3.982997, 2.385556, 1.603359]),
+        "Cu": ([0.201005, 0.923750, 1.102215], [3.913262, 2.453045, 2.142090]),
+        "Ag": ([0.155276, 0.116728, 0.138388], [4.828355, 3.122222, 2.146901]),
+        "Al": ([1.657501, 0.880405, 0.521244], [9.223811, 6.269502, 4.837004]),
+    }
     got, want = [], []
     for name, (eta, k) in table.items():
         p = mi.traverse(one(f'<bsdf type="conductor"><string name="material" value="{name}"/></bsdf>'))
@@ -683,18 +864,27 @@ def _():
 
 @check("§10: Au at normal incidence in a white furnace: (0.96668, 0.80201, 0.32412)")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path"}, "env": {"type": "constant"},
-         "sensor": sensor((0, 0, 5), (0, 0, 0), fov=0.01),
-         "plane": {"type": "rectangle", "to_world": T().scale(10), "bsdf": {"type": "conductor", "material": "Au"}}}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "env": {"type": "constant"},
+        "sensor": sensor((0, 0, 5), (0, 0, 0), fov=0.01),
+        "plane": {"type": "rectangle", "to_world": T().scale(10), "bsdf": {"type": "conductor", "material": "Au"}},
+    }
     return near(pixel(d, 16, 1)[0], [0.96668, 0.80201, 0.32412], 2e-5)
 
 
 @check("§10 pitfall: roughconductor defaults: beckmann, α 0.1, sample_visible, material none")
 def _():
     text = " ".join(str(one('<bsdf type="roughconductor"/>')).split())
-    want = ["distribution = beckmann", "sample_visible = 1", "alpha_u = UniformSpectrum[value=0.100000]",
-            "alpha_v = UniformSpectrum[value=0.100000]", "eta = UniformSpectrum[value=0.000000]",
-            "k = UniformSpectrum[value=1.000000]"]
+    want = [
+        "distribution = beckmann",
+        "sample_visible = 1",
+        "alpha_u = UniformSpectrum[value=0.100000]",
+        "alpha_v = UniformSpectrum[value=0.100000]",
+        "eta = UniformSpectrum[value=0.000000]",
+        "k = UniformSpectrum[value=1.000000]",
+    ]
     return all(w in text for w in want), text
 
 
@@ -712,6 +902,7 @@ def microfacet_eval(kind, alpha, wi, wo, eta, k):
         def g1(v):
             a = 1 / math.sqrt(alpha**2 * (v[0] ** 2 + v[1] ** 2) / v[2] ** 2)
             return 1.0 if a >= 1.6 else (3.535 * a + 2.181 * a * a) / (1 + 2.276 * a + 2.577 * a * a)
+
     f = np.array([float(mi.fresnel_conductor(float(wi @ h), mi.Complex2f(e, kk))) for e, kk in zip(eta, k)])
     return f * d * g1(wi) * g1(wo) / (4 * wi[2])
 
@@ -722,8 +913,10 @@ def _():
     rng = np.random.default_rng(3)
     worst = 0.0
     for kind in ("ggx", "beckmann"):
-        bsdf = one(f'<bsdf type="roughconductor"><string name="distribution" value="{kind}"/>'
-                   '<float name="alpha" value="0.3"/><string name="material" value="Au"/></bsdf>')
+        bsdf = one(
+            f'<bsdf type="roughconductor"><string name="distribution" value="{kind}"/>'
+            '<float name="alpha" value="0.3"/><string name="material" value="Au"/></bsdf>'
+        )
         for _ in range(20):
             wi = rng.normal(size=3) * [1, 1, 0] + [0, 0, 1.5]
             wi /= np.linalg.norm(wi)
@@ -737,10 +930,17 @@ def _():
 
 
 def mask_plane(depth):
-    return {"type": "scene", "integrator": {"type": "path", "max_depth": depth}, "env": {"type": "constant"},
-            "sensor": sensor((0, 0, 5), (0, 0, 0)),
-            "plane": {"type": "rectangle", "to_world": T().scale(10),
-                      "bsdf": {"type": "mask", "opacity": 0.3, "nested": {"type": "diffuse"}}}}
+    return {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": depth},
+        "env": {"type": "constant"},
+        "sensor": sensor((0, 0, 5), (0, 0, 0)),
+        "plane": {
+            "type": "rectangle",
+            "to_world": T().scale(10),
+            "bsdf": {"type": "mask", "opacity": 0.3, "nested": {"type": "diffuse"}},
+        },
+    }
 
 
 @check("§10 pitfall: a mask plane (α 0.3, ρ 0.5) in a constant environment: 0.85 (max_depth 2, −1), 0 (max_depth 1)")
@@ -751,19 +951,28 @@ def _():
 
 @check("§10 pitfall: shadow rays do not see through masks: a floor under a mask plane lit by a point light is black")
 def _():
-    d = {"type": "scene", "integrator": {"type": "path"}, "sensor": sensor((0, 0, -0.5), (0, 0, -1)),
-         "mask": {"type": "rectangle", "to_world": T().scale(50),
-                  "bsdf": {"type": "mask", "opacity": 0.3, "nested": {"type": "diffuse"}}},
-         "floor": {"type": "rectangle", "to_world": T().translate([0, 0, -1]).scale(50)},
-         "light": {"type": "point", "position": [0, 0, 2], "intensity": {"type": "rgb", "value": 10.0}}}
+    d = {
+        "type": "scene",
+        "integrator": {"type": "path"},
+        "sensor": sensor((0, 0, -0.5), (0, 0, -1)),
+        "mask": {
+            "type": "rectangle",
+            "to_world": T().scale(50),
+            "bsdf": {"type": "mask", "opacity": 0.3, "nested": {"type": "diffuse"}},
+        },
+        "floor": {"type": "rectangle", "to_world": T().translate([0, 0, -1]).scale(50)},
+        "light": {"type": "point", "position": [0, 0, 2], "intensity": {"type": "rgb", "value": 10.0}},
+    }
     m, _ = pixel(d, 1024, 2)
     return near(m, [0, 0, 0], 0)
 
 
 @check("§10 pitfall: blendbsdf returns the blended sample: pdf w·p₂ + (1 − w)·p₁, weight (w·f₂ + (1 − w)·f₁)/pdf")
 def _():
-    b = one('<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/>'
-            '<bsdf type="roughconductor"><float name="alpha" value="0.4"/></bsdf></bsdf>')
+    b = one(
+        '<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/>'
+        '<bsdf type="roughconductor"><float name="alpha" value="0.4"/></bsdf></bsdf>'
+    )
     first = one('<bsdf type="diffuse"/>')
     second = one('<bsdf type="roughconductor"><float name="alpha" value="0.4"/></bsdf>')
     si = si_at(wi=[0.3, 0.1, 0.948683])
@@ -780,13 +989,16 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §11 Bitmap texture
 
+
 def bitmap(texels, **props):
     path = TMP / f"t{len(list(TMP.iterdir()))}.png"
     mi.Bitmap(np.asarray(texels, dtype=np.uint8)).write(str(path))
     return mi.load_dict({"type": "bitmap", "filename": str(path), **props})
 
 
-@check("§11: 8-bit texels are sRGB-decoded before interpolation: 128/255 → 0.215861; red, green / blue, grey → 0.303965")
+@check(
+    "§11: 8-bit texels are sRGB-decoded before interpolation: 128/255 → 0.215861; red, green / blue, grey → 0.303965"
+)
 def _():
     g = bitmap(np.full((2, 2, 3), 128)).eval(si_at())[0]
     m = bitmap([[[255, 0, 0], [0, 255, 0]], [[0, 0, 255], [128, 128, 128]]]).eval(si_at())[0]
@@ -801,15 +1013,20 @@ def _():
     return near(sum(got, []) + [lin], [1, 0, 0, 0, 1, 0, 0, 0, 1, 0.25], 1e-6)
 
 
-@check("§11 pitfall: checkerboard eval_1 swaps the colours: color0 (0.9, 0.1, 0.2), color1 0.3 at (0.25, 0.25): eval color0, eval_1 0.3")
+@check(
+    "§11 pitfall: checkerboard eval_1 swaps the colours: color0 (0.9, 0.1, 0.2), color1 0.3 at (0.25, 0.25): eval color0, eval_1 0.3"
+)
 def _():
-    t = one('<texture type="checkerboard"><rgb name="color0" value="0.9, 0.1, 0.2"/><float name="color1" value="0.3"/>'
-            '</texture>')
+    t = one(
+        '<texture type="checkerboard"><rgb name="color0" value="0.9, 0.1, 0.2"/><float name="color1" value="0.3"/>'
+        "</texture>"
+    )
     return near(vec(t.eval(si_at((0.25, 0.25)))) + [t.eval_1(si_at((0.25, 0.25)))], [0.9, 0.1, 0.2, 0.3], 1e-6)
 
 
 # ---------------------------------------------------------------------------------------------
 # §12 Output
+
 
 @check("§12: mi.Bitmap(img).write writes float32 EXR; film.write writes float16")
 def _():

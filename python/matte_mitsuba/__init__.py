@@ -37,8 +37,10 @@ _LIBRARY = "libmatte_bsdfs.so"
 
 def _built_plugins():
     if not _os.path.exists(_os.path.join(_PLUGINS, _LIBRARY)):
-        raise ImportError("matte_mitsuba: the plugins are not built in %s; run 'make plugin' in the matte "
-                          "repository, or install the matte-mitsuba wheel" % _PLUGINS)
+        raise ImportError(
+            "matte_mitsuba: the plugins are not built in %s; run 'make plugin' in the matte "
+            "repository, or install the matte-mitsuba wheel" % _PLUGINS
+        )
     return tuple(sorted(f[:-3] for f in _os.listdir(_PLUGINS) if f.endswith(".so") and f != _LIBRARY))
 
 
@@ -62,9 +64,15 @@ def ground_truth_path(name):
     there are if there is none of that name."""
     path = _os.path.join(GROUND_TRUTH, name if name.endswith(".json") else name + ".json")
     if not _os.path.isfile(path):
-        have = sorted(f[:-5] for f in _os.listdir(GROUND_TRUTH) if f.endswith(".json")) if _os.path.isdir(GROUND_TRUTH) else []
-        raise ValueError("matte_mitsuba: no ground-truth table %r in %s (there are: %s)"
-                         % (name, GROUND_TRUTH, ", ".join(have) or "none"))
+        have = (
+            sorted(f[:-5] for f in _os.listdir(GROUND_TRUTH) if f.endswith(".json"))
+            if _os.path.isdir(GROUND_TRUTH)
+            else []
+        )
+        raise ValueError(
+            "matte_mitsuba: no ground-truth table %r in %s (there are: %s)"
+            % (name, GROUND_TRUTH, ", ".join(have) or "none")
+        )
     return path
 
 
@@ -75,15 +83,19 @@ def numeric_parameters(model):
 
 def _check_mitsuba_version(mi):
     from ._build import MITSUBA_VERSION
+
     if mi.__version__ != MITSUBA_VERSION:
-        raise ImportError("matte_mitsuba: its plugins were compiled against Mitsuba %s, but Mitsuba %s is "
-                          "installed; install mitsuba==%s (or rebuild matte against %s)"
-                          % (MITSUBA_VERSION, mi.__version__, MITSUBA_VERSION, mi.__version__))
+        raise ImportError(
+            "matte_mitsuba: its plugins were compiled against Mitsuba %s, but Mitsuba %s is "
+            "installed; install mitsuba==%s (or rebuild matte against %s)"
+            % (MITSUBA_VERSION, mi.__version__, MITSUBA_VERSION, mi.__version__)
+        )
 
 
 def register():
     """Adds the plugin folder to Mitsuba's file resolver (idempotent). Called on import."""
     import mitsuba as mi
+
     _check_mitsuba_version(mi)
     resolver = mi.file_resolver()
     if PLUGIN_ROOT not in [str(p) for p in resolver]:
@@ -95,7 +107,9 @@ register()
 
 def _models():
     import json
+
     from ._build import MODELS_JSON
+
     return json.loads(MODELS_JSON)
 
 

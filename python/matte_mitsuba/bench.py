@@ -10,6 +10,7 @@ plugins against the built-in `diffuse` in llvm_ad_rgb's symbolic mode, one proce
 JOBS.json: [{"name": ..., "scene": path, "defines": {name: value}, "spp": N}, ...].
 Prints one JSON object on stdout; progress goes to stderr.
 """
+
 import argparse
 import json
 import sys

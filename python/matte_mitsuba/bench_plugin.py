@@ -21,6 +21,7 @@ one, and the bitmap with this one; every configuration in its own process, `--ro
 interleaved (machine load drifts), best over all, as wall time and as the process's CPU time
 (less sensitive to other work on a shared machine).
 """
+
 import argparse
 import json
 import os
@@ -33,8 +34,12 @@ import matte_mitsuba
 from matte_mitsuba import BSDF_TYPES as TYPES  # the plugin names, as the build wrote them
 
 # Each type's first numeric parameter and its default, from the model registry.
-SHAPE_PARAMETER = {m["name"]: (p[0]["name"], p[0]["kind"]["default"])
-                   for m in matte_mitsuba.MODELS for p in [matte_mitsuba.numeric_parameters(m)] if p}
+SHAPE_PARAMETER = {
+    m["name"]: (p[0]["name"], p[0]["kind"]["default"])
+    for m in matte_mitsuba.MODELS
+    for p in [matte_mitsuba.numeric_parameters(m)]
+    if p
+}
 
 #: Properties a type needs beyond its defaults: the table `tabulated_brdf` reads.
 REQUIRED = {"tabulated_brdf": lambda: {"filename": matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")}}
@@ -43,6 +48,7 @@ REQUIRED = {"tabulated_brdf": lambda: {"filename": matte_mitsuba.ground_truth_pa
 def constant_bitmap(mi, value, folder):
     """A 16×16 one-channel EXR holding `value`: the texture form of a number."""
     import numpy as np
+
     path = os.path.join(folder, f"constant_{value}.exr")
     mi.Bitmap(np.full((16, 16, 1), value, dtype=np.float32)).write(path)
     return {"type": "bitmap", "filename": path, "raw": True}
@@ -65,8 +71,10 @@ def timed_wall_cpu(s, spp):
     machine shared with other work the CPU time depends much less on the load than the wall
     time does."""
     import resource
+
     import drjit as dr
     import mitsuba as mi
+
     r0 = resource.getrusage(resource.RUSAGE_SELF)
     t = time.perf_counter()
     img = mi.render(s, spp=spp, seed=0)
@@ -84,8 +92,10 @@ def timed(s, spp):
 def best_time(kind, variant, res, spp, repeats, bitmap=False):
     """Best-of wall and CPU times of one type in this process (after a warm-up render)."""
     import mitsuba as mi
+
     mi.set_variant(variant)
     import matte_mitsuba  # noqa: F401  (registers the plugins)
+
     with tempfile.TemporaryDirectory() as folder:
         s = scene(mi, kind, res, folder if bitmap else None)
         timed(s, spp)
@@ -100,10 +110,27 @@ def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_ro
         env["PYTHONPATH"] = os.pathsep.join([os.path.abspath(plugin_root)] + [p for p in [env.get("PYTHONPATH")] if p])
     # This file run as a script (absolute imports only), so that `--plugin-root`'s matte_mitsuba,
     # first on PYTHONPATH, is the one it imports even when that build has no bench_plugin.
-    out = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", kind, "--variant", variant,
-                          "--res", str(res), "--spp", str(spp), "--repeats", str(repeats)]
-                         + (["--bitmap"] if bitmap else []),
-                         capture_output=True, text=True, check=True, env=env)
+    out = subprocess.run(
+        [
+            sys.executable,
+            os.path.abspath(__file__),
+            "--one",
+            kind,
+            "--variant",
+            variant,
+            "--res",
+            str(res),
+            "--spp",
+            str(spp),
+            "--repeats",
+            str(repeats),
+        ]
+        + (["--bitmap"] if bitmap else []),
+        capture_output=True,
+        text=True,
+        check=True,
+        env=env,
+    )
     result = json.loads(out.stdout)
     if plugin_root and not result["plugins"].startswith(os.path.abspath(plugin_root)):
         raise RuntimeError(f"--plugin-root {plugin_root}: the child loaded {result['plugins']}")
@@ -112,8 +139,9 @@ def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_ro
 
 def time_all(variant, res, spp, repeats, types=TYPES, plugin_root=None):
     """{type: best seconds} for `diffuse` and every type, each in its own process."""
-    return {k: time_in_subprocess(k, variant, res, spp, repeats, plugin_root=plugin_root)
-            for k in ["diffuse"] + list(types)}
+    return {
+        k: time_in_subprocess(k, variant, res, spp, repeats, plugin_root=plugin_root) for k in ["diffuse"] + list(types)
+    }
 
 
 def float_fast_path(old_root, variant, res, spp, repeats, rounds, types):
@@ -128,12 +156,14 @@ def float_fast_path(old_root, variant, res, spp, repeats, rounds, types):
     for r in range(rounds):
         for kind, build, bitmap in configs:
             key = f"{kind} {build} {'bitmap' if bitmap else 'float'}"
-            wall, cpu = time_in_subprocess(kind, variant, res, spp, repeats, bitmap,
-                                           old_root if build == "old" else None, both=True)
+            wall, cpu = time_in_subprocess(
+                kind, variant, res, spp, repeats, bitmap, old_root if build == "old" else None, both=True
+            )
             best["wall"][key] = min(best["wall"].get(key, wall), wall)
             best["cpu"][key] = min(best["cpu"].get(key, cpu), cpu)
-            print(f"  round {r + 1}/{rounds}: {key:<26} wall {wall:.3f} s, CPU {cpu:.3f} s", file=sys.stderr,
-                  flush=True)
+            print(
+                f"  round {r + 1}/{rounds}: {key:<26} wall {wall:.3f} s, CPU {cpu:.3f} s", file=sys.stderr, flush=True
+            )
     return best
 
 
@@ -147,8 +177,11 @@ def main():
     ap.add_argument("--one", help="time this one type (or diffuse) in this process; print JSON")
     ap.add_argument("--bitmap", action="store_true", help="with --one: the numeric parameter as a constant bitmap")
     ap.add_argument("--plugin-root", metavar="DIR", help="the timed processes import matte_mitsuba from DIR")
-    ap.add_argument("--float-fast-path", metavar="OLD_ROOT",
-                    help="compare float parameters with the build in OLD_ROOT (the folder holding its matte_mitsuba)")
+    ap.add_argument(
+        "--float-fast-path",
+        metavar="OLD_ROOT",
+        help="compare float parameters with the build in OLD_ROOT (the folder holding its matte_mitsuba)",
+    )
     ap.add_argument("--rounds", type=int, default=2, help="with --float-fast-path: interleaved rounds")
     ap.add_argument("--json", metavar="FILE", help="with --float-fast-path: write the times here")
     a = ap.parse_args()
@@ -156,12 +189,23 @@ def main():
         if a.bitmap and a.one not in SHAPE_PARAMETER:
             ap.error(f"--bitmap: {a.one} has no numeric parameter")
         wall, cpu = best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap)
-        print(json.dumps({"type": a.one, "bitmap": a.bitmap, "plugins": matte_mitsuba.PLUGIN_ROOT,
-                          "seconds": wall, "cpu_seconds": cpu}))
+        print(
+            json.dumps(
+                {
+                    "type": a.one,
+                    "bitmap": a.bitmap,
+                    "plugins": matte_mitsuba.PLUGIN_ROOT,
+                    "seconds": wall,
+                    "cpu_seconds": cpu,
+                }
+            )
+        )
         return
     if a.float_fast_path:
-        print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats} per process, "
-              f"{a.rounds} rounds, one process per configuration; old build: {a.float_fast_path}")
+        print(
+            f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats} per process, "
+            f"{a.rounds} rounds, one process per configuration; old build: {a.float_fast_path}"
+        )
         times = float_fast_path(a.float_fast_path, a.variant, a.res, a.spp, a.repeats, a.rounds, a.types)
         for clock, best in times.items():
             print(f"{clock} time (s): diffuse {best['diffuse this float']:.3f}")
@@ -173,9 +217,19 @@ def main():
                 print(f"  {k:<13} {old:9.3f} {new:9.3f} {new / old:9.3f}{tail}")
         if a.json:
             with open(a.json, "w") as f:
-                json.dump({"res": a.res, "spp": a.spp, "variant": a.variant, "repeats": a.repeats,
-                           "rounds": a.rounds, "old_root": os.path.abspath(a.float_fast_path), "seconds": times}, f,
-                          indent=1)
+                json.dump(
+                    {
+                        "res": a.res,
+                        "spp": a.spp,
+                        "variant": a.variant,
+                        "repeats": a.repeats,
+                        "rounds": a.rounds,
+                        "old_root": os.path.abspath(a.float_fast_path),
+                        "seconds": times,
+                    },
+                    f,
+                    indent=1,
+                )
         return
     print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats}, one process per type")
     best = time_all(a.variant, a.res, a.spp, a.repeats, a.types, a.plugin_root)

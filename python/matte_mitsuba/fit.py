@@ -29,6 +29,7 @@ with Mitsuba's ``prb`` integrator and ``mi.ad.Adam`` so that renders match the t
 
 Plots need matplotlib: ``pip install 'matte-mitsuba[fit]'`` installs it with the package.
 """
+
 import argparse
 import html
 import json
@@ -60,20 +61,37 @@ class FitError(Exception):
 def parse_args(argv):
     p = argparse.ArgumentParser(prog="matte fit", description=__doc__.split("\n\n")[0])
     p.add_argument("scene", help="Mitsuba 3 XML scene (with matte's BSDFs) whose parameters are fitted")
-    p.add_argument("--param", action="append", default=[], metavar="KEY", help="SceneParameters key to free (repeatable)")
+    p.add_argument(
+        "--param", action="append", default=[], metavar="KEY", help="SceneParameters key to free (repeatable)"
+    )
     p.add_argument("--target", action="append", default=[], metavar="EXR", help="target image, one per configuration")
     p.add_argument("--target-scene", metavar="XML", help="render the targets from this scene (the truth is then known)")
-    p.add_argument("--config", action="append", default=[], metavar="NAME=V,...",
-                   help="a configuration: defines for the scene (and the target scene); repeatable")
-    p.add_argument("--init", action="append", default=[], metavar="KEY=VALUE",
-                   help="start value of a freed key (a colour: R,G,B)")
+    p.add_argument(
+        "--config",
+        action="append",
+        default=[],
+        metavar="NAME=V,...",
+        help="a configuration: defines for the scene (and the target scene); repeatable",
+    )
+    p.add_argument(
+        "--init", action="append", default=[], metavar="KEY=VALUE", help="start value of a freed key (a colour: R,G,B)"
+    )
     p.add_argument("--range", action="append", default=[], metavar="KEY=LO,HI", help="clamp range of a freed key")
     p.add_argument("--iterations", type=int, default=200)
     p.add_argument("--lr", type=float, default=0.02, help="Adam's learning rate (default 0.02)")
-    p.add_argument("--lr-final", type=float, metavar="LR",
-                   help="learning rate of the last iteration: geometric decay from --lr (default: constant --lr)")
-    p.add_argument("--lr-factor", action="append", default=[], metavar="KEY=F",
-                   help="this key's learning rate is F times the others' (repeatable)")
+    p.add_argument(
+        "--lr-final",
+        type=float,
+        metavar="LR",
+        help="learning rate of the last iteration: geometric decay from --lr (default: constant --lr)",
+    )
+    p.add_argument(
+        "--lr-factor",
+        action="append",
+        default=[],
+        metavar="KEY=F",
+        help="this key's learning rate is F times the others' (repeatable)",
+    )
     p.add_argument("--spp", type=int, default=16, help="samples per pixel of each optimisation render")
     p.add_argument("--target-spp", type=int, default=256, help="samples per pixel of target renders")
     p.add_argument("--max-depth", type=int, default=3, help="prb's max_depth (default 3: direct + one bounce)")
@@ -110,7 +128,7 @@ def range_for(key, overrides):
         try:
             lo, hi = (float(x) for x in overrides[key].split(","))
         except ValueError:
-            raise FitError(f"--range {key}={overrides[key]}: expected LO,HI")
+            raise FitError(f"--range {key}={overrides[key]}: expected LO,HI") from None
         return lo, hi
     for part in reversed(key.split(".")):
         if part in RANGES:
@@ -133,8 +151,9 @@ class ProgressBar:
         filled = int(width * done / self.total)
         rate = (time.time() - self.start) / done
         eta = rate * (self.total - done)
-        sys.stderr.write(f"\rfit [{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} "
-                         f"loss {loss:.4e} eta {eta:5.0f}s")
+        sys.stderr.write(
+            f"\rfit [{'#' * filled}{'.' * (width - filled)}] {done}/{self.total} loss {loss:.4e} eta {eta:5.0f}s"
+        )
         if done == self.total:
             sys.stderr.write("\n")
         sys.stderr.flush()
@@ -142,21 +161,25 @@ class ProgressBar:
 
 def as_numpy(value):
     import numpy as np
+
     return np.array(value, dtype=np.float64)
 
 
 def write_texture_png(path, data, vmin, vmax, title):
     """A freed texture as a PNG: a colormapped image with a colour bar (1 channel), else sRGB."""
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     import numpy as np
+
     fig, ax = plt.subplots(figsize=(4, 3.4), dpi=100)
     if data.ndim == 3 and data.shape[2] >= 3:
         ax.imshow(np.clip(data[..., :3], 0, 1) ** (1 / 2.2), interpolation="nearest")
     else:
-        im = ax.imshow(data.reshape(data.shape[0], data.shape[1]), cmap="viridis", vmin=vmin, vmax=vmax,
-                       interpolation="nearest")
+        im = ax.imshow(
+            data.reshape(data.shape[0], data.shape[1]), cmap="viridis", vmin=vmin, vmax=vmax, interpolation="nearest"
+        )
         fig.colorbar(im, ax=ax)
     ax.set_title(title, fontsize=9)
     ax.set_axis_off()
@@ -168,13 +191,16 @@ def write_texture_png(path, data, vmin, vmax, title):
 def write_image_png(path, img):
     """A linear RGB image as an sRGB PNG (Mitsuba's own conversion)."""
     import mitsuba as mi
+
     mi.Bitmap(img).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, True).write(path)
 
 
 def plot_curves(path, series, ylabel, title):
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     fig, ax = plt.subplots(figsize=(6, 3.6), dpi=100)
     for label, ys in series.items():
         ax.plot(range(len(ys)), ys, label=label)
@@ -205,8 +231,10 @@ def fit(args):
     import drjit as dr
     import mitsuba as mi
     import numpy as np
+
     mi.set_variant(args.variant)
     from . import register
+
     register()
 
     if not os.path.exists(args.scene):
@@ -217,7 +245,7 @@ def fit(args):
         try:
             return mi.load_file(path, **defines)
         except Exception as e:  # Mitsuba's own message names the file and the problem
-            raise FitError(f"{path}: {str(e).splitlines()[0] if str(e) else type(e).__name__}")
+            raise FitError(f"{path}: {str(e).splitlines()[0] if str(e) else type(e).__name__}") from e
 
     scenes = [load(args.scene, d) for d in configs]
     params = [mi.traverse(s) for s in scenes]
@@ -232,7 +260,10 @@ def fit(args):
     for k in args.param:
         if k not in params[0]:
             near = [x for x in params[0].keys() if x.split(".")[0] == k.split(".")[0]][:8]
-            raise FitError(f"--param {k}: not a parameter of {args.scene}" + (f" (that object has: {', '.join(near)})" if near else ""))
+            raise FitError(
+                f"--param {k}: not a parameter of {args.scene}"
+                + (f" (that object has: {', '.join(near)})" if near else "")
+            )
 
     # Every render (targets, fit, final) uses the same integrator: prb, --max-depth.
     integrator = mi.load_dict({"type": "prb", "max_depth": args.max_depth})
@@ -279,7 +310,7 @@ def fit(args):
             try:
                 xs = [float(x) for x in inits[k].split(",")]
             except ValueError:
-                raise FitError(f"--init {k}={inits[k]}: not a number (or R,G,B for a colour)")
+                raise FitError(f"--init {k}={inits[k]}: not a number (or R,G,B for a colour)") from None
             if len(xs) == 1:
                 v = dr.full(type(v), xs[0], dr.shape(v)) if isinstance(v, mi.TensorXf) else type(v)(xs[0])
             elif len(xs) == 3 and not isinstance(v, mi.TensorXf) and dr.size_v(v) == 3:
@@ -297,7 +328,7 @@ def fit(args):
         try:
             lr_factors[k] = float(f)
         except ValueError:
-            raise FitError(f"--lr-factor {k}={f}: not a number")
+            raise FitError(f"--lr-factor {k}={f}: not a number") from None
         if not (lr_factors[k] > 0 and math.isfinite(lr_factors[k])):
             raise FitError(f"--lr-factor {k}={f}: must be a positive number")
 
@@ -348,6 +379,7 @@ def fit(args):
 def write_outputs(args, configs, scenes, params, targets, truth, history, opt, ranges, integrator):
     import mitsuba as mi
     import numpy as np
+
     out = args.output
     fitted = {}
     figures = []
@@ -362,15 +394,21 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
             if k in truth and v.shape[-1] == 1:
                 vmin, vmax = min(vmin, float(truth[k].min())), max(vmax, float(truth[k].max()))
             write_texture_png(os.path.join(out, f"{name}.png"), v, vmin, vmax, f"fitted {k}")
-            entry = {"file": f"{name}.exr", "shape": list(v.shape), "mean": float(v.mean()),
-                     "min": float(v.min()), "max": float(v.max())}
+            entry = {
+                "file": f"{name}.exr",
+                "shape": list(v.shape),
+                "mean": float(v.mean()),
+                "min": float(v.min()),
+                "max": float(v.max()),
+            }
             figs = [(f"{name}.png", f"fitted {k}")]
             if k in truth and truth[k].shape == v.shape:
                 t = truth[k]
                 write_texture_png(os.path.join(out, f"{name}_truth.png"), t, vmin, vmax, f"truth {k}")
                 err = np.abs(v - t)
-                write_texture_png(os.path.join(out, f"{name}_error.png"), err, 0.0, float(err.max()) or 1.0,
-                                  f"|fitted - truth| {k}")
+                write_texture_png(
+                    os.path.join(out, f"{name}_error.png"), err, 0.0, float(err.max()) or 1.0, f"|fitted - truth| {k}"
+                )
                 entry["mean_abs_error"] = float(err.mean())
                 entry["max_abs_error"] = float(err.max())
                 figs += [(f"{name}_truth.png", f"truth {k}"), (f"{name}_error.png", f"|error| {k}")]
@@ -391,11 +429,16 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
         rmse = float(np.sqrt(np.mean((as_numpy(img) - as_numpy(target)) ** 2)))
         renders.append({"config": configs[c], "render": f"render_{c}.png", "target": f"target_{c}.png", "rmse": rmse})
 
-    plot_curves(os.path.join(out, "loss.png"), {"loss": history["loss"]}, "mean squared error",
-                "loss (mean over configurations)")
+    plot_curves(
+        os.path.join(out, "loss.png"),
+        {"loss": history["loss"]},
+        "mean squared error",
+        "loss (mean over configurations)",
+    )
     if history["param_error"]:
-        plot_curves(os.path.join(out, "param_error.png"), history["param_error"], "mean |fitted - truth|",
-                    "parameter error")
+        plot_curves(
+            os.path.join(out, "param_error.png"), history["param_error"], "mean |fitted - truth|", "parameter error"
+        )
 
     summary = {
         "scene": os.path.abspath(args.scene),
@@ -404,9 +447,17 @@ def write_outputs(args, configs, scenes, params, targets, truth, history, opt, r
         "configs": configs,
         "params": args.param,
         "ranges": {k: list(v) for k, v in ranges.items()},
-        "settings": {"iterations": args.iterations, "lr": args.lr, "lr_final": args.lr_final,
-                     "lr_factors": parse_pairs(args.lr_factor, "--lr-factor"), "spp": args.spp, "target_spp": args.target_spp,
-                     "max_depth": args.max_depth, "variant": args.variant, "seed": args.seed},
+        "settings": {
+            "iterations": args.iterations,
+            "lr": args.lr,
+            "lr_final": args.lr_final,
+            "lr_factors": parse_pairs(args.lr_factor, "--lr-factor"),
+            "spp": args.spp,
+            "target_spp": args.target_spp,
+            "max_depth": args.max_depth,
+            "variant": args.variant,
+            "seed": args.seed,
+        },
         "seconds": history.get("seconds"),
         "loss": history["loss"],
         "param_error": history["param_error"],
@@ -432,13 +483,16 @@ def write_html(out, s, figures):
             err = f"mean {v['mean_abs_error']:.4g}, max {v['max_abs_error']:.4g}" if "mean_abs_error" in v else "–"
         rows.append(f"<tr><td><code>{e(k)}</code></td><td>{e(val)}</td><td>{e(tru)}</td><td>{e(err)}</td></tr>")
     figs = "".join(
-        f"<h3><code>{e(k)}</code></h3><div class=row>" +
-        "".join(f"<figure><img src='{e(f)}'><figcaption>{e(c)}</figcaption></figure>" for f, c in fl) + "</div>"
-        for k, fl in figures)
+        f"<h3><code>{e(k)}</code></h3><div class=row>"
+        + "".join(f"<figure><img src='{e(f)}'><figcaption>{e(c)}</figcaption></figure>" for f, c in fl)
+        + "</div>"
+        for k, fl in figures
+    )
     renders = "".join(
         f"<div class=row><figure><img class=px src='{e(r['target'])}'><figcaption>target, config {e(str(r['config']))}</figcaption></figure>"
         f"<figure><img class=px src='{e(r['render'])}'><figcaption>fitted render, RMSE {r['rmse']:.4g}</figcaption></figure></div>"
-        for r in s["renders"])
+        for r in s["renders"]
+    )
     curves = "<img src='loss.png'>" + ("<img src='param_error.png'>" if s["param_error"] else "")
     final = s["loss"][-1] if s["loss"] else float("nan")
     lr_final = s["settings"].get("lr_final")
@@ -448,13 +502,13 @@ def write_html(out, s, figures):
 table{{border-collapse:collapse}}.row{{display:flex;gap:1em;flex-wrap:wrap}}img.px{{width:256px;image-rendering:pixelated}}
 figure{{margin:0}}</style>
 <h1>matte fit</h1>
-<p>Scene <code>{e(s['scene'])}</code>; targets {e(s['target_scene'] or ', '.join(s['targets']))};
-{len(s['configs'])} configuration(s); {s['settings']['iterations']} iterations of Adam (lr {s['settings']['lr']}{lr_decay}),
-prb max_depth {s['settings']['max_depth']}, {s['settings']['spp']} spp, variant {e(s['settings']['variant'])}.
+<p>Scene <code>{e(s["scene"])}</code>; targets {e(s["target_scene"] or ", ".join(s["targets"]))};
+{len(s["configs"])} configuration(s); {s["settings"]["iterations"]} iterations of Adam (lr {s["settings"]["lr"]}{lr_decay}),
+prb max_depth {s["settings"]["max_depth"]}, {s["settings"]["spp"]} spp, variant {e(s["settings"]["variant"])}.
 Final loss {final:.4e}.</p>
-<h2>Parameters</h2><table><tr><th>key</th><th>fitted</th><th>truth</th><th>|fitted − truth|</th></tr>{''.join(rows)}</table>
+<h2>Parameters</h2><table><tr><th>key</th><th>fitted</th><th>truth</th><th>|fitted − truth|</th></tr>{"".join(rows)}</table>
 <h2>Convergence</h2>{curves}
-<h2>Fitted textures</h2>{figs or '<p>none</p>'}
+<h2>Fitted textures</h2>{figs or "<p>none</p>"}
 <h2>Renders</h2>{renders}
 <p><a href='fit.json'>fit.json</a> has every number.</p>
 """
@@ -468,9 +522,11 @@ def main(argv=None):
         if not args.list:
             try:
                 import matplotlib  # noqa: F401  (the plots; checked before the first render)
-            except ImportError:
-                raise FitError("the fit's plots need matplotlib, which this Python lacks: "
-                               "pip install 'matte-mitsuba[fit]' (or pip install matplotlib)")
+            except ImportError as e:
+                raise FitError(
+                    "the fit's plots need matplotlib, which this Python lacks: "
+                    "pip install 'matte-mitsuba[fit]' (or pip install matplotlib)"
+                ) from e
         code = fit(args)
     except FitError as e:
         print(f"matte fit: error: {e}", file=sys.stderr)

@@ -20,6 +20,7 @@ Prints one table. Without a GPU (no `cuda_ad_rgb` variant, or no CUDA driver) it
 exits 0. `--device-variant llvm_ad_rgb` runs the same checks on the CPU (a dry run of the
 script itself).
 """
+
 import argparse
 import json
 import os
@@ -70,6 +71,7 @@ def child(args):
     """Runs one measurement in this process and prints its JSON."""
     import mitsuba as mi
     import numpy as np
+
     mi.set_variant(args.variant)
     if args.child == "probe":
         print(json.dumps({"ok": True}))
@@ -130,6 +132,7 @@ def mean_check(device, reference, a):
             return [("image mean", v, "error", err)], False
         got[v] = (r["means"], time.perf_counter() - t)
     import statistics
+
     for c, channel in enumerate("RGB"):
         ma = [m[c] for m in got[device][0]]
         mb = [m[c] for m in got[reference][0]]
@@ -138,8 +141,14 @@ def mean_check(device, reference, a):
         z = abs(diff) / se if se > 0 else (0.0 if diff == 0 else float("inf"))
         good = z <= MEAN_Z_LIMIT
         ok &= good
-        rows.append((f"image mean {channel}", f"{device} {statistics.fmean(ma):.5f}",
-                     f"{reference} {statistics.fmean(mb):.5f}", f"z = {z:.2f} ({'ok' if good else 'MISMATCH'})"))
+        rows.append(
+            (
+                f"image mean {channel}",
+                f"{device} {statistics.fmean(ma):.5f}",
+                f"{reference} {statistics.fmean(mb):.5f}",
+                f"z = {z:.2f} ({'ok' if good else 'MISMATCH'})",
+            )
+        )
     return rows, ok
 
 
@@ -155,8 +164,14 @@ def gradient_check(device, types):
         gap = abs(ad - fd) / abs(fd) if fd != 0 else float("inf")
         good = all(map(lambda x: x == x and abs(x) != float("inf"), (ad, fd))) and gap <= GRADIENT_TOLERANCE
         ok &= good
-        rows.append((f"gradient {kind}.{name}", f"AD {ad:.6g}", f"FD {fd:.6g}",
-                     f"gap {gap:.1e} ({'ok' if good else 'MISMATCH'})"))
+        rows.append(
+            (
+                f"gradient {kind}.{name}",
+                f"AD {ad:.6g}",
+                f"FD {fd:.6g}",
+                f"gap {gap:.1e} ({'ok' if good else 'MISMATCH'})",
+            )
+        )
     return rows, ok
 
 
@@ -182,8 +197,12 @@ def main():
     ap.add_argument("--seeds", type=int, default=8)
     ap.add_argument("--repeats", type=int, default=3, help="timing: best of this many renders")
     ap.add_argument("--no-speed", action="store_true", help="skip the timing table")
-    ap.add_argument("--types", nargs="+", default=[c[0] for c in GRADIENT_CASES],
-                    help="the types whose gradient is checked (default: all)")
+    ap.add_argument(
+        "--types",
+        nargs="+",
+        default=[c[0] for c in GRADIENT_CASES],
+        help="the types whose gradient is checked (default: all)",
+    )
     # Internal: one measurement in a child process.
     ap.add_argument("--child", help=argparse.SUPPRESS)
     ap.add_argument("--variant", help=argparse.SUPPRESS)
@@ -193,6 +212,7 @@ def main():
         return child(a)
 
     import mitsuba as mi
+
     if a.device_variant not in mi.variants():
         print(f"gpu_check: Mitsuba has no {a.device_variant} variant here; nothing to check (exit 0)")
         return 0
@@ -218,8 +238,10 @@ def main():
     if not a.no_speed:
         rows += speed_table(a.device_variant, a.repeats)
     widths = [max(len(str(row[i])) for row in rows) for i in range(4)]
-    print(f"gpu_check: {a.device_variant} against {reference} "
-          f"(all_types.xml {a.res}², {a.spp} spp × {a.seeds} seeds; Cornell box for gradients and times)")
+    print(
+        f"gpu_check: {a.device_variant} against {reference} "
+        f"(all_types.xml {a.res}², {a.spp} spp × {a.seeds} seeds; Cornell box for gradients and times)"
+    )
     for row in rows:
         print("  " + "  ".join(str(c).ljust(w) for c, w in zip(row, widths)).rstrip())
     print("gpu_check: " + ("all checks agree" if ok else "MISMATCH (see above)"))

@@ -6,6 +6,7 @@
   the estimate that finite differences measure;
 * `central_difference`: (mean(p + h) − mean(p − h)) / 2h of renders with the same seed.
 """
+
 import numpy as np
 
 
@@ -18,6 +19,7 @@ def adjoint_gradient(mi, scene, params, key, spp, seed):
     """d(image mean)/d(params[key]) by the adjoint pass, flattened to float64 (one entry per
     component of the parameter: a colour's channels, a texture's texels)."""
     import drjit as dr
+
     dr.enable_grad(params[key])
     params.update()
     img = mi.render(scene, params, spp=spp, seed=seed)

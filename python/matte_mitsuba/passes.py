@@ -9,6 +9,7 @@ computed in Rust (`rust/validate/passes.rs`), once for both renderers.
 Writes DIR/pass_0000.exr ... (RGB float32; pass k uses seed S + k) and DIR/passes.json
 (timings, Mitsuba's version). Prints "pass k/K" lines as it goes (the harness turns them into a progress bar).
 """
+
 import argparse
 import json
 import os
@@ -30,6 +31,7 @@ def main():
     a = ap.parse_args()
 
     import mitsuba as mi
+
     mi.set_variant(a.variant)
     params = {}
     for d in a.defines:
@@ -47,8 +49,18 @@ def main():
         mi.Bitmap(np.ascontiguousarray(img)).write(os.path.join(a.out, f"pass_{k:04d}.exr"))
         print(f"pass {k + 1}/{a.passes}", flush=True)
     with open(os.path.join(a.out, "passes.json"), "w") as f:
-        json.dump({"mitsuba": mi.__version__, "variant": a.variant, "passes": a.passes, "spp": a.spp, "seed": a.seed,
-                   "load_seconds": load_seconds, "render_seconds": seconds}, f)
+        json.dump(
+            {
+                "mitsuba": mi.__version__,
+                "variant": a.variant,
+                "passes": a.passes,
+                "spp": a.spp,
+                "seed": a.seed,
+                "load_seconds": load_seconds,
+                "render_seconds": seconds,
+            },
+            f,
+        )
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """What the reference generators beside the tests share (`tests/*/*/generate_reference.py`):
 `check` prints the oracle's value beside what the test holds and records a mismatch;
 `finish` prints the count and exits 1 if there was any."""
+
 import sys
 
 import numpy as np
@@ -14,9 +15,16 @@ def check(label, got, want, tol=0.0, precision=7, threshold=1000):
     ok = got.shape == want.shape and bool(np.all(np.abs(got - want) <= tol))
     if not ok:
         FAILED.append(label)
-    shown = np.array2string(got.ravel() if got.ndim > 1 else got, precision=precision, separator=", ",
-                            max_line_width=10**6, threshold=threshold)
-    print(f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {shown}" + ("" if ok else f", test holds {want.tolist()}"))
+    shown = np.array2string(
+        got.ravel() if got.ndim > 1 else got,
+        precision=precision,
+        separator=", ",
+        max_line_width=10**6,
+        threshold=threshold,
+    )
+    print(
+        f"{'OK      ' if ok else 'MISMATCH'} {label}: Mitsuba {shown}" + ("" if ok else f", test holds {want.tolist()}")
+    )
 
 
 def check_true(label, ok, shown=""):

@@ -4,6 +4,7 @@ The oracle for the plugin's values is the Rust kernel reached through the `matte
 (`matte brdf --pairs`), a separate process built from the same sources, and Mitsuba's own
 built-in plugins and `mitsuba.chi2` where they apply.
 """
+
 import json
 import os
 import subprocess
@@ -17,7 +18,6 @@ REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 # where `make` installs the wheel): the tool as users run it, finding its Mitsuba side there.
 MATTE = os.path.join(os.path.dirname(sys.executable), "matte")
 SCENES = os.path.join(REPO, "mitsuba_scenes")
-
 
 
 def _registry():
@@ -36,8 +36,9 @@ def _value(text):
 MODELS = _registry()
 # (type, parameters) exercised by the agreement, χ² and finiteness tests: every registered
 # model at its defaults and at each of its declared examples (every option).
-CONFIGS = [(m["name"], params) for m in MODELS
-           for params in [{}] + [{k: _value(v) for k, v in ex} for ex in m["examples"]]]
+CONFIGS = [
+    (m["name"], params) for m in MODELS for params in [{}] + [{k: _value(v) for k, v in ex} for ex in m["examples"]]
+]
 
 
 def config_id(cfg):
@@ -48,7 +49,8 @@ def config_id(cfg):
 def kernel_f(kind, params, reflectance, wi, wo):
     """f (no cosine) from the Rust kernel via `matte brdf --pairs -`, for float32 (n, 3) arrays."""
     lines = "\n".join(
-        " ".join(repr(float(x)) for x in (*a, *b)) for a, b in zip(wi.astype(np.float32), wo.astype(np.float32)))
+        " ".join(repr(float(x)) for x in (*a, *b)) for a, b in zip(wi.astype(np.float32), wo.astype(np.float32))
+    )
     args = [MATTE, "brdf", "--bsdf", kind, "--reflectance", repr(float(reflectance)), "--pairs", "-"]
     for k, v in params.items():
         args += ["--param", f"{k}={v}"]
@@ -73,10 +75,12 @@ def random_pairs(n, seed):
 def mi_variant(request):
     """Sets the Mitsuba variant given by the test's parameter and imports matte_mitsuba, with
     Dr.Jit's default (symbolic) loops and calls."""
-    import mitsuba as mi
     import drjit as dr
+    import mitsuba as mi
+
     mi.set_variant(request.param)
     import matte_mitsuba
+
     matte_mitsuba.register()
     assert dr.flag(dr.JitFlag.SymbolicLoops) and dr.flag(dr.JitFlag.SymbolicCalls)
     yield mi

@@ -3,9 +3,9 @@
 retro-reflection terms are Burley's diffuse (`src/bsdfs/principled.cpp`, written with the half
 vector normalised). Eval (f·cos θo) to 2e-6 relative on 4000 pairs, for several roughnesses,
 in scalar_rgb and traced in llvm_ad_rgb; a textured roughness as the float."""
+
 import numpy as np
 import pytest
-
 from conftest import random_pairs
 
 ROUGHNESS = [0.0, 0.3, 1.0]
@@ -14,8 +14,19 @@ ROUGHNESS = [0.0, 0.3, 1.0]
 def both(mi, r, rho=(0.8, 0.5, 0.2)):
     refl = {"type": "rgb", "value": list(rho)}
     ours = mi.load_dict({"type": "burley", "reflectance": refl, "roughness": r})
-    theirs = mi.load_dict({"type": "principled", "base_color": refl, "roughness": r, "metallic": 0.0,
-                           "specular": 0.0, "spec_trans": 0.0, "sheen": 0.0, "clearcoat": 0.0, "flatness": 0.0})
+    theirs = mi.load_dict(
+        {
+            "type": "principled",
+            "base_color": refl,
+            "roughness": r,
+            "metallic": 0.0,
+            "specular": 0.0,
+            "spec_trans": 0.0,
+            "sheen": 0.0,
+            "clearcoat": 0.0,
+            "flatness": 0.0,
+        }
+    )
     return ours, theirs
 
 

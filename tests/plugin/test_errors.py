@@ -1,7 +1,7 @@
 """Bad input raises a Python exception naming the problem, never a crash: bad parameters at
 construction, and bad values set through `mi.traverse` (checked again by the kernels)."""
-import pytest
 
+import pytest
 from conftest import CONFIGS  # noqa: F401  (conftest sets up the import path)
 
 BAD = [

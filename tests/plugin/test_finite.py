@@ -2,11 +2,11 @@
 that include grazing, below-horizon, normal-incidence and coincident directions: masked lanes
 must stay finite, since autodiff multiplies a discarded lane's NaN by a zero adjoint and gets
 NaN. The parameters' gradients sum over all lanes, so one bad lane shows."""
+
 import drjit as dr
 import mitsuba as mi
 import numpy as np
 import pytest
-
 from conftest import CONFIGS, config_id
 
 N = 1_000_000
@@ -17,8 +17,8 @@ def directions(rng, n):
     # a tenth of each: exactly grazing, within 1e-7 of the horizon (both sides), the normal
     k = n // 10
     z[:k] = 0.0
-    z[k:2 * k] = rng.choice([-1e-7, 1e-7, 1e-30, 0.0], k)
-    z[2 * k:3 * k] = 1.0
+    z[k : 2 * k] = rng.choice([-1e-7, 1e-7, 1e-30, 0.0], k)
+    z[2 * k : 3 * k] = 1.0
     phi = rng.uniform(0, 2 * np.pi, n)
     r = np.sqrt(np.maximum(0.0, 1 - z * z))
     return np.stack([r * np.cos(phi), r * np.sin(phi), z], axis=1).astype(np.float32)
@@ -37,7 +37,7 @@ def test_values_and_gradients_are_finite(mi_variant, cfg):
     p.update()
     rng = np.random.default_rng(5)
     wi, wo = directions(rng, N), directions(rng, N)
-    wo[N - N // 10:] = wi[N - N // 10:]  # coincident pairs
+    wo[N - N // 10 :] = wi[N - N // 10 :]  # coincident pairs
     u = rng.uniform(0, 1, (N, 3)).astype(np.float32)
     u[: N // 20, 1:] = rng.choice([0.0, 0.5, np.nextafter(np.float32(1), np.float32(0))], (N // 20, 2))
     si = dr.zeros(mi.SurfaceInteraction3f, N)

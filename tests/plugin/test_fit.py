@@ -4,6 +4,7 @@ across the image). Starting from σ = 0 (Lambert), the fit must recover σ withi
 write its outputs. The target is rendered from the truth scene at 256 spp (independent seeds
 from the fit's), so the oracle is the known σ, not anything the fit computes. About 15 s.
 """
+
 import json
 import os
 import subprocess
@@ -45,10 +46,29 @@ def scenes(tmp_path):
 
 def test_fit_recovers_sigma_from_a_lambert_start(scenes, tmp_path):
     from matte_mitsuba.fit import main
+
     start, truth = scenes
     out = tmp_path / "out"
-    code = main([str(start), "--target-scene", str(truth), "--param", "plane.bsdf.sigma", "--iterations", "60",
-                 "--lr", "0.05", "--spp", "16", "--max-depth", "2", "-o", str(out), "--quiet"])
+    code = main(
+        [
+            str(start),
+            "--target-scene",
+            str(truth),
+            "--param",
+            "plane.bsdf.sigma",
+            "--iterations",
+            "60",
+            "--lr",
+            "0.05",
+            "--spp",
+            "16",
+            "--max-depth",
+            "2",
+            "-o",
+            str(out),
+            "--quiet",
+        ]
+    )
     assert code == 0
     result = json.loads((out / "fit.json").read_text())
     sigma = result["fitted"]["plane.bsdf.sigma"]["value"][0]
@@ -62,8 +82,9 @@ def test_fit_recovers_sigma_from_a_lambert_start(scenes, tmp_path):
 
 def test_fit_errors_are_one_line(scenes, tmp_path):
     start, truth = scenes
-    run = lambda *a: subprocess.run([sys.executable, "-m", "matte_mitsuba.fit", str(start), *a, "-o", str(tmp_path)],
-                                    capture_output=True, text=True)
+    run = lambda *a: subprocess.run(
+        [sys.executable, "-m", "matte_mitsuba.fit", str(start), *a, "-o", str(tmp_path)], capture_output=True, text=True
+    )
     p = run("--target-scene", str(truth), "--param", "plane.bsdf.nope")
     assert p.returncode == 2 and p.stderr.count("\n") == 1, p.stderr
     assert "plane.bsdf.nope" in p.stderr and "plane.bsdf.sigma" in p.stderr, p.stderr

@@ -9,14 +9,13 @@ same-seed finite differences also move the sampled directions, so they are the d
 another estimator: there the 1 % check runs with the cosine, and the own sampler's adjoint,
 averaged over seeds, must equal the cosine's within its Monte Carlo error (the expected image
 does not depend on the sampler)."""
+
 import os
 
 import drjit as dr
 import numpy as np
 import pytest
-
 from conftest import MODELS, REPO
-
 from matte_mitsuba.gradient_check import adjoint_gradient, central_difference
 
 RES, SPP, SEED = 24, 8, 3
@@ -35,13 +34,22 @@ CASES = [
     ("ginneken", {"roughness": 0.4}, {"reflectance.value": 1e-2, "roughness": 4e-3}),
     ("ginneken", {"roughness": 0.4, "shadowing": "height_correlated"}, {"roughness": 4e-3}),
     # The white walls' reflectance (0.885, 0.698, 0.666) ± 1e-2 stays inside the table's cells.
-    ("tabulated_brdf", {"filename": os.path.join(REPO, "python", "matte_mitsuba", "ground_truth", "v_cavities_sigma0.3.json")},
-     {"reflectance.value": 1e-2}),
+    (
+        "tabulated_brdf",
+        {"filename": os.path.join(REPO, "python", "matte_mitsuba", "ground_truth", "v_cavities_sigma0.3.json")},
+        {"reflectance.value": 1e-2},
+    ),
 ]
 # Every other registered model at its defaults: reflectance and each numeric parameter.
-CASES += [(m["name"], {}, {"reflectance.value": 1e-2,
-                           **{p["name"]: 1e-2 for p in m["params"] if p["kind"]["type"] in ("number", "ior")}})
-          for m in MODELS if m["name"] not in {c[0] for c in CASES}]
+CASES += [
+    (
+        m["name"],
+        {},
+        {"reflectance.value": 1e-2, **{p["name"]: 1e-2 for p in m["params"] if p["kind"]["type"] in ("number", "ior")}},
+    )
+    for m in MODELS
+    if m["name"] not in {c[0] for c in CASES}
+]
 
 
 def case_id(case):
@@ -72,7 +80,7 @@ def test_ad_matches_finite_differences(mi_variant, case):
         base = np.array(params[key]).ravel().copy()  # a copy: assigning to params updates in place
         is_color = name.endswith("value")
 
-        def with_value(delta):
+        def with_value(delta, base=base, is_color=is_color):
             if is_color:
                 return mi.Color3f(*[float(x) + delta for x in base])
             return mi.Float(float(base[0]) + delta)
@@ -88,8 +96,14 @@ def test_ad_matches_finite_differences(mi_variant, case):
 
 # Models with their own sampler: each numeric parameter, the adjoint with the own sampler
 # against the cosine-sampled one (checked against finite differences above).
-OWN = [(m["name"], p["name"], s) for m in MODELS for s in m["samplers"] if s != "cosine"
-       for p in m["params"] if p["kind"]["type"] in ("number", "ior")]
+OWN = [
+    (m["name"], p["name"], s)
+    for m in MODELS
+    for s in m["samplers"]
+    if s != "cosine"
+    for p in m["params"]
+    if p["kind"]["type"] in ("number", "ior")
+]
 
 
 @pytest.mark.parametrize("kind,name,own", OWN)

@@ -3,11 +3,11 @@ random direction pairs to 1e-5 relative, for every type and several parameter se
 scalar_rgb (RGB reflectance, per channel), scalar_spectral (uniform reflectance on all
 wavelengths), and llvm_ad_rgb and llvm_ad_spectral, where the plugin is traced inside a
 symbolic loop (`dr.syntax` `while`, Dr.Jit's default mode)."""
+
 import drjit as dr
 import mitsuba as mi
 import numpy as np
 import pytest
-
 from conftest import CONFIGS, config_id, kernel_f, random_pairs
 
 RGB = [0.8, 0.5, 0.2]
@@ -109,7 +109,9 @@ def test_roughdiffuse_is_oren_nayar_with_sigma_alpha_over_sqrt2(mi_variant, fast
     assert mi_variant.variant() == mi.variant()
     a = 0.45
     rd = mi.load_dict({"type": "roughdiffuse", "alpha": a, "use_fast_approx": fast, "reflectance": 0.7})
-    on = mi.load_dict({"type": "oren_nayar", "sigma": a / np.sqrt(2), "model": "qualitative" if fast else "full", "reflectance": 0.7})
+    on = mi.load_dict(
+        {"type": "oren_nayar", "sigma": a / np.sqrt(2), "model": "qualitative" if fast else "full", "reflectance": 0.7}
+    )
     wi, wo = random_pairs(2000 if mi.variant().startswith("scalar") else N, seed=31)
     if mi.variant().startswith("scalar"):
         x = plugin_eval_scalar(mi, rd, wi, wo, 3)

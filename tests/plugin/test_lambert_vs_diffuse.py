@@ -1,8 +1,8 @@
 """`lambert` against Mitsuba's built-in `diffuse`: same eval, pdf and sample (same sample
 inputs) to 1e-6 relative, and the same Cornell box image with the same seed to 1e-5."""
+
 import numpy as np
 import pytest
-
 from conftest import random_pairs
 
 
@@ -35,8 +35,11 @@ def test_eval_pdf_sample_match_diffuse(mi_variant):
             (np.array([ours.pdf(ctx, si, w)]), np.array([theirs.pdf(ctx, si, w)])),
         ]
         (bs_a, w_a), (bs_b, w_b) = ours.sample(ctx, si, u[k, 0], u[k, 1:]), theirs.sample(ctx, si, u[k, 0], u[k, 1:])
-        pairs += [(np.array(w_a), np.array(w_b)), (np.array(bs_a.wo), np.array(bs_b.wo)),
-                  (np.array([bs_a.pdf]), np.array([bs_b.pdf]))]
+        pairs += [
+            (np.array(w_a), np.array(w_b)),
+            (np.array(bs_a.wo), np.array(bs_b.wo)),
+            (np.array([bs_a.pdf]), np.array([bs_b.pdf])),
+        ]
         for a, b in pairs:
             err = np.max(np.abs(a - b) / np.maximum(np.abs(b), 1e-3))
             worst = max(worst, err)
@@ -61,6 +64,7 @@ def test_symbolic_render_is_bit_identical_to_diffuse_with_one_thread(mi_variant)
     warp): with one LLVM thread (film accumulation order fixed) the images are identical."""
     mi = mi_variant
     import drjit as dr
+
     threads = dr.thread_count()
     dr.set_thread_count(1)
     try:

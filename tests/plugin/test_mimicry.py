@@ -3,14 +3,16 @@ one diagonal cell end to end: EON fitted to an EON target on the sphere recovers
 parameters the target was rendered with (the study's r = 0.3 and the sphere's reflectance, the
 oracle), and its residual stays near the noise floor. About 20 s.
 """
+
 import json
 import os
 
 import numpy as np
 import pytest
 
-REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 from validation.experiments import mimicry
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 
 @pytest.fixture
@@ -41,16 +43,39 @@ def test_excess_above_the_noise_floor():
 
 def test_a_model_fitted_to_its_own_target_recovers_its_parameters(tmp_path):
     out = tmp_path / "out"
-    assert mimicry.main(["-o", str(out), "--scenes", "sphere", "--models", "eon", "--res", "32", "--iterations", "50",
-                         "--spp", "8", "--target-spp", "512", "--start", "eon=0.6"]) == 0
+    assert (
+        mimicry.main(
+            [
+                "-o",
+                str(out),
+                "--scenes",
+                "sphere",
+                "--models",
+                "eon",
+                "--res",
+                "32",
+                "--iterations",
+                "50",
+                "--spp",
+                "8",
+                "--target-spp",
+                "512",
+                "--start",
+                "eon=0.6",
+            ]
+        )
+        == 0
+    )
     summary = json.loads((out / "mimicry.json").read_text())
     scene = summary["scenes"]["sphere"]
     cell = scene["cells"]["eon"]["eon"]
     r = cell["fitted"]["ball.bsdf.roughness"][0]
     rho = cell["fitted"]["ball.bsdf.reflectance.value"]
     floor = scene["noise_floor"]["eon"]["relative_rmse"]
-    print(f"fitted r {r:.4f} (truth 0.3, start 0.6), rho {np.round(rho, 4)}, rel. RMSE {cell['relative_rmse']:.4f} "
-          f"(floor {floor:.4f})")
+    print(
+        f"fitted r {r:.4f} (truth 0.3, start 0.6), rho {np.round(rho, 4)}, rel. RMSE {cell['relative_rmse']:.4f} "
+        f"(floor {floor:.4f})"
+    )
     assert abs(r - mimicry.SHAPE["eon"][1]) < 0.05, r
     assert np.allclose(rho, [0.8, 0.6, 0.4], atol=0.03), rho
     assert cell["relative_rmse"] < 1.5 * floor

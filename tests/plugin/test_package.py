@@ -8,6 +8,7 @@ and scalar_rgb, roughdiffuse = oren_nayar with σ = α/√2, the mitsuba tool, t
 packaged ground-truth tables; then `matte validate`, `validate --all`, `study`, `bench` and the
 plugin benchmark); import before or after `mi.set_variant`; a Mitsuba other than the one it was
 built against is refused at import naming both versions."""
+
 import glob
 import io
 import json
@@ -20,7 +21,6 @@ import tarfile
 import zipfile
 
 import pytest
-
 from conftest import REPO
 
 
@@ -29,15 +29,19 @@ def run_python(code, env=None, cwd=None):
 
 
 def test_import_before_set_variant_registers_every_variant(tmp_path):
-    r = run_python("import matte_mitsuba, mitsuba as mi\n"
-                   "for v in ('scalar_rgb', 'llvm_ad_rgb', 'llvm_ad_spectral'):\n"
-                   "    mi.set_variant(v); mi.load_dict({'type': 'roughdiffuse'})\n"
-                   "print('ok')", cwd=tmp_path)
+    r = run_python(
+        "import matte_mitsuba, mitsuba as mi\n"
+        "for v in ('scalar_rgb', 'llvm_ad_rgb', 'llvm_ad_spectral'):\n"
+        "    mi.set_variant(v); mi.load_dict({'type': 'roughdiffuse'})\n"
+        "print('ok')",
+        cwd=tmp_path,
+    )
     assert r.stdout.strip() == "ok", r.stderr
 
 
 def test_other_mitsuba_version_is_refused_naming_both(tmp_path):
     import matte_mitsuba
+
     copy = tmp_path / "matte_mitsuba"
     shutil.copytree(matte_mitsuba.PLUGIN_ROOT, copy, ignore=shutil.ignore_patterns("bin", "__pycache__"))
     (copy / "_build.py").write_text('MITSUBA_VERSION = "3.8.0"\n')
@@ -60,23 +64,57 @@ def test_sdist_holds_what_builds_and_nothing_else():
     with tarfile.open(sdists[0]) as t:
         names = [n.split("/", 1)[1] for n in t.getnames() if "/" in n]
     files = set(names)
-    for needed in ("Cargo.toml", "Cargo.lock", "build.rs", "setup.py", "pyproject.toml", "README.md", "LICENSE",
-                   "cpp/build_plugin.sh", "cpp/plugin.cpp", "rust/lib.rs", "rust/main.rs",
-                   "python/matte_mitsuba/__init__.py", "python/matte_mitsuba/passes.py", "PKG-INFO"):
+    for needed in (
+        "Cargo.toml",
+        "Cargo.lock",
+        "build.rs",
+        "setup.py",
+        "pyproject.toml",
+        "README.md",
+        "LICENSE",
+        "cpp/build_plugin.sh",
+        "cpp/plugin.cpp",
+        "rust/lib.rs",
+        "rust/main.rs",
+        "python/matte_mitsuba/__init__.py",
+        "python/matte_mitsuba/passes.py",
+        "PKG-INFO",
+    ):
         assert needed in files, f"{needed} missing from the sdist"
     # Every Rust and C++ source of the checkout is in it, the package with its tables, and the
     # package data the build copies in (the bundled scenes, the study report's slices).
-    tracked = subprocess.run(["git", "ls-files", "rust", "cpp", "python/matte_mitsuba", "mitsuba_scenes"],
-                             capture_output=True, text=True, cwd=REPO).stdout.split()
+    tracked = subprocess.run(
+        ["git", "ls-files", "rust", "cpp", "python/matte_mitsuba", "mitsuba_scenes"],
+        capture_output=True,
+        text=True,
+        cwd=REPO,
+    ).stdout.split()
     assert tracked and set(tracked) <= files, sorted(set(tracked) - files)[:10]
     slices = [n for n in names if n.startswith("docs/") and n.endswith(".png")]
     assert len(slices) == 6 and all(n.startswith("docs/microgeometry/") and n.endswith(".png") for n in slices), slices
     # Nothing else: no tests, validation scripts, other docs or images, build outputs or plugins.
     for n in names:
         top = n.split("/")[0]
-        assert top in {"Cargo.toml", "Cargo.lock", "build.rs", "rustfmt.toml", "setup.py", "setup.cfg", "pyproject.toml",
-                       "README.md", "LICENSE", "MANIFEST.in", "PKG-INFO", "rust", "cpp", "benches", "python",
-                       "mitsuba_scenes", "docs", "matte_mitsuba.egg-info"}, n
+        assert top in {
+            "Cargo.toml",
+            "Cargo.lock",
+            "build.rs",
+            "rustfmt.toml",
+            "setup.py",
+            "setup.cfg",
+            "pyproject.toml",
+            "README.md",
+            "LICENSE",
+            "MANIFEST.in",
+            "PKG-INFO",
+            "rust",
+            "cpp",
+            "benches",
+            "python",
+            "mitsuba_scenes",
+            "docs",
+            "matte_mitsuba.egg-info",
+        }, n
         assert not n.endswith((".exr", ".so", ".a", ".o")), n
         assert not n.endswith(".png") or n.startswith(("docs/microgeometry/", "mitsuba_scenes/")), n
         assert not n.startswith("python/") or n.startswith("python/matte_mitsuba"), n
@@ -94,8 +132,9 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
     assert not any(".data/purelib/" in n for n in names)
     # auditwheel grafted no copy of Mitsuba's or Dr.Jit's libraries.
     assert not any(os.path.basename(n).startswith(("libmitsuba", "libdrjit", "libnanothread")) for n in names), names
-    show = subprocess.run([os.path.join(REPO, ".venv", "bin", "auditwheel"), "show", "--json", wheel],
-                          capture_output=True, text=True)
+    show = subprocess.run(
+        [os.path.join(REPO, ".venv", "bin", "auditwheel"), "show", "--json", wheel], capture_output=True, text=True
+    )
     assert show.returncode == 0, show.stderr
     report = json.loads(show.stdout)
     # The symbol versions allow exactly this tag (the lowest one they allow), no ISA beyond the
@@ -109,8 +148,17 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
     # Dr.Jit's (loaded from their wheels, excluded from grafting) and matte's own library.
     from elftools.elf.dynamic import DynamicSection
     from elftools.elf.elffile import ELFFile
-    system = {"libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libpthread.so.0", "libdl.so.2",
-              "ld-linux-x86-64.so.2", "librt.so.1"}
+
+    system = {
+        "libc.so.6",
+        "libm.so.6",
+        "libstdc++.so.6",
+        "libgcc_s.so.1",
+        "libpthread.so.0",
+        "libdl.so.2",
+        "ld-linux-x86-64.so.2",
+        "librt.so.1",
+    }
     provided = {"libmitsuba.so", "libdrjit-core.so", "libdrjit-extra.so", "libnanothread.so", "libmatte_bsdfs.so"}
     elves = 0
     with zipfile.ZipFile(wheel) as z:
@@ -120,8 +168,13 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
                 continue
             elves += 1
             elf = ELFFile(io.BytesIO(data))
-            needed = {t.needed for sec in elf.iter_sections() if isinstance(sec, DynamicSection)
-                      for t in sec.iter_tags() if t.entry.d_tag == "DT_NEEDED"}
+            needed = {
+                t.needed
+                for sec in elf.iter_sections()
+                if isinstance(sec, DynamicSection)
+                for t in sec.iter_tags()
+                if t.entry.d_tag == "DT_NEEDED"
+            }
             assert needed <= system | provided, (n, needed - system - provided)
     assert elves >= 8, elves  # the library, one stub per model, the matte tool
 
@@ -130,7 +183,7 @@ def hidden_checkout(cmd):
     """`cmd` run with the checkout hidden: an empty tmpfs mounted over it in a private mount
     namespace (`unshare -m` as root, `unshare -rm` otherwise). Anything the installation still
     read from the tree it was built in would be missing there."""
-    mount = "mount -t tmpfs none \"$0\" && exec \"$@\""
+    mount = 'mount -t tmpfs none "$0" && exec "$@"'
     return ["unshare", "-m" if os.geteuid() == 0 else "-rm", "sh", "-c", mount, REPO, *cmd]
 
 
@@ -177,8 +230,12 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     # The pinned Mitsuba (and numpy) from the registry, then matte only from the release files.
     r = subprocess.run(pip + ["mitsuba==3.9.1", "numpy"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
-    r = subprocess.run(pip + ["--no-index", "--find-links", os.path.dirname(wheel), "matte-mitsuba"],
-                       capture_output=True, text=True, cwd=tmp_path)
+    r = subprocess.run(
+        pip + ["--no-index", "--find-links", os.path.dirname(wheel), "matte-mitsuba"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     shown = subprocess.run([py, "-m", "pip", "show", "-f", "matte-mitsuba"], capture_output=True, text=True).stdout
     assert "Version: 0.1.0" in shown
@@ -191,8 +248,14 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     matte = str(venv / "bin" / "matte")
 
     def run(*cmd, timeout=900):
-        return subprocess.run(hidden_checkout(list(cmd)), capture_output=True, text=True, cwd=work, timeout=timeout,
-                              env={k: v for k, v in os.environ.items() if not k.startswith(("MATTE", "VIRTUAL_ENV"))})
+        return subprocess.run(
+            hidden_checkout(list(cmd)),
+            capture_output=True,
+            text=True,
+            cwd=work,
+            timeout=timeout,
+            env={k: v for k, v in os.environ.items() if not k.startswith(("MATTE", "VIRTUAL_ENV"))},
+        )
 
     check = run(py, str(checks))
     print(check.stdout)
@@ -217,11 +280,27 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     summary = json.loads((work / "all" / "summary.json").read_text())
     assert sorted(os.path.basename(s["scene"]) for s in summary["scenes"]) == bundled
     assert all(s["scene"].startswith(str(venv)) for s in summary["scenes"]), summary["scenes"][0]["scene"]
-    assert summary["provenance"]["scenes"].startswith(f"{len(bundled)} bundled with matte_mitsuba ("), summary["provenance"]
+    assert summary["provenance"]["scenes"].startswith(f"{len(bundled)} bundled with matte_mitsuba ("), summary[
+        "provenance"
+    ]
 
     # The paper's study on one bundled scene, by name, with the true surfaces from the package.
-    r = run(matte, "study", "cornell", "--res", "16", "--spp", "4", "--passes", "2", "--no-variants",
-            "--no-convergence", "-q", "-o", "study")
+    r = run(
+        matte,
+        "study",
+        "cornell",
+        "--res",
+        "16",
+        "--spp",
+        "4",
+        "--passes",
+        "2",
+        "--no-variants",
+        "--no-convergence",
+        "-q",
+        "-o",
+        "study",
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     study = json.loads((work / "study" / "study.json").read_text())
     keys = [m["key"] for m in study["scenes"][0]["models"]]
@@ -234,7 +313,18 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     # The benchmarks: matte's side on the bundled scenes, and the plugin benchmark on one type.
     r = run(matte, "bench", "--quick", "--no-mitsuba", "-q", "-o", "bench")
     assert r.returncode == 0 and (work / "bench" / "bench.json").is_file(), r.stdout + r.stderr
-    r = run(py, "-m", "matte_mitsuba.bench_plugin", "--types", "tabulated_brdf", "--res", "16", "--spp", "1",
-            "--repeats", "1")
+    r = run(
+        py,
+        "-m",
+        "matte_mitsuba.bench_plugin",
+        "--types",
+        "tabulated_brdf",
+        "--res",
+        "16",
+        "--spp",
+        "1",
+        "--repeats",
+        "1",
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     assert re.search(r"tabulated_brdf\s+[0-9.]+ s\s+[0-9.]+x diffuse", r.stdout), r.stdout

@@ -3,6 +3,7 @@ defaults renders the bundled `all_types.xml`, and `dr.backward` through a `prb` 
 every matte parameter a finite, non-zero gradient. The shell examples run verbatim as a user
 of the installed package would, outside the checkout, with the environment's `bin/` on `PATH`
 (the mitsuba tool, `matte validate`, `matte render`) on a small scene of the user's."""
+
 import os
 import re
 import subprocess
@@ -10,7 +11,6 @@ import sys
 
 import numpy as np
 import pytest
-
 from conftest import REPO
 
 
@@ -18,20 +18,26 @@ def test_readme_example(monkeypatch, tmp_path):
     monkeypatch.chdir(tmp_path)
     import drjit as dr
     import mitsuba as mi
-    mi.set_variant('llvm_ad_rgb')            # Dr.Jit's defaults: symbolic loops and calls
-    import matte_mitsuba                     # noqa: F401  registers matte's BSDFs in every variant
+
+    mi.set_variant("llvm_ad_rgb")  # Dr.Jit's defaults: symbolic loops and calls
+    import matte_mitsuba  # noqa: F401  registers matte's BSDFs in every variant
+
     assert dr.flag(dr.JitFlag.SymbolicLoops) and dr.flag(dr.JitFlag.SymbolicCalls)
 
-    scene = mi.load_file(os.path.join(matte_mitsuba.SCENES, 'all_types.xml'), res=32, spp=4)
+    scene = mi.load_file(os.path.join(matte_mitsuba.SCENES, "all_types.xml"), res=32, spp=4)
     image = mi.render(scene)
     assert np.isfinite(np.array(image)).all()
 
     params = mi.traverse(scene)
-    keys = [k for k in params.keys() if k.endswith(('.sigma', '.roughness', '.alpha', '.int_ior', '.ext_ior', 'reflectance.value'))]
+    keys = [
+        k
+        for k in params.keys()
+        if k.endswith((".sigma", ".roughness", ".alpha", ".int_ior", ".ext_ior", "reflectance.value"))
+    ]
     for k in keys:
         dr.enable_grad(params[k])
     params.update()
-    image = mi.render(scene, params, integrator=mi.load_dict({'type': 'prb'}), spp=16)
+    image = mi.render(scene, params, integrator=mi.load_dict({"type": "prb"}), spp=16)
     dr.backward(dr.mean(image, axis=None))
     # every matte parameter of the scene: 11 reflectances, 2 sigma, 4 roughness, 1 alpha, 2×2 IORs
     assert len(keys) == 22, keys
@@ -61,6 +67,7 @@ def readme_shell_lines():
 def test_readme_shell_example(tmp_path, command, outputs):
     assert command in readme_shell_lines(), f"not in the README any more: {command}"
     import matte_mitsuba
+
     cornell = open(os.path.join(matte_mitsuba.SCENES, "cornell_box.xml")).read()
     small = re.sub(r'<default name="res" value="\d+"/>', '<default name="res" value="24"/>', cornell)
     small = re.sub(r'<default name="spp" value="\d+"/>', '<default name="spp" value="4"/>', small)

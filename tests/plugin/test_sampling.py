@@ -2,10 +2,10 @@
 `mitsuba.chi2.ChiSquareTest` at several roughnesses and at incidences down to 89°, in the
 scalar variant and symbolic llvm; the density the sampler returns equals `pdf()` at the
 sampled direction; and a roughness texture samples as the number it stands for."""
+
 import drjit as dr
 import numpy as np
 import pytest
-
 from conftest import MODELS
 
 # Every model that offers a sampler besides the cosine, with it, at two roughnesses (its first
@@ -35,11 +35,14 @@ def test_some_model_has_its_own_sampler():
 def test_chi2(mi_variant, case, theta):
     mi = mi_variant
     kind, params = case
-    xml = "".join(f'<float name="{k}" value="{v}"/>' if isinstance(v, float) else f'<string name="{k}" value="{v}"/>'
-                  for k, v in params.items())
+    xml = "".join(
+        f'<float name="{k}" value="{v}"/>' if isinstance(v, float) else f'<string name="{k}" value="{v}"/>'
+        for k, v in params.items()
+    )
     sample_func, pdf_func = mi.chi2.BSDFAdapter(kind, xml, wi=direction(theta))
-    chi2 = mi.chi2.ChiSquareTest(domain=mi.chi2.SphericalDomain(), sample_func=sample_func,
-                                 pdf_func=pdf_func, sample_dim=3)
+    chi2 = mi.chi2.ChiSquareTest(
+        domain=mi.chi2.SphericalDomain(), sample_func=sample_func, pdf_func=pdf_func, sample_dim=3
+    )
     assert chi2.run(test_count=len(CASES) * len(ANGLES)), chi2.messages
 
 
@@ -88,8 +91,9 @@ def draw(mi, kind, params, wi, u):
 
 @pytest.mark.parametrize("case", CASES, ids=case_id)
 def test_scalar_and_llvm_draw_the_same_directions(case):
-    import mitsuba as mi
     import matte_mitsuba
+    import mitsuba as mi
+
     kind, params = case
     n = 4000
     rng = np.random.default_rng(17)

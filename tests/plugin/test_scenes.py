@@ -2,15 +2,14 @@
 with `import matte_mitsuba` and renders without NaN and without any warning in every CPU
 variant of the wheel (Dr.Jit's default symbolic mode), also with the `mitsuba` command-line
 tool and its defaults; `reflectance` as a bitmap texture renders and shows the texture."""
+
 import os
 import re
 import sys
 
 import numpy as np
 import pytest
-
 from conftest import REPO, SCENES
-
 
 
 class Capture:
@@ -39,8 +38,16 @@ class Capture:
         self.logger.remove_appender(self.appender)
 
 
-ALL_CPU_VARIANTS = ["scalar_rgb", "scalar_spectral", "scalar_spectral_polarized", "llvm_ad_rgb", "llvm_ad_mono",
-                    "llvm_ad_mono_polarized", "llvm_ad_spectral", "llvm_ad_spectral_polarized"]
+ALL_CPU_VARIANTS = [
+    "scalar_rgb",
+    "scalar_spectral",
+    "scalar_spectral_polarized",
+    "llvm_ad_rgb",
+    "llvm_ad_mono",
+    "llvm_ad_mono_polarized",
+    "llvm_ad_spectral",
+    "llvm_ad_spectral_polarized",
+]
 
 
 @pytest.mark.parametrize("mi_variant", ALL_CPU_VARIANTS, indirect=True)
@@ -55,7 +62,9 @@ def test_all_types_scene_renders_cleanly(mi_variant):
     ours = [m for m in log.messages if "Monochrome mode enabled" not in m]
     assert not ours, ours
     kinds = set(re.findall(r'type = "(\w+)"', " ".join(str(s.bsdf()) for s in scene.shapes())))
-    assert kinds == {"lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse", "burley", "tabulated_brdf"}, kinds
+    assert kinds == {"lambert", "oren_nayar", "eon", "wolff", "ginneken", "roughdiffuse", "burley", "tabulated_brdf"}, (
+        kinds
+    )
 
 
 @pytest.mark.parametrize("mi_variant", ["scalar_rgb", "llvm_ad_rgb"], indirect=True)
@@ -66,17 +75,26 @@ def test_bitmap_reflectance(mi_variant, tmp_path):
     tex[:, :4] = 0.1
     path = str(tmp_path / "checker.exr")
     mi.Bitmap(tex).write(path)
-    scene = mi.load_dict({
-        "type": "scene",
-        "integrator": {"type": "direct"},
-        "sensor": {"type": "perspective", "fov": 30,
-                   "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 4], target=[0, 0, 0], up=[0, 1, 0]),
-                   "film": {"type": "hdrfilm", "width": 32, "height": 32, "rfilter": {"type": "box"}}},
-        "plane": {"type": "rectangle",
-                  "bsdf": {"type": "oren_nayar", "reflectance": {"type": "bitmap", "filename": path,
-                                                                  "filter_type": "nearest"}}},
-        "light": {"type": "constant", "radiance": 1.0},
-    })
+    scene = mi.load_dict(
+        {
+            "type": "scene",
+            "integrator": {"type": "direct"},
+            "sensor": {
+                "type": "perspective",
+                "fov": 30,
+                "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 4], target=[0, 0, 0], up=[0, 1, 0]),
+                "film": {"type": "hdrfilm", "width": 32, "height": 32, "rfilter": {"type": "box"}},
+            },
+            "plane": {
+                "type": "rectangle",
+                "bsdf": {
+                    "type": "oren_nayar",
+                    "reflectance": {"type": "bitmap", "filename": path, "filter_type": "nearest"},
+                },
+            },
+            "light": {"type": "constant", "radiance": 1.0},
+        }
+    )
     img = np.array(mi.render(scene, spp=16))
     assert np.isfinite(img).all()
     left, right = img[12:20, 4:12].mean(), img[12:20, 20:28].mean()
@@ -86,13 +104,20 @@ def test_bitmap_reflectance(mi_variant, tmp_path):
 def test_mitsuba_command_line_tool_with_its_defaults(tmp_path):
     """`mitsuba -a <plugins> scene.xml`: the tool's default variant and mode (llvm, symbolic)."""
     import subprocess
-    root = subprocess.run([sys.executable, "-m", "matte_mitsuba"], capture_output=True, text=True, check=True).stdout.strip()
+
+    root = subprocess.run(
+        [sys.executable, "-m", "matte_mitsuba"], capture_output=True, text=True, check=True
+    ).stdout.strip()
     out = str(tmp_path / "all_types.exr")
     tool = os.path.join(os.path.dirname(sys.executable), "mitsuba")
-    run = subprocess.run([tool, "-a", root, "-D", "spp=4", "-D", "res=32", "-o", out, os.path.join(SCENES, "all_types.xml")],
-                         capture_output=True, text=True)
+    run = subprocess.run(
+        [tool, "-a", root, "-D", "spp=4", "-D", "res=32", "-o", out, os.path.join(SCENES, "all_types.xml")],
+        capture_output=True,
+        text=True,
+    )
     assert run.returncode == 0, run.stdout + run.stderr
     import mitsuba as mi
+
     mi.set_variant("scalar_rgb")
     img = np.array(mi.Bitmap(out))
     assert np.isfinite(img).all() and img[..., :3].mean() > 0.02, img.mean()
@@ -105,12 +130,16 @@ def test_study_scene_curved_with_table_models(mi_variant):
     their tables on every lane, whatever an inactive lane's directions hold (an unclamped packet
     index once read outside the slope table here and crashed the process)."""
     from validation import sampling_scenes  # the scene with its `$bsdf` surfaces substituted
+
     mi = mi_variant
     path = sampling_scenes.SCENES["curved"]
     table = os.path.join(REPO, "python", "matte_mitsuba", "ground_truth", "height_field_m0.3.json")
     mi.file_resolver().prepend(os.path.dirname(os.path.join(REPO, path)))
-    for kind, params in (("ginneken", {"sampling": "cosine"}), ("ginneken", {"sampling": "cltc"}),
-                         ("tabulated_brdf", {"filename": table})):
+    for kind, params in (
+        ("ginneken", {"sampling": "cosine"}),
+        ("ginneken", {"sampling": "cltc"}),
+        ("tabulated_brdf", {"filename": table}),
+    ):
         scene = mi.load_string(sampling_scenes.scene_text(path, kind, params), spp="16", res="96")
         img = np.array(mi.render(scene, seed=1))
         assert np.isfinite(img).all(), kind

@@ -8,6 +8,7 @@ naming the file. The render gradient is in `test_gradients.py`, plugin against r
 `matte validate` (`mitsuba_scenes/sphere_tabulated_brdf.xml`). The values are checked on every
 table in `python/matte_mitsuba/ground_truth/`, the rest on the V-cavities at σ = 0.3; the installed package
 ships the same files (`matte_mitsuba.ground_truth_path`)."""
+
 import glob
 import json
 import os
@@ -15,7 +16,6 @@ import os
 import drjit as dr
 import numpy as np
 import pytest
-
 from conftest import REPO, random_pairs
 
 GROUND_TRUTH = os.path.join(REPO, "python", "matte_mitsuba", "ground_truth")
@@ -32,8 +32,9 @@ def reference_f(table, wi, wo, rho):
     theta = np.array(table["theta_deg"])
     phi = np.array(table["delta_phi_deg"])
     refl = np.array(table["reflectance"])
-    values = np.array(table["f_over_reflectance"], dtype=np.float64).reshape(len(refl), len(theta), len(theta),
-                                                                              len(phi))
+    values = np.array(table["f_over_reflectance"], dtype=np.float64).reshape(
+        len(refl), len(theta), len(theta), len(phi)
+    )
     wi, wo = wi.astype(np.float64), wo.astype(np.float64)
 
     def locate(nodes, x):
@@ -179,10 +180,12 @@ def test_reflectance_gradient_equals_central_differences(mi_variant):
 def test_chi2(mi_variant, theta):
     mi = mi_variant
     t = np.radians(theta)
-    sample_func, pdf_func = mi.chi2.BSDFAdapter("tabulated_brdf", f'<string name="filename" value="{TABLE}"/>',
-                                                wi=[float(np.sin(t)), 0.0, float(np.cos(t))])
-    chi2 = mi.chi2.ChiSquareTest(domain=mi.chi2.SphericalDomain(), sample_func=sample_func, pdf_func=pdf_func,
-                                 sample_dim=3)
+    sample_func, pdf_func = mi.chi2.BSDFAdapter(
+        "tabulated_brdf", f'<string name="filename" value="{TABLE}"/>', wi=[float(np.sin(t)), 0.0, float(np.cos(t))]
+    )
+    chi2 = mi.chi2.ChiSquareTest(
+        domain=mi.chi2.SphericalDomain(), sample_func=sample_func, pdf_func=pdf_func, sample_dim=3
+    )
     assert chi2.run(test_count=8), chi2.messages
 
 
@@ -191,8 +194,18 @@ def test_no_nan_at_special_directions_with_gradients(mi_variant):
     """Grazing, normal, coincident, opposite and below-horizon directions: values, pdf, sample
     weights and the reflectance gradient are finite."""
     mi = mi_variant
-    d = [(0, 0, 1), (1, 0, 0), (1, 0, 1e-7), (0.6, 0, 0.8), (-0.6, 0, 0.8), (0, 0.6, 0.8), (0.6, 0, -0.8),
-         (1e-8, 0, 1), (0, 0, -1), (0.7071068, 0.7071068, 0)]
+    d = [
+        (0, 0, 1),
+        (1, 0, 0),
+        (1, 0, 1e-7),
+        (0.6, 0, 0.8),
+        (-0.6, 0, 0.8),
+        (0, 0.6, 0.8),
+        (0.6, 0, -0.8),
+        (1e-8, 0, 1),
+        (0, 0, -1),
+        (0.7071068, 0.7071068, 0),
+    ]
     pairs = [(a, b) for a in d for b in d]
     wi = np.array([p[0] for p in pairs], np.float32)
     wo = np.array([p[1] for p in pairs], np.float32)
@@ -224,7 +237,9 @@ def test_file_errors_are_one_line_naming_the_file(mi_variant, tmp_path, table):
     short = dict(table, f_over_reflectance=table["f_over_reflectance"][:-1])
     cases = {
         str(tmp_path / "missing_table.json"): "No such file",
-        write(tmp_path / "malformed.json", '{"format": "matte-tabulated-brdf",\n "version": 1,\n "oops"'): "malformed.json:3",
+        write(
+            tmp_path / "malformed.json", '{"format": "matte-tabulated-brdf",\n "version": 1,\n "oops"'
+        ): "malformed.json:3",
         write(tmp_path / "version.json", json.dumps(wrong_version)): "version 99",
         write(tmp_path / "format.json", json.dumps(wrong_format)): "something-else",
         write(tmp_path / "short.json", json.dumps(short)): "f_over_reflectance",
@@ -245,10 +260,14 @@ def test_file_errors_are_one_line_naming_the_file(mi_variant, tmp_path, table):
 
 def test_the_package_ships_every_table():
     import matte_mitsuba
+
     names = sorted(os.path.basename(p) for p in TABLES)
     assert sorted(f for f in os.listdir(matte_mitsuba.GROUND_TRUTH) if f.endswith(".json")) == names
     for name in names:
-        with open(os.path.join(GROUND_TRUTH, name), "rb") as a, open(matte_mitsuba.ground_truth_path(name[:-5]), "rb") as b:
+        with (
+            open(os.path.join(GROUND_TRUTH, name), "rb") as a,
+            open(matte_mitsuba.ground_truth_path(name[:-5]), "rb") as b,
+        ):
             assert a.read() == b.read(), f"the installed {name} differs from the checkout's (make plugin)"
     with pytest.raises(ValueError, match="no ground-truth table 'v_cavities_sigma9'.*v_cavities_sigma0.3"):
         matte_mitsuba.ground_truth_path("v_cavities_sigma9")

@@ -9,9 +9,7 @@ gradient), and Mitsuba's own error reporting for refused forms.
 
 import numpy as np
 import pytest
-
 from conftest import random_pairs
-
 from matte_mitsuba.gradient_check import adjoint_gradient, image_mean
 
 N = 4000
@@ -52,6 +50,7 @@ def load(mi, kind, fixed, name, value):
 
 def interaction(mi, n, seed):
     import drjit as dr
+
     wi, wo = random_pairs(n, seed)
     uv = np.random.default_rng(seed + 1).uniform(0, 1, (n, 2)).astype(np.float32)
     si = dr.zeros(mi.SurfaceInteraction3f, n)
@@ -107,6 +106,7 @@ def test_texture_gradient_matches_finite_differences(mi_variant, case):
     the same sum; and the four texel gradients of a constant texture sum to the float's."""
     mi = mi_variant
     import drjit as dr
+
     kind, name, value, fixed, _ = case
     texels = np.array([[value, value * 1.1], [value * 0.9, value * 1.05]])
     if name == "int_ior":
@@ -157,21 +157,31 @@ def test_texture_gradient_matches_finite_differences(mi_variant, case):
     assert abs(g_texels - g_float) <= GRADIENT_TOLERANCE.get(kind, 2e-5) * abs(g_float), (g_texels, g_float)
 
 
-@pytest.mark.parametrize("kind, name, bound", [
-    ("oren_nayar", "sigma", 0.0), ("roughdiffuse", "alpha", 0.0), ("eon", "roughness", 0.0),
-    ("eon", "roughness", 1.0), ("wolff", "int_ior", 1.0), ("ginneken", "roughness", 0.0),
-    ("ginneken", "roughness", 4.0)])
+@pytest.mark.parametrize(
+    "kind, name, bound",
+    [
+        ("oren_nayar", "sigma", 0.0),
+        ("roughdiffuse", "alpha", 0.0),
+        ("eon", "roughness", 0.0),
+        ("eon", "roughness", 1.0),
+        ("wolff", "int_ior", 1.0),
+        ("ginneken", "roughness", 0.0),
+        ("ginneken", "roughness", 4.0),
+    ],
+)
 @pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
 def test_texture_at_and_beyond_the_bounds_is_finite(mi_variant, kind, name, bound):
     """Texels at the bound and beyond it (clamped) give finite values and gradients: the
     finiteness rule of docs/traced-kernels.md holds per lane."""
     mi = mi_variant
     import drjit as dr
+
     beyond = bound - 0.5 if bound == 0.0 or name == "int_ior" else bound + 0.5
     if kind == "ginneken" and bound == 0.0:
         bound = 0.02  # the roughness axis starts at 0.02: 0 and below clamp to it
-    bsdf = load(mi, "oren_nayar" if kind == "oren_nayar" else kind, {}, name,
-                bitmap(mi, [[bound, beyond], [bound, bound]]))
+    bsdf = load(
+        mi, "oren_nayar" if kind == "oren_nayar" else kind, {}, name, bitmap(mi, [[bound, beyond], [bound, bound]])
+    )
     params = mi.traverse(bsdf)
     dr.enable_grad(params[name + ".data"])
     params.update()
@@ -188,17 +198,27 @@ def test_render_gradient_of_a_textured_sigma(mi_variant):
     adjoint pass with the primal's seed, against central differences of renders, within 1 %."""
     mi = mi_variant
     texels = np.array([[0.2, 0.5], [0.8, 0.35]], dtype=np.float32)
-    scene = mi.load_dict({
-        "type": "scene",
-        "integrator": {"type": "prb", "max_depth": 2},
-        "sensor": {"type": "perspective", "fov": 50,
-                   "to_world": mi.ScalarTransform4f().look_at(origin=[0, -2, 2.5], target=[0, 0, 0], up=[0, 0, 1]),
-                   "film": {"type": "hdrfilm", "width": 16, "height": 16}},
-        "light": {"type": "directional", "direction": [0.6, -0.4, -1], "irradiance": {"type": "rgb", "value": 3.0}},
-        "plane": {"type": "rectangle",
-                  "bsdf": {"type": "oren_nayar", "sigma": bitmap(mi, texels),
-                           "reflectance": {"type": "rgb", "value": 0.7}}},
-    })
+    scene = mi.load_dict(
+        {
+            "type": "scene",
+            "integrator": {"type": "prb", "max_depth": 2},
+            "sensor": {
+                "type": "perspective",
+                "fov": 50,
+                "to_world": mi.ScalarTransform4f().look_at(origin=[0, -2, 2.5], target=[0, 0, 0], up=[0, 0, 1]),
+                "film": {"type": "hdrfilm", "width": 16, "height": 16},
+            },
+            "light": {"type": "directional", "direction": [0.6, -0.4, -1], "irradiance": {"type": "rgb", "value": 3.0}},
+            "plane": {
+                "type": "rectangle",
+                "bsdf": {
+                    "type": "oren_nayar",
+                    "sigma": bitmap(mi, texels),
+                    "reflectance": {"type": "rgb", "value": 0.7},
+                },
+            },
+        }
+    )
     params = mi.traverse(scene)
     key = "plane.bsdf.sigma.data"
     spp, seed = 16, 2
@@ -255,12 +275,15 @@ def test_nan_texels_clamp_to_the_lower_bound_as_in_scalar(mi_variant, kind, name
         "    si = mi.SurfaceInteraction3f(); si.wi = mi.Vector3f(a); si.uv = mi.Point2f(0.5, 0.5)\n"
         "    si.n = mi.Normal3f(0, 0, 1); si.sh_frame = mi.Frame3f(si.n)\n"
         "    out.append(list(b.eval(mi.BSDFContext(), si, mi.Vector3f(c))))\n"
-        "print(json.dumps(out))\n")
+        "print(json.dumps(out))\n"
+    )
     import json
     import subprocess
     import sys
-    r = subprocess.run([sys.executable, "-c", code], input=json.dumps([wi.tolist(), wo_np.tolist()]),
-                       capture_output=True, text=True)
+
+    r = subprocess.run(
+        [sys.executable, "-c", code], input=json.dumps([wi.tolist(), wo_np.tolist()]), capture_output=True, text=True
+    )
     assert r.returncode == 0, r.stderr
     scalar = np.array(json.loads(r.stdout), dtype=np.float64).T
     assert np.isfinite(scalar).all()

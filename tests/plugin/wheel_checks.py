@@ -8,14 +8,14 @@ model; `mitsuba -a "$(python -m matte_mitsuba)" scene.xml` renders with the tool
 
     python tests/plugin/wheel_checks.py
 """
+
 import json
+import math
 import os
+import random
 import subprocess
 import sys
-import math
-import random
 import tempfile
-
 
 SCENE = """<scene version="3.0.0">
     <integrator type="path"><integer name="max_depth" value="4"/></integrator>
@@ -51,9 +51,14 @@ def main():
     with open(scene_file, "w") as f:
         f.write(SCENE)
     import drjit as dr
-    import mitsuba as mi
     import matte_mitsuba
-    check("matte_mitsuba imported from the installation", "site-packages" in matte_mitsuba.PLUGIN_ROOT, matte_mitsuba.PLUGIN_ROOT)
+    import mitsuba as mi
+
+    check(
+        "matte_mitsuba imported from the installation",
+        "site-packages" in matte_mitsuba.PLUGIN_ROOT,
+        matte_mitsuba.PLUGIN_ROOT,
+    )
     for variant in ("llvm_ad_rgb", "scalar_rgb"):
         mi.set_variant(variant)
         img = mi.render(mi.load_file(scene_file)).array  # no numpy in a bare Mitsuba environment
@@ -81,26 +86,60 @@ def main():
     x, y = rd.eval(mi.BSDFContext(), si, wo), on.eval(mi.BSDFContext(), si, wo)
     err = dr.max(dr.abs(x - y) / dr.maximum(dr.abs(y), 1e-6), axis=None)
     err = float(err[0] if dr.is_jit_v(err) else err)
-    check("roughdiffuse alpha=0.5 evaluates as oren_nayar sigma=0.5/sqrt(2), model=full", err <= 2e-6, f"max relative difference {err:.1e}")
-    root = subprocess.run([sys.executable, "-m", "matte_mitsuba"], capture_output=True, text=True, check=True).stdout.strip()
+    check(
+        "roughdiffuse alpha=0.5 evaluates as oren_nayar sigma=0.5/sqrt(2), model=full",
+        err <= 2e-6,
+        f"max relative difference {err:.1e}",
+    )
+    root = subprocess.run(
+        [sys.executable, "-m", "matte_mitsuba"], capture_output=True, text=True, check=True
+    ).stdout.strip()
     tool = os.path.join(os.path.dirname(sys.executable), "mitsuba")
     out = os.path.join(work, "cli.exr")
     run = subprocess.run([tool, "-a", root, "-o", out, scene_file], capture_output=True, text=True)
-    check("mitsuba -a \"$(python -m matte_mitsuba)\" scene.xml (the tool's defaults)", run.returncode == 0 and os.path.exists(out),
-          (run.stdout + run.stderr).strip().splitlines()[-1] if run.returncode else out)
+    check(
+        'mitsuba -a "$(python -m matte_mitsuba)" scene.xml (the tool\'s defaults)',
+        run.returncode == 0 and os.path.exists(out),
+        (run.stdout + run.stderr).strip().splitlines()[-1] if run.returncode else out,
+    )
     matte = os.path.join(os.path.dirname(sys.executable), "matte")
-    run = subprocess.run([matte, "brdf", "--bsdf", "roughdiffuse", "--param", "alpha=0.5", "--reflectance", "0.8",
-                          "--theta-i", "60", "--theta-o", "60", "--phi", "180"], capture_output=True, text=True)
+    run = subprocess.run(
+        [
+            matte,
+            "brdf",
+            "--bsdf",
+            "roughdiffuse",
+            "--param",
+            "alpha=0.5",
+            "--reflectance",
+            "0.8",
+            "--theta-i",
+            "60",
+            "--theta-o",
+            "60",
+            "--phi",
+            "180",
+        ],
+        capture_output=True,
+        text=True,
+    )
     ok = run.returncode == 0 and json.loads(run.stdout)["bsdf"] == "roughdiffuse"
     check("matte brdf --bsdf roughdiffuse answers", ok, run.stdout.strip() if ok else run.stderr.strip())
     mi.set_variant("scalar_rgb")
     names = sorted(f[:-5] for f in os.listdir(matte_mitsuba.GROUND_TRUTH) if f.endswith(".json"))
     si = dr.zeros(mi.SurfaceInteraction3f)
-    si.wi = mi.Vector3f(0.5, 0, 0.75 ** 0.5)
-    values = [mi.load_dict({"type": "tabulated_brdf", "filename": matte_mitsuba.ground_truth_path(n), "reflectance": 0.8})
-              .eval(mi.BSDFContext(), si, mi.Vector3f(-0.5, 0, 0.75 ** 0.5))[0] for n in names]
-    check(f"the {len(names)} packaged ground-truth tables load as tabulated_brdf",
-          len(names) == 12 and all(math.isfinite(v) and v > 0 for v in values), ", ".join(names))
+    si.wi = mi.Vector3f(0.5, 0, 0.75**0.5)
+    values = [
+        mi.load_dict(
+            {"type": "tabulated_brdf", "filename": matte_mitsuba.ground_truth_path(n), "reflectance": 0.8}
+        ).eval(mi.BSDFContext(), si, mi.Vector3f(-0.5, 0, 0.75**0.5))[0]
+        for n in names
+    ]
+    check(
+        f"the {len(names)} packaged ground-truth tables load as tabulated_brdf",
+        len(names) == 12 and all(math.isfinite(v) and v > 0 for v in values),
+        ", ".join(names),
+    )
 
 
 if __name__ == "__main__":

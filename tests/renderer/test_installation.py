@@ -5,6 +5,7 @@ matte_mitsuba; when none can, one line saying what was tried and how to fix it.
 
 The binary under test is the installed one copied to a folder of its own, so that it belongs
 to no environment and only what each test gives it can be found."""
+
 import json
 import os
 import shutil
@@ -44,7 +45,9 @@ def test_without_any_python_the_error_is_one_line_with_the_fix(lone_matte, tmp_p
     r = run(lone_matte, "validate", "--all", env={"PATH": str(empty)}, cwd=tmp_path)
     line = error_line(r)
     assert line.startswith("matte: error: "), line
-    assert "no Python with matte_mitsuba found (no --python, no MATTE_PYTHON, no python3 beside matte or on PATH)" in line
+    assert (
+        "no Python with matte_mitsuba found (no --python, no MATTE_PYTHON, no python3 beside matte or on PATH)" in line
+    )
     assert "pip install matte-mitsuba" in line and "--python PATH or MATTE_PYTHON" in line, line
 
 
@@ -62,19 +65,37 @@ def test_a_python3_on_path_that_cannot_import_matte_mitsuba_is_named_as_tried(lo
 def test_matte_python_is_used_as_given_and_named_when_it_fails(lone_matte, tmp_path):
     env = {"PATH": os.environ["PATH"], "MATTE_PYTHON": str(tmp_path / "no_such_python")}
     line = error_line(run(lone_matte, "validate", "--all", env=env, cwd=tmp_path))
-    assert line.startswith("matte: error: ") and f"MATTE_PYTHON={tmp_path / 'no_such_python'}: cannot run it" in line, line
+    assert line.startswith("matte: error: ") and f"MATTE_PYTHON={tmp_path / 'no_such_python'}: cannot run it" in line, (
+        line
+    )
     if BARE_PYTHON and BARE_PYTHON != sys.executable:
         env["MATTE_PYTHON"] = BARE_PYTHON
         line = error_line(run(lone_matte, "validate", "--all", env=env, cwd=tmp_path))
-        assert line == f"matte: error: matte's package data (scenes, tables) comes with matte_mitsuba: " \
-                       f"MATTE_PYTHON={BARE_PYTHON}: it cannot import matte_mitsuba", line
+        assert (
+            line == f"matte: error: matte's package data (scenes, tables) comes with matte_mitsuba: "
+            f"MATTE_PYTHON={BARE_PYTHON}: it cannot import matte_mitsuba"
+        ), line
 
 
 def test_the_python_option_wins_and_finds_mitsuba_and_the_bundled_scenes(lone_matte, tmp_path):
     # MATTE_PYTHON names nothing usable; --python names this environment, which has everything.
     env = {"PATH": os.environ["PATH"], "MATTE_PYTHON": str(tmp_path / "no_such_python")}
-    r = run(lone_matte, "--python", sys.executable, "validate", "sphere_lambert", "--quick", "-D", "res=8", "-q",
-            "--json", "-o", "out", env=env, cwd=tmp_path)
+    r = run(
+        lone_matte,
+        "--python",
+        sys.executable,
+        "validate",
+        "sphere_lambert",
+        "--quick",
+        "-D",
+        "res=8",
+        "-q",
+        "--json",
+        "-o",
+        "out",
+        env=env,
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     summary = json.loads(r.stdout)
     provenance = summary["provenance"]
@@ -88,7 +109,19 @@ def test_the_binary_inside_an_environment_finds_that_environment(tmp_path):
     # PATH: it belongs to this environment, whose python3 it finds.
     empty = tmp_path / "empty"
     empty.mkdir()
-    r = run(INSTALLED, "validate", "sphere_lambert", "--quick", "-D", "res=8", "-q", "--json", "-o", "out",
-            env={"PATH": str(empty)}, cwd=tmp_path)
+    r = run(
+        INSTALLED,
+        "validate",
+        "sphere_lambert",
+        "--quick",
+        "-D",
+        "res=8",
+        "-q",
+        "--json",
+        "-o",
+        "out",
+        env={"PATH": str(empty)},
+        cwd=tmp_path,
+    )
     assert r.returncode == 0, r.stderr
     assert "(the environment matte is installed in)" in r.stdout, r.stdout[:2000]

@@ -30,4 +30,5 @@ def test_listing_is_split_into_embree_jit_kernels_and_the_rest():
 def test_header_totals_are_not_counted():
     listing = "3,640,110,263 (100.0%)  PROGRAM TOTALS\n" + LISTING
     assert sum(instruction_split.split_listing(listing).values()) == sum(
-        instruction_split.split_listing(LISTING).values())
+        instruction_split.split_listing(LISTING).values()
+    )

@@ -4,6 +4,7 @@ K independent seeds; the standard error of each renderer's mean comes from the s
 K image means, so the test needs no assumption about per-pixel noise or filter correlation.
 The per-pixel statistical comparison is `matte validate`'s job.
 """
+
 import json
 import os
 import subprocess
@@ -50,16 +51,21 @@ def matte_means(scene, defines):
 def mitsuba_means(scene, defines):
     mi.set_variant("scalar_rgb")
     s = mi.load_file(scene, **defines)
-    return np.array([np.array(mi.render(s, spp=SPP, seed=seed), dtype=np.float64).mean(axis=(0, 1)) for seed in range(K)])
+    return np.array(
+        [np.array(mi.render(s, spp=SPP, seed=seed), dtype=np.float64).mean(axis=(0, 1)) for seed in range(K)]
+    )
 
 
-@pytest.mark.parametrize("scene, defines", [
-    ("cornell_box.xml", {"res": RES}),
-    # Every element matte renders: all shapes, lights, BSDFs incl. glass, metals, textures.
-    ("features.xml", {}),
-    # matte's numeric parameters as textures (σ, r, int_ior checkerboards and bitmaps).
-    ("textured_parameters.xml", {"res": RES}),
-])
+@pytest.mark.parametrize(
+    "scene, defines",
+    [
+        ("cornell_box.xml", {"res": RES}),
+        # Every element matte renders: all shapes, lights, BSDFs incl. glass, metals, textures.
+        ("features.xml", {}),
+        # matte's numeric parameters as textures (σ, r, int_ior checkerboards and bitmaps).
+        ("textured_parameters.xml", {"res": RES}),
+    ],
+)
 def test_image_mean_agrees_with_mitsuba(scene, defines):
     path = os.path.join(SCENES, scene)
     a, b = matte_means(path, defines), mitsuba_means(path, defines)

@@ -2,6 +2,7 @@
 (size), and must write readable outputs. All runs use fixed seeds, so outcomes are
 reproducible; the budgets are small scenes with enough samples for a 2 % change.
 """
+
 import json
 import os
 import re
@@ -61,21 +62,23 @@ def test_one_pixel_camera_shift_fails(tmp_path):
     assert worst and all({"scale", "place", "p"} <= set(w) for w in worst)
     html = (out / "report.html").read_text()
     assert "Where it differs" in html
-    summary = html[html.index('<table class="summary">'):html.index('<div class="scene"')]
+    summary = html[html.index('<table class="summary">') : html.index('<div class="scene"')]
     assert ">FAIL<" in summary
     # The worst scale rejected: its smallest p is below its level.
     ratios = [float(x) for x in re.findall(r"(?:pixel|blocks|image) \(([0-9.e+-]+)\)", summary)]
     assert len(ratios) == 1 and ratios[0] < 1, summary
     for ref in re.findall(r'src="([^"]*rejected_\d+_\w+\.png)"', html):
         assert (out / ref).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    assert len(re.findall(r'rejected_\d+_difference\.png', html)) >= 1
+    assert len(re.findall(r"rejected_\d+_difference\.png", html)) >= 1
 
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_self_comparison_rejects_at_the_nominal_rate(tmp_path, seed):
     # matte against itself with other seeds: the uncorrected per-channel rejection rate at
     # alpha = 1 % must be near 1 %, and the corrected verdict must pass.
-    proc, summary, _ = validate(tmp_path, CORNELL, "--self-check", "--seed", str(seed), "--passes", "16", "--spp", "128")
+    proc, summary, _ = validate(
+        tmp_path, CORNELL, "--self-check", "--seed", str(seed), "--passes", "16", "--spp", "128"
+    )
     s = summary["scenes"][0]
     assert 0.004 < s["uncorrected_rejection_rate"] < 0.016, s["uncorrected_rejection_rate"]
     assert proc.returncode == 0 and s["passed"], proc.stderr

@@ -24,6 +24,7 @@ ray in both) and how much is shading.
 Needs valgrind (Debian's `valgrind`; installed here if missing, as setup_venv.sh does).
 Prints a Markdown table; writes the numbers as JSON.
 """
+
 import argparse
 import json
 import re
@@ -56,9 +57,16 @@ def classify(name):
 def annotate(out_file, inclusive):
     """`callgrind_annotate`'s function listing of a callgrind output file."""
     return subprocess.run(
-        ["callgrind_annotate", "--threshold=100", f"--inclusive={'yes' if inclusive else 'no'}", "--auto=no",
-         str(out_file)],
-        capture_output=True, text=True, check=True,
+        [
+            "callgrind_annotate",
+            "--threshold=100",
+            f"--inclusive={'yes' if inclusive else 'no'}",
+            "--auto=no",
+            str(out_file),
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
     ).stdout
 
 
@@ -98,7 +106,9 @@ def bsdf_inclusive(out_file):
 def callgrind(cmd, out_file, extra=()):
     subprocess.run(
         ["valgrind", "--tool=callgrind", "--smc-check=all", f"--callgrind-out-file={out_file}", *extra, *cmd],
-        check=True, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+        check=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.DEVNULL,
     )
     return split(out_file)
 
@@ -110,8 +120,20 @@ def defines(job, res):
 
 
 def matte_split(job, driver, res, spp, work):
-    cmd = [str(ROOT / "target/release/matte"), "render", job["scene"], "--spp", str(spp), "--threads", "1", "-q",
-           "--driver", driver, "-o", str(work / "matte.exr")]
+    cmd = [
+        str(ROOT / "target/release/matte"),
+        "render",
+        job["scene"],
+        "--spp",
+        str(spp),
+        "--threads",
+        "1",
+        "-q",
+        "--driver",
+        driver,
+        "-o",
+        str(work / "matte.exr"),
+    ]
     for k, v in defines(job, res).items():
         cmd += ["-D", f"{k}={v}"]
     counts = callgrind(cmd, work / "cg.matte", ["--collect-atstart=no", "--toggle-collect=*Integrator::render_tile*"])
@@ -123,8 +145,12 @@ def mitsuba_split(job, variant, res, spp, work):
     # n = 0 first, not counted: under valgrind Dr.Jit sees another CPU, so its kernel cache is
     # filled there, and n = 1 and n = 2 both load the kernels from it.
     for n in (0, 1, 2):
-        cmd = [sys.executable, __file__, "--child", json.dumps({"job": job, "variant": variant, "res": res,
-                                                                 "spp": spp, "renders": n})]
+        cmd = [
+            sys.executable,
+            __file__,
+            "--child",
+            json.dumps({"job": job, "variant": variant, "res": res, "spp": spp, "renders": n}),
+        ]
         counts.append(callgrind(cmd, work / f"cg.{variant}.{n}"))
     return {k: counts[2][k] - counts[1][k] for k in counts[0]}
 
@@ -133,6 +159,7 @@ def child(spec):
     """Loads the scene, renders once to warm up, then `renders` more times."""
     import drjit as dr
     import mitsuba as mi
+
     mi.set_variant(spec["variant"])
     job = spec["job"]
     scene = mi.load_file(job["scene"], **defines(job, spec["res"]))
@@ -147,8 +174,12 @@ def main():
     ap.add_argument("--jobs", default=str(ROOT / "bench_out/mitsuba_jobs.json"))
     ap.add_argument("--res", type=int, default=64)
     ap.add_argument("--spp", type=int, default=16)
-    ap.add_argument("--variants", nargs="*", default=["llvm_ad_rgb", "scalar_rgb"],
-                    help="Mitsuba variants to count (none: matte only)")
+    ap.add_argument(
+        "--variants",
+        nargs="*",
+        default=["llvm_ad_rgb", "scalar_rgb"],
+        help="Mitsuba variants to count (none: matte only)",
+    )
     ap.add_argument("--drivers", nargs="+", default=["one-path", "wavefront"], help="matte's tile drivers")
     ap.add_argument("--scenes", nargs="*", help="only these jobs (default: all)")
     ap.add_argument("-o", "--output", default=str(ROOT / "bench_out/instructions.json"))
@@ -167,24 +198,38 @@ def main():
         for job in jobs:
             for driver in a.drivers:
                 print(f"callgrind: {job['name']}: matte --driver {driver}", file=sys.stderr, flush=True)
-                rows.append({"scene": job["name"], "program": f"matte, {driver}",
-                             **matte_split(job, driver, a.res, a.spp, work)})
+                rows.append(
+                    {
+                        "scene": job["name"],
+                        "program": f"matte, {driver}",
+                        **matte_split(job, driver, a.res, a.spp, work),
+                    }
+                )
             for variant in a.variants:
                 print(f"callgrind: {job['name']}: mitsuba {variant}", file=sys.stderr, flush=True)
-                rows.append({"scene": job["name"], "program": f"mitsuba {variant}",
-                             **mitsuba_split(job, variant, a.res, a.spp, work)})
+                rows.append(
+                    {
+                        "scene": job["name"],
+                        "program": f"mitsuba {variant}",
+                        **mitsuba_split(job, variant, a.res, a.spp, work),
+                    }
+                )
     Path(a.output).parent.mkdir(parents=True, exist_ok=True)
     Path(a.output).write_text(json.dumps({"res": a.res, "spp": a.spp, "rows": rows}, indent=1))
-    print(f"\n| scene ({a.res}², {a.spp} spp) | program | instructions / render (M) | Embree (M) | "
-          f"Dr.Jit kernels (M) | rest (M) | of it in BSDF calls (M) | Embree share | total / Mitsuba llvm's |")
+    print(
+        f"\n| scene ({a.res}², {a.spp} spp) | program | instructions / render (M) | Embree (M) | "
+        f"Dr.Jit kernels (M) | rest (M) | of it in BSDF calls (M) | Embree share | total / Mitsuba llvm's |"
+    )
     print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         total = r["embree"] + r["jit"] + r["rest"]
         bsdf = f"{r['bsdf'] / 1e6:.0f}" if "bsdf" in r else "–"
         llvm = next((x for x in rows if x["scene"] == r["scene"] and x["program"] == "mitsuba llvm_ad_rgb"), None)
         ratio = f"{total / sum(llvm[k] for k in ('embree', 'jit', 'rest')):.2f}" if llvm else "–"
-        print(f"| {r['scene']} | {r['program']} | {total / 1e6:.0f} | {r['embree'] / 1e6:.0f} | "
-              f"{r['jit'] / 1e6:.0f} | {r['rest'] / 1e6:.0f} | {bsdf} | {r['embree'] / total:.0%} | {ratio} |")
+        print(
+            f"| {r['scene']} | {r['program']} | {total / 1e6:.0f} | {r['embree'] / 1e6:.0f} | "
+            f"{r['jit'] / 1e6:.0f} | {r['rest'] / 1e6:.0f} | {bsdf} | {r['embree'] / total:.0%} | {ratio} |"
+        )
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ and OUT/cornell_ground_truth.png (tone-mapped images side by side).
 
     .venv/bin/python validation/experiments/microgeometry_cornell.py OUT [--passes 8] [--spp 32] [--res 128]
 """
+
 import argparse
 import json
 import re
@@ -37,17 +38,28 @@ CONFIGS = [
     ("eon", "EON r=0.3 (study)", "eon", []),
     ("eon_fitted", "EON r=0.13 (fit to V-cavities)", "eon", [("float", "roughness", "0.13")]),
     ("ginneken", "van Ginneken m=0.3", "ginneken", []),
-    ("truth_v_cavities", "ground truth: V-cavities σ=0.3", "tabulated_brdf",
-     [("string", "filename", str(TRUTH / "v_cavities_sigma0.3.json"))]),
-    ("truth_height_field", "ground truth: height field m=0.3", "tabulated_brdf",
-     [("string", "filename", str(TRUTH / "height_field_m0.3.json"))]),
+    (
+        "truth_v_cavities",
+        "ground truth: V-cavities σ=0.3",
+        "tabulated_brdf",
+        [("string", "filename", str(TRUTH / "v_cavities_sigma0.3.json"))],
+    ),
+    (
+        "truth_height_field",
+        "ground truth: height field m=0.3",
+        "tabulated_brdf",
+        [("string", "filename", str(TRUTH / "height_field_m0.3.json"))],
+    ),
 ]
 
 
 def derived_scene(out, key, bsdf, props):
     props_xml = "".join(f'<{t} name="{n}" value="{v}"/>' for t, n, v in props)
-    text = re.sub(r'<bsdf type="\$bsdf" id="(\w+)">', lambda m: f'<bsdf type="{bsdf}" id="{m.group(1)}">{props_xml}',
-                  SCENE.read_text())
+    text = re.sub(
+        r'<bsdf type="\$bsdf" id="(\w+)">',
+        lambda m: f'<bsdf type="{bsdf}" id="{m.group(1)}">{props_xml}',
+        SCENE.read_text(),
+    )
     path = out / f"cornell_{key}.xml"
     path.write_text(text.replace('value="assets/', f'value="{SCENE.parent}/assets/'))
     return path
@@ -68,8 +80,11 @@ def main():
     mi.set_variant("scalar_rgb")
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    region = next(r for r in json.loads((SCENE.with_suffix(".regions.json")).read_text())["regions"]
-                  if r["name"].startswith("floor below"))["rect"]
+    region = next(
+        r
+        for r in json.loads((SCENE.with_suffix(".regions.json")).read_text())["regions"]
+        if r["name"].startswith("floor below")
+    )["rect"]
     x0, y0, x1, y1 = (int(round(v * a.res)) for v in region)
     means, regions, images = {}, {}, {}
     for key, _, bsdf, props in CONFIGS:
@@ -77,8 +92,24 @@ def main():
         means[key], regions[key], acc = [], [], 0
         for k in range(a.passes):
             exr = out / f"{key}_{k}.exr"
-            subprocess.run([str(MATTE), "render", str(scene), "-q", "--seed", str(k), "--spp", str(a.spp),
-                            "-D", f"res={a.res}", "-o", str(exr)], check=True, stdout=subprocess.DEVNULL)
+            subprocess.run(
+                [
+                    str(MATTE),
+                    "render",
+                    str(scene),
+                    "-q",
+                    "--seed",
+                    str(k),
+                    "--spp",
+                    str(a.spp),
+                    "-D",
+                    f"res={a.res}",
+                    "-o",
+                    str(exr),
+                ],
+                check=True,
+                stdout=subprocess.DEVNULL,
+            )
             lum, img = luminance(exr)
             means[key].append(lum.mean())
             regions[key].append(lum[y0:y1, x0:x1].mean())
@@ -93,21 +124,30 @@ def main():
         return {"ratio": float(r.mean()), "half_width": float(hw)}
 
     result = {"passes": a.passes, "spp": a.spp, "res": a.res, "configurations": []}
-    for key, label, bsdf, props in CONFIGS:
-        result["configurations"].append({"key": key, "label": label, "image_mean_ratio": ratio(means, key),
-                                         "floor_below_green_box_ratio": ratio(regions, key)})
+    for key, label, _bsdf, _props in CONFIGS:
+        result["configurations"].append(
+            {
+                "key": key,
+                "label": label,
+                "image_mean_ratio": ratio(means, key),
+                "floor_below_green_box_ratio": ratio(regions, key),
+            }
+        )
     (out / "cornell_ground_truth.json").write_text(json.dumps(result, indent=2))
     fig, axes = plt.subplots(1, len(CONFIGS), figsize=(2.6 * len(CONFIGS), 3.2))
     for ax, (key, label, _, _), c in zip(axes, CONFIGS, result["configurations"]):
         ax.imshow(np.clip(images[key] / (1 + images[key]), 0, 1) ** (1 / 2.2), interpolation="nearest")
-        ax.set_title(f"{label}\n{c['image_mean_ratio']['ratio']:.3f} ± {c['image_mean_ratio']['half_width']:.3f}",
-                     fontsize=7)
+        ax.set_title(
+            f"{label}\n{c['image_mean_ratio']['ratio']:.3f} ± {c['image_mean_ratio']['half_width']:.3f}", fontsize=7
+        )
         ax.axis("off")
     fig.tight_layout()
     fig.savefig(out / "cornell_ground_truth.png", dpi=110)
     for c in result["configurations"]:
         m, f = c["image_mean_ratio"], c["floor_below_green_box_ratio"]
-        print(f"{c['label']:36s} image {m['ratio']:.4f} ± {m['half_width']:.4f}   floor {f['ratio']:.4f} ± {f['half_width']:.4f}")
+        print(
+            f"{c['label']:36s} image {m['ratio']:.4f} ± {m['half_width']:.4f}   floor {f['ratio']:.4f} ± {f['half_width']:.4f}"
+        )
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ within the two pooled 99 % intervals combined, and the mean and largest relative
 
     .venv/bin/python validation/experiments/microgeometry_patch_sizes.py SMALL.json LARGE.json
 """
+
 import json
 import math
 import sys
@@ -27,8 +28,10 @@ def main():
     for part in ("points", "albedo"):
         for key in ("simulated", "single_bounce"):
             inside, n, mean, worst, hw = agreement(small[part], large[part], key)
-            print(f"{part:7s} {key:14s}: {inside}/{n} within the intervals; relative difference mean "
-                  f"{100 * mean:.2f} %, largest {100 * worst:.2f} %; mean interval ±{100 * hw:.2f} %")
+            print(
+                f"{part:7s} {key:14s}: {inside}/{n} within the intervals; relative difference mean "
+                f"{100 * mean:.2f} %, largest {100 * worst:.2f} %; mean interval ±{100 * hw:.2f} %"
+            )
 
 
 if __name__ == "__main__":

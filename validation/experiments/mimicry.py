@@ -50,6 +50,7 @@ grid of difference images, a strip per pair), ``<scene>/grid.png``, ``<scene>/<t
 <fitted>.png`` (target | fit | relative difference per image) and the ``matte fit`` folder of
 every pair (``<scene>/<target>/<fitted>/index.html``).
 """
+
 import argparse
 import html
 import json
@@ -63,8 +64,7 @@ import numpy as np
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 
 MODELS = ("lambert", "wolff", "oren_nayar", "eon", "ginneken")
-LABELS = {"lambert": "Lambert", "wolff": "Wolff", "oren_nayar": "Oren–Nayar", "eon": "EON",
-          "ginneken": "van Ginneken"}
+LABELS = {"lambert": "Lambert", "wolff": "Wolff", "oren_nayar": "Oren–Nayar", "eon": "EON", "ginneken": "van Ginneken"}
 # Each model's shape parameter and the study's value (the plugin's default, where every fit
 # starts). Lambert has none.
 SHAPE = {
@@ -113,13 +113,21 @@ def scene_specs(out, res):
     SceneParameters keys), prb depth."""
     sphere_file = os.path.join(out, "sphere.xml")
     return {
-        "cornell": {"file": os.path.join(REPO, "mitsuba_scenes", "study", "cornell.xml"),
-                    "configs": [{"res": str(res)}], "config_names": ["Cornell box"],
-                    "materials": ("white", "green", "red"), "max_depth": 3},
-        "sphere": {"file": sphere_file, "write": SPHERE,
-                   "configs": [dict(sphere_config(g), res=str(res)) for g in (0, 75, 135)],
-                   "config_names": ["phase 0°", "phase 75°", "phase 135°"],
-                   "materials": ("ball.bsdf",), "max_depth": 2},
+        "cornell": {
+            "file": os.path.join(REPO, "mitsuba_scenes", "study", "cornell.xml"),
+            "configs": [{"res": str(res)}],
+            "config_names": ["Cornell box"],
+            "materials": ("white", "green", "red"),
+            "max_depth": 3,
+        },
+        "sphere": {
+            "file": sphere_file,
+            "write": SPHERE,
+            "configs": [dict(sphere_config(g), res=str(res)) for g in (0, 75, 135)],
+            "config_names": ["phase 0°", "phase 75°", "phase 135°"],
+            "materials": ("ball.bsdf",),
+            "max_depth": 2,
+        },
     }
 
 
@@ -136,6 +144,7 @@ def free_keys(model, materials):
 
 # -- Error measures (numpy; images are lists of H×W×3 arrays, one per configuration) ----------
 
+
 def luminance(img):
     return img[..., 0] * 0.2126 + img[..., 1] * 0.7152 + img[..., 2] * 0.0722
 
@@ -143,7 +152,7 @@ def luminance(img):
 def relative_rmse(images, targets):
     """‖a − b‖₂ / ‖b‖₂ over every pixel and channel of every image."""
     num = sum(float(np.sum((a - b) ** 2)) for a, b in zip(images, targets))
-    den = sum(float(np.sum(b ** 2)) for b in targets)
+    den = sum(float(np.sum(b**2)) for b in targets)
     return math.sqrt(num / den)
 
 
@@ -175,6 +184,7 @@ def excess(value, floor):
 
 # -- Rendering -------------------------------------------------------------------------------
 
+
 def render_model(mi, spec, model, spp, seed, values=None):
     """One render per configuration of `spec` with `model`; `values` (key → list) overrides
     parameters (the fitted ones). Returns numpy arrays."""
@@ -200,23 +210,45 @@ def matched_reflectances(mi, spec, model, targets, spp=32):
     renders = render_model(mi, spec, model, spp, seed=4_000_000)
     ratio = sum(t.sum(axis=(0, 1)) for t in targets) / sum(r.sum(axis=(0, 1)) for r in renders)
     p = mi.traverse(mi.load_file(spec["file"], bsdf=model, **spec["configs"][0]))
-    return {f"{m}.reflectance.value": np.clip(np.array(p[f"{m}.reflectance.value"]).ravel() * ratio, 0.001, 1.0)
-            for m in spec["materials"]}
+    return {
+        f"{m}.reflectance.value": np.clip(np.array(p[f"{m}.reflectance.value"]).ravel() * ratio, 0.001, 1.0)
+        for m in spec["materials"]
+    }
 
 
 def fit_pair(spec, target_files, model, folder, args, start_rho):
     """Fits `model` to the targets with matte_mitsuba.fit, starting from the reflectances
     `start_rho` and the study's shape parameter; returns its fit.json."""
     from matte_mitsuba.fit import main as fit_main
+
     keys = free_keys(model, spec["materials"])
-    argv = [spec["file"], "--iterations", str(args.iterations), "--lr", str(args.lr),
-            "--lr-final", str(args.lr_final), "--spp", str(args.spp), "--max-depth", str(spec["max_depth"]),
-            "--seed", str(args.seed), "-o", folder, "--quiet"]
+    argv = [
+        spec["file"],
+        "--iterations",
+        str(args.iterations),
+        "--lr",
+        str(args.lr),
+        "--lr-final",
+        str(args.lr_final),
+        "--spp",
+        str(args.spp),
+        "--max-depth",
+        str(spec["max_depth"]),
+        "--seed",
+        str(args.seed),
+        "-o",
+        folder,
+        "--quiet",
+    ]
     for k in keys:
         argv += ["--param", k]
         if k in start_rho:
-            argv += ["--init", f"{k}=" + ",".join(f"{x:.6g}" for x in start_rho[k]),
-                     "--lr-factor", f"{k}={args.rho_lr_factor}"]
+            argv += [
+                "--init",
+                f"{k}=" + ",".join(f"{x:.6g}" for x in start_rho[k]),
+                "--lr-factor",
+                f"{k}={args.rho_lr_factor}",
+            ]
         elif model in args.start:
             argv += ["--init", f"{k}={args.start[model]}"]
     for defines, t in zip(spec["configs"], target_files):
@@ -239,8 +271,9 @@ def cell(fit_json, fitted, target, floor, t, m, seconds, start_rho=None):
     rmse = relative_rmse(fitted, target)
     worst = worst_region(fitted, target)
     ranges = fit_json["ranges"]
-    at_bound = sorted(k for k, v in values.items()
-                      if any(abs(x - ranges[k][0]) < 1e-6 or abs(x - ranges[k][1]) < 1e-6 for x in v))
+    at_bound = sorted(
+        k for k, v in values.items() if any(abs(x - ranges[k][0]) < 1e-6 or abs(x - ranges[k][1]) < 1e-6 for x in v)
+    )
     return {
         "relative_rmse": rmse,
         "excess": excess(rmse, floor["relative_rmse"]),
@@ -258,15 +291,26 @@ def cell(fit_json, fitted, target, floor, t, m, seconds, start_rho=None):
 
 
 def scene_summary(spec, floors, cells):
-    return {"file": os.path.relpath(spec["file"], REPO) if spec["file"].startswith(REPO) else os.path.basename(spec["file"]),
-            "images": spec["config_names"], "materials": list(spec["materials"]), "max_depth": spec["max_depth"],
-            "noise_floor": floors, "cells": cells}
+    return {
+        "file": os.path.relpath(spec["file"], REPO)
+        if spec["file"].startswith(REPO)
+        else os.path.basename(spec["file"]),
+        "images": spec["config_names"],
+        "materials": list(spec["materials"]),
+        "max_depth": spec["max_depth"],
+        "noise_floor": floors,
+        "cells": cells,
+    }
 
 
 def log_cell(name, t, m, c, floor):
-    print(f"mimicry: {name}: target {t:<10} fitted {m:<10} rel. RMSE {100 * c['relative_rmse']:6.2f} % "
-          f"(floor {100 * floor['relative_rmse']:.2f} %), worst region {100 * c['worst_region']:6.2f} % "
-          f"(floor {100 * floor['worst_region']:.2f} %), {c['seconds']:.0f} s", file=sys.stderr, flush=True)
+    print(
+        f"mimicry: {name}: target {t:<10} fitted {m:<10} rel. RMSE {100 * c['relative_rmse']:6.2f} % "
+        f"(floor {100 * floor['relative_rmse']:.2f} %), worst region {100 * c['worst_region']:6.2f} % "
+        f"(floor {100 * floor['worst_region']:.2f} %), {c['seconds']:.0f} s",
+        file=sys.stderr,
+        flush=True,
+    )
 
 
 def run_scene(mi, name, spec, out, args):
@@ -287,8 +331,12 @@ def run_scene(mi, name, spec, out, args):
             mi.Bitmap(img.astype(np.float32)).write(path)
             target_files[t].append(path)
         floors[t] = noise_floor(mi, spec, t, targets[t], args.target_spp)
-        print(f"mimicry: {name}: target {t}: noise floor {100 * floors[t]['relative_rmse']:.2f} % "
-              f"(worst region {100 * floors[t]['worst_region']:.2f} %)", file=sys.stderr, flush=True)
+        print(
+            f"mimicry: {name}: target {t}: noise floor {100 * floors[t]['relative_rmse']:.2f} % "
+            f"(worst region {100 * floors[t]['worst_region']:.2f} %)",
+            file=sys.stderr,
+            flush=True,
+        )
     cells = {}
     for t in args.targets:
         cells[t] = {}
@@ -335,6 +383,7 @@ def collect_scene(mi, name, spec, out, args):
 
 # -- Pictures --------------------------------------------------------------------------------
 
+
 def pictures(folder, rows, columns, targets, cells, value_range):
     """The strip of every pair in `cells` and the scene's grid, from the targets and the saved
     fitted renders."""
@@ -348,8 +397,11 @@ def pictures(folder, rows, columns, targets, cells, value_range):
 
 def load_targets(folder, models, count):
     import mitsuba as mi
-    return {t: [np.array(mi.Bitmap(os.path.join(folder, t, f"target_{c}.exr")), dtype=np.float64)
-                for c in range(count)] for t in models}
+
+    return {
+        t: [np.array(mi.Bitmap(os.path.join(folder, t, f"target_{c}.exr")), dtype=np.float64) for c in range(count)]
+        for t in models
+    }
 
 
 def srgb(img):
@@ -361,6 +413,7 @@ def difference_rgb(a, b, value_range):
     """(L_a − L_b) / L_b as red (a brighter) / blue (a darker), ±`value_range` saturates; black
     where the target is dark (below 5 % of its mean luminance)."""
     import matplotlib
+
     la, lb = luminance(a), luminance(b)
     dark = lb < 0.05 * max(lb.mean(), 1e-12)
     rel = np.where(dark, 0.0, (la - lb) / np.where(dark, 1.0, lb))
@@ -372,8 +425,20 @@ def difference_rgb(a, b, value_range):
 def strip_png(path, targets, fitted, value_range):
     """Per image one row: target | fitted render | relative difference."""
     import mitsuba as mi
-    rows = [np.concatenate([srgb(t), np.full((t.shape[0], 2, 3), 1.0), srgb(f), np.full((t.shape[0], 2, 3), 1.0),
-                            difference_rgb(f, t, value_range)], axis=1) for t, f in zip(targets, fitted)]
+
+    rows = [
+        np.concatenate(
+            [
+                srgb(t),
+                np.full((t.shape[0], 2, 3), 1.0),
+                srgb(f),
+                np.full((t.shape[0], 2, 3), 1.0),
+                difference_rgb(f, t, value_range),
+            ],
+            axis=1,
+        )
+        for t, f in zip(targets, fitted)
+    ]
     gap = np.full((2, rows[0].shape[1], 3), 1.0)
     img = np.concatenate(sum(([r, gap] for r in rows), [])[:-1], axis=0)
     mi.Bitmap((np.clip(img, 0, 1) * 255 + 0.5).astype(np.uint8), mi.Bitmap.PixelFormat.RGB).write(path)
@@ -382,11 +447,18 @@ def strip_png(path, targets, fitted, value_range):
 def grid_png(path, rows, columns, targets, folder, cells, value_range):
     """Rows: target model (its target, then the difference of each fitted model's render)."""
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
     n = len(columns)
-    fig, ax = plt.subplots(len(rows), n + 1, figsize=(1.9 * (n + 1) * len(targets[rows[0]]) ** 0.5,
-                                                      1.9 * len(rows) + 0.6), dpi=110, squeeze=False)
+    fig, ax = plt.subplots(
+        len(rows),
+        n + 1,
+        figsize=(1.9 * (n + 1) * len(targets[rows[0]]) ** 0.5, 1.9 * len(rows) + 0.6),
+        dpi=110,
+        squeeze=False,
+    )
     for i, t in enumerate(rows):
         ax[i, 0].imshow(srgb(np.concatenate(targets[t], axis=1)))
         ax[i, 0].set_title(f"target: {LABELS[t]}", fontsize=8)
@@ -400,14 +472,17 @@ def grid_png(path, rows, columns, targets, folder, cells, value_range):
             ax[i, j].set_title(f"{LABELS[m]}: {100 * c['relative_rmse']:.1f} %", fontsize=8)
     for a in ax.ravel():
         a.set_axis_off()
-    fig.suptitle(f"fitted − target, relative luminance, blue −{100 * value_range:.0f} % … red +{100 * value_range:.0f} %",
-                 fontsize=9)
+    fig.suptitle(
+        f"fitted − target, relative luminance, blue −{100 * value_range:.0f} % … red +{100 * value_range:.0f} %",
+        fontsize=9,
+    )
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
 
 
 # -- Report ----------------------------------------------------------------------------------
+
 
 def cell_colour(value, floor):
     """Green at the noise floor, through yellow to red at 5× the floor and above."""
@@ -427,29 +502,33 @@ def shape_text(model, values):
 def write_html(out, summary):
     e = html.escape
     s = summary["settings"]
-    parts = [f"""<!doctype html><html><head><meta charset="utf-8"><title>matte mimicry</title><style>
+    parts = [
+        f"""<!doctype html><html><head><meta charset="utf-8"><title>matte mimicry</title><style>
 body{{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}} img{{max-width:100%;border:1px solid #ddd}}
 table{{border-collapse:collapse;font-size:14px;margin:8px 0}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}}
 td{{white-space:nowrap}} th:first-child,td:first-child{{text-align:left}} .scene{{border-top:1px solid #ccc;padding-top:12px;margin-top:16px}}
-.small{{font-size:13px;color:#555}} img.px{{image-rendering:pixelated;width:{4 * s['res']}px;max-width:none}}
+.small{{font-size:13px;color:#555}} img.px{{image-rendering:pixelated;width:{4 * s["res"]}px;max-width:none}}
 </style></head><body><h1>matte mimicry: can one diffuse model mimic another?</h1>
 <p>Each target is rendered with one model at the study's parameters (Wolff IOR 1.4, Oren–Nayar σ 0.3, EON r 0.3,
-van Ginneken m 0.3) at {s['target_spp']} spp; every model is then fitted to it (<code>matte_mitsuba.fit</code>: Adam,
-{s['iterations']} iterations, learning rate {s['lr']} decaying to {s['lr_final']}, {s['spp']} spp per step, {s['res']}²
+van Ginneken m 0.3) at {s["target_spp"]} spp; every model is then fitted to it (<code>matte_mitsuba.fit</code>: Adam,
+{s["iterations"]} iterations, learning rate {s["lr"]} decaying to {s["lr_final"]}, {s["spp"]} spp per step, {s["res"]}²
 images): every material's reflectance and the model's shape parameter, starting from the model as the study uses it
 (the study's parameter, the scene's reflectances scaled per channel to the target's mean; a diagonal cell starts at its
-optimum, so its residual is the fit's own noise); the reflectances' learning rate is {s['rho_lr_factor']} of the shape
+optimum, so its residual is the fit's own noise); the reflectances' learning rate is {s["rho_lr_factor"]} of the shape
 parameter's.
-Rows: the target's model; columns: the fitted model. Residual on a fresh render of the fit at {s['target_spp']} spp
+Rows: the target's model; columns: the fitted model. Residual on a fresh render of the fit at {s["target_spp"]} spp
 with a new seed: relative RMSE ‖fit − target‖₂ / ‖target‖₂ and the worst region (largest relative luminance error of an
-{s['res'] // BLOCKS}×{s['res'] // BLOCKS}-pixel block mean among blocks at least {100 * BLOCK_MIN:.0f} % as bright as the image's mean block). The noise floor
+{s["res"] // BLOCKS}×{s["res"] // BLOCKS}-pixel block mean among blocks at least {100 * BLOCK_MIN:.0f} % as bright as the image's mean block). The noise floor
 is the same number for the target against a second target with another seed. Cells: green at the floor, red at 5× the
-floor and above.</p>"""]
+floor and above.</p>"""
+    ]
     for name, sc in summary["scenes"].items():
         models = list(sc["cells"].keys())
-        parts.append(f"<div class=scene><h2>{e(name)}</h2><p class=small>Scene <code>{e(sc['file'])}</code>; images: "
-                     f"{e(', '.join(sc['images']))}; materials fitted: {e(', '.join(sc['materials']))}; "
-                     f"prb max_depth {sc['max_depth']}.</p>")
+        parts.append(
+            f"<div class=scene><h2>{e(name)}</h2><p class=small>Scene <code>{e(sc['file'])}</code>; images: "
+            f"{e(', '.join(sc['images']))}; materials fitted: {e(', '.join(sc['materials']))}; "
+            f"prb max_depth {sc['max_depth']}.</p>"
+        )
         for what, title in (("relative_rmse", "Relative RMSE (%)"), ("worst_region", "Worst region (%)")):
             head = "".join(f"<th>{e(LABELS[m])}</th>" for m in models)
             rows = []
@@ -458,35 +537,47 @@ floor and above.</p>"""]
                 tds = "".join(
                     f"<td style='background:{cell_colour(sc['cells'][t][m][what], floor)}'>"
                     f"<a href='{e(name)}/{e(sc['cells'][t][m]['fit_report'])}'>{100 * sc['cells'][t][m][what]:.2f}</a></td>"
-                    for m in models)
+                    for m in models
+                )
                 rows.append(f"<tr><td>{e(LABELS[t])}</td>{tds}<td>{100 * floor:.2f}</td></tr>")
-            parts.append(f"<h3>{title}</h3><table><tr><th>target \\ fitted</th>{head}<th>noise floor</th></tr>"
-                         f"{''.join(rows)}</table>")
+            parts.append(
+                f"<h3>{title}</h3><table><tr><th>target \\ fitted</th>{head}<th>noise floor</th></tr>"
+                f"{''.join(rows)}</table>"
+            )
         head = "".join(f"<th>{e(LABELS[m])}</th>" for m in models)
         rows = []
         for t in models:
             tds = "".join(
                 f"<td class=small>{e(shape_text(m, sc['cells'][t][m]['fitted']))}"
                 f"{' (bound)' if any(not k.endswith('reflectance.value') for k in sc['cells'][t][m]['at_bound']) else ''}</td>"
-                for m in models)
+                for m in models
+            )
             rows.append(f"<tr><td>{e(LABELS[t])}</td>{tds}</tr>")
-        parts.append(f"<h3>Fitted shape parameters</h3><table><tr><th>target \\ fitted</th>{head}</tr>{''.join(rows)}</table>"
-                     f"<p class=small>(bound): a shape parameter ended at its clamp range's end. Every fitted value is in "
-                     f"<a href='mimicry.json'>mimicry.json</a>.</p>")
+        parts.append(
+            f"<h3>Fitted shape parameters</h3><table><tr><th>target \\ fitted</th>{head}</tr>{''.join(rows)}</table>"
+            f"<p class=small>(bound): a shape parameter ended at its clamp range's end. Every fitted value is in "
+            f"<a href='mimicry.json'>mimicry.json</a>.</p>"
+        )
         parts.append(f"<h3>Differences</h3><img src='{e(name)}/grid.png'>")
         for t in models:
-            parts.append(f"<h3>Target {e(LABELS[t])}: target | fit | (fit − target) / target, ±{100 * s['diff_range']:.0f} %</h3>"
-                         "<div style='display:flex;flex-wrap:wrap;gap:12px'>")
+            parts.append(
+                f"<h3>Target {e(LABELS[t])}: target | fit | (fit − target) / target, ±{100 * s['diff_range']:.0f} %</h3>"
+                "<div style='display:flex;flex-wrap:wrap;gap:12px'>"
+            )
             for m in models:
                 c = sc["cells"][t][m]
-                parts.append(f"<figure style='margin:0'><img class=px src='{e(name)}/{e(c['strip'])}'>"
-                             f"<figcaption class=small>{e(LABELS[m])}: {100 * c['relative_rmse']:.2f} %, worst "
-                             f"{100 * c['worst_region']:.2f} % (<a href='{e(name)}/{e(c['fit_report'])}'>fit</a>)"
-                             f"</figcaption></figure>")
+                parts.append(
+                    f"<figure style='margin:0'><img class=px src='{e(name)}/{e(c['strip'])}'>"
+                    f"<figcaption class=small>{e(LABELS[m])}: {100 * c['relative_rmse']:.2f} %, worst "
+                    f"{100 * c['worst_region']:.2f} % (<a href='{e(name)}/{e(c['fit_report'])}'>fit</a>)"
+                    f"</figcaption></figure>"
+                )
             parts.append("</div>")
         parts.append("</div>")
-    parts.append(f"<p class=small>Total time {summary['seconds']:.0f} s. <a href='mimicry.json'>mimicry.json</a> has every number."
-                 "</p></body></html>\n")
+    parts.append(
+        f"<p class=small>Total time {summary['seconds']:.0f} s. <a href='mimicry.json'>mimicry.json</a> has every number."
+        "</p></body></html>\n"
+    )
     with open(os.path.join(out, "index.html"), "w") as f:
         f.write("\n".join(parts))
 
@@ -509,11 +600,18 @@ def markdown(summary):
                     cells.append(f"**{text}**" if v > 2 * floor else text)
                 lines.append(f"| {LABELS[t]} | " + " | ".join(cells) + f" | {100 * sc['noise_floor'][t][what]:.2f} |")
             lines.append("")
-        lines += [f"**{name}: fitted shape parameters**", "", head.replace(" noise floor |", ""),
-                  "|---" * (len(models) + 1) + "|"]
+        lines += [
+            f"**{name}: fitted shape parameters**",
+            "",
+            head.replace(" noise floor |", ""),
+            "|---" * (len(models) + 1) + "|",
+        ]
         for t in models:
-            lines.append(f"| {LABELS[t]} | " + " | ".join(shape_text(m, sc["cells"][t][m]["fitted"]) or "–"
-                                                            for m in models) + " |")
+            lines.append(
+                f"| {LABELS[t]} | "
+                + " | ".join(shape_text(m, sc["cells"][t][m]["fitted"]) or "–" for m in models)
+                + " |"
+            )
         lines.append("")
     return "\n".join(lines)
 
@@ -534,19 +632,34 @@ def main(argv=None):
     ap.add_argument("--iterations", type=int, default=24)
     ap.add_argument("--lr", type=float, default=0.08)
     ap.add_argument("--lr-final", type=float, default=0.002)
-    ap.add_argument("--rho-lr-factor", type=float, default=0.25,
-                    help="the reflectances' learning rate relative to the shape parameter's")
+    ap.add_argument(
+        "--rho-lr-factor",
+        type=float,
+        default=0.25,
+        help="the reflectances' learning rate relative to the shape parameter's",
+    )
     ap.add_argument("--spp", type=int, default=8, help="samples per pixel of each optimisation render")
     ap.add_argument("--target-spp", type=int, default=1024)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--diff-range", type=float, default=0.2, help="colour scale of the difference images (relative)")
-    ap.add_argument("--start", action="append", default=[], metavar="MODEL=VALUE",
-                    help="start fits of MODEL at this shape parameter instead of the study's value (repeatable)")
+    ap.add_argument(
+        "--start",
+        action="append",
+        default=[],
+        metavar="MODEL=VALUE",
+        help="start fits of MODEL at this shape parameter instead of the study's value (repeatable)",
+    )
     ap.add_argument("--targets", help="comma-separated rows (target models) to run; default: --models")
-    ap.add_argument("--collect", action="store_true",
-                    help="rebuild mimicry.json and the reports from the pair folders in -o (runs split with --targets)")
-    ap.add_argument("--report-only", action="store_true",
-                    help="redraw the pictures and the page from the outputs of an earlier run in -o")
+    ap.add_argument(
+        "--collect",
+        action="store_true",
+        help="rebuild mimicry.json and the reports from the pair folders in -o (runs split with --targets)",
+    )
+    ap.add_argument(
+        "--report-only",
+        action="store_true",
+        help="redraw the pictures and the page from the outputs of an earlier run in -o",
+    )
     args = ap.parse_args(argv)
     args.models = args.models.split(",")
     args.targets = args.targets.split(",") if args.targets else list(args.models)
@@ -565,6 +678,7 @@ def main(argv=None):
             ap.error(f"--models: unknown model {m!r} (one of {', '.join(MODELS)})")
 
     import mitsuba as mi
+
     mi.set_variant("llvm_ad_rgb")
     import matte_mitsuba  # noqa: F401  (registers the plugins)
 
@@ -584,8 +698,10 @@ def main(argv=None):
     os.makedirs(out, exist_ok=True)
     specs = scene_specs(out, args.res)
     started = time.time()
-    summary = {"settings": {k: v for k, v in vars(args).items() if k not in ("output", "collect", "report_only")},
-               "scenes": {}}
+    summary = {
+        "settings": {k: v for k, v in vars(args).items() if k not in ("output", "collect", "report_only")},
+        "scenes": {},
+    }
     for name in args.scenes.split(","):
         if name not in specs:
             ap.error(f"--scenes: unknown scene {name!r} (one of {', '.join(specs)})")

@@ -17,6 +17,7 @@ The script prints the fit's largest errors: of g relative to `a + g` (what μ + 
 `g − a g'` (∂(μΛ)/∂m divided by sin θ) relative to `a + g` (the error of the elasticity of
 μ + μΛ in m, what the roughness gradient sees).
 """
+
 import argparse
 import math
 
@@ -27,7 +28,9 @@ DEG_P, DEG_Q = 5, 6
 
 
 def g_exact(a):
-    return np.array([0.5 * (math.sqrt(2 / math.pi) * math.exp(-x * x / 2) - x * math.erfc(x / math.sqrt(2))) for x in a])
+    return np.array(
+        [0.5 * (math.sqrt(2 / math.pi) * math.exp(-x * x / 2) - x * math.erfc(x / math.sqrt(2))) for x in a]
+    )
 
 
 def fit(a, g, iterations=80):

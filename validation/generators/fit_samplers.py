@@ -41,6 +41,7 @@ gain, an upper bound on any fit's).
 
 Deterministic: fixed grids, fixed starting points, no random numbers.
 """
+
 import argparse
 import json
 import os
@@ -54,6 +55,7 @@ PI = np.pi
 
 # ---------------------------------------------------------------- quadrature ---------------
 
+
 class Grid:
     """Midpoint rule in (z = cos θo, φ ∈ [0, π]); weights include the factor 2 of the mirror
     half."""
@@ -62,7 +64,7 @@ class Grid:
         z = (np.arange(nz) + 0.5) / nz
         phi = (np.arange(nphi) + 0.5) / nphi * PI
         self.z, self.phi = np.meshgrid(z, phi, indexing="ij")
-        s = np.sqrt(1.0 - self.z ** 2)
+        s = np.sqrt(1.0 - self.z**2)
         self.wo = np.stack([s * np.cos(self.phi), s * np.sin(self.phi), self.z], axis=-1).reshape(-1, 3)
         self.weight = 2.0 * (1.0 / nz) * (PI / nphi)
         self.n = nz * nphi
@@ -74,6 +76,7 @@ def wi_of(mu):
 
 
 # ---------------------------------------------------------------- the sampler --------------
+
 
 def cltc_pdf(params, wo):
     """The CLTC mixture's density at `wo` (n × 3) for wi in the +x half of the xz plane
@@ -109,6 +112,7 @@ def cosine_variance(fc, grid):
 
 
 # ---------------------------------------------------------------- the models ---------------
+
 
 def on_coefficients(t):
     """Oren–Nayar's kernel coefficients (A, B, C3 prefactor, interreflection prefactor) at
@@ -152,8 +156,8 @@ def on_full_f(t, wi, wo):
     tan_b = sin_b / np.maximum(cos_b, tiny)
     tan_half = (sin_a + sin_b) / np.maximum(cos_a + cos_b, tiny)
     tbp = beta * 2.0 / PI
-    c2 = np.where(cos_phi >= 0.0, b * sin_a, b * (sin_a - tbp ** 3))
-    c3v = c3 * (4.0 * alpha * beta / PI ** 2) ** 2
+    c2 = np.where(cos_phi >= 0.0, b * sin_a, b * (sin_a - tbp**3))
+    c3v = c3 * (4.0 * alpha * beta / PI**2) ** 2
     direct = a + cos_phi * c2 * tan_b + (1.0 - np.abs(cos_phi)) * c3v * tan_half
     inter = l2 * (1.0 - cos_phi * tbp * tbp)
     return np.maximum(direct + inter, 0.0) / PI
@@ -211,6 +215,7 @@ class Cli:
 
 # ---------------------------------------------------------------- optimisers ---------------
 
+
 def params_of_x(x):
     """CLTC parameters from the optimiser's variables (log a, b, log c, d, log p_u)."""
     return (np.exp(x[0]), x[1], np.exp(x[2]), min(x[3], 0.0), min(np.exp(x[4]), 0.95))
@@ -265,9 +270,11 @@ def optimum(fc, grid, inits):
     each of `inits` (the neighbouring optima) and from three variants of the first (the clipped and unclipped
     lobes are separate basins: with p_u → 0 any d < 0 costs an infinite variance), each
     restarted once from its best point; the best of all."""
+
     def fun(x):
         v = variance(fc, params_of_x(x), grid)
         return v if np.isfinite(v) else 1e300
+
     starts = [np.array(x, dtype=float) for x in inits]
     for d, pu in ((-0.2, 0.1), (-0.03, 0.01), (0.0, 1e-6)):
         x = np.array(inits[0], dtype=float)
@@ -303,8 +310,10 @@ def stage1(fcs, grid, log=None):
             x, v = optimum(fc, grid, [x] if k == 0 else [x, X[k - 1, j]])
             X[k, j], V[k, j] = x, v
             if log:
-                log(f"  t={FIT_T[k]:.2f} θi={FIT_THETA[j]:4.1f}: Var cosine {Vc[k, j]:.4g}, optimum {v:.4g} "
-                    f"({Vc[k, j] / max(v, 1e-12):.2f}×) {np.round(params_of_x(x), 4)}")
+                log(
+                    f"  t={FIT_T[k]:.2f} θi={FIT_THETA[j]:4.1f}: Var cosine {Vc[k, j]:.4g}, optimum {v:.4g} "
+                    f"({Vc[k, j] / max(v, 1e-12):.2f}×) {np.round(params_of_x(x), 4)}"
+                )
     return X, V, Vc
 
 
@@ -399,8 +408,12 @@ class Objective:
 
     def __init__(self, form, fcs, grid, mus, ts, V):
         self.form, self.grid = form, grid
-        self.points = [(fcs[a][j], mu, t, np.log(cosine_variance(fcs[a][j], grid)))
-                       for a, t in enumerate(ts) for j, mu in enumerate(mus) if V[a, j] > 1e-10]
+        self.points = [
+            (fcs[a][j], mu, t, np.log(cosine_variance(fcs[a][j], grid)))
+            for a, t in enumerate(ts)
+            for j, mu in enumerate(mus)
+            if V[a, j] > 1e-10
+        ]
 
     def value(self, C, penalty=PENALTY):
         total = 0.0
@@ -419,7 +432,7 @@ class Objective:
             if not np.isfinite(lv) or not np.all(np.isfinite(g)):
                 return np.inf, grad
             excess = max(0.0, lv - lc)
-            total += lv + PENALTY * excess ** 2
+            total += lv + PENALTY * excess**2
             grad += ((1.0 + 2.0 * PENALTY * excess) * g[:, None, None] * self.form.basis(mu, t)).ravel()
         n = len(self.points)
         return total / n, grad / n
@@ -463,14 +476,15 @@ def bfgs(obj, x0, iters=200, log=None, gtol=1e-6):
 
 # ---------------------------------------------------------------- EON's fit as a baseline --
 
+
 def eon_params(r, mu):
     """EON's CLTC (`rust/brdf/eon.rs`, `EonKernel::sampler`) at roughness r."""
     poly2 = lambda c0, c1, c2: c0 + c1 * mu + c2 * mu * mu  # noqa: E731
     a = 1 + r * (poly2(0.303392, -0.518982, 0.111709) + r * (-0.276266 + 0.335918 * mu))
-    b = r * ((-1.16407 + 1.15859 * mu) + r * (0.150815 - 0.150105 * mu)) / (mu ** 3 - 1.43545)
+    b = r * ((-1.16407 + 1.15859 * mu) + r * (0.150815 - 0.150105 * mu)) / (mu**3 - 1.43545)
     c = 1 + r * poly2(0.20013, -0.506373, 0.261777)
     d = r * poly2(0.540852, -1.01625, 0.475392) / poly2(-1.0743, 0.0725628, 1.0)
-    pu = r ** 0.125 * (0.162925 - 0.372058 * mu + 0.538233 * mu ** 2 - 0.290822 * mu ** 3)
+    pu = r**0.125 * (0.162925 - 0.372058 * mu + 0.538233 * mu**2 - 0.290822 * mu**3)
     return (a, b, c, min(d, 0.0), pu)
 
 
@@ -478,9 +492,11 @@ def best_eon_roughness(fcs, mus, grid):
     """The EON roughness r ∈ [0, 1] whose sampler minimises the mean log variance over the
     incidences of `fcs` (golden-section search): EON's fit reused with the best mapping any
     roughness conversion could give, per roughness."""
+
     def cost(r):
         vs = [variance(fc, eon_params(r, mu), grid) for fc, mu in zip(fcs, mus) if mu < 1.0]
         return np.mean(np.log(np.maximum(vs, 1e-300)))
+
     lo, hi = 0.0, 1.0
     k = (np.sqrt(5.0) - 1.0) / 2.0
     x1, x2 = hi - k * (hi - lo), lo + k * (hi - lo)
@@ -526,6 +542,7 @@ def from_cli(cli, bsdf, extra):
     def f_at(t, mus, grid, tag):
         params = [("roughness", f"{m_of_t(t):.9g}")] + extra
         return cli.f(bsdf, params, mus, grid, tag)
+
     return f_at
 
 
@@ -535,18 +552,45 @@ def models(cli):
     # a = c may differ from 1 at μ = 1.
     vg_form = Form(DEG_MU, DEG_T, free_at_normal=(0, 2))
     return [
-        Model("OREN_NAYAR_QUALITATIVE", "Oren–Nayar qualitative", analytic(on_qualitative_f), "sigma", t_of_sigma,
-              on_form, "σ²/(σ² + 0.09)"),
-        Model("OREN_NAYAR_FULL", "Oren–Nayar full (ρ = 1)", analytic(on_full_f), "sigma", t_of_sigma, on_form,
-              "σ²/(σ² + 0.09)"),
-        Model("GINNEKEN", "van Ginneken, shadowing = vginneken",
-              from_cli(cli, "ginneken", [("shadowing", "vginneken")]), "roughness", t_of_m, vg_form,
-              "1.25 m/(1 + m); fitted with shadowing = vginneken, used for both options"),
+        Model(
+            "OREN_NAYAR_QUALITATIVE",
+            "Oren–Nayar qualitative",
+            analytic(on_qualitative_f),
+            "sigma",
+            t_of_sigma,
+            on_form,
+            "σ²/(σ² + 0.09)",
+        ),
+        Model(
+            "OREN_NAYAR_FULL",
+            "Oren–Nayar full (ρ = 1)",
+            analytic(on_full_f),
+            "sigma",
+            t_of_sigma,
+            on_form,
+            "σ²/(σ² + 0.09)",
+        ),
+        Model(
+            "GINNEKEN",
+            "van Ginneken, shadowing = vginneken",
+            from_cli(cli, "ginneken", [("shadowing", "vginneken")]),
+            "roughness",
+            t_of_m,
+            vg_form,
+            "1.25 m/(1 + m); fitted with shadowing = vginneken, used for both options",
+        ),
         # Fitted to compare: the two shadowing options' optimal fits differ by 2–3 % in
         # variance, so `height_correlated` samples with the `vginneken` fit.
-        Model("GINNEKEN_HEIGHT_CORRELATED", "van Ginneken, shadowing = height_correlated",
-              from_cli(cli, "ginneken", [("shadowing", "height_correlated")]), "roughness", t_of_m, vg_form,
-              "1.25 m/(1 + m)", samples_with="GINNEKEN"),
+        Model(
+            "GINNEKEN_HEIGHT_CORRELATED",
+            "van Ginneken, shadowing = height_correlated",
+            from_cli(cli, "ginneken", [("shadowing", "height_correlated")]),
+            "roughness",
+            t_of_m,
+            vg_form,
+            "1.25 m/(1 + m)",
+            samples_with="GINNEKEN",
+        ),
         # Burley's lobe at normal incidence is not the cosine either (the retro-reflection).
         Model("BURLEY", "Burley", analytic(burley_f), "roughness", lambda r: r, vg_form, "r"),
     ]
@@ -592,6 +636,7 @@ def fit(model, cli, cache, log):
 
 # ---------------------------------------------------------------- checks and report --------
 
+
 def dense_check(model, C, log):
     """The form over a dense (t, θi) grid on a coarse quadrature: the weight's variance must
     be finite everywhere (a clipped lobe needs a uniform share), and the worst ratio
@@ -619,8 +664,10 @@ def dense_check(model, C, log):
                 worst = (ratio, (t, th))
             if th >= 45.0 and ratio < worst_far[0]:
                 worst_far = (ratio, (t, th))
-    log(f"  dense check: smallest ratio cosine/fitted {worst[0]:.2f} at t, θi = {worst[1]}; "
-        f"for θi ≥ 45°: {worst_far[0]:.2f} at {worst_far[1]}")
+    log(
+        f"  dense check: smallest ratio cosine/fitted {worst[0]:.2f} at t, θi = {worst[1]}; "
+        f"for θi ≥ 45°: {worst_far[0]:.2f} at {worst_far[1]}"
+    )
     return worst, worst_far
 
 
@@ -656,7 +703,8 @@ def markdown(model, rep):
     at both roughnesses."""
     p = model.param
     head = "| θi |" + "".join(
-        f" Var cosine, {p} = {r['roughness']:g} | ratio fitted | ratio EON fit (r = {r['eon_r']:.2f}) |" for r in rep)
+        f" Var cosine, {p} = {r['roughness']:g} | ratio fitted | ratio EON fit (r = {r['eon_r']:.2f}) |" for r in rep
+    )
     lines = [head, "|---" * (1 + 3 * len(rep)) + "|"]
     for k, th in enumerate(REPORT_THETA):
         cells = []
@@ -676,26 +724,32 @@ def screen(cli, log):
     grid = Grid(*FIT_GRID)
     mus = [np.cos(np.radians(th)) for th in REPORT_THETA]
     out = {}
-    for bsdf, params in (("wolff", []), ("wolff", [("int_ior", "2.4")]), ("burley", [("roughness", "0.3")]),
-                         ("burley", [("roughness", "1")])):  # Burley: before its fit, the case for one
+    for bsdf, params in (
+        ("wolff", []),
+        ("wolff", [("int_ior", "2.4")]),
+        ("burley", [("roughness", "0.3")]),
+        ("burley", [("roughness", "1")]),
+    ):  # Burley: before its fit, the case for one
         F = cli.f(bsdf, params, mus, grid, f"screen{FIT_GRID[0]}")
         x = x_of_params((1.0, 0.0, 1.0, 0.0, 1e-6))
         ratios, relative = [], []
-        for mu, f in zip(mus, F):
+        for _mu, f in zip(mus, F):
             fc = f * grid.wo[:, 2]
             vc = cosine_variance(fc, grid)
             e = fc.sum() * grid.weight
             x, v = optimum(fc, grid, [x])
             ratios.append(ratio_text(vc, max(v, 0.0), e))
-            relative.append(f"{vc / e ** 2:.2e}")
+            relative.append(f"{vc / e**2:.2e}")
         label = " ".join([bsdf] + [f"{k}={v}" for k, v in params])
         out[label] = dict(optimum_ratio=ratios, cosine_relative_variance=relative)
-        log(f"  {label}: at θi = {REPORT_THETA}: optimum ratio cosine/CLTC {ratios}; "
-            f"Var/E² under the cosine {relative}")
+        log(
+            f"  {label}: at θi = {REPORT_THETA}: optimum ratio cosine/CLTC {ratios}; Var/E² under the cosine {relative}"
+        )
     return out
 
 
 # ---------------------------------------------------------------- the Rust file ------------
+
 
 def rust_file(fitted):
     """`rust/brdf/sampler_fits.rs`: one `CltcFit` per model."""
@@ -713,9 +767,12 @@ def rust_file(fitted):
     for model, C, note in fitted:
         shape = model.form.shape
         Cr = np.asarray(C).reshape(shape)
-        lines += ["", f"/// {model.label}: {note}",
-                  f"pub const {model.name}: CltcFit<{shape[1]}, {shape[2]}> = CltcFit {{",
-                  "    coefficients: ["]
+        lines += [
+            "",
+            f"/// {model.label}: {note}",
+            f"pub const {model.name}: CltcFit<{shape[1]}, {shape[2]}> = CltcFit {{",
+            "    coefficients: [",
+        ]
         for k in range(5):
             lines.append(f"        // {NAMES[k]}")
             lines.append("        [")
@@ -728,6 +785,7 @@ def rust_file(fitted):
 
 
 # ---------------------------------------------------------------- main ---------------------
+
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
@@ -744,8 +802,10 @@ def main():
         C, V, Vc, J, J_opt = fit(model, cli, args.cache, log)
         own[model.name] = C
         loss = np.exp(J - J_opt)
-        log(f"{model.label}: {model.form.size()} coefficients; mean variance over the per-point optima "
-            f"×{loss:.3f} (geometric mean over the fitting grid)")
+        log(
+            f"{model.label}: {model.form.size()} coefficients; mean variance over the per-point optima "
+            f"×{loss:.3f} (geometric mean over the fitting grid)"
+        )
         if model.samples_with:
             C = own[model.samples_with]
             loss = np.exp(model.objective.value(C, penalty=0.0) - J_opt)
@@ -757,8 +817,14 @@ def main():
         print(f"\n### {model.label}\n\n{table}\n", flush=True)
         note = f"t = {model.t_text}; geometric-mean variance ×{loss:.3f} of the per-point optima."
         fitted.append((model, C, note))
-        summary[model.name] = dict(coefficients=np.asarray(C).tolist(), loss=loss, report=rep,
-                                   worst_ratio=worst[0], worst_ratio_at=worst[1], worst_ratio_45=worst_far[0])
+        summary[model.name] = dict(
+            coefficients=np.asarray(C).tolist(),
+            loss=loss,
+            report=rep,
+            worst_ratio=worst[0],
+            worst_ratio_at=worst[1],
+            worst_ratio_45=worst_far[0],
+        )
         if model.samples_with:
             summary[model.name]["samples_with"] = model.samples_with
     # Do van Ginneken's two shadowing options need fits of their own? Each one's fitting

@@ -32,6 +32,7 @@ accept.
 The script also prints, per plugin, the names of the docstring's `.. pluginparameters::` table
 that were not harvested (and the other way round), for review.
 """
+
 import argparse
 import os
 import re
@@ -86,9 +87,13 @@ GETTER_KINDS = {
     "try_get": "Any",
     "mark_queried": "Any",
 }
-READ_RE = re.compile(r"\bprops\s*\.\s*(get|get_texture|get_unbounded_texture|get_emissive_texture|get_volume|get_any|"
-                     r"try_get|mark_queried)\b")
-ANY_RE = re.compile(r"for\s*\(\s*(?:const\s+)?auto\s*&+\s*\w+\s*:\s*props\s*\)|\bprops\s*\.\s*(?:keys|items|unqueried)\s*\(")
+READ_RE = re.compile(
+    r"\bprops\s*\.\s*(get|get_texture|get_unbounded_texture|get_emissive_texture|get_volume|get_any|"
+    r"try_get|mark_queried)\b"
+)
+ANY_RE = re.compile(
+    r"for\s*\(\s*(?:const\s+)?auto\s*&+\s*\w+\s*:\s*props\s*\)|\bprops\s*\.\s*(?:keys|items|unqueried)\s*\("
+)
 
 
 def strip_comments(text):
@@ -101,13 +106,13 @@ def strip_comments(text):
             j = i + 1
             while j < n and text[j] != '"':
                 j += 2 if text[j] == "\\" else 1
-            out.append(text[i:j + 1])
+            out.append(text[i : j + 1])
             i = j + 1
         elif c == "'" and i + 2 < n:
             j = i + 1
             while j < n and text[j] != "'":
                 j += 2 if text[j] == "\\" else 1
-            out.append(text[i:j + 1])
+            out.append(text[i : j + 1])
             i = j + 1
         elif text.startswith("//", i):
             j = text.find("\n", i)
@@ -154,7 +159,7 @@ def split_args(s):
             j = i + 1
             while s[j] != '"':
                 j += 2 if s[j] == "\\" else 1
-            cur.append(s[i:j + 1])
+            cur.append(s[i : j + 1])
             i = j + 1
             continue
         if c in "([{<":
@@ -212,14 +217,14 @@ def reads_in(text, rel, lo=0, hi=None):
         targ = None
         if text[j] == "<":
             k = matching(text, j, "<", ">")
-            targ = re.sub(r"\s+", "", text[j + 1:k - 1])
+            targ = re.sub(r"\s+", "", text[j + 1 : k - 1])
             j = k
             while text[j].isspace():
                 j += 1
         if text[j] != "(":
             continue
         k = matching(text, j, "(", ")")
-        args = split_args(text[j + 1:k - 1])
+        args = split_args(text[j + 1 : k - 1])
         if not args or not re.fullmatch(r'"[^"]*"', args[0]):
             continue  # a computed name: not a fixed property
         name = args[0][1:-1]
@@ -243,6 +248,7 @@ def reads_in(text, rel, lo=0, hi=None):
 
 class Source:
     """A source file, comment-free, with its path relative to MITSUBA_ROOT."""
+
     cache = {}
 
     def __init__(self, root, rel):
@@ -374,8 +380,11 @@ def merge(reads):
                 # A texture read subsumes a float read of the same name, else accept anything.
                 kinds = {old.kind, r.kind}
                 if kinds <= {"Texture", "UnboundedTexture", "EmissiveTexture", "Float"}:
-                    old.kind = "UnboundedTexture" if "UnboundedTexture" in kinds else (
-                        "EmissiveTexture" if "EmissiveTexture" in kinds else "Texture")
+                    old.kind = (
+                        "UnboundedTexture"
+                        if "UnboundedTexture" in kinds
+                        else ("EmissiveTexture" if "EmissiveTexture" in kinds else "Texture")
+                    )
                 elif "Any" in kinds:
                     old.kind = "Any"
                 elif kinds == {"Point", "Vector"}:
@@ -426,7 +435,7 @@ def opt(s):
     return "None" if s is None else f"Some({rust_str(s)})"
 
 
-HEADER = '''//! The properties each Mitsuba 3.9.1 plugin reads, harvested from its sources (the
+HEADER = """//! The properties each Mitsuba 3.9.1 plugin reads, harvested from its sources (the
 //! plugin's `.cpp`, its base-class constructors and the `Properties` helpers it calls) by
 //! `validation/generators/harvest_mitsuba_properties.py`. Generated: do not edit; rerun the script.
 //! `rust/render/load/no_effect.rs` and the builders in `rust/render/load/` decide what matte
@@ -492,7 +501,7 @@ pub fn property(tag: &str, plugin_name: &str, name: &str) -> Option<&'static Plu
     plugin(tag, plugin_name)?.properties.iter().find(|p| p.name == name)
 }
 
-'''
+"""
 
 
 def write_rust(plugins, out):
@@ -507,7 +516,8 @@ def write_rust(plugins, out):
         for p in props:
             lines.append(
                 f"            PluginProperty {{ name: {rust_str(p.name)}, kind: Kind::{p.kind}, default: {opt(p.default)}, "
-                f"literal: {opt(literal(p.default))}, source: {rust_str(p.source)} }},")
+                f"literal: {opt(literal(p.default))}, source: {rust_str(p.source)} }},"
+            )
         lines.append("        ],")
         lines.append("    },")
     lines.append("];")
@@ -524,13 +534,15 @@ def main():
     write_rust(plugins, a.output)
     n = sum(len(p[3]) for p in plugins)
     print(f"{len(plugins)} plugins, {n} properties -> {a.output}")
-    for tag, name, rel, props, any_prop, docs in plugins:
+    for tag, name, _rel, props, _any_prop, docs in plugins:
         got = {p.name for p in props}
         undocumented = sorted(got - set(docs)) if docs else []
         unharvested = sorted(set(docs) - got)
         if unharvested or undocumented:
-            print(f"  {tag}/{name}: in the docs, not read: {unharvested or '-'}; read, not in the docs: "
-                  f"{undocumented or '-'}")
+            print(
+                f"  {tag}/{name}: in the docs, not read: {unharvested or '-'}; read, not in the docs: "
+                f"{undocumented or '-'}"
+            )
 
 
 if __name__ == "__main__":

@@ -5,6 +5,7 @@ each model. Reads the JSON `matte microgeometry` prints; draws only (no numbers 
 
     .venv/bin/python validation/generators/microgeometry_plots.py OUT_DIR COMPARISON.json [...]
 """
+
 import json
 import sys
 from pathlib import Path
@@ -37,10 +38,20 @@ def plot(comparison, out_dir):
             ax = axes[row][col]
             pts = slice_points(points, ti, phis)
             xs = [x for x, _ in pts]
-            for key, label, style in [("simulated", "surface, all bounces", "o"),
-                                      ("single_bounce", "surface, first bounce", "s")]:
-                ax.errorbar(xs, [p[key]["mean"] for _, p in pts], yerr=[p[key]["half_width"] for _, p in pts],
-                            fmt=style, ms=3.5, capsize=2, label=label, color="black" if key == "simulated" else "grey")
+            for key, label, style in [
+                ("simulated", "surface, all bounces", "o"),
+                ("single_bounce", "surface, first bounce", "s"),
+            ]:
+                ax.errorbar(
+                    xs,
+                    [p[key]["mean"] for _, p in pts],
+                    yerr=[p[key]["half_width"] for _, p in pts],
+                    fmt=style,
+                    ms=3.5,
+                    capsize=2,
+                    label=label,
+                    color="black" if key == "simulated" else "grey",
+                )
             for k, m in enumerate(models):
                 ax.plot(xs, [p["model"][k] for _, p in pts], "-", lw=1.4, label=m)
             ax.set_title(f"θi = {ti:g}°, {name}")
@@ -49,8 +60,10 @@ def plot(comparison, out_dir):
             ax.grid(alpha=0.3)
     axes[0][0].legend(fontsize=8)
     surface = "V-cavities σ" if comparison["surface"] == "v_cavities" else "Gaussian height field m"
-    fig.suptitle(f"{surface} = {comparison['roughness']:g}, ρ = {comparison['reflectance']:g}: "
-                 f"simulated surface (99 % intervals) and models")
+    fig.suptitle(
+        f"{surface} = {comparison['roughness']:g}, ρ = {comparison['reflectance']:g}: "
+        f"simulated surface (99 % intervals) and models"
+    )
     fig.tight_layout()
     path = Path(out_dir) / f"slices_{tag}.png"
     fig.savefig(path, dpi=80)

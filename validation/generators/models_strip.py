@@ -11,6 +11,7 @@ Wolff's Fresnel factors darken the limb.
 Needs the release `matte` binary (`make main` or `cargo build --release`) and matplotlib (the
 venv's).
 """
+
 import argparse
 import os
 import subprocess
@@ -24,8 +25,10 @@ MATTE = os.path.join(REPO, "target", "release", "matte")
 MODELS = [
     ("lambert", '<bsdf type="lambert">{rho}</bsdf>'),
     ("oren_nayar σ=0.6", '<bsdf type="oren_nayar">{rho}<float name="sigma" value="0.6"/></bsdf>'),
-    ("oren_nayar full σ=0.6",
-     '<bsdf type="oren_nayar">{rho}<float name="sigma" value="0.6"/><string name="model" value="full"/></bsdf>'),
+    (
+        "oren_nayar full σ=0.6",
+        '<bsdf type="oren_nayar">{rho}<float name="sigma" value="0.6"/><string name="model" value="full"/></bsdf>',
+    ),
     ("eon r=1", '<bsdf type="eon">{rho}<float name="roughness" value="1"/></bsdf>'),
     ("ginneken m=0.6", '<bsdf type="ginneken">{rho}<float name="roughness" value="0.6"/></bsdf>'),
     ("wolff n=1.5", '<bsdf type="wolff">{rho}<float name="int_ior" value="1.5"/></bsdf>'),
@@ -64,6 +67,7 @@ def main():
     ap.add_argument("--res", type=int, default=192)
     a = ap.parse_args()
     import matplotlib
+
     matplotlib.use("Agg")
     import matplotlib.image as mpimg
     import matplotlib.pyplot as plt
@@ -73,7 +77,9 @@ def main():
         for i, (label, bsdf) in enumerate(MODELS):
             xml = os.path.join(tmp, f"m{i}.xml")
             with open(xml, "w") as f:
-                f.write(SCENE.format(spp=a.spp, res=a.res, bsdf=bsdf.format(rho='<rgb name="reflectance" value="0.8"/>')))
+                f.write(
+                    SCENE.format(spp=a.spp, res=a.res, bsdf=bsdf.format(rho='<rgb name="reflectance" value="0.8"/>'))
+                )
             exr = os.path.join(tmp, f"m{i}.exr")
             subprocess.run([MATTE, "render", xml, "-o", exr, "--png", "-q"], check=True, stdout=subprocess.DEVNULL)
             panels.append((label, mpimg.imread(exr[:-4] + ".png")))

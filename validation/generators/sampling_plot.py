@@ -5,6 +5,7 @@ and under the cosine (dashed), from `matte bench --sampling`'s sampling.json.
     ./target/release/matte bench --sampling -o bench_out
     .venv/bin/python validation/generators/sampling_plot.py bench_out/sampling.json docs/sampling/lobe_variance.png
 """
+
 import json
 import sys
 
@@ -19,8 +20,12 @@ def main(src, dst):
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=True)
     for ax, roughness in zip(axes, (0.3, 1.0)):
         # Lambert's weight is constant (variance 0): not on a log axis.
-        picked = [r for r in rows if (r["roughness"] == roughness or r["roughness"] == 0.0)
-                  and any(l["variance_cosine"] > 1e-6 * l["albedo"] ** 2 for l in r["lobe"])]
+        picked = [
+            r
+            for r in rows
+            if (r["roughness"] == roughness or r["roughness"] == 0.0)
+            and any(l["variance_cosine"] > 1e-6 * l["albedo"] ** 2 for l in r["lobe"])
+        ]
         for k, r in enumerate(picked):
             colour = f"C{k % 10}"
             theta = [l["theta_i"] for l in r["lobe"]]

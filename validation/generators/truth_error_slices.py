@@ -11,6 +11,7 @@ Writes OUT/truth_slice_<model>.png and OUT/truth_slices.json.
 
     .venv/bin/python validation/generators/truth_error_slices.py OUT [--reflectance 0.8]
 """
+
 import argparse
 import json
 import os
@@ -74,8 +75,9 @@ def main():
     for key, label, bsdf, params, table in MODELS:
         th, ph, f_true, hw = load_table(TRUTH / table, a.reflectance)
         ti, to, pp = np.meshgrid(th, th, ph, indexing="ij")
-        f_model = evaluate(bsdf, params, a.reflectance, direction(ti, 0.0).reshape(-1, 3),
-                           direction(to, pp).reshape(-1, 3)).reshape(ti.shape)
+        f_model = evaluate(
+            bsdf, params, a.reflectance, direction(ti, 0.0).reshape(-1, 3), direction(to, pp).reshape(-1, 3)
+        ).reshape(ti.shape)
         rel = (f_model - f_true) / f_true
         mask = (ti <= 80) & (to <= 80)
         i, o, p = np.unravel_index(np.argmax(np.where(mask, np.abs(rel), -1)), rel.shape)
@@ -92,20 +94,31 @@ def main():
         ax.axvline(th[o], color="0.7", lw=0.8, ls="--")
         ax.set_xlabel(f"θo (°); positive: Δφ = {phi:.0f}°, negative: Δφ = {ph[opposite]:.0f}°")
         ax.set_ylabel("f (1/sr)")
-        ax.set_title(f"{label} against its surface, ρ = {a.reflectance}, θi = {th[i]:.0f}°\nlargest error "
-                     f"{100 * rel[i, o, p]:+.1f} % at θo = {th[o]:.0f}°, Δφ = {phi:.0f}°", fontsize=8)
+        ax.set_title(
+            f"{label} against its surface, ρ = {a.reflectance}, θi = {th[i]:.0f}°\nlargest error "
+            f"{100 * rel[i, o, p]:+.1f} % at θo = {th[o]:.0f}°, Δφ = {phi:.0f}°",
+            fontsize=8,
+        )
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)
         fig.tight_layout()
         fig.savefig(out / f"truth_slice_{key}.png", dpi=100)
         plt.close(fig)
-        summary["models"].append({
-            "model": key, "table": table, "theta_i": float(th[i]), "theta_o": float(th[o]),
-            "delta_phi": float(phi), "relative_error": float(rel[i, o, p]),
-            "mean_abs_relative_error": float(np.abs(rel[mask]).mean()),
-        })
-        print(f"{label:26s} largest {100 * rel[i, o, p]:+6.1f} % at θi {th[i]:.0f}°, θo {th[o]:.0f}°, "
-              f"Δφ {phi:.0f}°; mean |error| {100 * np.abs(rel[mask]).mean():.1f} %")
+        summary["models"].append(
+            {
+                "model": key,
+                "table": table,
+                "theta_i": float(th[i]),
+                "theta_o": float(th[o]),
+                "delta_phi": float(phi),
+                "relative_error": float(rel[i, o, p]),
+                "mean_abs_relative_error": float(np.abs(rel[mask]).mean()),
+            }
+        )
+        print(
+            f"{label:26s} largest {100 * rel[i, o, p]:+6.1f} % at θi {th[i]:.0f}°, θo {th[o]:.0f}°, "
+            f"Δφ {phi:.0f}°; mean |error| {100 * np.abs(rel[mask]).mean():.1f} %"
+        )
     (out / "truth_slices.json").write_text(json.dumps(summary, indent=2))
 
 

@@ -9,11 +9,13 @@ and, with libllvm19 installed, picks LLVM 19). To force a library set
 DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1 before starting
 Python; Dr.Jit 1.5.0 has no Python call to change it afterwards.
 """
+
 import os
 import sys
 import time
 
 MIN_LLVM = 16  # LLVM 15 (Debian 12's default) makes Dr.Jit 1.5.0 abort while compiling kernels
+
 
 def render(mi, variant):
     mi.set_variant(variant)
@@ -24,6 +26,7 @@ def render(mi, variant):
     t0 = time.perf_counter()
     img = mi.render(mi.load_dict(scene_dict))
     import numpy as np
+
     arr = np.array(img)
     dt = time.perf_counter() - t0
     if arr.shape != (64, 64, 3) or not np.isfinite(arr).all() or arr.mean() <= 0:
@@ -43,14 +46,18 @@ def main():
 
     mi.set_variant("llvm_ad_rgb")
     if not dr.has_backend(dr.JitBackend.LLVM):
-        raise RuntimeError("Dr.Jit's LLVM backend is inactive: install libllvm19 "
-                           "(validation/setup/setup_venv.sh) or set DRJIT_LIBLLVM_PATH")
+        raise RuntimeError(
+            "Dr.Jit's LLVM backend is inactive: install libllvm19 "
+            "(validation/setup/setup_venv.sh) or set DRJIT_LIBLLVM_PATH"
+        )
     llvm = dr.detail.llvm_version()
     src = os.environ.get("DRJIT_LIBLLVM_PATH") or "auto-detected"
     print(f"LLVM {'.'.join(map(str, llvm))} ({src})")
     if llvm[0] < MIN_LLVM:
-        raise RuntimeError(f"LLVM {llvm[0]} is known to abort Dr.Jit {dr.__version__}; set "
-                           "DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1")
+        raise RuntimeError(
+            f"LLVM {llvm[0]} is known to abort Dr.Jit {dr.__version__}; set "
+            "DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1"
+        )
     means["llvm_ad_rgb"] = render(mi, "llvm_ad_rgb")
 
     rel = abs(means["llvm_ad_rgb"] - means["scalar_rgb"]) / means["scalar_rgb"]

@@ -4,7 +4,7 @@
 #      time; LLVM 15, which Debian 12 also ships, makes Dr.Jit 1.5.0 abort) and
 #      libembree3-3 (Embree 3.13; matte's renderer loads libembree3.so.3 at run
 #      time for its ray queries, rust/render/accel/embree_api.rs, and falls back
-#      to its own BVH without it);
+#      to its own BVH without it), and clang-format (`make test` checks cpp/'s style);
 #   2. <repo>/.venv with validation/setup/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
@@ -15,6 +15,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 
 LIBLLVM=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1   # provided by libllvm19
 LIBEMBREE=/usr/lib/x86_64-linux-gnu/libembree3.so.3 # provided by libembree3-3
+CLANG_FORMAT=/usr/bin/clang-format                  # provided by clang-format (`make test` checks cpp/)
 VENV=.venv
 REQ=validation/setup/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
@@ -34,6 +35,7 @@ quiet() {
 packages=()
 [ -e "$LIBLLVM" ] || packages+=(libllvm19)
 [ -e "$LIBEMBREE" ] || packages+=(libembree3-3)
+[ -e "$CLANG_FORMAT" ] || packages+=(clang-format)
 if [ ${#packages[@]} -gt 0 ]; then
     SUDO=()
     if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
@@ -48,6 +50,7 @@ if [ ${#packages[@]} -gt 0 ]; then
     fi
     [ -e "$LIBLLVM" ] || { echo "setup_venv: libllvm19 installed but $LIBLLVM is missing" >&2; exit 1; }
     [ -e "$LIBEMBREE" ] || { echo "setup_venv: libembree3-3 installed but $LIBEMBREE is missing" >&2; exit 1; }
+    [ -e "$CLANG_FORMAT" ] || { echo "setup_venv: clang-format installed but $CLANG_FORMAT is missing" >&2; exit 1; }
     did+=("installed ${packages[*]}")
 fi
 
@@ -75,7 +78,7 @@ if [ -e "$PTH" ]; then
 fi
 
 if [ ${#did[@]} -eq 0 ]; then
-    echo "setup_venv: up to date (libllvm19 and libembree3-3 present, $VENV matches $REQ)"
+    echo "setup_venv: up to date (libllvm19, libembree3-3 and clang-format present, $VENV matches $REQ)"
 else
     msg=$(IFS=';'; echo "${did[*]}")
     echo "setup_venv: ${msg//;/, }"

@@ -20,6 +20,7 @@ What the script does to the mesh:
   matte) then compute smooth, angle-weighted vertex normals. Binary, because Mitsuba warns
   that ASCII PLY is slow to parse.
 """
+
 import json
 import re
 import struct
@@ -57,8 +58,11 @@ def signed_volume(pos, cells):
     vol = 0.0
     for a, b, c in cells:
         p0, p1, p2 = pos[a], pos[b], pos[c]
-        vol += (p0[0] * (p1[1] * p2[2] - p1[2] * p2[1]) + p0[1] * (p1[2] * p2[0] - p1[0] * p2[2])
-                + p0[2] * (p1[0] * p2[1] - p1[1] * p2[0])) / 6
+        vol += (
+            p0[0] * (p1[1] * p2[2] - p1[2] * p2[1])
+            + p0[1] * (p1[2] * p2[0] - p1[0] * p2[2])
+            + p0[2] * (p1[0] * p2[1] - p1[1] * p2[0])
+        ) / 6
     return vol
 
 
@@ -85,17 +89,27 @@ def main():
     out = [((x - centre[0]) * s, (y - lo[1]) * s, (z - centre[2]) * s) for x, y, z in pos]
     vol = signed_volume(out, cells)
     assert vol > 0
-    header = ["ply", "format binary_little_endian 1.0",
-             f"comment Stanford bunny from the npm package {pkg['name']} {pkg['version']} "
-             f"(licence: {pkg['license']}), converted by make_bunny.py",
-             "comment height 1, base on y = 0, centred on x = z = 0; CCW faces seen from outside",
-             f"element vertex {len(out)}", "property float x", "property float y", "property float z",
-             f"element face {len(cells)}", "property list uchar int vertex_indices", "end_header"]
+    header = [
+        "ply",
+        "format binary_little_endian 1.0",
+        f"comment Stanford bunny from the npm package {pkg['name']} {pkg['version']} "
+        f"(licence: {pkg['license']}), converted by make_bunny.py",
+        "comment height 1, base on y = 0, centred on x = z = 0; CCW faces seen from outside",
+        f"element vertex {len(out)}",
+        "property float x",
+        "property float y",
+        "property float z",
+        f"element face {len(cells)}",
+        "property list uchar int vertex_indices",
+        "end_header",
+    ]
     body = b"".join(struct.pack("<3f", *p) for p in out)
     body += b"".join(struct.pack("<B3i", 3, *t) for t in cells)
     (HERE / "bunny.ply").write_bytes(("\n".join(header) + "\n").encode() + body)
-    print(f"bunny.ply: {len(out)} vertices, {len(cells)} triangles, volume {vol:.5f}, "
-          f"extent x {(hi[0] - lo[0]) * s:.4f} z {(hi[2] - lo[2]) * s:.4f}")
+    print(
+        f"bunny.ply: {len(out)} vertices, {len(cells)} triangles, volume {vol:.5f}, "
+        f"extent x {(hi[0] - lo[0]) * s:.4f} z {(hi[2] - lo[2]) * s:.4f}"
+    )
 
 
 if __name__ == "__main__":

@@ -23,7 +23,10 @@ mi.set_variant("scalar_rgb")
 here = os.path.dirname(os.path.abspath(__file__))
 ior_dir = os.path.join(os.path.dirname(mi.__file__), "data", "ior")
 files = os.listdir(ior_dir)
-names = sorted({f[: -len(".eta.spd")] for f in files if f.endswith(".eta.spd")} & {f[: -len(".k.spd")] for f in files if f.endswith(".k.spd")})
+names = sorted(
+    {f[: -len(".eta.spd")] for f in files if f.endswith(".eta.spd")}
+    & {f[: -len(".k.spd")] for f in files if f.endswith(".k.spd")}
+)
 
 rows = []
 for name in names:

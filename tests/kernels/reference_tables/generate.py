@@ -43,6 +43,7 @@ tolerances, all reproduced as printed with the choices above):
   converged one (400 × 400 Gauss–Legendre split at θo = θi and at Δφ = ±π/2) gives 0.949740,
   i.e. 0.9497. Table 3's E(89.9°) column is not a test oracle.
 """
+
 import argparse
 import re
 import sys
@@ -232,7 +233,9 @@ def ginneken(m, rho, shadowing="vginneken", cells=800):
         chunk = max(1, 4_000_000 // (cells * cells))
         for k in range(0, ti.size, chunk):
             sl = slice(k, k + chunk)
-            integral = slope_integral(mi[sl], mo[sl], si[sl], so[sl] * np.cos(dphi[sl]), so[sl] * np.sin(dphi[sl]), m, cells)
+            integral = slope_integral(
+                mi[sl], mo[sl], si[sl], so[sl] * np.cos(dphi[sl]), so[sl] * np.sin(dphi[sl]), m, cells
+            )
             vis = ginneken_visibility(ti[sl], to[sl], dphi[sl], m, shadowing)
             out[sl] = rho / PI * vis * integral / (mi[sl] * mo[sl])
         return out
@@ -261,8 +264,18 @@ def vg_albedo(m, shadowing, theta_i):
 # ---------------------------------------------------------------------------------------------
 # The tables.
 
-COLUMNS = [(0, 0, 0), (30, 30, 0), (60, 60, 0), (60, 60, 180), (45, 45, 90), (75, 75, 0), (75, 75, 180),
-           (80, 10, 0), (10, 80, 0), (60, 20, 180)]
+COLUMNS = [
+    (0, 0, 0),
+    (30, 30, 0),
+    (60, 60, 0),
+    (60, 60, 180),
+    (45, 45, 90),
+    (75, 75, 0),
+    (75, 75, 180),
+    (80, 10, 0),
+    (10, 80, 0),
+    (60, 20, 180),
+]
 RHO1 = 0.8
 TABLE1 = [
     ("Lambert", lambert(RHO1)),
@@ -377,7 +390,9 @@ def test_rows():
         label = TEST_LABELS.get(match.group(1), match.group(1))
         body = match.group(2)
         repeat = re.fullmatch(r"\s*([0-9.]+);\s*(\d+)\s*", body)
-        cells = [repeat.group(1)] * int(repeat.group(2)) if repeat else [c.strip() for c in body.split(",") if c.strip()]
+        cells = (
+            [repeat.group(1)] * int(repeat.group(2)) if repeat else [c.strip() for c in body.split(",") if c.strip()]
+        )
         rows.append((table, label, cells))
     qon_a = re.search(r"for \(sigma, a\) in \[(.*?)\]\s*\{", text, re.S)
     for sigma, a in re.findall(r"\(([^,()]+), ([0-9.]+)\)", qon_a.group(1)):
@@ -412,7 +427,7 @@ def check(tables):
         if ours is None:
             bad.append(f"{source} {table} row {label!r}: not computed by this script")
             continue
-        if len(cells) < len(ours) and all(v is None for v in ours[len(cells):]):
+        if len(cells) < len(ours) and all(v is None for v in ours[len(cells) :]):
             cells = cells + [None] * (len(ours) - len(cells))  # the test leaves out vG's 89° column
         if len(cells) != len(ours):
             bad.append(f"{source} {table} row {label!r}: {len(cells)} cells, expected {len(ours)}")
@@ -455,7 +470,7 @@ def text_values(tables):
         ("vG m = 0.5 E", "0.836", t2["vG m=0.5"][0]),
         ("vG α(π/2)", "0.874", vg_alpha[0]),
         ("vG α(π)", "0.933", vg_alpha[1]),
-        ("fullON σ = 0.5 at 75/75/180 (\"0.117 vs 0.038\")", "0.117", tables["Table 1"]["fullON s=0.5"][6]),
+        ('fullON σ = 0.5 at 75/75/180 ("0.117 vs 0.038")', "0.117", tables["Table 1"]["fullON s=0.5"][6]),
         ("vG m = 0.5 at 75/75/180", "0.038", tables["Table 1"]["vG m=0.5"][6]),
     ]
 
@@ -467,8 +482,10 @@ def check_text(tables):
         in_doc = printed in doc or what.startswith("1 − F_dr,int")
         ok = in_doc and same_at_printed_digits(printed, value)
         bad += not ok
-        print(f"{'OK      ' if ok else 'MISMATCH'} {what}: docs/models.md {printed}{'' if in_doc else ' (not found in the doc)'},"
-              f" computed {value:.6f}")
+        print(
+            f"{'OK      ' if ok else 'MISMATCH'} {what}: docs/models.md {printed}{'' if in_doc else ' (not found in the doc)'},"
+            f" computed {value:.6f}"
+        )
     return bad == 0
 
 

@@ -18,6 +18,7 @@ Public API (vectorised, broadcasting over leading dims):
   pdf(wi, wo, r)        -> pdf
 Invalid input (wi.z <= 0) gives wo = 0 and pdf = 0.
 """
+
 import numpy as np
 
 INV_PI = 1.0 / np.pi
@@ -27,13 +28,10 @@ INV_2PI = 0.5 / np.pi
 # ---------------------------------------------------------------- fits ------
 def ltc_coeffs(mu, r):
     """Non-trivial entries of M = [[a,0,b],[0,c,0],[d,0,1]] (fixed-dir cos mu)."""
-    a = 1.0 + r * (0.303392 - 0.518982 * mu + 0.111709 * mu**2
-                   + (-0.276266 + 0.335918 * mu) * r)
-    b = r * (-1.16407 + 1.15859 * mu + (0.150815 - 0.150105 * mu) * r) \
-        / (mu**3 - 1.43545)
+    a = 1.0 + r * (0.303392 - 0.518982 * mu + 0.111709 * mu**2 + (-0.276266 + 0.335918 * mu) * r)
+    b = r * (-1.16407 + 1.15859 * mu + (0.150815 - 0.150105 * mu) * r) / (mu**3 - 1.43545)
     c = 1.0 + r * (0.20013 - 0.506373 * mu + 0.261777 * mu**2)
-    d = r * (0.540852 - 1.01625 * mu + 0.475392 * mu**2) \
-        / (mu**2 + 0.0725628 * mu - 1.0743)
+    d = r * (0.540852 - 1.01625 * mu + 0.475392 * mu**2) / (mu**2 + 0.0725628 * mu - 1.0743)
     if CLAMP_D:
         d = np.minimum(d, 0.0)
     return a, b, c, d
@@ -45,8 +43,7 @@ CLAMP_D = True
 
 def uniform_prob(mu, r):
     """P_u(mu, r): probability of the uniform-hemisphere technique."""
-    return np.power(r, UNIFORM_EXPONENT) * (0.162925 - 0.372058 * mu
-                               + 0.538233 * mu**2 - 0.290822 * mu**3)
+    return np.power(r, UNIFORM_EXPONENT) * (0.162925 - 0.372058 * mu + 0.538233 * mu**2 - 0.290822 * mu**3)
 
 
 def clip_fraction(d):
@@ -56,25 +53,25 @@ def clip_fraction(d):
 
 def _frame_x(wi):
     """Unit azimuth of the fixed direction (LTC +x axis); (1,0) if wi ~ normal."""
-    l2 = wi[..., 0]**2 + wi[..., 1]**2
+    l2 = wi[..., 0] ** 2 + wi[..., 1] ** 2
     ok = l2 > 0.0
     inv = np.where(ok, 1.0 / np.sqrt(np.where(ok, l2, 1.0)), 0.0)
     cx = np.where(ok, wi[..., 0] * inv, 1.0)
     cy = np.where(ok, wi[..., 1] * inv, 0.0)
-    return cx, cy          # X = (cx, cy, 0), Y = z x X = (-cy, cx, 0)
+    return cx, cy  # X = (cx, cy, 0), Y = z x X = (-cy, cx, 0)
 
 
 # ----------------------------------------------------------------- pdf ------
 def cltc_pdf_ltcframe(w, a, b, c, d):
     """Clipped-LTC density of w (already in LTC frame), 0 outside the support."""
-    det = c * (a - b * d)                              # det M  (> 0 here)
-    qx = c * (w[..., 0] - b * w[..., 2])               # q = adj(M) w = det * M^-1 w
+    det = c * (a - b * d)  # det M  (> 0 here)
+    qx = c * (w[..., 0] - b * w[..., 2])  # q = adj(M) w = det * M^-1 w
     qy = (a - b * d) * w[..., 1]
     qz = c * (a * w[..., 2] - d * w[..., 0])
     q2 = qx * qx + qy * qy + qz * qz
     s = clip_fraction(d)
     # D_o(q/|q|) * det(M^-1) / |M^-1 w|^3 = (det/|q|^2)^2 * q_z / (pi s)
-    p = (det / q2)**2 * np.maximum(qz, 0.0) / (np.pi * s)
+    p = (det / q2) ** 2 * np.maximum(qz, 0.0) / (np.pi * s)
     return np.where(w[..., 2] > 0.0, p, 0.0)
 
 
@@ -87,9 +84,7 @@ def pdf(wi, wo, r):
     mu_c = np.clip(mu, 0.0, 1.0)
     a, b, c, d = ltc_coeffs(mu_c, r)
     cx, cy = _frame_x(wi)
-    w = np.stack([cx * wo[..., 0] + cy * wo[..., 1],
-                  -cy * wo[..., 0] + cx * wo[..., 1],
-                  wo[..., 2]], axis=-1)
+    w = np.stack([cx * wo[..., 0] + cy * wo[..., 1], -cy * wo[..., 0] + cx * wo[..., 1], wo[..., 2]], axis=-1)
     pc = cltc_pdf_ltcframe(w, a, b, c, d)
     pu = uniform_prob(mu_c, r)
     return np.where(valid, pu * INV_2PI + (1.0 - pu) * pc, 0.0)
@@ -119,7 +114,7 @@ def sample(wi, u1, u2, r, sign_aware=True):
     pu = uniform_prob(mu_c, r)
     pc = 1.0 - pu
 
-    use_u = u1 < pu                              # strict: pu == 0 at r == 0
+    use_u = u1 < pu  # strict: pu == 0 at r == 0
     v1 = np.where(use_u, u1 / np.where(pu > 0, pu, 1.0), (u1 - pu) / pc)
     v1 = np.clip(v1, 0.0, 1.0)
     phi = 2.0 * np.pi * u2
@@ -161,7 +156,8 @@ def cltc_forward_pdf(wi, u1, u2, r):
     rescaled CLTC random number."""
     mu = np.clip(np.asarray(wi, float)[..., 2], 0.0, 1.0)
     a, b, c, d = ltc_coeffs(mu, r)
-    R = np.sqrt(u1); phi = 2.0 * np.pi * u2
+    R = np.sqrt(u1)
+    phi = 2.0 * np.pi * u2
     x0, y = R * np.cos(phi), R * np.sin(phi)
     s = clip_fraction(d)
     L = np.sqrt(np.maximum(1.0 - y * y, 0.0))
@@ -187,11 +183,11 @@ def f_eon(rho, r, wi, wo):
         si = np.sqrt(1 - m * m)
         G = si * (np.arccos(m) - si * m) + 2.0 / 3.0 * ((si / m) * (1 - si**3) - si)
         return AF + r * AF * INV_PI * G
+
     avg = AF * (1 + k2 * r)
     rms = rho * rho * avg / (1 - rho * (1 - avg))
     fss = rho * INV_PI * AF * (1 + r * st)
-    fms = rms * INV_PI * np.maximum(1e-7, 1 - efon(mo)) * np.maximum(1e-7, 1 - efon(mi)) \
-        / max(1e-7, 1 - avg)
+    fms = rms * INV_PI * np.maximum(1e-7, 1 - efon(mo)) * np.maximum(1e-7, 1 - efon(mi)) / max(1e-7, 1 - avg)
     return fss + fms
 
 
@@ -206,4 +202,3 @@ def _grid(nz, nphi):
     z = (np.arange(nz) + 0.5) / nz
     ph = (np.arange(nphi) + 0.5) / nphi * 2 * np.pi
     Z, P = np.meshgrid(z, ph, indexing="ij")
-    st = np.sqrt(1 - Z * Z)

@@ -5,9 +5,9 @@ Run: `.venv/bin/python tests/kernels/sampling/generate_reference.py > tests/kern
 (numpy only, as in `.venv`). `wi` lies at azimuth 40° (so the lobe frame is not the shading frame's), `wo`
 at `wi`'s azimuth plus Δφ.
 """
-import numpy as np
 
 import eon_cltc
+import numpy as np
 
 ROUGHNESS = [0.05, 0.3, 0.7, 1.0]
 THETA_I = [0.0, 30.0, 60.0, 85.0, 89.0]

@@ -23,12 +23,13 @@ uv. Covered (test function → values):
 
 Prints one line per check and exits 1 if any differs.
 """
+
 import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
 import mitsuba as mi
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
 from reference_check import check, finish  # noqa: E402

@@ -25,11 +25,12 @@ Covered (test constant or function → what Mitsuba is asked):
 
 Prints one line per check and exits 1 if any differs.
 """
+
 import sys
 from pathlib import Path
 
-import numpy as np
 import mitsuba as mi
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
 from reference_check import check, finish  # noqa: E402
@@ -40,9 +41,37 @@ mi.set_log_level(mi.LogLevel.Error)
 
 # MITSUBA_GAUSSIAN_TABLE (tests/render/film.rs), 5 decimals.
 TEST_GAUSSIAN_TABLE = [
-    0.99925, 0.99099, 0.96664, 0.92735, 0.87498, 0.81193, 0.74095, 0.66496, 0.58685, 0.50931, 0.43468, 0.36484,
-    0.30115, 0.24447, 0.19518, 0.15326, 0.11835, 0.08986, 0.06707, 0.04920, 0.03546, 0.02510, 0.01743, 0.01188,
-    0.00792, 0.00516, 0.00325, 0.00197, 0.00112, 0.00057, 0.00022,
+    0.99925,
+    0.99099,
+    0.96664,
+    0.92735,
+    0.87498,
+    0.81193,
+    0.74095,
+    0.66496,
+    0.58685,
+    0.50931,
+    0.43468,
+    0.36484,
+    0.30115,
+    0.24447,
+    0.19518,
+    0.15326,
+    0.11835,
+    0.08986,
+    0.06707,
+    0.04920,
+    0.03546,
+    0.02510,
+    0.01743,
+    0.01188,
+    0.00792,
+    0.00516,
+    0.00325,
+    0.00197,
+    0.00112,
+    0.00057,
+    0.00022,
 ]
 
 
@@ -55,7 +84,7 @@ gauss = mi.load_dict({"type": "gaussian"})
 values = table(gauss)
 print("const MITSUBA_GAUSSIAN_TABLE: [f32; 31] = [")
 for row in range(0, 31, 12):
-    print("    " + " ".join(f"{v:.5f}," for v in values[row:row + 12]))
+    print("    " + " ".join(f"{v:.5f}," for v in values[row : row + 12]))
 print("];")
 check("gaussian table, 5 decimals", np.round(values, 5), TEST_GAUSSIAN_TABLE)
 check("gaussian radius", gauss.radius(), 2.0)
@@ -65,16 +94,31 @@ check("gaussian beyond the radius", gauss.eval_discretized(2.0), 0.0)
 XS = [0.0, 0.3, 0.75, 1.0, 1.4, 1.9, 2.5]
 TABLE_XS = [0.0, 0.3, 1.4]
 NEGATIVE_LOBED = [
-    ({"type": "mitchell"}, 2.0,
-     [0.888889, 0.740389, 0.2560764, 0.0555556, -0.0359999, -0.0029442, 0.0], [0.888889, 0.7757451, -0.0343129]),
-    ({"type": "mitchell", "B": 0.2, "C": 0.4}, 2.0,
-     [0.9333333, 0.7704333, 0.2442707, 0.0333332, -0.0504004, -0.003567, 0.0], [0.9333333, 0.8091616, -0.0501273]),
-    ({"type": "catmullrom"}, 2.0,
-     [1.0, 0.8155, 0.2265625, 0.0, -0.072, -0.0045002, 0.0], [1.0, 0.8592864, -0.0738479]),
-    ({"type": "lanczos"}, 3.0,
-     [1.0, 0.8443431, 0.2701898, 0.0, -0.1466851, -0.0237699, 0.0243171], [1.0, 0.8537122, -0.1469572]),
-    ({"type": "lanczos", "lobes": 2}, 2.0,
-     [1.0, 0.8269746, 0.2353467, 0.0, -0.0795496, -0.0027135, 0.0], [1.0, 0.8697127, -0.0841129]),
+    (
+        {"type": "mitchell"},
+        2.0,
+        [0.888889, 0.740389, 0.2560764, 0.0555556, -0.0359999, -0.0029442, 0.0],
+        [0.888889, 0.7757451, -0.0343129],
+    ),
+    (
+        {"type": "mitchell", "B": 0.2, "C": 0.4},
+        2.0,
+        [0.9333333, 0.7704333, 0.2442707, 0.0333332, -0.0504004, -0.003567, 0.0],
+        [0.9333333, 0.8091616, -0.0501273],
+    ),
+    ({"type": "catmullrom"}, 2.0, [1.0, 0.8155, 0.2265625, 0.0, -0.072, -0.0045002, 0.0], [1.0, 0.8592864, -0.0738479]),
+    (
+        {"type": "lanczos"},
+        3.0,
+        [1.0, 0.8443431, 0.2701898, 0.0, -0.1466851, -0.0237699, 0.0243171],
+        [1.0, 0.8537122, -0.1469572],
+    ),
+    (
+        {"type": "lanczos", "lobes": 2},
+        2.0,
+        [1.0, 0.8269746, 0.2353467, 0.0, -0.0795496, -0.0027135, 0.0],
+        [1.0, 0.8697127, -0.0841129],
+    ),
 ]
 for d, radius, evals, tab in NEGATIVE_LOBED:
     f = mi.load_dict(d)
@@ -103,30 +147,41 @@ for radius in (1.0, 1.5, 3.0):
 # gaussian_fit_is_the_minimax_approximation (the filter side)
 xs = np.arange(401) * 0.005
 exact = np.maximum(np.exp(-2 * xs**2) - np.exp(-8.0), 0.0)
-check("max |gaussian.eval − (exp(−2x²) − exp(−8))| ≤ 4.2e-4",
-      np.max(np.abs([gauss.eval(float(x)) for x in xs] - exact)) <= 4.2e-4, True)
+check(
+    "max |gaussian.eval − (exp(−2x²) − exp(−8))| ≤ 4.2e-4",
+    np.max(np.abs([gauss.eval(float(x)) for x in xs] - exact)) <= 4.2e-4,
+    True,
+)
 
 
 # half_bright_half_dark_edge_matches_mitsuba
 def edge_scene(seed, spp):
-    return mi.load_dict({
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 1},
-        "sensor": {
-            "type": "perspective", "fov": 40,
-            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 5], target=[0, 0, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": 8, "height": 2},
-            "sampler": {"type": "independent", "sample_count": spp, "seed": seed},
-        },
-        # Radiance 1 on world x < 0, which the camera sees on the left half of the image.
-        "light": {"type": "rectangle", "to_world": mi.ScalarTransform4f().translate([-50, 0, 0]).scale([50, 50, 1]),
-                  "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 1.0}}},
-    })
+    return mi.load_dict(
+        {
+            "type": "scene",
+            "integrator": {"type": "path", "max_depth": 1},
+            "sensor": {
+                "type": "perspective",
+                "fov": 40,
+                "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 5], target=[0, 0, 0], up=[0, 1, 0]),
+                "film": {"type": "hdrfilm", "width": 8, "height": 2},
+                "sampler": {"type": "independent", "sample_count": spp, "seed": seed},
+            },
+            # Radiance 1 on world x < 0, which the camera sees on the left half of the image.
+            "light": {
+                "type": "rectangle",
+                "to_world": mi.ScalarTransform4f().translate([-50, 0, 0]).scale([50, 50, 1]),
+                "emitter": {"type": "area", "radiance": {"type": "rgb", "value": 1.0}},
+            },
+        }
+    )
 
 
 renders = np.array([np.array(mi.render(edge_scene(seed, 65536)))[:, :, 0] for seed in range(32)])
 mean, se = renders.mean(axis=0), renders.std(axis=0, ddof=1) / np.sqrt(len(renders))
-print(f"edge renders: pixels 3 | 4 = {mean[:, 3].mean():.5f} | {mean[:, 4].mean():.5f} (standard error {se[:, 3:5].max():.1e})")
+print(
+    f"edge renders: pixels 3 | 4 = {mean[:, 3].mean():.5f} | {mean[:, 4].mean():.5f} (standard error {se[:, 3:5].max():.1e})"
+)
 check("edge: left of the edge, both rows", mean[:, 3], [0.8339, 0.8339], 2e-3)
 check("edge: right of the edge, both rows", mean[:, 4], [0.1661, 0.1661], 2e-3)
 check("edge: outer pixels", [mean[:, 0], mean[:, 7]], [[1.0, 1.0], [0.0, 0.0]], 1e-6)

@@ -6,10 +6,11 @@ wheel:
 
     /work/main/.venv/bin/python tests/render/mitsuba_bsdfs/generate_bumpmap_reference.py
 """
+
 import os
 
-import numpy as np
 import mitsuba as mi
+import numpy as np
 
 mi.set_variant("scalar_rgb")
 rng = np.random.default_rng(7)
@@ -40,12 +41,14 @@ def vec(v):
 rows = []
 for k, (nested, scale) in enumerate(zip(NESTED, SCALES)):
     nested_obj = mi.load_string(nested.replace("<bsdf ", '<bsdf version="3.0.0" ', 1))
-    bsdf = mi.load_dict({
-        "type": "bumpmap",
-        "tex": {"type": "bitmap", "bitmap": mi.Bitmap(texels), "raw": True},
-        "scale": scale,
-        "nested": nested_obj,
-    })
+    bsdf = mi.load_dict(
+        {
+            "type": "bumpmap",
+            "tex": {"type": "bitmap", "bitmap": mi.Bitmap(texels), "raw": True},
+            "scale": scale,
+            "nested": nested_obj,
+        }
+    )
     for i in range(16):
         n_geo = unit(rng.normal(size=3))
         n_sh = unit(n_geo + 0.2 * rng.normal(size=3))
@@ -67,17 +70,29 @@ for k, (nested, scale) in enumerate(zip(NESTED, SCALES)):
         e = bsdf.eval(ctx, si, mi.Vector3f(*map(float, wo)))
         p = bsdf.pdf(ctx, si, mi.Vector3f(*map(float, wo)))
         fr = si.sh_frame
-        rows.append(f"    ({k}, {vec(n_geo)}, {vec([fr.s[0], fr.s[1], fr.s[2]])}, {vec([fr.t[0], fr.t[1], fr.t[2]])}, "
-                    f"{vec([fr.n[0], fr.n[1], fr.n[2]])}, {vec(dp_du)}, {vec(dp_dv)}, {vec(uv)}, {vec(wi)}, {vec(wo)}, "
-                    f"{vec([e[0], e[1], e[2]])}, {f(p)}),")
+        rows.append(
+            f"    ({k}, {vec(n_geo)}, {vec([fr.s[0], fr.s[1], fr.s[2]])}, {vec([fr.t[0], fr.t[1], fr.t[2]])}, "
+            f"{vec([fr.n[0], fr.n[1], fr.n[2]])}, {vec(dp_du)}, {vec(dp_dv)}, {vec(uv)}, {vec(wi)}, {vec(wo)}, "
+            f"{vec([e[0], e[1], e[2]])}, {f(p)}),"
+        )
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "bumpmap_reference.rs")
 with open(out, "w") as fh:
     fh.write("//! Mitsuba 3.9.1 `bumpmap` values, written by `generate_bumpmap_reference.py`. Do not edit.\n\n")
     fh.write(f"pub const WIDTH: u32 = {W};\npub const HEIGHT: u32 = {H};\n")
-    fh.write("/// Grey height texels, row-major, top row first.\n#[rustfmt::skip]\npub const TEXELS: &[f32] = &[" + ", ".join(f(x) for x in grey.ravel()) + "];\n")
-    fh.write("/// (nested, scale) per configuration index.\npub const NESTED: &[(&str, f32)] = &[\n" + "".join(f"    (r#\"{n}\"#, {f(s)}),\n" for n, s in zip(NESTED, SCALES)) + "];\n")
+    fh.write(
+        "/// Grey height texels, row-major, top row first.\n#[rustfmt::skip]\npub const TEXELS: &[f32] = &["
+        + ", ".join(f(x) for x in grey.ravel())
+        + "];\n"
+    )
+    fh.write(
+        "/// (nested, scale) per configuration index.\npub const NESTED: &[(&str, f32)] = &[\n"
+        + "".join(f'    (r#"{n}"#, {f(s)}),\n' for n, s in zip(NESTED, SCALES))
+        + "];\n"
+    )
     fh.write("/// (config, n_geo, sh_frame s, t, n, dp_du, dp_dv, uv, wi (local), wo (local), eval RGB, pdf)\n")
-    fh.write("pub type Row = (usize, [f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 2], [f32; 3], [f32; 3], [f32; 3], f32);\n")
+    fh.write(
+        "pub type Row = (usize, [f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 3], [f32; 2], [f32; 3], [f32; 3], [f32; 3], f32);\n"
+    )
     fh.write("#[rustfmt::skip]\npub const ROWS: &[Row] = &[\n" + "\n".join(rows) + "\n];\n")
 print("wrote", out)

@@ -9,8 +9,9 @@ Python from the repository root:
 Per configuration: normal incidence, one wo below the surface, then 18 random wi (a seeded
 generator) each with a wo near its mirror direction (the lobe), as f32 unit vectors.
 """
-import numpy as np
+
 import mitsuba as mi
+import numpy as np
 
 mi.set_variant("scalar_rgb")
 
@@ -45,8 +46,13 @@ def directions(rng):
 
 
 def bsdf(dist, au, av, spec, visible):
-    d = {"type": "roughconductor", "distribution": dist, "sample_visible": visible,
-         "eta": {"type": "rgb", "value": AU_ETA}, "k": {"type": "rgb", "value": AU_K}}
+    d = {
+        "type": "roughconductor",
+        "distribution": dist,
+        "sample_visible": visible,
+        "eta": {"type": "rgb", "value": AU_ETA},
+        "k": {"type": "rgb", "value": AU_K},
+    }
     if au == av:
         d["alpha"] = au
     else:

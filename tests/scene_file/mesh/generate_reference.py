@@ -22,18 +22,20 @@ The OBJ with only zero-area triangles in the same test has no Mitsuba oracle: Mi
 ("DiscreteDistribution: no probability mass found!"); the test only asks matte for unit normals.
 Prints one line per check and exits 1 if any differs.
 """
+
 import re
 import sys
 import tempfile
 from pathlib import Path
 
-import numpy as np
 import mitsuba as mi
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
 from functools import partial  # noqa: E402
 
-from reference_check import check as _check, finish  # noqa: E402
+from reference_check import check as _check  # noqa: E402
+from reference_check import finish
 
 check = partial(_check, threshold=12)
 
@@ -63,12 +65,12 @@ def down(scene, x, y):
 # The test's literal of `fn mitsuba_cube()`, parsed.
 def test_cube():
     text = TEST.read_text()
-    body = text[text.index("fn mitsuba_cube()"):text.index("fn cube_matches_mitsuba_buffers()")]
+    body = text[text.index("fn mitsuba_cube()") : text.index("fn cube_matches_mitsuba_buffers()")]
     num = r"(-?[0-9.]+)"
-    pos_block = body[body.index("let pos"):body.index("let nrm")]
-    nrm_block = body[body.index("let nrm"):body.index("let uv")]
-    uv_block = body[body.index("let uv"):body.index("let faces")]
-    faces_block = body[body.index("let faces"):]
+    pos_block = body[body.index("let pos") : body.index("let nrm")]
+    nrm_block = body[body.index("let nrm") : body.index("let uv")]
+    uv_block = body[body.index("let uv") : body.index("let faces")]
+    faces_block = body[body.index("let faces") :]
     triple = re.compile(rf"\[{num}, {num}, {num}\]")
     pos = [[float(a) for a in m] for m in triple.findall(pos_block)]
     nrm = [[float(a) for a in m] for m in triple.findall(nrm_block) for _ in range(4)]
@@ -77,19 +79,27 @@ def test_cube():
     return np.array(pos).ravel(), np.array(nrm).ravel(), np.array(uv).ravel(), np.array(faces).ravel()
 
 
-CUBE8 = ("v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
-         "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+CUBE8 = (
+    "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+    "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n"
+)
 
 # obj_smooth_normals_match_mitsuba_cube_corner
 scene = mi.load_dict({"type": "scene", "s": {"type": "obj", "filename": obj("cube8.obj", CUBE8)}})
 check("CUBE8 shading normal at (0.9, 0.9, 1)", down(scene, 0.9, 0.9).sh_frame.n, [0.556, 0.556, 0.618], 1e-3)
 b = buffers(scene.shapes()[0])
 positions = b["vertex_positions"].reshape(-1, 3)
-check("CUBE8 vertex normals = corner directions", b["vertex_normals"].reshape(-1, 3),
-      positions / np.linalg.norm(positions, axis=1, keepdims=True), 1e-6)
+check(
+    "CUBE8 vertex normals = corner directions",
+    b["vertex_normals"].reshape(-1, 3),
+    positions / np.linalg.norm(positions, axis=1, keepdims=True),
+    1e-6,
+)
 
 # degenerate_triangles_are_kept_without_nan_normals
-n = buffers(mi.load_dict({"type": "obj", "filename": obj("deg.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n")}))
+n = buffers(
+    mi.load_dict({"type": "obj", "filename": obj("deg.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\n")})
+)
 n = n["vertex_normals"].reshape(-1, 3)
 check("degenerate OBJ: normal of vertex 0", n[0], [0, 0, 1], 1e-6)
 check("degenerate OBJ: placeholder normal of vertex 2", n[2], [1, 0, 0])
@@ -109,7 +119,11 @@ check("cube surface_area", mi.load_dict({"type": "cube"}).surface_area(), 24.0)
 mirror = mi.ScalarTransform4f().scale([-1, 2, 1])
 cube = mi.load_dict({"type": "cube", "to_world": mirror})
 b = buffers(cube)
-check("mirrored cube: vertex_positions = (-x, 2y, z)", b["vertex_positions"].reshape(-1, 3), pos.reshape(-1, 3) * [-1, 2, 1])
+check(
+    "mirrored cube: vertex_positions = (-x, 2y, z)",
+    b["vertex_positions"].reshape(-1, 3),
+    pos.reshape(-1, 3) * [-1, 2, 1],
+)
 expect = np.repeat([[0, -1, 0], [0, 1, 0], [-1, 0, 0], [0, 0, 1], [1, 0, 0], [0, 0, -1]], 4, axis=0)
 check("mirrored cube: vertex_normals (+x and -x faces swapped)", b["vertex_normals"].reshape(-1, 3), expect, 1e-6)
 check("mirrored cube: surface_area", cube.surface_area(), 2.0 * (2.0 * 4.0 + 2.0 * 4.0 + 2.0 * 2.0))

@@ -12,6 +12,7 @@ from them, the oracle. Run by hand with the venv's Python from the repository ro
   `vertex_positions`, `vertex_normals`, `vertex_texcoords` and `faces` buffers of
   `mi.traverse(mi.load_dict({"type": "serialized", ...}))`, flattened.
 """
+
 import json
 import sys
 from pathlib import Path
@@ -32,8 +33,13 @@ quads = {
     "faces": [(0, 1, 2), (0, 2, 3), (1, 4, 5), (1, 5, 2)],
     "name": "quads",
 }
-triangle = {"positions": [(0, 0, 0), (1, 0, 0), (0, 1, 0)], "normals": [(0, 0, 1)] * 3,
-            "uvs": [(0, 0), (1, 0), (0, 1)], "faces": [(0, 1, 2)], "double": True}
+triangle = {
+    "positions": [(0, 0, 0), (1, 0, 0), (0, 1, 0)],
+    "normals": [(0, 0, 1)] * 3,
+    "uvs": [(0, 0), (1, 0), (0, 1)],
+    "faces": [(0, 1, 2)],
+    "double": True,
+}
 torus_no_uv = {k: v for k, v in torus(8, 4).items() if k != "uvs"}
 boxd = dict(twisted_box(), double=True)
 
@@ -57,8 +63,9 @@ for name, index, face_normals, to_world in CASES:
     if to_world is not None:
         d["to_world"] = mi.ScalarTransform4f(to_world)
     p = mi.traverse(mi.load_dict(d))
-    buf = {k: [float(x) for x in p[k]] for k in ("vertex_positions", "vertex_normals", "vertex_texcoords")
-           if k in p.keys()}
+    buf = {
+        k: [float(x) for x in p[k]] for k in ("vertex_positions", "vertex_normals", "vertex_texcoords") if k in p.keys()
+    }
     buf["faces"] = [int(x) for x in p["faces"]]
     cases.append({"file": name, "shape_index": index, "face_normals": face_normals, "to_world": to_world, **buf})
 

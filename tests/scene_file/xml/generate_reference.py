@@ -20,17 +20,19 @@ and printed with the float32 digits the test holds (`rgb_float_and_constant_spec
 
 Prints one line per check and exits 1 if any differs.
 """
+
 import math
 import sys
 from pathlib import Path
 
-import numpy as np
 import mitsuba as mi
+import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
 from functools import partial  # noqa: E402
 
-from reference_check import check as _check, finish  # noqa: E402
+from reference_check import check as _check  # noqa: E402
+from reference_check import finish
 
 check = partial(_check, precision=16)
 
@@ -57,48 +59,93 @@ def vector(m, v):
 
 
 # first_listed_operation_is_applied_first
-check("translate x=1 then rotate y 90: origin", point(to_world('<translate x="1"/><rotate y="1" angle="90"/>'), [0, 0, 0]),
-      [0, 0, -1], 1e-15)
-check("rotate y 90 then translate x=1: origin", point(to_world('<rotate y="1" angle="90"/><translate x="1"/>'), [0, 0, 0]),
-      [1, 0, 0], 1e-15)
-check("scale 2 then translate (1, 2, 3)", to_world('<scale value="2"/><translate value="1 2 3"/>'),
-      [[2, 0, 0, 1], [0, 2, 0, 2], [0, 0, 2, 3], [0, 0, 0, 1]])
+check(
+    "translate x=1 then rotate y 90: origin",
+    point(to_world('<translate x="1"/><rotate y="1" angle="90"/>'), [0, 0, 0]),
+    [0, 0, -1],
+    1e-15,
+)
+check(
+    "rotate y 90 then translate x=1: origin",
+    point(to_world('<rotate y="1" angle="90"/><translate x="1"/>'), [0, 0, 0]),
+    [1, 0, 0],
+    1e-15,
+)
+check(
+    "scale 2 then translate (1, 2, 3)",
+    to_world('<scale value="2"/><translate value="1 2 3"/>'),
+    [[2, 0, 0, 1], [0, 2, 0, 2], [0, 0, 2, 3], [0, 0, 0, 1]],
+)
 
 # rotate: right-handed, unnormalised axis
 check("rotate x 90: +y", vector(to_world('<rotate x="1" angle="90"/>'), [0, 1, 0]), [0, 0, 1], 1e-15)
-check("rotate x=2 90", to_world('<rotate x="2" angle="90"/>'),
-      [[4, 0, 0, 0], [0, 0, -2, 0], [0, 2, 0, 0], [0, 0, 0, 1]], 1e-15)
+check(
+    "rotate x=2 90",
+    to_world('<rotate x="2" angle="90"/>'),
+    [[4, 0, 0, 0], [0, 0, -2, 0], [0, 2, 0, 0], [0, 0, 0, 1]],
+    1e-15,
+)
 s, c = 0.5, math.sqrt(3) / 2
 k = 1 - c
-check("rotate (1, 1, 0) 30", to_world('<rotate value="1, 1, 0" angle="30"/>'),
-      [[c + k, k, s, 0], [k, c + k, -s, 0], [-s, s, c, 0], [0, 0, 0, 1]], 1e-15)
+check(
+    "rotate (1, 1, 0) 30",
+    to_world('<rotate value="1, 1, 0" angle="30"/>'),
+    [[c + k, k, s, 0], [k, c + k, -s, 0], [-s, s, c, 0], [0, 0, 0, 1]],
+    1e-15,
+)
 check("rotate z 180: +x", vector(to_world('<rotate z="1" angle="180"/>'), [1, 0, 0]), [-1, 0, 0], 1e-15)
 
 # matrix_is_row_major_and_defaults_fill_in
-check("matrix 16 values: origin", point(to_world('<matrix value="1 0 0 5  0 1 0 6  0 0 1 7  0 0 0 1"/>'), [0, 0, 0]), [5, 6, 7])
-check("matrix 9 values", to_world('<matrix value="1,2,3,4,5,6,7,8,9"/>'),
-      [[1, 2, 3, 0], [4, 5, 6, 0], [7, 8, 9, 0], [0, 0, 0, 1]])
+check(
+    "matrix 16 values: origin",
+    point(to_world('<matrix value="1 0 0 5  0 1 0 6  0 0 1 7  0 0 0 1"/>'), [0, 0, 0]),
+    [5, 6, 7],
+)
+check(
+    "matrix 9 values",
+    to_world('<matrix value="1,2,3,4,5,6,7,8,9"/>'),
+    [[1, 2, 3, 0], [4, 5, 6, 0], [7, 8, 9, 0], [0, 0, 0, 1]],
+)
 check("translate y=2", to_world('<translate y="2"/>'), [[1, 0, 0, 0], [0, 1, 0, 2], [0, 0, 1, 0], [0, 0, 0, 1]])
 check("scale z=3", to_world('<scale z="3"/>'), np.diag([1, 1, 3, 1]))
 check("scale value 2 3 4", to_world('<scale value="2 3 4"/>'), np.diag([2, 3, 4, 1]))
 
 # lookat_columns_are_left_up_dir_origin
-check("lookat (0,0,5) → 0, up +y", to_world('<lookat origin="0,0,5" target="0,0,0" up="0,1,0"/>'),
-      [[-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, -1, 5], [0, 0, 0, 1]])
+check(
+    "lookat (0,0,5) → 0, up +y",
+    to_world('<lookat origin="0,0,5" target="0,0,0" up="0,1,0"/>'),
+    [[-1, 0, 0, 0], [0, 1, 0, 0], [0, 0, -1, 5], [0, 0, 0, 1]],
+)
 m = to_world('<lookat origin="1 2 3" target="0 0 0" up="0 0 1"/>')
 d = -np.array([1, 2, 3]) / math.sqrt(14)
 left = np.cross([0, 0, 1], d)
 left /= np.linalg.norm(left)
-check("lookat (1,2,3) → 0, up +z: columns left, up', dir", m[:3, :3], np.column_stack([left, np.cross(d, left), d]), 1e-15)
-check("lookat (0,0,0) → (0,0,−1), no up", to_world('<lookat origin="0,0,0" target="0 0 -1"/>'),
-      [[0, 1, 0, 0], [1, 0, 0, 0], [0, 0, -1, 0], [0, 0, 0, 1]], 1e-15)
-check("lookat (0,0,0) → (0,0,1), up 0", to_world('<lookat origin="0,0,0" target="0 0 1" up="0 0 0"/>'),
-      [[0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]], 1e-15)
-check("lookat (1,2,3) → 0, no up", to_world('<lookat origin="1,2,3" target="0 0 0"/>'),
-      [[-0.079286509705, 0.960356745147, -0.267261241912, 1.0],
-       [0.84142698059, -0.079286509705, -0.534522483825, 2.0],
-       [-0.534522483825, -0.267261241912, -0.801783725737, 3.0],
-       [0.0, 0.0, 0.0, 1.0]], 1e-11)
+check(
+    "lookat (1,2,3) → 0, up +z: columns left, up', dir", m[:3, :3], np.column_stack([left, np.cross(d, left), d]), 1e-15
+)
+check(
+    "lookat (0,0,0) → (0,0,−1), no up",
+    to_world('<lookat origin="0,0,0" target="0 0 -1"/>'),
+    [[0, 1, 0, 0], [1, 0, 0, 0], [0, 0, -1, 0], [0, 0, 0, 1]],
+    1e-15,
+)
+check(
+    "lookat (0,0,0) → (0,0,1), up 0",
+    to_world('<lookat origin="0,0,0" target="0 0 1" up="0 0 0"/>'),
+    [[0, 1, 0, 0], [-1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]],
+    1e-15,
+)
+check(
+    "lookat (1,2,3) → 0, no up",
+    to_world('<lookat origin="1,2,3" target="0 0 0"/>'),
+    [
+        [-0.079286509705, 0.960356745147, -0.267261241912, 1.0],
+        [0.84142698059, -0.079286509705, -0.534522483825, 2.0],
+        [-0.534522483825, -0.267261241912, -0.801783725737, 3.0],
+        [0.0, 0.0, 0.0, 1.0],
+    ],
+    1e-11,
+)
 
 # Colours.
 SI = mi.SurfaceInteraction3f()
@@ -110,8 +157,12 @@ def color(p, name, use):
 
 
 # rgb_float_and_constant_spectrum_per_use
-p = props('<rgb name="c" value="0.2 0.4 0.6"/><float name="f" value="0.3"/><spectrum name="s" value="2.5"/>'
-          '<rgb name="hot" value="-1 2 0.5"/>', "diffuse", "bsdf")
+p = props(
+    '<rgb name="c" value="0.2 0.4 0.6"/><float name="f" value="0.3"/><spectrum name="s" value="2.5"/>'
+    '<rgb name="hot" value="-1 2 0.5"/>',
+    "diffuse",
+    "bsdf",
+)
 for use in USES:
     check(f"<rgb 0.2 0.4 0.6> {use}", color(p, "c", use), [0.2, 0.4, 0.6], 1e-7)
     check(f"<float 0.3> {use}", color(p, "f", use), [0.3] * 3, 1e-7)
@@ -128,13 +179,21 @@ except Exception as e:  # noqa: BLE001 (Mitsuba raises a plain RuntimeError)
 
 # unit_constant_emission_is_the_equal_energy_colour
 p = props('<spectrum name="radiance" value="1"/>', "diffuse", "bsdf")
-check("<spectrum 1> Emissive", color(p, "radiance", "Emissive"),
-      [1.204793930053711, 0.948291003704071, 0.9089160561561584], 1e-12)
+check(
+    "<spectrum 1> Emissive",
+    color(p, "radiance", "Emissive"),
+    [1.204793930053711, 0.948291003704071, 0.9089160561561584],
+    1e-12,
+)
 
 # sampled_spectra_match_mitsuba
-p = props('<spectrum name="flat" value="360:0.5 830:0.5"/><spectrum name="ramp" value="400:0.2, 500:0.8 600:0.4"/>'
-          '<spectrum name="red" value="550:0.1 600:0.9 700:0.9"/><spectrum name="k" value="400:3 700:2"/>'
-          '<spectrum name="dip" value="400:1 450:0 700:0"/>', "diffuse", "bsdf")
+p = props(
+    '<spectrum name="flat" value="360:0.5 830:0.5"/><spectrum name="ramp" value="400:0.2, 500:0.8 600:0.4"/>'
+    '<spectrum name="red" value="550:0.1 600:0.9 700:0.9"/><spectrum name="k" value="400:3 700:2"/>'
+    '<spectrum name="dip" value="400:1 450:0 700:0"/>',
+    "diffuse",
+    "bsdf",
+)
 for name, use, want, tol in [
     ("flat", "Bounded", [0.4994926452636719, 0.4994368553161621, 0.499400794506073], 2e-7),
     ("flat", "Emissive", [0.6024418473243713, 0.4741140902042389, 0.4546334147453308], 2e-7),
