@@ -7,6 +7,7 @@ mod common;
 
 mod bench;
 mod cli;
+mod inventories;
 mod microgeometry;
 mod study;
 mod study_scenes;

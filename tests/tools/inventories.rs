@@ -1,0 +1,44 @@
+//! Lists the repository keeps by hand, checked against what they list: every test file is
+//! described in docs/testing.md, and the package descriptions (Cargo.toml, pyproject.toml)
+//! name every registered model.
+
+use std::path::Path;
+
+const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(Path::new(ROOT).join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+#[test]
+fn docs_testing_names_every_test_file() {
+    let doc = read("docs/testing.md");
+    let mut missing = Vec::new();
+    for suite in std::fs::read_dir(Path::new(ROOT).join("tests")).unwrap() {
+        let suite = suite.unwrap().path();
+        if !suite.is_dir() {
+            continue;
+        }
+        for file in std::fs::read_dir(&suite).unwrap() {
+            let name = file.unwrap().file_name().into_string().unwrap();
+            let is_test = (name.ends_with(".rs") && name != "main.rs") || name.ends_with(".py");
+            if is_test && !doc.contains(&format!("{name}`")) {
+                missing.push(format!("{}/{name}", suite.file_name().unwrap().to_string_lossy()));
+            }
+        }
+    }
+    assert!(missing.is_empty(), "docs/testing.md does not describe: {missing:?}");
+}
+
+#[test]
+fn package_descriptions_name_every_registered_model() {
+    let descriptions = [("Cargo.toml", read("Cargo.toml")), ("pyproject.toml", read("pyproject.toml"))];
+    for (file, text) in descriptions {
+        let line =
+            text.lines().find(|l| l.starts_with("description")).unwrap_or_else(|| panic!("{file}: no description"));
+        let line = line.to_lowercase();
+        for model in matte::brdf::BSDF_TYPES {
+            assert!(line.contains(&model.replace('_', "-")), "{file}'s description does not name {model}: {line}");
+        }
+    }
+}
