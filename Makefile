@@ -35,7 +35,7 @@ test: plugin dist
 	.venv/bin/ruff format --check --quiet .
 	clang-format --dry-run --Werror cpp/*.h cpp/*.cpp
 	cargo test --quiet
-	$(PY) -m pytest -q tests/plugin tests/renderer
+	$(PY) -m pytest -q tests/plugin tests/harness
 
 # Every table with its fixed seed and photon count (docs/microgeometry.md, "The tabulated
 # ground-truth BRDF"; about 22 min on 2 shared cores).

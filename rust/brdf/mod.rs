@@ -74,11 +74,6 @@ impl DiffuseBrdf for DiffuseModel {
     }
 
     #[inline]
-    fn sample_direction(&self, wi: Vec3, u: Vec2) -> Option<(Vec3, f32)> {
-        dispatch!(self, b => b.sample_direction(wi, u))
-    }
-
-    #[inline]
     fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         dispatch!(self, b => b.sample(wi, u, reflectance))
     }

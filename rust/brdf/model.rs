@@ -55,29 +55,27 @@ pub trait DiffuseBrdf {
     /// `f(wi, wo)` in 1/sr, **without** the cosine, for each reflectance channel.
     fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N];
 
-    /// Solid-angle density of [`Self::sample_direction`]. Default: cosine-weighted, zero when
+    /// Solid-angle density of [`Self::sample`]'s directions. Default: cosine-weighted, zero when
     /// either direction is below the surface (as Mitsuba's `diffuse`).
     #[inline]
     fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
         if wi.z <= 0.0 || wo.z <= 0.0 { 0.0 } else { cosine_hemisphere_pdf(wo) }
     }
 
-    /// Draws `wo` given `wi` from two uniform numbers; `None` when no direction can be drawn
-    /// (`wi` below the surface). Default: cosine-weighted (Mitsuba's warp).
+    /// Draws `wo` given `wi` from two uniform numbers and returns it with its density
+    /// ([`Self::pdf`]) and the weight `f cos θo / pdf` per channel; `None` when no direction can
+    /// be drawn (`wi` below the surface). Default: cosine-weighted (Mitsuba's warp), the
+    /// density of the default [`Self::pdf`]; a model that overrides one overrides both.
     #[inline]
-    fn sample_direction(&self, wi: Vec3, u: Vec2) -> Option<(Vec3, f32)> {
+    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
         if wi.z <= 0.0 {
             return None;
         }
         let wo = square_to_cosine_hemisphere(u);
         let pdf = cosine_hemisphere_pdf(wo);
-        (pdf > 0.0).then_some((wo, pdf))
-    }
-
-    /// Samples `wo` and returns the weight `f cos θo / pdf` per channel.
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        let (wo, pdf) = self.sample_direction(wi, u)?;
+        if !(pdf > 0.0) {
+            return None;
+        }
         let f = self.eval(wi, wo, reflectance);
         let scale = wo.z / pdf;
         Some(BrdfSample { wo, pdf, weight: f.map(|x| x * scale) })

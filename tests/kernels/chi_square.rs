@@ -32,8 +32,8 @@ fn sampling_matches_pdf() {
 #[test]
 fn chi_square_rejects_a_wrong_pdf() {
     use glam::Vec2;
-    use matte::brdf::DiffuseBrdf;
     use matte::brdf::sampling::square_to_cosine_hemisphere;
+    use matte::brdf::{BrdfSample, DiffuseBrdf};
     struct Tilted;
     impl DiffuseBrdf for Tilted {
         fn eval<const N: usize>(&self, _: Vec3, wo: Vec3, r: [f32; N]) -> [f32; N] {
@@ -43,9 +43,12 @@ fn chi_square_rejects_a_wrong_pdf() {
         fn pdf(&self, _: Vec3, wo: Vec3) -> f32 {
             wo.z.max(0.0).powf(1.1) * 2.1 / (2.0 * std::f32::consts::PI)
         }
-        fn sample_direction(&self, _: Vec3, u: Vec2) -> Option<(Vec3, f32)> {
+        // Draws cosine-weighted directions but reports the tilted density.
+        fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, r: [f32; N]) -> Option<BrdfSample<N>> {
             let wo = square_to_cosine_hemisphere(u);
-            Some((wo, self.pdf(Vec3::Z, wo)))
+            let pdf = self.pdf(Vec3::Z, wo);
+            let f = self.eval(wi, wo, r);
+            Some(BrdfSample { wo, pdf, weight: f.map(|x| x * wo.z / pdf) })
         }
     }
     let wrong = chi2_sampling(&Tilted, Vec3::Z, 99);

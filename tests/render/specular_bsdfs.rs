@@ -9,7 +9,7 @@ mod mitsuba_reference;
 use crate::common::{Pcg32, PcgExt, chi2_render_bsdf, sidak};
 use glam::{DVec3, Vec2, Vec3};
 use matte::brdf::quadrature::GaussLegendre;
-use matte::render::bsdf::interface::fresnel_dielectric;
+use matte::render::bsdf::fresnel::fresnel_dielectric;
 use matte::render::bsdf::vndf::erf_inv;
 use matte::render::bsdf::{
     Conductor, Dielectric, MicrofacetDistribution, RoughConductor, conductor_material, fresnel_conductor,

@@ -1,5 +1,6 @@
 //! Lists the repository keeps by hand, checked against what they list: every test file is
-//! described in docs/testing.md, and the package descriptions (Cargo.toml, pyproject.toml)
+//! described in docs/testing.md, its table of the Rust test crates names each crate's modules
+//! as its `main.rs` declares them, and the package descriptions (Cargo.toml, pyproject.toml)
 //! name every registered model.
 
 use std::path::Path;
@@ -28,6 +29,26 @@ fn docs_testing_names_every_test_file() {
         }
     }
     assert!(missing.is_empty(), "docs/testing.md does not describe: {missing:?}");
+}
+
+#[test]
+fn docs_testing_lists_each_test_crates_modules() {
+    let doc = read("docs/testing.md");
+    for krate in ["kernels", "scene_file", "render", "tools"] {
+        let declared: std::collections::BTreeSet<String> = read(&format!("tests/{krate}/main.rs"))
+            .lines()
+            .filter_map(|l| l.strip_prefix("mod ")?.strip_suffix(';').map(str::to_string))
+            .filter(|m| m != "common")
+            .collect();
+        let row = doc
+            .lines()
+            .find(|l| l.starts_with(&format!("| `tests/{krate}/` |")))
+            .unwrap_or_else(|| panic!("docs/testing.md: no row for tests/{krate}/"));
+        let modules = row.rsplit('|').nth(1).expect("a modules column");
+        let listed: std::collections::BTreeSet<String> =
+            modules.split(',').map(|m| m.trim().trim_matches('`').to_string()).collect();
+        assert_eq!(listed, declared, "docs/testing.md's modules of tests/{krate}/ against its main.rs");
+    }
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! reflectance is the complex-index Fresnel term times `specular_reflectance` (§10).
 
 use super::conductor_ior::conductor_ior_from_props;
-use super::interface::fresnel_conductor;
+use super::fresnel::fresnel_conductor;
 use super::parameter_checks::{check_colour, check_finite};
 use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::render::load::props::{FromProps, PluginProps};

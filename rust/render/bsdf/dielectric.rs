@@ -2,7 +2,7 @@
 //! Dirac reflection and one Dirac refraction lobe, the lobe chosen with probability Fresnel R
 //! (docs/renderer-semantics.md §10). Two-sided: the interior is the side opposite the normal.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
 use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::render::load::props::{FromProps, PluginProps};

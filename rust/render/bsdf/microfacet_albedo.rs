@@ -16,7 +16,7 @@
 //! than using the renderer's sampler ([`super::vndf`]), which draws the same density through
 //! a different map.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::vndf::erf_inv;
 use crate::brdf::quadrature::GaussLegendre;

@@ -15,7 +15,7 @@
 //! textures' `mean()`), then draws a cosine-weighted direction. The diffuse pdf is
 //! p_d·cos θo/π.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
 use crate::render::load::props::{FromProps, PluginProps};

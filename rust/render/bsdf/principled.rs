@@ -9,7 +9,7 @@
 //! gates and quirks follow the Mitsuba source (e.g. the clearcoat term has no 1/(4 cos θi),
 //! and in scalar variants sheen is only added where the diffuse lobe is active).
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
     Gtr1, calc_schlick, diffuse_lobe, dist_params, flagged, luminance, mac_mic_compatibility, sampling_rate,

@@ -7,7 +7,7 @@
 //! lobes exist only with `spec_trans` (Mitsuba's `get_flag`); lobe probabilities follow the
 //! `*_sampling_rate`s; the sample weight is eval/pdf of the mixture.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
     calc_schlick, diffuse_lobe, dist_params, flagged, mac_mic_compatibility, sampling_rate, schlick_r0_eta,

@@ -13,7 +13,7 @@
 //! hit with the textures' roughness (raised to 1e-4 as in Mitsuba).
 
 use super::conductor_ior::conductor_ior_from_props;
-use super::interface::fresnel_conductor;
+use super::fresnel::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::{check_colour, check_finite};
 use super::{BsdfFlags, BsdfModel, BsdfSample};

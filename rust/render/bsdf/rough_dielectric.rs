@@ -18,7 +18,7 @@
 //! ([`super::rough_conductor`]): numbers give one distribution, computed once; with a texture
 //! the lobe is copied per hit with the textures' roughness.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::check_colour;
 use super::{BsdfFlags, BsdfModel, BsdfSample};

@@ -14,7 +14,7 @@
 //! microfacet reflection density and the cosine density, and the sample weight is eval/pdf
 //! (Mitsuba evaluates both lobes for either choice). One-sided.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_reflectance, lerp_table};
 use super::{BsdfFlags, BsdfModel, BsdfSample};

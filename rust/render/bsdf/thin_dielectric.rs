@@ -3,7 +3,7 @@
 //! the pane reflects R' = 2R/(1 + R) (Dirac mirror) and passes 1 − R' straight through
 //! (`wo = −wi`, Mitsuba's "null" lobe: no refraction, no η change). Two-sided; no smooth part.
 
-use super::interface::fresnel_dielectric;
+use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
 use super::{BsdfFlags, BsdfModel, BsdfSample};
 use crate::render::load::props::{FromProps, PluginProps};
