@@ -1,7 +1,7 @@
 # The two entry points the README documents. Each installs what it needs by itself:
 #   make main   the main job
-#   make test   every test (format and lint checks, Rust, then the Mitsuba plugin's pytest suite);
-#               .ci/run calls it
+#   make test   every test (the kernels' fast tier, format and lint checks, the other Rust tests,
+#               then the Mitsuba plugin's pytest suite); .ci/run calls it
 # and two more (not set-up commands; they need the same things as main):
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
 #   make dist   the release files in dist/: the sdist and the manylinux wheel (auditwheel)
@@ -28,13 +28,17 @@ main: plugin
 bench: plugin
 	$(MATTE) bench -o bench_out
 
-test: plugin dist
+# The fast tier first (the kernels' tests: matte-brdf alone, no venv, no wheel), then what needs
+# the venv and the wheel.
+test:
 	cargo fmt --check
-	cargo clippy --quiet --all-targets -- -D warnings
+	cargo test --quiet -p matte-brdf
+	$(MAKE) --no-print-directory plugin dist
+	cargo clippy --quiet --workspace --all-targets -- -D warnings
 	.venv/bin/ruff check --quiet .
 	.venv/bin/ruff format --check --quiet .
 	clang-format --dry-run --Werror cpp/*.h cpp/*.cpp
-	cargo test --quiet
+	cargo test --quiet --workspace --exclude matte-brdf
 	$(PY) -m pytest -q tests/plugin tests/harness
 
 # Every table with its fixed seed and photon count (docs/microgeometry.md, "The tabulated

@@ -5,10 +5,10 @@
 //! call (throughput in pairs either way). Run: `cargo bench --bench kernels`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use matte::bench::kernels::direction_pairs;
-use matte::bench::wide_kernels::{ModelPair, eval_scalar, eval_wide, to_lanes};
-use matte::brdf::simd::F32x8;
-use matte::brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
+use matte_brdf::simd::F32x8;
+use matte_brdf::wide::direction_pairs;
+use matte_brdf::wide::{ModelPair, eval_scalar, eval_wide, to_lanes};
+use matte_brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
 use std::hint::black_box;
 
 fn kernels(c: &mut Criterion) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds matte's Mitsuba plugin into python/matte_mitsuba/plugins/:
-#   1. the Rust staticlib (kernels + cxx bridge glue) and the `matte` binary;
+#   1. the Rust staticlib (the matte-plugin crate: kernels + cxx bridge glue) and the `matte` binary;
 #   2. cpp/plugin.cpp against the Mitsuba/Dr.Jit headers of the Python that will load it
 #      ($MATTE_PYTHON, default .venv/bin/python), with -march=x86-64-v3 to match the wheel's
 #      Dr.Jit ABI;
@@ -23,8 +23,10 @@ OUT=$PKG/plugins
 OBJ=target/plugin
 mkdir -p "$OUT" "$OBJ"
 
-cargo build --release --quiet   # libmatte.a, the cxx headers, and the matte binary
-# The generated bridge header includes "matte/cpp/arena.h" (crate-relative).
+# libmatte_plugin.a and the cxx headers (the matte-plugin crate: matte-brdf beneath it, nothing
+# else of matte), and the matte binary (the matte crate, for the type list below).
+cargo build --release --quiet -p matte-plugin -p matte
+# The generated bridge header includes "matte/cpp/arena.h" (build.rs sets the prefix `matte`).
 mkdir -p target/inc && ln -sfn "$PWD" target/inc/matte
 
 CXXFLAGS=(-std=c++17 -O3 -fPIC -fvisibility=hidden -fno-strict-aliasing -march=x86-64-v3
@@ -34,7 +36,7 @@ CXXFLAGS=(-std=c++17 -O3 -fPIC -fvisibility=hidden -fno-strict-aliasing -march=x
 MILIBS=(-L"$MI" -L"$DR" -lmitsuba -ldrjit-core -ldrjit-extra -lnanothread -lpthread -ldl -lm)
 g++ "${CXXFLAGS[@]}" -c cpp/plugin.cpp -o "$OBJ/plugin.o"
 g++ "${CXXFLAGS[@]}" -c cpp/plugin_stub.cpp -o "$OBJ/plugin_stub.o"
-g++ -shared -o "$OUT/libmatte_bsdfs.so" "$OBJ/plugin.o" target/release/libmatte.a \
+g++ -shared -o "$OUT/libmatte_bsdfs.so" "$OBJ/plugin.o" target/release/libmatte_plugin.a \
     -Wl,--gc-sections -Wl,--version-script=cpp/exports.map -s "${MILIBS[@]}"
 rm -f "$OUT/matte_bsdfs.so"   # the single-library layout of earlier builds
 # The registered models and tabulated_brdf (a table file, rust/brdf/tabulated.rs: PLUGIN_NAME).

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Mitsuba's own verdict on the harvested property list (validation/generators/harvest_mitsuba_properties.py).
 
-    MATTE_DUMP_WALK=/tmp/walk cargo test --test scene_file every_harvested
+    MATTE_DUMP_WALK=/tmp/walk cargo test -p matte --test scene_file every_harvested
     .venv/bin/python validation/check_harvest.py /tmp/walk
 
 The walk test of tests/scene_file/load.rs builds, for every property Mitsuba 3.9.1 reads in every

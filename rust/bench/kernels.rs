@@ -2,30 +2,11 @@
 //! direction pairs cycled so that branch prediction and caches see renderer-like variety.
 //! The same pairs feed the criterion benchmark (`benches/kernels.rs`).
 
-use crate::brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
+use matte_brdf::wide::direction_pairs;
+use matte_brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
 use std::hint::black_box;
 use std::time::Instant;
-
-/// `n` deterministic (wi, wo, u) triples: directions uniform on the upper hemisphere, u
-/// uniform in [0,1)².
-pub fn direction_pairs(n: usize) -> Vec<(Vec3, Vec3, Vec2)> {
-    // xorshift64*: deterministic, no dependency
-    let mut s = 0x9E37_79B9_7F4A_7C15u64;
-    let mut next = || {
-        s ^= s >> 12;
-        s ^= s << 25;
-        s ^= s >> 27;
-        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32 / (1u64 << 24) as f32
-    };
-    let dir = |a: f32, b: f32| {
-        let z = a;
-        let r = (1.0 - z * z).sqrt();
-        let p = 2.0 * std::f32::consts::PI * b;
-        Vec3::new(r * p.cos(), r * p.sin(), z)
-    };
-    (0..n).map(|_| (dir(next(), next()), dir(next(), next()), Vec2::new(next(), next()))).collect()
-}
 
 /// One model's eval speed.
 #[derive(Clone, Debug)]
@@ -68,11 +49,11 @@ pub struct WideKernelTime {
 }
 
 /// Best-of-`repeats` ns per RGB eval and pair for every model, f32 against
-/// [`crate::brdf::simd::F32x8`] (`super::wide_kernels`: same constructors, same pairs). The
+/// [`matte_brdf::simd::F32x8`] (`matte_brdf::wide`: same constructors, same pairs). The
 /// two take turns within each repeat, so that the machine's load hits them alike.
 pub fn time_wide_kernels(repeats: u32) -> Vec<WideKernelTime> {
-    use super::wide_kernels::{ModelPair, eval_scalar, eval_wide, to_lanes};
-    use crate::brdf::simd::F32x8;
+    use matte_brdf::simd::F32x8;
+    use matte_brdf::wide::{ModelPair, eval_scalar, eval_wide, to_lanes};
     let pairs: Vec<(Vec3, Vec3)> = direction_pairs(4096).into_iter().map(|p| (p.0, p.1)).collect();
     let lanes = to_lanes(&pairs);
     BSDF_TYPES

@@ -10,7 +10,6 @@ pub mod render;
 pub mod report;
 pub mod sampling;
 pub mod traversal;
-pub mod wide_kernels;
 
 use render::RenderJob;
 use std::path::PathBuf;
@@ -84,7 +83,7 @@ pub fn run(opts: &BenchOptions, progress: &dyn Fn(&str)) -> Result<Measurements,
     progress("traversal: Embree and CWBVH on the same rays");
     let mut traversal = Vec::new();
     for job in &jobs {
-        let loaded = crate::render::load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
+        let loaded = matte_render::load::load_file(&job.scene, &job.defines).map_err(|e| e.to_string())?;
         let paths = if opts.quick { 2_000 } else { 100_000 };
         traversal.push((job.name.clone(), traversal::time_traversal(&loaded, paths, repeats)));
     }

@@ -3,9 +3,9 @@
 //! several runs, with the BVH build time and traced rays; and the render time of each
 //! diffuse model against Lambert's on the same scene.
 
-use crate::render::accel::Backend;
-use crate::render::integrator::Driver;
-use crate::render::{load, renderer};
+use matte_render::accel::Backend;
+use matte_render::integrator::Driver;
+use matte_render::{load, renderer};
 use std::path::PathBuf;
 
 /// One scene as both renderers see it: the file, its `-D` parameters and the spp.
@@ -31,7 +31,7 @@ pub struct MatteTime {
     /// [`Driver::OnePath`], and the reverse.
     pub other_driver_seconds: f64,
     /// Share of each stage of the default arrangement's render, in the order of
-    /// [`StageTicks::NAMES`](crate::render::integrator::wavefront::StageTicks::NAMES) (`None`
+    /// [`StageTicks::NAMES`](matte_render::integrator::wavefront::StageTicks::NAMES) (`None`
     /// for integrators the wavefront does not drive).
     pub stage_fractions: Option<[f64; 5]>,
     /// Best render time with everything in the CWBVH instead (the renderer before Embree),
@@ -113,7 +113,7 @@ pub fn other_driver() -> Driver {
 
 /// The diffuse models whose render time `matte bench` compares with Lambert's: every registered
 /// one (Lambert first).
-pub const MODELS: &[&str] = crate::brdf::BSDF_TYPES;
+pub const MODELS: &[&str] = matte_brdf::BSDF_TYPES;
 
 /// Render time of the study's room (`scenes/study/room.xml`) with every diffuse surface as each of [`MODELS`] (its
 /// `$bsdf` parameter; the model's default parameters), at `res`² and `spp`, the models taking

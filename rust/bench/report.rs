@@ -98,7 +98,7 @@ pub fn table(m: &Measurements) -> String {
     let _ = writeln!(
         s,
         "\n| scene | res, spp | matte s ({} driver) | Mrays/s | matte s, {} driver | matte s, all in CWBVH | scalar_rgb s | llvm_ad_rgb s | matte/scalar | matte/llvm |",
-        crate::render::integrator::Driver::default().name(),
+        matte_render::integrator::Driver::default().name(),
         super::render::other_driver().name()
     );
     let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
@@ -141,7 +141,7 @@ pub fn table(m: &Measurements) -> String {
             );
         }
     }
-    let names = crate::render::integrator::wavefront::StageTicks::NAMES;
+    let names = matte_render::integrator::wavefront::StageTicks::NAMES;
     let _ = writeln!(s, "\n| where matte's time goes (share of thread time) | {} |", names.join(" | "));
     let _ = writeln!(s, "|---|{}", "---|".repeat(names.len()));
     for (job, mt) in &m.jobs {
@@ -292,12 +292,12 @@ pub fn json(m: &Measurements) -> BenchJson {
                 accel_build_seconds: mt.accel_build_seconds,
                 threads: mt.threads,
                 accel: mt.backend.name(),
-                driver: crate::render::integrator::Driver::default().name(),
+                driver: matte_render::integrator::Driver::default().name(),
                 other_driver: super::render::other_driver().name(),
                 matte_seconds_other_driver: mt.other_driver_seconds,
                 matte_stage_fractions: mt
                     .stage_fractions
-                    .map(|f| crate::render::integrator::wavefront::StageTicks::NAMES.into_iter().zip(f).collect()),
+                    .map(|f| matte_render::integrator::wavefront::StageTicks::NAMES.into_iter().zip(f).collect()),
                 matte_seconds_cwbvh: mt.cwbvh_seconds,
                 mitsuba_seconds: super::MITSUBA_VARIANTS
                     .iter()

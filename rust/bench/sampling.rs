@@ -8,8 +8,8 @@
 //! `π ∫ f² cos dω`. The efficiency of a sampler is `1 / (Var × time)`; the gain is its ratio
 //! to the cosine's.
 
-use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use glam::{Vec2, Vec3};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -72,7 +72,7 @@ pub fn weight_variance(model: &DiffuseModel, theta_i: f64, n: usize) -> (f64, f6
 
 /// ns per `sample` call of `model`, over `count` draws spread over incidences to 89°.
 fn time_sampling(model: &DiffuseModel, count: usize) -> f64 {
-    let mut rng = crate::render::sampler::Pcg32::new(7, 11);
+    let mut rng = matte_brdf::rng::Pcg32::new(7, 11);
     let inputs: Vec<(Vec3, Vec2)> = (0..4096)
         .map(|_| {
             let z = 0.02 + 0.98 * rng.next_f32();
@@ -110,7 +110,7 @@ fn build(kind: &str, params: &[(&str, String)]) -> Option<DiffuseModel> {
 pub fn measure(quick: bool) -> Vec<SamplerRow> {
     let (n, count) = if quick { (100, 20_000) } else { (600, 2_000_000) };
     let mut rows = Vec::new();
-    for spec in crate::brdf::MODELS {
+    for spec in matte_brdf::MODELS {
         let roughness = spec.numeric().next().filter(|p| p.name != "int_ior").map(|p| p.name);
         let values: &[f64] = if roughness.is_some() { &[0.3, 1.0] } else { &[0.0] };
         for &r in values {

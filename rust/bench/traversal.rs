@@ -5,11 +5,11 @@
 //! normal; the shadow rays join consecutive hit points of different paths (so about half are
 //! blocked). Both sets are traced one ray at a time on one thread, best of the repeats.
 
-use crate::render::accel::{Accel, Backend};
-use crate::render::geometry::{Ray, ray};
-use crate::render::load::LoadedScene;
-use crate::render::sampler::Sampler;
 use glam::{Vec2, Vec3};
+use matte_render::accel::{Accel, Backend};
+use matte_render::geometry::{Ray, ray};
+use matte_render::load::LoadedScene;
+use matte_render::sampler::Sampler;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -91,7 +91,7 @@ pub fn time_traversal(loaded: &LoadedScene, paths: u32, repeats: u32) -> Vec<Tra
             *best = (best.0.min(closest), best.1.min(occluded), best.2.min(packet));
         }
     }
-    crate::render::accel::take_ray_count();
+    matte_render::accel::take_ray_count();
     accels
         .iter()
         .zip(best)

@@ -58,7 +58,7 @@ pub fn diffuse_fresnel_external_fit<T: Real>(n: T) -> T {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::brdf::fresnel::diffuse_fresnel_reflectance;
+    use crate::fresnel::diffuse_fresnel_reflectance;
 
     /// Against the exact average (an independent 64-node quadrature), n from 1 to 10⁶.
     #[test]

@@ -12,7 +12,7 @@
 //! [`ModelSpec::numeric`]: super::registry::ModelSpec::numeric
 //! [`ParamSpec::lane_clamp`]: super::registry::ParamSpec::lane_clamp
 
-use super::real::Nodes;
+use super::real::{Nodes, Real};
 use super::registry::Registered;
 use super::{DiffuseModel, LaneKernel, dispatch};
 
@@ -30,7 +30,33 @@ pub fn textured_placeholder(kind: &str, name: &str, mean: f64, number: impl Fn(&
     super::placeholder(kind, name, mean, &number)
 }
 
+/// The model-generic steps from parameter values to a kernel, for front ends that hold values
+/// of another scalar type (the traced plugin: Dr.Jit variables).
 impl DiffuseModel {
+    /// The tables the kernel reads: the constant-parameter kernel's ([`Registered::tables`]),
+    /// or with `lane` the per-lane kernel's ([`Registered::lane_tables`]).
+    pub fn kernel_tables(&self, lane: bool) -> Vec<&[f32]> {
+        dispatch!(self, m => if lane { m.lane_tables() } else { m.tables() })
+    }
+
+    /// The kernel constants for numeric parameter values in `T`:
+    /// [`Registered::constant_coefficients`], or with `lane` [`Registered::lane_coefficients`]
+    /// (each value clamped into its lane clamp first). `None` if `values` is short.
+    pub fn kernel_coefficients<T: Real>(&self, values: &[T], lane: bool, differentiable: bool) -> Option<Vec<T>> {
+        dispatch!(self, m => if lane { m.lane_coefficients(values) } else { m.constant_coefficients(values, differentiable) })
+    }
+
+    /// The kernel from constants `c` ([`Self::kernel_coefficients`]) and tables in `T`'s table
+    /// type ([`Self::kernel_tables`] of the same `lane`). `None` if either is short.
+    pub fn kernel_from<'t, T: Real + 't>(
+        &self,
+        c: &[T],
+        tables: &[T::Table<'t>],
+        lane: bool,
+    ) -> Option<LaneKernel<'t, T>> {
+        dispatch!(self, m => m.kernel_from(c, tables, lane), lane)
+    }
+
     /// The f32 kernel for per-lane parameter `values`; `None` if `values` is too short.
     pub fn lane_kernel_f32(&self, values: &[f32]) -> Option<LaneKernel<'static, f32>> {
         dispatch!(self, m => {

@@ -2,7 +2,7 @@
 //! no renderer or FFI types. [`DiffuseModel`] is the closed set of models matte offers, constructed
 //! from the plugin names and parameters of the README's model table. Each model is written
 //! once over the scalar trait [`real::Real`] ([`kernel`]): f32 on the CPU, traced into Dr.Jit
-//! by the Mitsuba plugin (`crate::ffi::traced`).
+//! by the Mitsuba plugin (`matte_plugin::traced`).
 
 pub mod approx;
 pub mod cltc;
@@ -17,10 +17,12 @@ pub mod params;
 pub mod quadrature;
 pub mod real;
 pub mod registry;
+pub mod rng;
 pub mod sampler_fits;
 pub mod sampling;
 pub mod simd;
 pub mod tabulated;
+pub mod wide;
 
 // The models, in the README's order: one line each (`docs/adding-a-model.md`).
 registry::models! {
@@ -52,6 +54,12 @@ impl DiffuseModel {
         use kernel::Kernel;
         use registry::KernelBrdf;
         dispatch!(self, m => !m.f32_kernel().cosine_sampling())
+    }
+
+    /// f and the density together, in one dispatch (the renderer's `eval_pdf`).
+    #[inline]
+    pub fn eval_pdf<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> ([f32; N], f32) {
+        dispatch!(self, b => (b.eval(wi, wo, reflectance), b.pdf(wi, wo)))
     }
 
     /// The effective parameters (defaults filled in), for printing and `to_string`.

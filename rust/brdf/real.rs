@@ -2,7 +2,7 @@
 //! - `f32`: the Rust renderer, the CLI and Mitsuba's scalar variants;
 //! - `f64`: parameter-only precomputation on the CPU (coefficients, Fresnel averages), rounded
 //!   to f32 afterwards, as the kernels always did;
-//! - `Traced` (`crate::ffi::traced`): every operation becomes one Dr.Jit operation on the
+//! - `Traced` (`matte_plugin::traced`): every operation becomes one Dr.Jit operation on the
 //!   Mitsuba variant's own `Float`, so the same Rust source is recorded into Dr.Jit's IR
 //!   (symbolic loops and calls, automatic differentiation, the LLVM and CUDA backends).
 //!
@@ -158,7 +158,7 @@ macro_rules! cpu_real {
             }
             #[inline(always)]
             fn sincos(self) -> (Self, Self) {
-                let (s, c) = crate::brdf::sampling::sincos_cephes(self as f32);
+                let (s, c) = crate::sampling::sincos_cephes(self as f32);
                 (s as $t, c as $t)
             }
             #[inline(always)]

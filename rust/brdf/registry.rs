@@ -278,7 +278,7 @@ impl Values {
 
 /// What a model implements to be registered; everything else about it is derived. `T` in the
 /// kernel methods is any [`Real`]: f32 and f64 on the CPU, `F32x8`, and the plugin's traced
-/// Dr.Jit values (`crate::ffi::traced`), so one implementation serves all of them.
+/// Dr.Jit values (`matte_plugin::traced`), so one implementation serves all of them.
 pub trait Registered: KernelBrdf + Clone + Debug + PartialEq + Sized + 'static {
     const SPEC: ModelSpec;
 
@@ -349,23 +349,23 @@ pub fn first<T: Copy, const N: usize>(c: &[T]) -> Option<[T; N]> {
 /// everything that lists the models (see the module comment). The order is the README's.
 macro_rules! models {
     ($($variant:ident : $module:ident :: $ty:ident),+ $(,)?) => {
-        $crate::brdf::registry::models!(@with_dollar ($) $($variant : $module :: $ty),+);
+        $crate::registry::models!(@with_dollar ($) $($variant : $module :: $ty),+);
     };
     (@with_dollar ($d:tt) $($variant:ident : $module:ident :: $ty:ident),+) => {
         $(pub mod $module;)+
         $(pub use $module::$ty;)+
 
         /// Every registered model's declaration, in the README's order.
-        pub const MODELS: &[&$crate::brdf::registry::ModelSpec] =
-            &[$(&<$ty as $crate::brdf::registry::Registered>::SPEC),+];
+        pub const MODELS: &[&$crate::registry::ModelSpec] =
+            &[$(&<$ty as $crate::registry::Registered>::SPEC),+];
 
         /// The plugin names, in the README's order.
-        pub const BSDF_TYPES: &[&str] = &[$(<$ty as $crate::brdf::registry::Registered>::SPEC.name),+];
+        pub const BSDF_TYPES: &[&str] = &[$(<$ty as $crate::registry::Registered>::SPEC.name),+];
 
         const _: () = {
             $(assert!(
-                $crate::brdf::registry::numeric_count(&<$ty as $crate::brdf::registry::Registered>::SPEC)
-                    <= $crate::brdf::registry::MAX_NUMERIC,
+                $crate::registry::numeric_count(&<$ty as $crate::registry::Registered>::SPEC)
+                    <= $crate::registry::MAX_NUMERIC,
                 "a model has more numeric parameters than MAX_NUMERIC"
             );)+
         };
@@ -378,16 +378,16 @@ macro_rules! models {
 
         /// One model's kernel with constants in `T` (per-lane or traced parameters).
         #[derive(Clone, Copy)]
-        pub enum LaneKernel<'t, T: $crate::brdf::real::Real + 't> {
-            $($variant(<$ty as $crate::brdf::registry::Registered>::Lane<'t, T>),)+
+        pub enum LaneKernel<'t, T: $crate::real::Real + 't> {
+            $($variant(<$ty as $crate::registry::Registered>::Lane<'t, T>),)+
         }
 
-        impl<'t, T: $crate::brdf::real::Real + 't> $crate::brdf::kernel::Kernel<T> for LaneKernel<'t, T> {
+        impl<'t, T: $crate::real::Real + 't> $crate::kernel::Kernel<T> for LaneKernel<'t, T> {
             #[inline(always)]
             fn reduced_f<const N: usize>(
                 &self,
-                wi: $crate::brdf::real::V3<T>,
-                wo: $crate::brdf::real::V3<T>,
+                wi: $crate::real::V3<T>,
+                wo: $crate::real::V3<T>,
                 rho: [T; N],
             ) -> [T; N] {
                 match self {
@@ -398,24 +398,24 @@ macro_rules! models {
             #[inline(always)]
             fn cosine_sampling(&self) -> bool {
                 match self {
-                    $(LaneKernel::$variant(k) => $crate::brdf::kernel::Kernel::<T>::cosine_sampling(k),)+
+                    $(LaneKernel::$variant(k) => $crate::kernel::Kernel::<T>::cosine_sampling(k),)+
                 }
             }
 
             #[inline(always)]
             fn sample_wo(
                 &self,
-                wi: $crate::brdf::real::V3<T>,
+                wi: $crate::real::V3<T>,
                 u1: T,
                 u2: T,
-            ) -> ($crate::brdf::real::V3<T>, T) {
+            ) -> ($crate::real::V3<T>, T) {
                 match self {
                     $(LaneKernel::$variant(k) => k.sample_wo(wi, u1, u2),)+
                 }
             }
 
             #[inline(always)]
-            fn pdf_wo(&self, wi: $crate::brdf::real::V3<T>, wo: $crate::brdf::real::V3<T>) -> T {
+            fn pdf_wo(&self, wi: $crate::real::V3<T>, wo: $crate::real::V3<T>) -> T {
                 match self {
                     $(LaneKernel::$variant(k) => k.pdf_wo(wi, wo),)+
                 }
@@ -428,12 +428,12 @@ macro_rules! models {
         macro_rules! dispatch {
             ($d self_:expr, $d b:ident => $d e:expr) => {
                 match $d self_ {
-                    $($crate::brdf::DiffuseModel::$variant($d b) => $d e,)+
+                    $($crate::DiffuseModel::$variant($d b) => $d e,)+
                 }
             };
             ($d self_:expr, $d b:ident => $d e:expr, lane) => {
                 match $d self_ {
-                    $($crate::brdf::DiffuseModel::$variant($d b) => ($d e).map($crate::brdf::LaneKernel::$variant),)+
+                    $($crate::DiffuseModel::$variant($d b) => ($d e).map($crate::LaneKernel::$variant),)+
                 }
             };
         }
@@ -444,8 +444,8 @@ macro_rules! models {
             /// not a model parameter here: it is per channel and per call (textures). Unknown
             /// names, unknown parameters and out-of-range values are errors naming the
             /// parameter.
-            pub fn from_params(kind: &str, mut params: $crate::brdf::Params) -> Result<Self, $crate::brdf::ParamError> {
-                use $crate::brdf::registry::{Registered, Values};
+            pub fn from_params(kind: &str, mut params: $crate::Params) -> Result<Self, $crate::ParamError> {
+                use $crate::registry::{Registered, Values};
                 $(
                     if kind == <$ty as Registered>::SPEC.name {
                         let spec = &<$ty as Registered>::SPEC;
@@ -454,29 +454,29 @@ macro_rules! models {
                         return Ok(DiffuseModel::$variant(model));
                     }
                 )+
-                Err($crate::brdf::ParamError::new(
+                Err($crate::ParamError::new(
                     "type",
                     format!("unknown bsdf type \"{kind}\" (known: {})", BSDF_TYPES.join(", ")),
                 ))
             }
 
             /// The model's declaration.
-            pub fn spec(&self) -> &'static $crate::brdf::registry::ModelSpec {
+            pub fn spec(&self) -> &'static $crate::registry::ModelSpec {
                 match self {
-                    $(DiffuseModel::$variant(_) => &<$ty as $crate::brdf::registry::Registered>::SPEC,)+
+                    $(DiffuseModel::$variant(_) => &<$ty as $crate::registry::Registered>::SPEC,)+
                 }
             }
         }
 
         /// The declaration of the model `kind` (a plugin name).
-        pub fn spec(kind: &str) -> Option<&'static $crate::brdf::registry::ModelSpec> {
+        pub fn spec(kind: &str) -> Option<&'static $crate::registry::ModelSpec> {
             MODELS.iter().copied().find(|s| s.name == kind)
         }
 
-        /// [`$crate::brdf::registry::Registered::placeholder`] of the model `kind`; `mean`
+        /// [`$crate::registry::Registered::placeholder`] of the model `kind`; `mean`
         /// itself for unknown kinds.
         pub fn placeholder(kind: &str, name: &str, mean: f64, number: &dyn Fn(&str) -> Option<f64>) -> f64 {
-            use $crate::brdf::registry::Registered;
+            use $crate::registry::Registered;
             $(
                 if kind == <$ty as Registered>::SPEC.name {
                     return <$ty>::placeholder(name, mean, number);

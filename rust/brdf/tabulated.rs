@@ -31,6 +31,13 @@ use std::sync::Arc;
 /// render` and the Mitsuba plugin).
 pub const PLUGIN_NAME: &str = "tabulated_brdf";
 
+/// Zenith nodes of the ground-truth tables (`matte microgeometry --table` writes them; degrees).
+pub const TABLE_THETA: [f64; 12] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 75.0, 80.0, 85.0, 89.0];
+/// Azimuth-difference nodes (degrees).
+pub const TABLE_DELTA_PHI: [f64; 7] = [0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0];
+/// Facet-reflectance nodes.
+pub const TABLE_REFLECTANCE: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+
 /// The file's `format` value.
 pub const FORMAT: &str = "matte-tabulated-brdf";
 /// The file format's version.

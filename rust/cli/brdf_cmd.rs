@@ -1,8 +1,8 @@
 //! `matte brdf` and `matte albedo`: one model, evaluated by the kernels, printed as JSON.
 //! Schema in docs/usage.md.
 
-use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use clap::Args;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use serde::Serialize;
 use std::collections::BTreeMap;
 

@@ -83,6 +83,8 @@ pub fn one_line(message: &str) -> String {
 
 pub fn run(cli: Cli) -> Result<(), String> {
     crate::installation::set_python_flag(cli.python);
+    // Scenes name packaged data (`ground_truth/<table>.json`) as Mitsuba's file resolver finds it.
+    matte_render::load::set_package_folder(|| crate::installation::package_dir().ok());
     match cli.command {
         Command::Brdf(a) => brdf_cmd::run_brdf(&a),
         Command::Albedo(a) => brdf_cmd::run_albedo(&a),

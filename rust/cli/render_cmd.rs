@@ -2,13 +2,13 @@
 //! an RGB float EXR (and optionally a tone-mapped sRGB PNG), and prints what it measured
 //! (samples/s, rays/s) as JSON.
 
-use crate::render::film::SplatWeights;
-use crate::render::image_io;
-use crate::render::integrator::Driver;
-use crate::render::load;
-use crate::render::renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+use matte_render::film::SplatWeights;
+use matte_render::image_io;
+use matte_render::integrator::Driver;
+use matte_render::load;
+use matte_render::renderer;
 use serde::Serialize;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};

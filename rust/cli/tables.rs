@@ -3,9 +3,9 @@
 //! reader can hold them against the published numbers, plus the van Ginneken fast path's
 //! measured error against the reference integral.
 
-use crate::brdf::ginneken::accuracy::fast_path_accuracy;
-use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 use clap::Args;
+use matte_brdf::ginneken::accuracy::fast_path_accuracy;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 
 #[derive(Args, Debug)]
 pub struct TablesArgs {

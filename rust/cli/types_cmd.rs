@@ -1,9 +1,9 @@
-//! `matte types`: the registered diffuse models (`crate::brdf::MODELS`), as plugin names (one
+//! `matte types`: the registered diffuse models (`matte_brdf::MODELS`), as plugin names (one
 //! per line; the plugin build reads them), as JSON (every parameter with its kind, default,
 //! range and lane clamp, the example configurations the tests sweep, the sampler) or as the README's
 //! model table.
 
-use crate::brdf::registry::{ModelSpec, ParamKind, ParamSpec};
+use matte_brdf::registry::{ModelSpec, ParamKind, ParamSpec};
 
 #[derive(clap::Args, Debug)]
 pub struct TypesArgs {
@@ -21,7 +21,7 @@ pub fn run(a: &TypesArgs) -> Result<(), String> {
     } else if a.markdown {
         print!("{}", markdown_table());
     } else {
-        crate::brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
+        matte_brdf::BSDF_TYPES.iter().for_each(|t| println!("{t}"));
     }
     Ok(())
 }
@@ -30,9 +30,9 @@ pub fn run(a: &TypesArgs) -> Result<(), String> {
 /// (the choices of its `sampling` parameter, else only `"cosine"`), and `"sampler"`, its
 /// default's.
 pub fn json() -> serde_json::Value {
-    use crate::brdf::registry::ParamKind;
-    let mut all = serde_json::to_value(crate::brdf::MODELS).expect("the declarations serialise");
-    for (value, spec) in all.as_array_mut().expect("an array").iter_mut().zip(crate::brdf::MODELS) {
+    use matte_brdf::registry::ParamKind;
+    let mut all = serde_json::to_value(matte_brdf::MODELS).expect("the declarations serialise");
+    for (value, spec) in all.as_array_mut().expect("an array").iter_mut().zip(matte_brdf::MODELS) {
         let (samplers, default): (&[&str], &str) = match spec.param("sampling").map(|p| &p.kind) {
             Some(ParamKind::Choice { choices, default }) => (choices, default),
             _ => (&["cosine"], "cosine"),
@@ -46,7 +46,7 @@ pub fn json() -> serde_json::Value {
 /// The README's model table, one row per registered model.
 pub fn markdown_table() -> String {
     let mut s = String::from("| type | parameters (default) | what it is |\n|---|---|---|\n");
-    for m in crate::brdf::MODELS {
+    for m in matte_brdf::MODELS {
         s += &format!("| `{}` | {} | {} |\n", m.name, parameters_cell(m), m.summary);
     }
     s

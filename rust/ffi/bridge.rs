@@ -76,7 +76,7 @@ pub mod ffi {
         fn numeric_parameters(self: &Model) -> Vec<Param>;
         // Every evaluation takes the model's parameters one of two ways: its own constants, or
         // per-lane values of its numeric parameters (textures, in the order of
-        // `numeric_parameters`; clamped into range, crate::brdf::lane).
+        // `numeric_parameters`; clamped into range, matte_brdf::lane).
 
         /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`. `params`: the
         /// numeric parameters' values for this call, empty for the model's own constants.

@@ -14,11 +14,11 @@ mod bridge;
 pub mod traced;
 mod traced_entry;
 
-use crate::brdf::kernel;
-use crate::brdf::tabulated::{self, TableModel};
-use crate::brdf::{BrdfSample, DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use bridge::ffi::{Channels, Param, Vec3f};
 use glam::{Vec2, Vec3};
+use matte_brdf::kernel;
+use matte_brdf::tabulated::{self, TableModel};
+use matte_brdf::{BrdfSample, DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use bridge::ffi;
@@ -28,7 +28,7 @@ pub struct Model {
     bsdf: Bsdf,
 }
 
-/// What a plugin name builds: a registered model (`crate::brdf::MODELS`), or
+/// What a plugin name builds: a registered model (`matte_brdf::MODELS`), or
 /// `tabulated_brdf`, a table file ([`TableModel`]; its only parameter is the file, so it has no
 /// kernel constants and no textured parameters). Both run generic kernels, in f32 here and
 /// traced in [`traced_entry`].
@@ -111,13 +111,13 @@ fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
 }
 
 fn is_numeric_parameter(kind: &str, name: &str) -> bool {
-    crate::brdf::lane::numeric_parameter_names(kind).contains(&name)
+    matte_brdf::lane::numeric_parameter_names(kind).contains(&name)
 }
 
 fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64 {
-    crate::brdf::lane::textured_placeholder(kind, name, mean, |other| {
+    matte_brdf::lane::textured_placeholder(kind, name, mean, |other| {
         let p = params.iter().find(|p| p.name == other)?;
-        if p.is_number { Some(p.number) } else { crate::brdf::params::lookup_ior(&p.text) }
+        if p.is_number { Some(p.number) } else { matte_brdf::params::lookup_ior(&p.text) }
     })
 }
 
@@ -159,7 +159,7 @@ fn eval_channels(bsdf: &impl DiffuseBrdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f
 impl Model {
     /// The per-lane f32 kernel of a registered model for the values `params`; `None` for a
     /// table (which has no numeric parameters) or short `params`.
-    fn lane_kernel_f32(&self, params: &[f32]) -> Option<crate::brdf::LaneKernel<'static, f32>> {
+    fn lane_kernel_f32(&self, params: &[f32]) -> Option<matte_brdf::LaneKernel<'static, f32>> {
         match &self.bsdf {
             Bsdf::Model(m) => m.lane_kernel_f32(params),
             Bsdf::Table(_) => None,
@@ -187,7 +187,7 @@ impl Model {
 
     /// `f(wi, wo)` without the cosine, per channel; returns the pdf. `params`: the numeric
     /// parameters' values for this call (in the order of `numeric_parameters`: a texture's
-    /// value at the hit, or the constant), clamped into range (`crate::brdf::lane`); empty for
+    /// value at the hit, or the constant), clamped into range (`matte_brdf::lane`); empty for
     /// the model's own constants.
     fn eval_pdf(&self, params: &[f32], wi: &Vec3f, wo: &Vec3f, reflectance: &Channels, f: &mut Channels) -> f32 {
         let (wi, wo) = (v3(wi), v3(wo));

@@ -13,7 +13,7 @@
 //! fold in Rust with IEEE f32 arithmetic, as Dr.Jit folds literals.
 
 use super::bridge::ffi::Arena;
-use crate::brdf::real::Real;
+use matte_brdf::real::Real;
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 #[derive(Clone, Copy)]
@@ -219,7 +219,7 @@ impl<'a> Real for Traced<'a> {
     fn sincos(self) -> (Self, Self) {
         match self {
             Traced::Lit(x) => {
-                let (s, c) = crate::brdf::sampling::sincos_cephes(x);
+                let (s, c) = matte_brdf::sampling::sincos_cephes(x);
                 (Traced::Lit(s), Traced::Lit(c))
             }
             Traced::Node(a, i) => {

@@ -1,5 +1,5 @@
 //! The traced entry points (Mitsuba's JIT variants): the same generic kernels as the CPU
-//! (`crate::brdf::kernel`), run with [`Traced`] values, so every operation is recorded into
+//! (`matte_brdf::kernel`), run with [`Traced`] values, so every operation is recorded into
 //! Dr.Jit on the C++ side. Two steps per parameter value and per call:
 //! 1. [`Model::traced_coefficients`] turns the numeric parameters (traced, possibly with
 //!    gradients) into the kernel's constants, once per `parameters_changed`;
@@ -11,11 +11,10 @@
 use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
 use super::{Bsdf, Model};
-use crate::brdf::kernel::{self, Kernel};
-use crate::brdf::real::V3;
-use crate::brdf::registry::Registered;
-use crate::brdf::tabulated::TableKernel;
-use crate::brdf::{LaneKernel, dispatch};
+use matte_brdf::LaneKernel;
+use matte_brdf::kernel::{self, Kernel};
+use matte_brdf::real::V3;
+use matte_brdf::tabulated::TableKernel;
 
 /// The traced kernel of what the plugin built: a registered model's (traced constants), or a
 /// table's (`'m`: the borrow of the table's nodes).
@@ -98,7 +97,7 @@ impl Model {
     /// roughness-axis stacks, built on first use).
     pub(super) fn table_count(&self, lane: bool) -> usize {
         match &self.bsdf {
-            Bsdf::Model(b) => dispatch!(b, m => if lane { m.lane_tables().len() } else { m.tables().len() }),
+            Bsdf::Model(b) => b.kernel_tables(lane).len(),
             Bsdf::Table(_) => 1,
         }
     }
@@ -107,10 +106,7 @@ impl Model {
     /// `μΛ`, `∂(μΛ)/∂m`; `tabulated_brdf`: its values); empty past the end.
     pub(super) fn table(&self, k: usize, lane: bool) -> &[f32] {
         match &self.bsdf {
-            Bsdf::Model(b) => dispatch!(b, m => {
-                let t = if lane { m.lane_tables() } else { m.tables() };
-                t.get(k).copied().unwrap_or(&[])
-            }),
+            Bsdf::Model(b) => b.kernel_tables(lane).get(k).copied().unwrap_or(&[]),
             Bsdf::Table(t) if k == 0 => t.values(),
             Bsdf::Table(_) => &[],
         }
@@ -131,11 +127,7 @@ impl Model {
             return vec![]; // a table has no constants
         };
         let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
-        let c = dispatch!(b, m => if lane {
-            m.lane_coefficients(&values)
-        } else {
-            m.constant_coefficients(&values, differentiable)
-        });
+        let c = b.kernel_coefficients(&values, lane, differentiable);
         c.map_or(vec![], |c| c.iter().map(|v| v.id(arena)).collect())
     }
 
@@ -154,7 +146,7 @@ impl Model {
         let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
         let tables: Vec<TracedTable<'a>> =
             (0..self.table_count(lane) as u32).map(|id| TracedTable { arena, id }).collect();
-        dispatch!(b, m => m.kernel_from(&c, &tables, lane), lane).map(TracedKernel::Model)
+        b.kernel_from(&c, &tables, lane).map(TracedKernel::Model)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs

@@ -8,10 +8,10 @@ use super::gonioreflectometer::{Bounces, Measurement, Setup, measure};
 use super::height_field::HeightField;
 use super::realisations::{PooledEstimate, pool};
 use super::v_cavity::VCavities;
-use crate::brdf::frame::spherical_direction_f64;
-use crate::brdf::oren_nayar::OrenNayarKernel;
-use crate::brdf::{DiffuseBrdf, DiffuseModel, OrenNayarModel, ParamValue, Params};
 use glam::DVec3;
+use matte_brdf::frame::spherical_direction_f64;
+use matte_brdf::oren_nayar::OrenNayarKernel;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, OrenNayarModel, ParamValue, Params};
 use serde::Serialize;
 
 /// Incidence angles of the grid (degrees).

@@ -3,8 +3,8 @@
 //! 2025) gives no relation between them. The r that describes a measured surface best is the one
 //! that minimises the mean relative error of f over the measured directions.
 
-use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use glam::DVec3;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 
 /// Scan step of r over [0, 1] before the golden-section refinement.
 const SCAN_STEP: f64 = 0.01;

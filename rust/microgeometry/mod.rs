@@ -12,7 +12,7 @@
 //! * [`comparison`]: every rough model against both simulated surfaces.
 //! * [`realisations`]: one measurement pooled over independent realisations of a random surface.
 //! * [`eon_fit`]: EON's roughness that fits a simulated surface best.
-//! * [`tabulation`]: the simulated BRDF as a tabulated BSDF file (`crate::brdf::tabulated`).
+//! * [`tabulation`]: the simulated BRDF as a tabulated BSDF file (`matte_brdf::tabulated`).
 //! * [`estimate`]: running means with 99 % intervals.
 
 pub mod comparison;

@@ -7,17 +7,10 @@
 use super::gonioreflectometer::{Bounces, Setup, measure_reflectances};
 use super::realisations::pool;
 use super::surface::MicroSurface;
-use crate::brdf::DiffuseBrdf;
-use crate::brdf::frame::spherical_direction_f64;
-use crate::brdf::tabulated::BrdfTable;
 use glam::DVec3;
-
-/// Zenith nodes of the tables `matte microgeometry --table` writes (degrees).
-pub const TABLE_THETA: [f64; 12] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 75.0, 80.0, 85.0, 89.0];
-/// Azimuth-difference nodes (degrees).
-pub const TABLE_DELTA_PHI: [f64; 7] = [0.0, 30.0, 60.0, 90.0, 120.0, 150.0, 180.0];
-/// Facet-reflectance nodes.
-pub const TABLE_REFLECTANCE: [f64; 5] = [0.0, 0.25, 0.5, 0.75, 1.0];
+use matte_brdf::DiffuseBrdf;
+use matte_brdf::frame::spherical_direction_f64;
+use matte_brdf::tabulated::{BrdfTable, TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
 
 /// The reflectance a ρ = 0 node is measured at: `f/ρ` is its limit, the single-scattering
 /// BRDF of a white surface.

@@ -2,7 +2,7 @@
 //! `fov_axis` with the full-film aspect; image x grows towards local −x and y downwards;
 //! the ray starts on the near plane. [`Camera`] is any of the sensors.
 
-use crate::render::geometry::Ray;
+use crate::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
 
 /// The sensor: `perspective`, `orthographic` or `thinlens`.
@@ -19,7 +19,7 @@ impl Camera {
     /// 2-D dimension right after the film position's, as Mitsuba's
     /// `SamplingIntegrator::render_sample` draws it).
     #[inline]
-    pub fn sample_ray(&self, film_pos: Vec2, sampler: &mut crate::render::sampler::Sampler) -> Ray {
+    pub fn sample_ray(&self, film_pos: Vec2, sampler: &mut crate::sampler::Sampler) -> Ray {
         match self {
             Camera::Perspective(c) => c.ray(film_pos),
             Camera::Orthographic(c) => c.ray(film_pos),

@@ -2,7 +2,7 @@
 //! "R", "G", "B"; float32 from `mi.Bitmap(...).write`, float16 from `film.write` and the
 //! `mitsuba` CLI), and an 8-bit sRGB PNG preview.
 
-use crate::render::film::Image;
+use crate::film::Image;
 use exr::prelude::{AnyChannels, FlatSamples, Layer, ReadChannels, ReadLayers, read};
 use glam::Vec3;
 use std::path::Path;

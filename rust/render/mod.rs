@@ -1,7 +1,7 @@
 //! The Rust path tracer: reads the same Mitsuba XML scenes as Mitsuba 3.9.1 and produces the
 //! same expected image (`docs/renderer-semantics.md`).
 //!
-//! Data flow: [`crate::scene_file`] reads the XML (and meshes) into an object tree → [`load`]
+//! Data flow: [`matte_scene_file`] reads the XML (and meshes) into an object tree → [`load`]
 //! builds a [`scene::Scene`] (shapes, BSDFs, emitters, ray queries) plus camera, film,
 //! sampler and integrator → [`renderer`] runs the integrator per pixel sample in parallel
 //! tiles and splats into the film.

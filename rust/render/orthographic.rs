@@ -5,7 +5,7 @@
 //! plane z = near_clip, goes along `to_world·(0, 0, 1)` (normalised) and ends after
 //! far_clip − near_clip. Unlike `perspective`, `to_world` may scale (the view's size).
 
-use crate::render::geometry::Ray;
+use crate::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
 
 #[derive(Clone, Debug)]

@@ -5,12 +5,12 @@
 //! Every sample goes to the tile's image block, which the film accumulates (Mitsuba
 //! `SamplingIntegrator::render`).
 
-use crate::render::camera::Camera;
-use crate::render::film::{Film, Image};
-use crate::render::integrator::wavefront::StageTicks;
-use crate::render::integrator::{Driver, Integrator, TileJob};
-use crate::render::sampler::Sampling;
-use crate::render::scene::Scene;
+use crate::camera::Camera;
+use crate::film::{Film, Image};
+use crate::integrator::wavefront::StageTicks;
+use crate::integrator::{Driver, Integrator, TileJob};
+use crate::sampler::Sampling;
+use crate::scene::Scene;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -58,7 +58,7 @@ pub fn render_with(
 ) -> (Image, RenderStats) {
     let start = Instant::now();
     if let Integrator::ParticleTracer(pt) = integrator {
-        crate::render::accel::take_ray_count();
+        crate::accel::take_ray_count();
         let (image, invalid_samples) = pt.render(scene, camera, &film, sampling);
         let stats = RenderStats {
             samples: film.width() as u64 * film.height() as u64 * sampling.spp as u64,
@@ -79,13 +79,13 @@ pub fn render_with(
     let stage_ticks = Mutex::new(StageTicks::default());
     tiles.par_iter().for_each(|tile| {
         let mut block = film.lock().expect("film lock").new_block(tile);
-        crate::render::accel::take_ray_count();
+        crate::accel::take_ray_count();
         let mut ticks = StageTicks::default();
         let bad = integrator.render_tile(driver, &job, &mut block, &mut ticks);
         if driver == Driver::WavefrontProfiled {
             stage_ticks.lock().expect("profile lock").add(&ticks);
         }
-        rays.fetch_add(crate::render::accel::take_ray_count(), Ordering::Relaxed);
+        rays.fetch_add(crate::accel::take_ray_count(), Ordering::Relaxed);
         invalid.fetch_add(bad, Ordering::Relaxed);
         film.lock().expect("film lock").put_block(&block);
         progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);

@@ -13,6 +13,7 @@
 //!   spiral).
 
 use glam::Vec2;
+use matte_brdf::rng::Pcg32;
 
 /// A sampler plugin with its properties (other than `sample_count` and `seed`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -149,42 +150,6 @@ enum Seq {
     LowDiscrepancy,
 }
 
-/// PCG32 (O'Neill 2014, "PCG: A family of simple fast space-efficient statistically good
-/// algorithms for random number generation"), the generator Mitsuba's samplers use (Dr.Jit's
-/// `PCG32`); [`Pcg32::new`] seeds as its `seed(initstate, initseq)`.
-#[derive(Clone, Debug)]
-pub struct Pcg32 {
-    state: u64,
-    inc: u64,
-}
-
-impl Pcg32 {
-    /// The generator of stream `stream` started at `seed`.
-    #[must_use]
-    pub fn new(seed: u64, stream: u64) -> Self {
-        let mut r = Pcg32 { state: 0, inc: (stream << 1) | 1 };
-        r.next_u32();
-        r.state = r.state.wrapping_add(seed);
-        r.next_u32();
-        r
-    }
-
-    /// The next 32 random bits.
-    #[inline]
-    pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(MULT).wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        xorshifted.rotate_right((old >> 59) as u32)
-    }
-
-    /// Uniform in [0, 1) with 23 random mantissa bits (Mitsuba's `next_float32`).
-    #[inline]
-    pub fn next_f32(&mut self) -> f32 {
-        f32::from_bits((self.next_u32() >> 9) | 0x3f80_0000) - 1.0
-    }
-}
-
 /// A per-pixel sample stream: a [`Pcg32`], plus for the stratified samplers the sample and
 /// dimension index within the pixel's sequence. The drivers call [`Sampler::advance`] after
 /// each sample.
@@ -207,7 +172,6 @@ pub struct Sampler {
     dim: u32,
 }
 
-const MULT: u64 = 0x5851_f42d_4c95_7f2d;
 /// Dr.Jit's `PCG32_DEFAULT_STREAM`.
 const PCG32_DEFAULT_STREAM: u64 = 0xda3e_39cb_94b9_5bdb;
 
@@ -216,21 +180,11 @@ impl Sampler {
     /// stream.
     pub fn for_pixel(seed: u64, pixel: u64) -> Self {
         let rng = Pcg32::new(splitmix64(seed.wrapping_add(pixel)), splitmix64(pixel ^ splitmix64(seed)));
-        Sampler { rng, ..Sampler::blank(Seq::Independent) }
+        Sampler::blank(rng, Seq::Independent)
     }
 
-    fn blank(seq: Seq) -> Self {
-        Sampler {
-            rng: Pcg32 { state: 0, inc: 0 },
-            seq,
-            jitter: true,
-            count: 1,
-            res: 1,
-            res2: 1,
-            perm_seed: 0,
-            index: 0,
-            dim: 0,
-        }
+    fn blank(rng: Pcg32, seq: Seq) -> Self {
+        Sampler { rng, seq, jitter: true, count: 1, res: 1, res2: 1, perm_seed: 0, index: 0, dim: 0 }
     }
 
     /// Exactly Mitsuba's scalar-variant sampler `kind` with `sample_count` (rounded as
@@ -253,7 +207,7 @@ impl Sampler {
         };
         let rng = Pcg32::new(base_seed.wrapping_add(seed) as u64, PCG32_DEFAULT_STREAM);
         let perm_seed = sample_tea_32(base_seed, seed, 4).0;
-        Sampler { rng, count, res, res2, jitter, perm_seed, ..Sampler::blank(seq) }
+        Sampler { count, res, res2, jitter, perm_seed, ..Sampler::blank(rng, seq) }
     }
 
     /// The next 32 random bits of the stream's generator.

@@ -2,11 +2,11 @@
 //! and the queries integrators need (Mitsuba `Scene`: intersection, emitter selection with
 //! the `sampling_weight` pmf, light sampling with a visibility test, emitter densities).
 
-use crate::render::accel::{Accel, Hit};
-use crate::render::bsdf::Bsdf;
-use crate::render::emitter::{Emitter, EmitterSample};
-use crate::render::geometry::{Ray, ray};
-use crate::render::shape::{Shape, SurfaceInteraction};
+use crate::accel::{Accel, Hit};
+use crate::bsdf::Bsdf;
+use crate::emitter::{Emitter, EmitterSample};
+use crate::geometry::{Ray, ray};
+use crate::shape::{Shape, SurfaceInteraction};
 use glam::{Vec2, Vec3};
 
 pub struct Scene {
@@ -50,7 +50,7 @@ impl Scene {
 
     /// Rebuilds the acceleration structure with the meshes in `backend` (for comparing
     /// backends on one loaded scene), or says why `backend` is unavailable.
-    pub fn set_accel_backend(&mut self, backend: crate::render::accel::Backend) -> Result<(), String> {
+    pub fn set_accel_backend(&mut self, backend: crate::accel::Backend) -> Result<(), String> {
         let t0 = std::time::Instant::now();
         self.accel = Accel::build_with(&self.shapes, backend)?;
         self.accel_build_seconds = t0.elapsed().as_secs_f64();
@@ -58,7 +58,7 @@ impl Scene {
     }
 
     /// The structure tracing the meshes (Embree, or the CWBVH without it).
-    pub fn accel_backend(&self) -> crate::render::accel::Backend {
+    pub fn accel_backend(&self) -> crate::accel::Backend {
         self.accel.backend()
     }
 

@@ -9,10 +9,10 @@
 //! the focal point, starts where it crosses z = near_clip and ends at z = far_clip. Its
 //! weight is 1.
 
-use crate::brdf::sampling::square_to_uniform_disk_concentric;
-use crate::render::camera::{FovAxis, x_half_tan};
-use crate::render::geometry::Ray;
+use crate::camera::{FovAxis, x_half_tan};
+use crate::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
+use matte_brdf::sampling::square_to_uniform_disk_concentric;
 
 #[derive(Clone, Debug)]
 pub struct ThinLensCamera {

@@ -20,7 +20,7 @@ pub enum Configuration {
     OrenNayarFull,
     Ginneken,
     Eon,
-    /// Another registered model (`crate::brdf::MODELS`, by plugin name) at its defaults.
+    /// Another registered model (`matte_brdf::MODELS`, by plugin name) at its defaults.
     Registered(&'static str),
     /// The true surface of Oren–Nayar and EON: V-cavities, σ = 0.3, as a `tabulated_brdf`.
     TruthVCavities,
@@ -42,7 +42,7 @@ pub const PAPER_RUN: [Configuration; 5] = [
 /// none of those renders, at its defaults.
 pub fn main_run() -> Vec<Configuration> {
     let mut run = PAPER_RUN.to_vec();
-    for spec in crate::brdf::MODELS.iter().filter(|s| s.in_study) {
+    for spec in matte_brdf::MODELS.iter().filter(|s| s.in_study) {
         if !PAPER_RUN.iter().any(|c| c.bsdf() == spec.name) {
             run.push(Configuration::Registered(spec.name));
         }
@@ -166,7 +166,7 @@ impl Configuration {
                 meaning: "van Ginneken's surface, simulated: a Gaussian random height field with Lambertian facets, rms slope m = 0.3, all interreflections (python/matte_mitsuba/ground_truth/height_field_m0.3.json).",
             },
             Registered(name) => {
-                let spec = crate::brdf::spec(name).expect("a registered model");
+                let spec = matte_brdf::spec(name).expect("a registered model");
                 Entry {
                     key: spec.name,
                     bsdf: spec.name,
@@ -250,9 +250,9 @@ mod tests {
         // property is in it only when that property is the plugin's default.
         for c in main_run() {
             if let Some((name, value)) = c.property() {
-                let bsdf = crate::brdf::DiffuseModel::from_params(c.bsdf(), crate::brdf::Params::default()).unwrap();
+                let bsdf = matte_brdf::DiffuseModel::from_params(c.bsdf(), matte_brdf::Params::default()).unwrap();
                 let default = bsdf.parameters().into_iter().find(|(n, _)| *n == name).map(|(_, v)| v);
-                assert_eq!(default, Some(crate::brdf::ParamValue::Text(value.into())), "{c:?}");
+                assert_eq!(default, Some(matte_brdf::ParamValue::Text(value.into())), "{c:?}");
             }
         }
     }

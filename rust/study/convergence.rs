@@ -18,10 +18,10 @@ use super::configuration::{Configuration, SERIES};
 use super::ratio::Ratio;
 use super::variant_scene::{self, Derivation, DerivedProperty};
 use super::{Lighting, Region, StudyOptions, metrics};
-use crate::render::film::SplatWeights;
-use crate::render::load;
 use crate::validate::crop::{PixelBox, pixel_box};
 use crate::validate::passes::{self, Budget, PassPlan, Side};
+use matte_render::film::SplatWeights;
+use matte_render::load;
 use std::path::{Path, PathBuf};
 
 /// One model's region ratio to Lambert at one level in one renderer.

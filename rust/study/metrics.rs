@@ -7,9 +7,9 @@
 //! removes most of the common noise from the ratio's interval.
 
 use super::ratio::Ratio;
-use crate::render::film::Image;
 use crate::validate::stats::Moments;
 use glam::{DVec3, Vec3};
+use matte_render::film::Image;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// Rec. 709 / sRGB luminance of linear RGB.

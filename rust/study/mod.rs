@@ -28,12 +28,12 @@ pub mod truth;
 pub mod variant_scene;
 pub mod variants;
 
-use crate::render::film::{Image, SplatWeights};
-use crate::render::image_io;
 use crate::validate::passes::Renderer;
 use crate::validate::passes::{self, Budget, PassPlan, Side};
 use configuration::{Configuration, TRUTHS, main_run};
 use glam::DVec3;
+use matte_render::film::{Image, SplatWeights};
+use matte_render::image_io;
 use ratio::{Ratio, RegionRatio};
 use std::path::{Path, PathBuf};
 use variant_scene::{Derivation, DerivedProperty};

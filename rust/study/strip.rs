@@ -3,8 +3,8 @@
 //! and the matching strip of relative-difference heatmaps against Lambert.
 
 use super::font;
-use crate::render::film::Image;
-use crate::render::image_io::encode_srgb8;
+use matte_render::film::Image;
+use matte_render::image_io::encode_srgb8;
 use std::path::Path;
 
 const GAP: u32 = 4;

@@ -14,9 +14,9 @@ use super::configuration::{Configuration, WITH_TRUTH};
 use super::ratio::Ratio;
 use super::variants::VariantStudy;
 use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
-use crate::render::film::Image;
-use crate::render::image_io;
 use glam::DVec3;
+use matte_render::film::Image;
+use matte_render::image_io;
 use std::path::{Path, PathBuf};
 
 /// A true surface's table file: `<folder>/<file>` (the installed package's `ground_truth/`).

@@ -11,9 +11,9 @@
 use super::configuration::{Configuration, VARIANTS};
 use super::ratio::{Ratio, RegionRatio};
 use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
-use crate::render::film::Image;
-use crate::render::image_io;
 use glam::DVec3;
+use matte_render::film::Image;
+use matte_render::image_io;
 use std::path::PathBuf;
 
 /// One variant in one lighting setting.

@@ -15,8 +15,8 @@ pub mod stats;
 pub mod summary;
 pub mod validation_report;
 
-use crate::render::film::SplatWeights;
-use crate::render::image_io;
+use matte_render::film::SplatWeights;
+use matte_render::image_io;
 use passes::{Budget, PassPlan, Renderer, Side};
 use std::path::{Path, PathBuf};
 
@@ -136,7 +136,7 @@ pub fn validate_scene(
 
 /// Splits a side rendered with R × K passes into R replicates of K passes; returns
 /// replicate 0 as a side (render time per replicate) and all replicates' images.
-fn replicates(side: Side, k: u32) -> Result<(Side, Vec<Vec<crate::render::film::Image>>), String> {
+fn replicates(side: Side, k: u32) -> Result<(Side, Vec<Vec<matte_render::film::Image>>), String> {
     let reps = side.images.len() / k.max(1) as usize;
     let seconds = side.seconds / reps.max(1) as f64;
     let all: Vec<Vec<_>> = side.images.chunks_exact(k as usize).map(|c| c.to_vec()).collect();

@@ -6,11 +6,11 @@
 use super::crop::pixel_box;
 use super::stats::Moments;
 use crate::installation::PythonSide;
-use crate::render::film::{Image, SplatWeights};
-use crate::render::image_io;
-use crate::render::load;
-use crate::render::renderer;
 use glam::DVec3;
+use matte_render::film::{Image, SplatWeights};
+use matte_render::image_io;
+use matte_render::load;
+use matte_render::renderer;
 use std::io::{BufRead, BufReader};
 use std::path::Path;
 use std::process::Stdio;

@@ -14,7 +14,7 @@
 
 use super::crop::PixelBox;
 use super::scales::{BlockMoments, MultiScale};
-use crate::render::film::Image;
+use matte_render::film::Image;
 
 /// Relative changes tried, smallest first.
 pub const DELTAS: [f64; 19] = [

@@ -14,7 +14,7 @@ use super::crop::PixelBox;
 use super::power::{TARGET_POWER, patch_place};
 use super::scales::{BlockMoments, MultiScale, alpha_test};
 use super::stats::welch_df;
-use crate::render::film::Image;
+use matte_render::film::Image;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// Smallest relative changes detected with at least 80 % power, by the bound above.

@@ -15,8 +15,8 @@
 
 use super::crop::PixelBox;
 use super::stats::{sidak, welch};
-use crate::render::film::Image;
 use glam::DVec3;
+use matte_render::film::Image;
 use statrs::distribution::{ContinuousCDF, Normal};
 
 /// One scale of the family.

@@ -9,8 +9,8 @@
 //! of the multi-scale family ([`super::scales`]), which also tests blocks of pixels.
 
 use super::scales::{MultiScale, Rejection, Scale, ScaleResult};
-use crate::render::film::Image;
 use glam::{DVec3, Vec3};
+use matte_render::film::Image;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
 /// Running mean and sum of squared deviations (Welford) of K pass images, per pixel.

@@ -12,8 +12,8 @@ use super::stats::ImageComparison;
 use super::summary::Provenance;
 use super::{SceneResult, write_mean};
 use crate::markup::escape;
-use crate::render::film::Image;
-use crate::render::image_io;
+use matte_render::film::Image;
+use matte_render::image_io;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 

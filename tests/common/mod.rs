@@ -1,114 +1,20 @@
-//! Helpers shared by the integration tests: the library's PCG32 (the generator Mitsuba's
-//! samplers use) with a test draw, the catalogue of model configurations every property
-//! test runs over, Mitsuba's chi-square goodness-of-fit test re-implemented
-//! (`src/python/python/chi2.py` and `mitsuba::math::chi2` of v3.9.1), and the pieces of the
-//! scene-file tests (a small scene around a body, `file:line` error checks, EXR textures).
+//! Helpers shared by the integration tests above the kernels: those of the kernel tests
+//! ([`kernels`]: PCG32 draws, the model catalogue, the chi-square test), the chi-square test
+//! of a renderer BSDF, and the pieces of the scene-file tests (a small scene around a body,
+//! `file:line` error checks, EXR textures).
 #![allow(dead_code)]
 // `!(x > 0.0)` is meant: it also rejects NaN, which `x <= 0.0` would let through.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-use glam::{Vec2, Vec3};
-use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
-use matte::render::bsdf::BsdfModel;
-use matte::render::shape::SurfaceInteraction;
-use matte::scene_file::SceneError;
-use statrs::distribution::{ChiSquared, ContinuousCDF};
-use std::f64::consts::PI;
+mod kernels;
+
+pub use kernels::*;
+
+use glam::Vec3;
+use matte_render::bsdf::BsdfModel;
+use matte_render::shape::SurfaceInteraction;
+use matte_scene_file::SceneError;
 use std::path::Path;
-
-pub use matte::render::sampler::Pcg32;
-
-/// Test draws beyond the generator's own.
-pub trait PcgExt {
-    /// Uniform in [0, 1) with 53 random bits, from two draws.
-    fn next_f64(&mut self) -> f64;
-    /// Two `next_f32` draws.
-    fn next_vec2(&mut self) -> Vec2;
-    /// Uniform direction on the upper hemisphere.
-    fn upper_hemisphere(&mut self) -> Vec3;
-}
-
-impl PcgExt for Pcg32 {
-    fn next_f64(&mut self) -> f64 {
-        ((self.next_u32() as u64) << 21 ^ (self.next_u32() as u64)) as f64 / (1u64 << 53) as f64
-    }
-
-    fn next_vec2(&mut self) -> Vec2 {
-        let x = self.next_f32();
-        Vec2::new(x, self.next_f32())
-    }
-
-    fn upper_hemisphere(&mut self) -> Vec3 {
-        let z = self.next_f32();
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        let phi = 2.0 * std::f32::consts::PI * self.next_f32();
-        Vec3::new(r * phi.cos(), r * phi.sin(), z)
-    }
-}
-
-/// Builds a model from `(name, value)` pairs, panicking on rejection (test inputs are valid).
-pub fn model(kind: &str, params: &[(&str, &str)]) -> DiffuseModel {
-    let mut p = Params::new();
-    for (n, v) in params {
-        p.push(n, ParamValue::parse(v));
-    }
-    DiffuseModel::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
-}
-
-/// Every registered model at its defaults and at each of its declared examples (the set the
-/// plugin tests run too), plus low and high roughness and each option of the models here.
-pub fn catalogue() -> Vec<(String, DiffuseModel)> {
-    let mut cfgs: Vec<(&str, &[(&str, &str)])> = Vec::new();
-    for spec in matte::brdf::MODELS {
-        cfgs.push((spec.name, &[]));
-        cfgs.extend(spec.examples.iter().map(|e| (spec.name, *e)));
-    }
-    cfgs.extend_from_slice(&[
-        ("oren_nayar", &[("sigma", "0.1")][..]),
-        ("oren_nayar", &[("sigma", "1.0")]),
-        ("oren_nayar", &[("sigma", "0.1"), ("model", "full")]),
-        ("oren_nayar", &[("sigma", "1.0"), ("model", "full")]),
-        ("eon", &[("roughness", "0.05")]),
-        ("wolff", &[("int_ior", "2.4"), ("normalization", "normal")]),
-        ("wolff", &[("int_ior", "bk7"), ("ext_ior", "water"), ("normalization", "raw")]),
-        ("ginneken", &[("roughness", "0.1")]),
-        ("ginneken", &[("roughness", "0.8"), ("shadowing", "height_correlated")]),
-    ]);
-    cfgs.iter().map(|(k, p)| (format!("{k} {p:?}"), model(k, p))).collect()
-}
-
-/// Mitsuba's `SphericalDomain`: (φ, −cos θ) ∈ [−π, π] × [−1, 1] to a direction.
-fn map_forward(x: f64, y: f64) -> Vec3 {
-    let cos_theta = -y;
-    let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    Vec3::new((x.cos() * sin_theta) as f32, (x.sin() * sin_theta) as f32, cos_theta as f32)
-}
-
-fn map_backward(w: Vec3) -> (f64, f64) {
-    ((w.y as f64).atan2(w.x as f64), -(w.z as f64))
-}
-
-pub struct Chi2Outcome {
-    pub p_value: f64,
-    pub statistic: f64,
-    pub dof: usize,
-}
-
-/// Mitsuba's `ChiSquareTest` with its defaults (10^6 samples, res 101 → 50 × 101 cells, ires 4
-/// trapezoid rule per cell, pooling below 5) for `bsdf.sample_direction` against `bsdf.pdf`
-/// at incidence `wi`. Returns `Err` for the hard failures (sample outside the domain, sample
-/// in a cell of zero expected count, pdf integrating to > 1.1).
-pub fn chi2_sampling<B: DiffuseBrdf>(bsdf: &B, wi: Vec3, seed: u64) -> Result<Chi2Outcome, String> {
-    chi2_sampling_ires(bsdf, wi, seed, 4)
-}
-
-/// [`chi2_sampling`] with `ires` trapezoid points per cell side (sharp lobes, such as a rough
-/// dielectric's transmission squeezed by η², need more than Mitsuba's 4 for the expected
-/// counts to be accurate at 10^6 samples).
-#[allow(dead_code)]
-pub fn chi2_sampling_ires<B: DiffuseBrdf>(bsdf: &B, wi: Vec3, seed: u64, ires: usize) -> Result<Chi2Outcome, String> {
-    chi2_test(|u| bsdf.sample(wi, u, [0.5]).map(|s| (s.wo, s.weight[0])), |wo| bsdf.pdf(wi, wo), seed, ires)
-}
 
 /// [`chi2_sampling_ires`] for a renderer BSDF at the hit `si` and incidence `wi` (shading
 /// frame). The lobe choice comes from its own generator (`Pcg32::new(seed, 3)`); Dirac samples
@@ -135,104 +41,11 @@ pub fn chi2_render_bsdf<B: BsdfModel>(
     chi2_test(sample, |wo| bsdf.eval_pdf(si, wi, to_shading(wo)).1, seed, ires)
 }
 
-/// Mitsuba's `ChiSquareTest` of `sample` (`u` → direction and a weight whose sign counts)
-/// against `pdf`, with `ires` trapezoid points per cell side.
-fn chi2_test(
-    mut sample: impl FnMut(Vec2) -> Option<(Vec3, f32)>,
-    pdf: impl Fn(Vec3) -> f32,
-    seed: u64,
-    ires: usize,
-) -> Result<Chi2Outcome, String> {
-    const SAMPLES: usize = 1_000_000;
-    let (nx, ny) = (50usize, 101usize);
-    let (x0, x1, y0, y1) = (-PI, PI, -1.0, 1.0);
-    let mut hist = vec![0.0f64; nx * ny];
-    let mut rng = Pcg32::new(seed, 0xda3e_39cb_94b9_5bdb);
-    for _ in 0..SAMPLES {
-        let u = rng.next_vec2();
-        let Some((wo, weight)) = sample(u) else { continue };
-        if !(weight > 0.0) {
-            continue; // Mitsuba's BSDFAdapter gives zero-weight samples no histogram mass
-        }
-        if (wo.length() - 1.0).abs() > 1e-3 {
-            return Err(format!("sample {wo:?} is not a unit vector"));
-        }
-        let (x, y) = map_backward(wo);
-        let ix = (((x - x0) / (x1 - x0) * nx as f64) as isize).clamp(0, nx as isize - 1) as usize;
-        let iy = (((y - y0) / (y1 - y0) * ny as f64) as isize).clamp(0, ny as isize - 1) as usize;
-        hist[iy * nx + ix] += 1.0;
-    }
-    // Expected counts: pdf integrated over each cell (trapezoid rule, as chi2.py).
-    let (cw, ch) = ((x1 - x0) / nx as f64, (y1 - y0) / ny as f64);
-    let (sx, sy) = (cw / (ires - 1) as f64, ch / (ires - 1) as f64);
-    let mut expected = vec![0.0f64; nx * ny];
-    for cy in 0..ny {
-        for cx in 0..nx {
-            let mut sum = 0.0;
-            for j in 0..ires {
-                for i in 0..ires {
-                    let x = x0 + cx as f64 * cw + (i as f64 + 1e-4) * (1.0 - 2e-4) * sx;
-                    let y = y0 + cy as f64 * ch + (j as f64 + 1e-4) * (1.0 - 2e-4) * sy;
-                    let w = if i == 0 || i == ires - 1 { 0.5 } else { 1.0 }
-                        * if j == 0 || j == ires - 1 { 0.5 } else { 1.0 };
-                    let density = pdf(map_forward(x, y)) as f64;
-                    if density < 0.0 || !density.is_finite() {
-                        return Err(format!("pdf {density} at ({x}, {y})"));
-                    }
-                    sum += w * density;
-                }
-            }
-            expected[cy * nx + cx] = sum * sx * sy * SAMPLES as f64;
-        }
-    }
-    let pdf_sum: f64 = expected.iter().sum::<f64>() / SAMPLES as f64;
-    if pdf_sum > 1.1 {
-        return Err(format!("pdf integrates to {pdf_sum}"));
-    }
-    let mut order: Vec<usize> = (0..nx * ny).collect();
-    order.sort_by(|&a, &b| expected[a].total_cmp(&expected[b]));
-    if order.iter().any(|&k| expected[k] == 0.0 && hist[k] != 0.0) {
-        return Err("samples in a cell with expected frequency 0".into());
-    }
-    // mitsuba::math::chi2 with pool threshold 5.
-    let (mut chsq, mut pooled_obs, mut pooled_exp, mut dof) = (0.0, 0.0, 0.0, 0usize);
-    for &k in &order {
-        let (o, e) = (hist[k], expected[k]);
-        if e == 0.0 && o == 0.0 {
-            continue;
-        }
-        if e < 5.0 {
-            pooled_obs += o;
-            pooled_exp += e;
-            if pooled_exp > 5.0 {
-                chsq += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
-                pooled_obs = 0.0;
-                pooled_exp = 0.0;
-                dof += 1;
-            }
-        } else {
-            chsq += (o - e) * (o - e) / e;
-            dof += 1;
-        }
-    }
-    let dof = dof.saturating_sub(1);
-    if dof < 1 {
-        return Err("too few degrees of freedom".into());
-    }
-    let p_value = ChiSquared::new(dof as f64).map_err(|e| e.to_string())?.sf(chsq);
-    Ok(Chi2Outcome { p_value, statistic: chsq, dof })
-}
-
-/// Šidák-corrected significance level for `test_count` tests at overall level 0.01.
-pub fn sidak(test_count: usize) -> f64 {
-    1.0 - (1.0 - 0.01f64).powf(1.0 / test_count as f64)
-}
-
 /// The project's `.venv` Python (Mitsuba 3.9.1, as `make venv` installs it), if this checkout
 /// has one; checks against Mitsuba itself are skipped (with a note) where it does not. `make
 /// test` builds the venv first, so the suite always runs them.
 pub fn mitsuba_python() -> Option<std::path::PathBuf> {
-    let python = Path::new(env!("CARGO_MANIFEST_DIR")).join(".venv/bin/python");
+    let python = repo().join(".venv/bin/python");
     if python.exists() {
         Some(python)
     } else {
@@ -269,13 +82,13 @@ pub fn assert_err_at<T>(r: Result<T, SceneError>, file: &Path, line: u32, needle
 
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
 pub fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
-    let mut img = matte::render::film::Image::new(w, h);
+    let mut img = matte_render::film::Image::new(w, h);
     for j in 0..h {
         for i in 0..w {
             img.set(i, j, f(i, j));
         }
     }
-    matte::render::image_io::write_exr(path, &img).unwrap();
+    matte_render::image_io::write_exr(path, &img).unwrap();
 }
 
 /// Environment variables for a `matte` run whose Python side is the checkout's source package
@@ -283,5 +96,5 @@ pub fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
 /// rule (`MATTE_PYTHON`): the machine's `python3` with `python/` on its path. That Python has
 /// no Mitsuba, so the commands run matte's side only and say that Mitsuba was not run.
 pub fn source_package_env() -> [(&'static str, String); 2] {
-    [("MATTE_PYTHON", "python3".into()), ("PYTHONPATH", concat!(env!("CARGO_MANIFEST_DIR"), "/python").into())]
+    [("MATTE_PYTHON", "python3".into()), ("PYTHONPATH", repo().join("python").display().to_string())]
 }

@@ -12,7 +12,7 @@ Ir                    file:function
 221,319,219 ( 6.08%)  ???:embree::avx2::BVHNIntersectorKHybrid<8, 8, 1, false, embree::avx2::ArrayIntersectorK_1<8>, true>
  62,448,747 (10.26%)  ???:0x0000000001960660 [/usr/lib/x86_64-linux-gnu/libembree3.so.3.13.5]
  14,953,086 ( 0.41%)  ???:0x0000000007ffa4f0'2 [???]
- 24,724,216 ( 4.06%)  /work/main/rust/render/integrator/path.rs:matte::render::integrator::one_path::render_tile
+ 24,724,216 ( 4.06%)  /work/main/rust/render/integrator/path.rs:matte_render::integrator::one_path::render_tile
   5,992,896 ( 0.98%)  ???:rtcIntersect1 [/usr/lib/x86_64-linux-gnu/libembree3.so.3.13.5]
   1,000 ( 0.00%)  ???:0x00000000010e3120 [/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1]
 """

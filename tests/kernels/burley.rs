@@ -8,7 +8,7 @@
 
 use crate::common::{Pcg32, PcgExt};
 use glam::DVec3;
-use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 
 fn burley(r: f64) -> DiffuseModel {
     DiffuseModel::from_params("burley", Params::new().with("roughness", ParamValue::Number(r))).unwrap()

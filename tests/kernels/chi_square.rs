@@ -32,8 +32,8 @@ fn sampling_matches_pdf() {
 #[test]
 fn chi_square_rejects_a_wrong_pdf() {
     use glam::Vec2;
-    use matte::brdf::sampling::square_to_cosine_hemisphere;
-    use matte::brdf::{BrdfSample, DiffuseBrdf};
+    use matte_brdf::sampling::square_to_cosine_hemisphere;
+    use matte_brdf::{BrdfSample, DiffuseBrdf};
     struct Tilted;
     impl DiffuseBrdf for Tilted {
         fn eval<const N: usize>(&self, _: Vec3, wo: Vec3, r: [f32; N]) -> [f32; N] {

@@ -3,9 +3,9 @@
 //! `matte tables` prints the numbers). Also: smooth limit m → 0 is Lambert.
 
 use crate::common;
-use matte::brdf::frame::spherical_direction;
-use matte::brdf::ginneken::accuracy::fast_path_accuracy;
-use matte::brdf::{DiffuseBrdf, DiffuseModel};
+use matte_brdf::frame::spherical_direction;
+use matte_brdf::ginneken::accuracy::fast_path_accuracy;
+use matte_brdf::{DiffuseBrdf, DiffuseModel};
 
 #[test]
 fn fast_path_within_half_a_percent_away_from_grazing() {
@@ -44,7 +44,7 @@ fn vanishing_roughness_is_lambert() {
 /// 600 configurations: max 5.3e-4, 2.5e-3, 3.5e-3 at m = 0.1, 0.3, 0.7; mean ≤ 1.7e-4).
 #[test]
 fn roughness_gradient_matches_the_reference_derivative() {
-    use matte::brdf::ginneken::accuracy::roughness_gradient_accuracy;
+    use matte_brdf::ginneken::accuracy::roughness_gradient_accuracy;
     for m in ["0.1", "0.3", "0.7"] {
         for shadowing in ["vginneken", "height_correlated"] {
             let DiffuseModel::Ginneken(g) = common::model("ginneken", &[("roughness", m), ("shadowing", shadowing)])
@@ -67,8 +67,8 @@ fn roughness_gradient_matches_the_reference_derivative() {
 /// (`docs/models.md#van-ginneken-with-a-textured-roughness` has the measured numbers).
 #[test]
 fn roughness_axis_matches_the_reference_between_nodes() {
-    use matte::brdf::ginneken::roughness_axis::axis_accuracy;
-    use matte::brdf::ginneken::shadowing::Shadowing;
+    use matte_brdf::ginneken::roughness_axis::axis_accuracy;
+    use matte_brdf::ginneken::shadowing::Shadowing;
     for m in [0.05, 0.13, 0.45, 0.8] {
         for shadowing in [Shadowing::VanGinneken, Shadowing::HeightCorrelated] {
             let e = axis_accuracy(m, shadowing, 80.0, 800);

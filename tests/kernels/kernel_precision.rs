@@ -10,7 +10,7 @@
 
 use crate::common::{Pcg32, PcgExt, model};
 use glam::{DVec3, Vec3};
-use matte::brdf::{DiffuseBrdf, DiffuseModel};
+use matte_brdf::{DiffuseBrdf, DiffuseModel};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 const RHO: [f32; 3] = [0.8, 0.5, 0.2];

@@ -1,13 +1,12 @@
 //! The diffuse BRDF models (`rust/brdf`): the kernels against closed forms, independent f64
 //! evaluations and the reference tables; their sampling, parameters and per-lane forms.
 
-#[path = "../common/mod.rs"]
+#[path = "../common/kernels.rs"]
 mod common;
 
 mod burley;
 mod chi_square;
 mod ginneken_fast_path;
-mod ground_truth_tables;
 mod kernel_precision;
 mod parameters;
 mod properties;

@@ -1,6 +1,6 @@
 //! Bad parameters are rejected at construction with an error naming the parameter.
 
-use matte::brdf::{DiffuseModel, ParamValue, Params};
+use matte_brdf::{DiffuseModel, ParamValue, Params};
 
 fn rejected(kind: &str, params: &[(&str, ParamValue)]) -> String {
     let mut p = Params::new();
@@ -67,7 +67,7 @@ fn boundary_values_are_accepted() {
 
 #[test]
 fn magnitudes_beyond_the_limit_are_rejected_by_every_model() {
-    // One limit for every front end (CLI, renderer, plugin): `matte::brdf::params::MAX_MAGNITUDE`.
+    // One limit for every front end (CLI, renderer, plugin): `matte_brdf::params::MAX_MAGNITUDE`.
     for (kind, name) in [
         ("oren_nayar", "sigma"),
         ("wolff", "int_ior"),

@@ -5,7 +5,7 @@
 
 use crate::common::{Pcg32, PcgExt, catalogue};
 use glam::Vec3;
-use matte::brdf::{DiffuseBrdf, DiffuseModel};
+use matte_brdf::{DiffuseBrdf, DiffuseModel};
 
 #[test]
 fn reciprocity_on_random_pairs() {

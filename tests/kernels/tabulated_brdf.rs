@@ -4,28 +4,12 @@
 //! table of EON keeps a white surface's energy, the cosine sampling passes Mitsuba's chi-square
 //! test and its pdf integrates to 1, and files round-trip or fail with a clear message.
 
-use crate::common::{Pcg32, PcgExt, chi2_sampling, model, sidak};
+use crate::common::{Pcg32, PcgExt, chi2_sampling, direction, model, sidak, table_of};
 use glam::Vec3;
-use matte::brdf::tabulated::{BrdfTable, TableModel};
-use matte::brdf::{DiffuseBrdf, DiffuseModel};
-use matte::microgeometry::tabulation::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
+use matte_brdf::tabulated::{BrdfTable, TableModel};
+use matte_brdf::tabulated::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
+use matte_brdf::{DiffuseBrdf, DiffuseModel};
 use std::f64::consts::PI;
-
-fn direction(theta: f64, phi: f64) -> Vec3 {
-    Vec3::new((theta.sin() * phi.cos()) as f32, (theta.sin() * phi.sin()) as f32, theta.cos() as f32)
-}
-
-/// `model` sampled on the production grid.
-fn table_of(m: &DiffuseModel) -> BrdfTable {
-    BrdfTable::from_fn(
-        "test",
-        TABLE_THETA.to_vec(),
-        TABLE_DELTA_PHI.to_vec(),
-        TABLE_REFLECTANCE.to_vec(),
-        |ti, to, dp, rho| m.eval(direction(ti, 0.0), direction(to, dp), [rho as f32])[0] as f64,
-    )
-    .unwrap()
-}
 
 /// Relative error of the table against the model at random directions with θ ≤ `max_theta`°
 /// and random ρ: (mean, largest).
@@ -128,38 +112,6 @@ fn files_round_trip_and_bad_files_give_one_line_errors() {
     nan.theta_deg[3] = 95.0;
     std::fs::write(&path, serde_json::to_string(&nan).unwrap()).unwrap();
     assert!(BrdfTable::read(&path).unwrap_err().contains("theta_deg"));
-    std::fs::remove_dir_all(&dir).ok();
-}
-
-/// `<bsdf type="tabulated_brdf">` in `matte render`'s loader: the file resolves next to the
-/// scene, each RGB channel gets its own ρ, and a missing file is a one-line error at the
-/// element's line.
-#[test]
-fn the_renderer_loads_a_table_file_as_a_bsdf() {
-    use matte::render::bsdf::{Bsdf as RenderBsdf, tabulated_brdf};
-    use matte::render::load::load_str;
-    let on = model("oren_nayar", &[("sigma", "0.3"), ("model", "full")]);
-    let dir = std::env::temp_dir().join(format!("matte_tabulated_scene_{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    table_of(&on).write(&dir.join("truth.json")).unwrap();
-    let xml = |file: &str| {
-        format!(
-            "<scene version=\"3.0.0\">\n<sensor type=\"perspective\"/>\n<bsdf type=\"tabulated_brdf\">\n\
-             <string name=\"filename\" value=\"{file}\"/>\n<rgb name=\"reflectance\" value=\"0.2, 0.5, 0.75\"/></bsdf>\n</scene>"
-        )
-    };
-    let scene = load_str(&xml("truth.json"), &dir.join("scene.xml"), &[]).unwrap();
-    let RenderBsdf::Tabulated(t) = &scene.scene.bsdfs[0] else { panic!("{:?}", scene.scene.bsdfs[0]) };
-    let (wi, wo) = (direction(60f64.to_radians(), 0.0), direction(30f64.to_radians(), PI));
-    let rho = Vec3::new(0.2, 0.5, 0.75);
-    let (f_cos, pdf) = tabulated_brdf::eval_pdf(&t.table, rho, wi, wo);
-    let want = on.eval(wi, wo, rho.to_array());
-    for c in 0..3 {
-        assert!((f_cos[c] / wo.z / want[c] - 1.0).abs() < 1e-4, "channel {c}: {} vs {}", f_cos[c] / wo.z, want[c]);
-    }
-    assert!((pdf - wo.z / std::f32::consts::PI).abs() < 1e-6);
-    let e = load_str(&xml("absent.json"), &dir.join("scene.xml"), &[]).err().unwrap().to_string();
-    assert!(e.contains("scene.xml:4") && e.contains("absent.json") && !e.contains('\n'), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

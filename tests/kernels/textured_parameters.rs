@@ -1,19 +1,11 @@
 //! Textured numeric parameters of matte's models (`docs/models.md#spatially-varying-parameters`):
-//! the per-lane kernels (`matte::brdf::lane`) against the constant-parameter models they must
-//! equal, the clamps that keep a texture's out-of-range values finite, and the loader
-//! (`rust/render/load/bsdf.rs`): a constant texture renders as the number, and refused forms
-//! name file:line. (Which colour of a checkerboard a parameter reads, Mitsuba's `eval_1`, is
-//! checked with the other checkerboard tests in `tests/scene_file/load.rs`.)
+//! the per-lane kernels (`matte_brdf::lane`) against the constant-parameter models they must
+//! equal, and the clamps that keep a texture's out-of-range values finite. (The loader's side,
+//! textures in scene files, is tested in `tests/render/matte_bsdf.rs`.)
 
-use std::path::Path;
-
-use glam::{Vec2, Vec3};
-use matte::brdf::kernel;
-use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
-use matte::render::bsdf::{Bsdf, BsdfModel};
-use matte::render::load::load_str;
-
-const FILE: &str = "/virtual/scenes/textured.xml";
+use glam::Vec3;
+use matte_brdf::kernel;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 
 fn model(kind: &str, params: &[(&str, f64)]) -> DiffuseModel {
     let mut p = Params::new();
@@ -114,64 +106,5 @@ fn lane_values_out_of_range_are_clamped() {
             let tol = if *kind == "ginneken" { 2e-3 } else { 2e-4 };
             assert!((got - want).abs() <= tol * want, "{kind} {name} = {v}: {got} vs {want} at the bound");
         }
-    }
-}
-
-fn scene(bsdf: &str) -> String {
-    format!(
-        r#"<scene version="3.0.0">
-  <integrator type="direct"/>
-  <sensor type="perspective">
-    <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
-    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
-  </sensor>
-  <emitter type="directional"><vector name="direction" value="0.3,0.2,-1"/></emitter>
-  <shape type="rectangle">
-    {bsdf}
-  </shape>
-</scene>"#
-    )
-}
-
-fn eval_at(xml: &str, uv: Vec2) -> Vec3 {
-    let s = load_str(xml, Path::new(FILE), &[]).unwrap_or_else(|e| panic!("{e}"));
-    let (wi, wo) = (Vec3::new(0.2, 0.1, 0.97).normalize(), Vec3::new(-0.5, 0.3, 0.8).normalize());
-    s.scene.bsdfs[0].eval_pdf(&matte::render::shape::SurfaceInteraction::at_uv(uv), wi, wo).0
-}
-
-/// A texture whose value is the same everywhere gives the number's BSDF (the per-hit path is
-/// the same kernel), and the scene then holds a `Matte` with textured parameters.
-#[test]
-fn constant_texture_equals_the_number() {
-    let cases = [
-        ("oren_nayar", "sigma", 0.5, "1e-5"),
-        ("eon", "roughness", 0.4, "1e-5"),
-        ("roughdiffuse", "alpha", 0.3, "1e-5"),
-        ("wolff", "int_ior", 1.7, "2e-4"),
-        // the roughness axis (Hermite in m) against the table built for m = 0.35
-        ("ginneken", "roughness", 0.35, "2e-3"),
-    ];
-    for (kind, name, v, tol) in cases {
-        let number = scene(&format!(r#"<bsdf type="{kind}"><float name="{name}" value="{v}"/></bsdf>"#));
-        let textured = scene(&format!(
-            r#"<bsdf type="{kind}"><texture type="checkerboard" name="{name}"><float name="color0" value="{v}"/><float name="color1" value="{v}"/></texture></bsdf>"#
-        ));
-        let s = load_str(&textured, Path::new(FILE), &[]).unwrap();
-        assert!(matches!(&s.scene.bsdfs[0], Bsdf::Matte(m) if m.is_textured()), "{kind}: not a textured Matte");
-        let (a, b) = (eval_at(&number, Vec2::new(0.3, 0.6)), eval_at(&textured, Vec2::new(0.3, 0.6)));
-        let tol: f32 = tol.parse().unwrap();
-        assert!(((a - b).abs() / a).max_element() <= tol, "{kind}: {a} vs {b}");
-    }
-}
-
-#[test]
-fn refused_textures_name_file_and_line() {
-    let cases = [
-        (r#"<bsdf type="oren_nayar"><texture type="checkerboard" name="model"/></bsdf>"#, "not a numeric parameter"),
-        (r#"<bsdf type="lambert"><texture type="checkerboard" name="sigma"/></bsdf>"#, "sigma"),
-    ];
-    for (bsdf, want) in cases {
-        let e = load_str(&scene(bsdf), Path::new(FILE), &[]).err().expect("must fail").to_string();
-        assert!(e.contains("textured.xml:9") && e.contains(want), "{bsdf}: {e}");
     }
 }

@@ -6,13 +6,12 @@
 //! edge (at most 0.05 % of rays; 0 in practice on these scenes, measured below).
 
 use matte::bench::traversal::ray_sets;
-use matte::render::accel::{Accel, Backend};
-use matte::render::load;
-use std::path::Path;
+use matte_render::accel::{Accel, Backend};
+use matte_render::load;
 use std::process::Command;
 
 fn scene(file: &str, defines: &[(&str, &str)]) -> load::LoadedScene {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");
+    let root = crate::common::repo().join("mitsuba_scenes");
     let defines: Vec<(String, String)> = defines.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect();
     load::load_file(&root.join(file), &defines).unwrap()
 }
@@ -45,7 +44,7 @@ fn compare_backends(name: &str, loaded: &load::LoadedScene) {
         // Eight rays per call (Embree's rtcIntersect8 with `embree`) give the one-ray answers;
         // inactive lanes (every fifth ray) give no hit.
         for (k, c) in rays.chunks_exact(8).enumerate() {
-            let packet: [matte::render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
+            let packet: [matte_render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
             let active: [bool; 8] = std::array::from_fn(|i| (8 * k + i) % 5 != 0);
             let one_ray = c.iter().zip(active).map(|(r, a)| if a { accel.intersect(r, shapes) } else { None });
             for (r, (a, b)) in c.iter().zip(accel.intersect8(&packet, active, shapes).into_iter().zip(one_ray)) {
@@ -68,7 +67,7 @@ fn compare_backends(name: &str, loaded: &load::LoadedScene) {
         // Eight shadow rays per call (rtcOccluded8) give the one-ray answers; inactive lanes
         // (every third ray) are unblocked.
         for (k, c) in shadow.chunks_exact(8).enumerate() {
-            let packet: [matte::render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
+            let packet: [matte_render::geometry::Ray; 8] = std::array::from_fn(|i| c[i]);
             let active: [bool; 8] = std::array::from_fn(|i| (8 * k + i) % 3 != 0);
             let blocked8 = accel.occluded8(&packet, active, shapes);
             for i in 0..8 {
@@ -111,11 +110,11 @@ fn embree_and_cwbvh_agree_on_the_room() {
 /// statistics (here: the same finite, non-empty render).
 #[test]
 fn matte_accel_chooses_the_backend_and_a_bad_value_is_a_note() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::repo();
     let out = std::env::temp_dir().join("matte_accel_backend_test.exr");
     let render = |accel: &str| {
         Command::new(env!("CARGO_BIN_EXE_matte"))
-            .current_dir(root)
+            .current_dir(&root)
             .env("MATTE_ACCEL", accel)
             .args(["render", "mitsuba_scenes/cornell_box.xml", "-D", "res=16", "--spp", "2", "-q", "-o"])
             .arg(&out)

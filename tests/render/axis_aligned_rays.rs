@@ -9,12 +9,12 @@
 //! plane at a known distance), never the renderer's own answers.
 
 use glam::{Affine3A, Mat4, Quat, Vec3};
-use matte::render::bsdf::{Bsdf, Diffuse};
-use matte::render::geometry::Ray;
-use matte::render::scene::Scene;
-use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use matte::render::texture::Texture;
-use matte::scene_file::mesh::{MeshOptions, cube, rectangle};
+use matte_render::bsdf::{Bsdf, Diffuse};
+use matte_render::geometry::Ray;
+use matte_render::scene::Scene;
+use matte_render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
+use matte_render::texture::Texture;
+use matte_scene_file::mesh::{MeshOptions, cube, rectangle};
 
 fn scene(geometries: Vec<Geometry>) -> Scene {
     let shapes = geometries

@@ -8,9 +8,9 @@ use crate::common;
 
 use glam::{Affine2, Vec2, Vec3};
 use image::{ImageBuffer, Luma, LumaA, Rgb, Rgba};
-use matte::render::film::Image;
-use matte::render::image_io::write_exr;
-use matte::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
+use matte_render::film::Image;
+use matte_render::image_io::write_exr;
+use matte_render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 

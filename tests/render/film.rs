@@ -5,8 +5,8 @@
 
 use crate::common::{self, Pcg32, PcgExt};
 use glam::{Vec2, Vec3};
-use matte::render::film::{CropWindow, Film, GAUSSIAN_FIT, Image, ReconstructionFilter, SplatWeights, Tile};
-use matte::render::image_io::{read_exr, write_exr, write_png};
+use matte_render::film::{CropWindow, Film, GAUSSIAN_FIT, Image, ReconstructionFilter, SplatWeights, Tile};
+use matte_render::image_io::{read_exr, write_exr, write_png};
 use std::path::PathBuf;
 use std::process::Command;
 

@@ -9,6 +9,7 @@ mod axis_aligned_rays;
 mod bitmap;
 mod envmap;
 mod film;
+mod matte_bsdf;
 mod mitsuba_bsdfs;
 mod particle_tracer;
 mod render_core;

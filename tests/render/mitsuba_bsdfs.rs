@@ -13,9 +13,9 @@ mod reference;
 
 use crate::common::{Pcg32, PcgExt, chi2_render_bsdf, sidak};
 use glam::{Vec2, Vec3};
-use matte::render::bsdf::{Bsdf, BsdfModel};
-use matte::render::load::load_str;
-use matte::render::shape::SurfaceInteraction;
+use matte_render::bsdf::{Bsdf, BsdfModel};
+use matte_render::load::load_str;
+use matte_render::shape::SurfaceInteraction;
 use reference::CONFIGS;
 use std::path::Path;
 
@@ -237,7 +237,7 @@ fn thin_dielectric_lobe_probabilities() {
 /// Mitsuba test scenes use, `a-C`); names are case-sensitive file names.
 #[test]
 fn every_mitsuba_conductor_material_is_known() {
-    use matte::render::bsdf::{conductor_material, conductor_material_names};
+    use matte_render::bsdf::{conductor_material, conductor_material_names};
     assert_eq!(conductor_material_names().count(), 71);
     for name in ["a-C", "Au", "Cr", "W", "TiO2-e_palik", "d-C", "Se-e", "none"] {
         let (eta, k) = conductor_material(name).unwrap_or_else(|e| panic!("{e}"));
@@ -353,7 +353,7 @@ fn odd_values_never_panic_and_render_finite() {
             };
             accepted += 1;
             let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                matte::render::renderer::render(
+                matte_render::renderer::render(
                     &s.scene,
                     &s.integrator,
                     &s.camera,
@@ -381,10 +381,10 @@ fn odd_values_never_panic_and_render_finite() {
 #[test]
 fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
     use bumpmap_reference::{HEIGHT, NESTED, ROWS, TEXELS, WIDTH};
-    use matte::render::bsdf::bump_map::{BumpMap, HitGeometry};
-    use matte::render::geometry::Frame;
-    use matte::render::texture::Texture;
-    use matte::render::texture::{BitmapOptions, BitmapTexture};
+    use matte_render::bsdf::bump_map::{BumpMap, HitGeometry};
+    use matte_render::geometry::Frame;
+    use matte_render::texture::Texture;
+    use matte_render::texture::{BitmapOptions, BitmapTexture};
     use std::sync::Arc;
     let texels = TEXELS.iter().map(|&g| Vec3::splat(g)).collect();
     let height = Texture::Bitmap(Arc::new(

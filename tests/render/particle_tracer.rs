@@ -5,9 +5,9 @@
 //! loader's documented defaults and refusals.
 
 use glam::Vec3;
-use matte::render::integrator::Integrator;
-use matte::render::load::{LoadedScene, load_str};
-use matte::render::renderer::render;
+use matte_render::integrator::Integrator;
+use matte_render::load::{LoadedScene, load_str};
+use matte_render::renderer::render;
 use std::f32::consts::PI;
 use std::path::Path;
 

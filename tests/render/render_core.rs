@@ -3,15 +3,15 @@
 //! plane). Oracles are closed forms and numerical integration, never the renderer itself.
 
 use glam::{Affine3A, Vec2, Vec3};
-use matte::render::bsdf::{Bsdf, Diffuse, Matte};
-use matte::render::emitter::Emitter;
-use matte::render::geometry::Ray;
-use matte::render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
-use matte::render::sampler::Sampler;
-use matte::render::scene::Scene;
-use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use matte::render::texture::Texture;
-use matte::scene_file::mesh::TriangleMesh;
+use matte_render::bsdf::{Bsdf, Diffuse, Matte};
+use matte_render::emitter::Emitter;
+use matte_render::geometry::Ray;
+use matte_render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
+use matte_render::sampler::Sampler;
+use matte_render::scene::Scene;
+use matte_render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
+use matte_render::texture::Texture;
+use matte_scene_file::mesh::TriangleMesh;
 use std::f32::consts::PI;
 
 fn shape(geometry: Geometry, bsdf: u32, emitter: Option<u32>) -> Shape {
@@ -199,7 +199,7 @@ fn white_furnace_returns_the_environment_radiance() {
     let sphere = Sphere::new(Affine3A::IDENTITY, false);
     for bsdf in [
         diffuse(1.0),
-        Bsdf::Matte(Matte::new(matte::brdf::DiffuseModel::Lambert(matte::brdf::Lambert), Texture::Constant(Vec3::ONE))),
+        Bsdf::Matte(Matte::new(matte_brdf::DiffuseModel::Lambert(matte_brdf::Lambert), Texture::Constant(Vec3::ONE))),
     ] {
         let scene = Scene::new(
             vec![shape(Geometry::Sphere(sphere.clone()), 0, None)],
@@ -308,7 +308,7 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
 /// Checked against Mitsuba 3.9.1 (scalar_rgb) by validation/verify_semantics.py -k §10.
 #[test]
 fn mask_passes_rays_through_as_a_bounce_but_blocks_shadow_rays() {
-    let mask = Bsdf::Mask(matte::render::bsdf::Mask {
+    let mask = Bsdf::Mask(matte_render::bsdf::Mask {
         opacity: Texture::Constant(Vec3::splat(0.3)),
         nested: Box::new(diffuse(0.5)),
     });

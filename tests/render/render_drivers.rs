@@ -6,17 +6,16 @@
 //! `direct` (several light and BSDF samples, delta lights), matte's models, textures and
 //! analytic shapes.
 
-use matte::render::film::Image;
-use matte::render::integrator::{Driver, Integrator};
-use matte::render::load::{LoadedScene, load_file};
-use matte::render::renderer::render_with;
-use std::path::Path;
+use matte_render::film::Image;
+use matte_render::integrator::{Driver, Integrator};
+use matte_render::load::{LoadedScene, load_file};
+use matte_render::renderer::render_with;
 
 /// A bundled scene, loaded as Mitsuba loads it after `import matte_mitsuba`: the package folder
 /// (here the source tree's `python/matte_mitsuba`, which holds `ground_truth/`) on the file
 /// resolver, as `<path>` folders of a copy beside the scene's own folder.
 fn load(file: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let root = crate::common::repo();
     let scenes = root.join("mitsuba_scenes");
     let text = std::fs::read_to_string(scenes.join(file)).unwrap();
     let open = text.find("<scene").and_then(|i| text[i..].find('>').map(|j| i + j + 1)).expect("<scene ...>");
@@ -103,7 +102,7 @@ fn direct_integrator_scenes() {
     // Several light and BSDF samples per camera hit, emitters hidden.
     let mut loaded = load("cornell_box.xml", &[("res", "32")]);
     let integrator =
-        matte::render::integrator::DirectIntegrator { emitter_samples: 3, bsdf_samples: 2, hide_emitters: true };
+        matte_render::integrator::DirectIntegrator { emitter_samples: 3, bsdf_samples: 2, hide_emitters: true };
     loaded.integrator = Integrator::Direct(integrator);
     assert_same_image("cornell direct 3+2 hidden", &loaded, 4);
 }

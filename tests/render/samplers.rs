@@ -1,4 +1,4 @@
-//! The samplers (`matte::render::sampler`) and the `thinlens` sensor against live Mitsuba
+//! The samplers (`matte_render::sampler`) and the `thinlens` sensor against live Mitsuba
 //! 3.9.1: `tests/render/samplers/mitsuba_reference.json` was written by
 //! `validation/mitsuba_sampler_reference.py` (scalar_rgb) and holds each sampler's rounded
 //! `sample_count`, the numbers it draws after `sampler.seed(s)` and `thinlens` rays. A second
@@ -6,14 +6,14 @@
 //! several dimensions to its known value.
 
 use glam::{Vec2, Vec3};
-use matte::render::camera::Camera;
-use matte::render::load::load_str;
-use matte::render::sampler::{Sampler, SamplerKind, Sampling};
+use matte_render::camera::Camera;
+use matte_render::load::load_str;
+use matte_render::sampler::{Sampler, SamplerKind, Sampling};
 use serde_json::Value;
 use std::path::Path;
 
 fn reference() -> Value {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/render/samplers/mitsuba_reference.json");
+    let path = crate::common::repo().join("tests/render/samplers/mitsuba_reference.json");
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 

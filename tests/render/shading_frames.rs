@@ -4,12 +4,12 @@
 //! tangent-space normal maps are oriented by `s`. Expected tangents are worked out by hand.
 
 use glam::{Affine3A, Quat, Vec2, Vec3};
-use matte::render::bsdf::{Bsdf, Diffuse};
-use matte::render::geometry::Ray;
-use matte::render::scene::Scene;
-use matte::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, SurfaceInteraction, Triangles};
-use matte::render::texture::Texture;
-use matte::scene_file::mesh::TriangleMesh;
+use matte_render::bsdf::{Bsdf, Diffuse};
+use matte_render::geometry::Ray;
+use matte_render::scene::Scene;
+use matte_render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, SurfaceInteraction, Triangles};
+use matte_render::texture::Texture;
+use matte_scene_file::mesh::TriangleMesh;
 
 fn hit(g: Geometry, o: Vec3, d: Vec3) -> SurfaceInteraction {
     let shapes = vec![Shape { geometry: g, bsdf: 0, emitter: None, plugin: "test".into() }];

@@ -8,13 +8,13 @@ mod mitsuba_reference;
 
 use crate::common::{Pcg32, PcgExt, chi2_render_bsdf, sidak};
 use glam::{DVec3, Vec2, Vec3};
-use matte::brdf::quadrature::GaussLegendre;
-use matte::render::bsdf::fresnel::fresnel_dielectric;
-use matte::render::bsdf::vndf::erf_inv;
-use matte::render::bsdf::{
+use matte_brdf::quadrature::GaussLegendre;
+use matte_render::bsdf::fresnel::fresnel_dielectric;
+use matte_render::bsdf::vndf::erf_inv;
+use matte_render::bsdf::{
     Conductor, Dielectric, MicrofacetDistribution, RoughConductor, conductor_material, fresnel_conductor,
 };
-use matte::render::shape::SurfaceInteraction;
+use matte_render::shape::SurfaceInteraction;
 use mitsuba_reference::MITSUBA_CONFIGS;
 use std::f64::consts::PI;
 
@@ -124,7 +124,7 @@ fn dielectric_fresnel_agrees_with_the_one_sided_brdf_version() {
         for i in 0..=100 {
             let c = i as f32 / 100.0;
             let a = fresnel_dielectric(c, eta).r;
-            let b = matte::brdf::fresnel::dielectric_reflectance(c as f64, eta as f64) as f32;
+            let b = matte_brdf::fresnel::dielectric_reflectance(c as f64, eta as f64) as f32;
             assert!((a - b).abs() < 2e-6, "eta={eta} c={c}: {a} vs {b}");
         }
     }
@@ -561,7 +561,7 @@ fn nothing_returns_nan_or_inf() {
                 );
             }
         }
-        let check = |s: Option<matte::render::bsdf::BsdfSample>, what: &str| {
+        let check = |s: Option<matte_render::bsdf::BsdfSample>, what: &str| {
             if let Some(s) = s {
                 assert!(
                     s.wo.is_finite() && s.weight.is_finite() && s.pdf.is_finite() && s.eta.is_finite(),
@@ -628,7 +628,7 @@ fn beckmann_visible_slopes_invert_their_cdf() {
         let total = cdf(1.0 / tan);
         for i in 1..1000 {
             let u = Vec2::new(i as f32 / 1000.0, 1.0 - i as f32 / 1000.0);
-            let m = matte::render::bsdf::vndf::sample_beckmann(wi, 1.0, 1.0, u);
+            let m = matte_render::bsdf::vndf::sample_beckmann(wi, 1.0, 1.0, u);
             let (x, y) = ((-m.x / m.z) as f64, (-m.y / m.z) as f64);
             assert!((cdf(x) / total - u.x as f64).abs() < 2e-6, "θ={theta} u={u}: F(x̃={x}) = {}", cdf(x) / total);
             assert!((0.5 * (1.0 + libm::erf(y)) - u.y as f64).abs() < 2e-6, "θ={theta} u={u}: ỹ={y}");

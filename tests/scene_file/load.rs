@@ -1,4 +1,4 @@
-//! The scene loader `matte::render::load` (XML object tree → renderable `LoadedScene`) and the
+//! The scene loader `matte_render::load` (XML object tree → renderable `LoadedScene`) and the
 //! `matte render` CLI. Expected values come from `docs/renderer-semantics.md` (the
 //! section is named at each use as §N; [verified] numbers there were measured with Mitsuba 3.9.1
 //! `scalar_rgb`), from `docs/models.md` for matte's own plugins, or from closed forms
@@ -15,18 +15,18 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use glam::{Vec2, Vec3};
-use matte::brdf::ParamValue;
-use matte::render::bsdf::{
+use matte_brdf::ParamValue;
+use matte_render::bsdf::{
     Bsdf, BsdfFlags, BsdfModel, Diffuse, Matte, MicrofacetDistribution, RoughConductor, TwoSided,
 };
-use matte::render::emitter::Emitter;
-use matte::render::film::{CropWindow, ReconstructionFilter};
-use matte::render::geometry::Ray;
-use matte::render::integrator::Integrator;
-use matte::render::load::{LoadedScene, load_file, load_str};
-use matte::render::shape::SurfaceInteraction;
-use matte::render::texture::Texture;
-use matte::scene_file::SceneError;
+use matte_render::emitter::Emitter;
+use matte_render::film::{CropWindow, ReconstructionFilter};
+use matte_render::geometry::Ray;
+use matte_render::integrator::Integrator;
+use matte_render::load::{LoadedScene, load_file, load_str};
+use matte_render::shape::SurfaceInteraction;
+use matte_render::texture::Texture;
+use matte_scene_file::SceneError;
 
 use crate::common::{SENSOR, assert_err_at, assert_error_at, scene, write_exr};
 
@@ -893,7 +893,7 @@ fn shape_errors() {
     mesh_err("ply", "garbage.ply", "cannot load mesh");
     std::fs::write(dir.join("cut.serialized"), [0x1c, 0x04, 0x04, 0x00, 0x78]).unwrap();
     mesh_err("serialized", "cut.serialized", "truncated serialized file");
-    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/assets/shapes.serialized");
+    let assets = crate::common::repo().join("mitsuba_scenes/assets/shapes.serialized");
     let serialized = |extra: &str| {
         with_sensor(&format!(
             "<shape type=\"serialized\">\n<string name=\"filename\" value=\"{}\"/>\n{extra}\n</shape>",
@@ -1979,7 +1979,7 @@ fn matte(args: &[&str]) -> (bool, String, String) {
 }
 
 fn features_xml() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/features.xml")
+    crate::common::repo().join("mitsuba_scenes/features.xml")
 }
 
 #[test]
@@ -1992,7 +1992,7 @@ fn cli_renders_features_xml() {
     assert!(ok, "{err}");
     let v: serde_json::Value = serde_json::from_str(&out).unwrap_or_else(|e| panic!("not JSON ({e}): {out}"));
     // The scene's crop window is 144×112 of a 160×120 film.
-    let img = matte::render::image_io::read_exr(&exr).unwrap();
+    let img = matte_render::image_io::read_exr(&exr).unwrap();
     assert_eq!((img.width, img.height), (144, 112));
     assert_eq!(
         (v["width"].as_u64(), v["height"].as_u64(), v["spp"].as_u64(), v["seed"].as_u64()),
@@ -2038,7 +2038,7 @@ fn cli_defines_override_scene_parameters() {
         assert!(ok, "{err}");
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
         assert_eq!(v["width"].as_u64(), Some(width));
-        assert_eq!(matte::render::image_io::read_exr(&exr).unwrap().width, width as u32);
+        assert_eq!(matte_render::image_io::read_exr(&exr).unwrap().width, width as u32);
     }
 }
 
@@ -2160,7 +2160,7 @@ fn odd_values_never_panic_and_accepted_scenes_render_finite() {
                 assert!(r.o.is_finite() && r.d.is_finite() && !r.maxt.is_nan(), "{element}: camera ray {r:?}");
             }
             let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                matte::render::renderer::render(
+                matte_render::renderer::render(
                     &s.scene,
                     &s.integrator,
                     &s.camera,
@@ -2188,7 +2188,7 @@ fn odd_values_never_panic_and_accepted_scenes_render_finite() {
 
 /// An asset of `mitsuba_scenes/assets` by absolute path.
 fn asset(name: &str) -> String {
-    format!("{}/mitsuba_scenes/assets/{name}", env!("CARGO_MANIFEST_DIR"))
+    format!("{}/mitsuba_scenes/assets/{name}", crate::common::repo().display())
 }
 
 /// A scene holding one object of Mitsuba plugin (`tag`, `plugin`), with `props` (XML of its
@@ -2282,8 +2282,8 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
 
 /// A valid value, as XML, for property `p` of `plugin`: the plugin's own default where Mitsuba
 /// has a literal one, else a value of the property's kind that the plugin accepts.
-fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_plugins::PluginProperty) -> String {
-    use matte::render::load::mitsuba_plugins::Kind;
+fn valid_property_xml(tag: &str, plugin: &str, p: &matte_render::load::mitsuba_plugins::PluginProperty) -> String {
+    use matte_render::load::mitsuba_plugins::Kind;
     let n = p.name;
     // Properties whose valid values the kind alone does not give.
     let special: Option<String> = match (tag, plugin, n) {
@@ -2347,8 +2347,8 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte::render::load::mitsuba_
 /// (`load/no_effect.rs`). A property Mitsuba does not read stays an error.
 #[test]
 fn every_harvested_property_of_every_supported_plugin_is_accepted() {
-    use matte::render::load::no_effect::MITSUBA_REFUSES;
-    use matte::render::load::{MITSUBA_PLUGINS, mitsuba_plugins};
+    use matte_render::load::no_effect::MITSUBA_REFUSES;
+    use matte_render::load::{MITSUBA_PLUGINS, mitsuba_plugins};
     // MATTE_DUMP_WALK=dir writes every scene of the walk there, for
     // validation/check_harvest.py to load in Mitsuba (the same scenes, Mitsuba's verdict).
     let dump = std::env::var_os("MATTE_DUMP_WALK").map(PathBuf::from);
@@ -2427,9 +2427,9 @@ fn every_harvested_property_of_every_supported_plugin_is_accepted() {
 /// (`MITSUBA_REFUSES`) is in the "refused" cell, and every plugin named there fails to load.
 #[test]
 fn readme_scope_table_matches_the_loader() {
-    use matte::render::load::no_effect::{MITSUBA_REFUSES, NO_EFFECT};
-    use matte::render::load::{MITSUBA_PLUGINS, mitsuba_plugins, scope};
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    use matte_render::load::no_effect::{MITSUBA_REFUSES, NO_EFFECT};
+    use matte_render::load::{MITSUBA_PLUGINS, mitsuba_plugins, scope};
+    let readme = std::fs::read_to_string(crate::common::repo().join("README.md")).unwrap();
     let start = readme.find("### Scope: what `matte render` reads").expect("scope section");
     let rows: Vec<Vec<String>> = readme[start..]
         .lines()
@@ -2497,7 +2497,7 @@ fn readme_scope_table_matches_the_loader() {
 #[test]
 fn mutated_bundled_scenes_load_or_fail_with_one_line() {
     use rand::{Rng, SeedableRng};
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");
+    let dir = crate::common::repo().join("mitsuba_scenes");
     let mut rng = rand_pcg::Pcg64::seed_from_u64(0x5eed);
     let alphabet = b"<>/=\"' -0123456789.e$#&;abnrxyzIN";
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(&dir)
@@ -2544,10 +2544,10 @@ fn mutated_bundled_scenes_load_or_fail_with_one_line() {
 /// (the straight-down sun regression).
 #[test]
 fn bundled_element_scenes_render() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes");
+    let root = crate::common::repo().join("mitsuba_scenes");
     for name in ["sun_straight_down.xml", "envmap_sky.xml", "orthographic_instances.xml"] {
         let s = load_file(&root.join(name), &[("res".into(), "8".into())]).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let (img, _) = matte::render::renderer::render(
+        let (img, _) = matte_render::renderer::render(
             &s.scene,
             &s.integrator,
             &s.camera,
@@ -2619,7 +2619,7 @@ fn emitter_selection_follows_mitsubas_scene_order() {
 /// Generated by tests/scene_file/load/generate_reference.py (Mitsuba 3.9.1, scalar_rgb).
 #[test]
 fn emitter_positions_map_the_sample_as_mitsuba() {
-    use matte::render::shape::Geometry;
+    use matte_render::shape::Geometry;
     let scene = ok(&with_sensor(
         "<shape type=\"rectangle\"><transform name=\"to_world\"><scale x=\"2\" y=\"0.5\"/><rotate x=\"1\" angle=\"90\"/>\
          <translate z=\"3\"/></transform></shape>\

@@ -7,7 +7,7 @@
 use crate::common;
 
 use glam::{Mat4, Quat, Vec2, Vec3};
-use matte::scene_file::mesh::{
+use matte_scene_file::mesh::{
     MeshError, MeshOptions, TriangleMesh, cube, load_obj, load_ply, load_serialized, rectangle,
 };
 use std::path::{Path, PathBuf};
@@ -661,7 +661,7 @@ json.dump(out, open(out_path, 'w'))
 // serialized, checked against Mitsuba 3.9.1 scalar_rgb (tests/scene_file/serialized/make_reference.py)
 
 fn serialized_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scene_file/serialized")
+    crate::common::repo().join("tests/scene_file/serialized")
 }
 
 #[test]

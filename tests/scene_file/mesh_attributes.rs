@@ -6,10 +6,10 @@
 //! a linear function of the position, so any correct interpolation reproduces that function.
 
 use glam::{Mat4, Vec3};
-use matte::render::bsdf::Bsdf;
-use matte::render::geometry::Ray;
-use matte::render::load::load_file;
-use matte::scene_file::mesh::{MeshOptions, load_ply};
+use matte_render::bsdf::Bsdf;
+use matte_render::geometry::Ray;
+use matte_render::load::load_file;
+use matte_scene_file::mesh::{MeshOptions, load_ply};
 use std::path::{Path, PathBuf};
 
 /// A unit square as one quad (0 1 2 3) plus a triangle (1 4 2) to its right, in z = 0.
@@ -85,7 +85,7 @@ fn scene_with(dir: &Path, bsdf: &str) -> PathBuf {
     file
 }
 
-fn hit(s: &matte::render::load::LoadedScene, x: f32, y: f32) -> matte::render::shape::SurfaceInteraction {
+fn hit(s: &matte_render::load::LoadedScene, x: f32, y: f32) -> matte_render::shape::SurfaceInteraction {
     s.scene.intersect(&Ray::new(Vec3::new(x, y, 1.0), Vec3::NEG_Z, f32::INFINITY)).expect("hit")
 }
 
@@ -128,7 +128,7 @@ fn mesh_attribute_errors() {
             r#"<bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance"><string name="name" value="{name}"/></texture></bsdf>"#
         )
     };
-    let text = |r: Result<matte::render::load::LoadedScene, matte::scene_file::SceneError>| match r {
+    let text = |r: Result<matte_render::load::LoadedScene, matte_scene_file::SceneError>| match r {
         Ok(_) => panic!("expected an error"),
         Err(e) => e.to_string(),
     };

@@ -1,4 +1,4 @@
-//! The Mitsuba XML parser layer (`matte::scene_file::xml`) against `docs/renderer-semantics.md`
+//! The Mitsuba XML parser layer (`matte_scene_file::xml`) against `docs/renderer-semantics.md`
 //! §1–3 ("doc §N" below) and, where the doc is silent, against values printed by
 //! Mitsuba 3.9.1 `scalar_rgb` itself (its `mi.parser.parse_string` and `mi.traverse` outputs,
 //! quoted where used). Every error test checks that the message names the file and the line.
@@ -8,8 +8,8 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
 use glam::{DMat4, DVec3, DVec4};
-use matte::scene_file::xml::{ColorUse, SceneObject, Spectrum, Value, parse_file, parse_str};
-use matte::scene_file::{SceneError, SourcePos};
+use matte_scene_file::xml::{ColorUse, SceneObject, Spectrum, Value, parse_file, parse_str};
+use matte_scene_file::{SceneError, SourcePos};
 
 const FILE: &str = "/virtual/dir/scene.xml";
 

@@ -2,8 +2,8 @@
 //! equal to the kernels', and one-line errors with a non-zero exit code for bad input.
 
 use crate::common;
-use matte::brdf::frame::spherical_direction;
-use matte::brdf::{BSDF_TYPES, DiffuseBrdf};
+use matte_brdf::frame::spherical_direction;
+use matte_brdf::{BSDF_TYPES, DiffuseBrdf};
 use std::process::Command;
 
 fn matte(args: &[&str]) -> (bool, String, String) {
@@ -115,4 +115,11 @@ fn invalid_input_is_one_line_and_non_zero() {
         assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: not one line:\n{err}");
         assert!(out.is_empty(), "{args:?}: printed to stdout: {out}");
     }
+}
+
+#[test]
+fn the_readme_model_table_is_the_registry() {
+    let readme = std::fs::read_to_string(common::repo().join("README.md")).unwrap();
+    let table = matte::cli::types_cmd::markdown_table();
+    assert!(readme.contains(&table), "README.md's model table differs from `matte types --markdown`:\n{table}");
 }

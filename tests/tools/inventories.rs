@@ -1,21 +1,19 @@
 //! Lists the repository keeps by hand, checked against what they list: every test file is
 //! described in docs/testing.md, its table of the Rust test crates names each crate's modules
-//! as its `main.rs` declares them, and the package descriptions (Cargo.toml, pyproject.toml)
-//! name every registered model.
+//! as its `main.rs` declares them, and the package descriptions (the `matte` and `matte-brdf`
+//! crates, pyproject.toml) name every registered model.
 
-use std::path::Path;
-
-const ROOT: &str = env!("CARGO_MANIFEST_DIR");
+use crate::common::repo;
 
 fn read(path: &str) -> String {
-    std::fs::read_to_string(Path::new(ROOT).join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+    std::fs::read_to_string(repo().join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
 #[test]
 fn docs_testing_names_every_test_file() {
     let doc = read("docs/testing.md");
     let mut missing = Vec::new();
-    for suite in std::fs::read_dir(Path::new(ROOT).join("tests")).unwrap() {
+    for suite in std::fs::read_dir(repo().join("tests")).unwrap() {
         let suite = suite.unwrap().path();
         if !suite.is_dir() {
             continue;
@@ -53,12 +51,12 @@ fn docs_testing_lists_each_test_crates_modules() {
 
 #[test]
 fn package_descriptions_name_every_registered_model() {
-    let descriptions = [("Cargo.toml", read("Cargo.toml")), ("pyproject.toml", read("pyproject.toml"))];
-    for (file, text) in descriptions {
+    for file in ["rust/Cargo.toml", "rust/brdf/Cargo.toml", "pyproject.toml"] {
+        let text = read(file);
         let line =
             text.lines().find(|l| l.starts_with("description")).unwrap_or_else(|| panic!("{file}: no description"));
         let line = line.to_lowercase();
-        for model in matte::brdf::BSDF_TYPES {
+        for model in matte_brdf::BSDF_TYPES {
             assert!(line.contains(&model.replace('_', "-")), "{file}'s description does not name {model}: {line}");
         }
     }

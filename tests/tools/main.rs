@@ -7,6 +7,7 @@ mod common;
 
 mod bench;
 mod cli;
+mod ground_truth_tables;
 mod inventories;
 mod microgeometry;
 mod study;

@@ -179,7 +179,7 @@ fn two_patch_sizes_agree_within_their_realisation_intervals() {
 /// interreflections cut, an oracle that shares no code with the kernel.
 #[test]
 fn van_ginneken_is_the_single_bounce_brdf_of_its_gaussian_surface() {
-    use matte::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+    use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
     let m = 0.4;
     let surface = matte::microgeometry::HeightField::gaussian(m, 128, 11).unwrap();
     let model = DiffuseModel::from_params("ginneken", Params::new().with("roughness", ParamValue::Number(m))).unwrap();

@@ -25,7 +25,7 @@ fn edge_vs_flat_averages_absolute_values_by_region() {
 #[test]
 fn study_run_writes_strips_report_and_sane_numbers() {
     let out = std::env::temp_dir().join(format!("matte_study_test_{}", std::process::id()));
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/sphere_lambert.xml");
+    let scene = &crate::common::repo().join("mitsuba_scenes/sphere_lambert.xml").display().to_string();
     let o = Command::new(env!("CARGO_BIN_EXE_matte"))
         .envs(crate::common::source_package_env())
         .args(["study", scene, "--spp", "8", "--passes", "4", "--res", "24", "-q", "-o"])
@@ -65,7 +65,7 @@ fn study_run_writes_strips_report_and_sane_numbers() {
 #[test]
 fn region_mean_averages_the_covered_pixels() {
     use glam::Vec3;
-    use matte::render::film::Image;
+    use matte_render::film::Image;
     // 4×2 image, pixel value = x + 10·y; region [0.5, 0, 1, 0.5] covers x = 2, 3 in row 0.
     let mut img = Image::new(4, 2);
     for y in 0..2 {
@@ -252,8 +252,8 @@ fn diffuse_fresnel(eta: f64) -> f64 {
 
 #[test]
 fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() {
-    use matte::render::film::SplatWeights;
     use matte::validate::passes::{Budget, PassPlan, rust_side};
+    use matte_render::film::SplatWeights;
     // Closed form (`docs/models.md#wolff-normalisations`): K_raw / K_physical = n² (1 − ρ F_dr,int), F_dr,int = F_dr(1/n).
     // With direct lighting only (max_depth 2) every path has one bounce, on the same geometry
     // with the same seed, so a region seeing only white surfaces scales by exactly that factor
@@ -262,7 +262,7 @@ fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() 
     let f_int = diffuse_fresnel(1.0 / n);
     let white = [0.885809f64, 0.698859, 0.666422];
     let dir = temp_dir("wolff");
-    let cornell = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/study/cornell.xml");
+    let cornell = crate::common::repo().join("mitsuba_scenes/study/cornell.xml");
     let back_wall = [0.35f64, 0.25, 0.65, 0.45];
     let render = |normalization: &str| {
         let file = dir.join(format!("{normalization}.xml"));
@@ -301,7 +301,7 @@ fn derived_wolff_raw_renders_brighter_than_physical_by_the_closed_form_factor() 
 #[test]
 fn crop_box_holds_exactly_the_region_pixels() {
     use glam::Vec3;
-    use matte::render::film::Image;
+    use matte_render::film::Image;
     // Pixel value = its index: the mean over the crop box equals region_mean for odd sizes and
     // fractions that fall between pixels.
     for (w, h, r) in
@@ -378,7 +378,7 @@ fn convergence_verdicts_follow_interval_overlap() {
 #[test]
 fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
     let out = temp_dir("e2e_variants");
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/study/cornell.xml");
+    let scene = &crate::common::repo().join("mitsuba_scenes/study/cornell.xml").display().to_string();
     let o = Command::new(env!("CARGO_BIN_EXE_matte"))
         .envs(crate::common::source_package_env())
         .args(["study", scene, "--spp", "4", "--passes", "2", "--res", "16", "--convergence-spp", "2,4", "-q", "-o"])
@@ -434,14 +434,14 @@ fn study_options(out: &Path) -> matte::study::StudyOptions {
         variant_scenes: Vec::new(),
         convergence_spp: Vec::new(),
         mitsuba_variant: "scalar_rgb".into(),
-        ground_truth: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/python/matte_mitsuba/ground_truth")),
+        ground_truth: crate::common::repo().join("python/matte_mitsuba/ground_truth"),
         truth_slices: None,
     }
 }
 
 #[test]
 fn every_true_surface_has_its_table_in_the_package() {
-    let tables = Path::new(env!("CARGO_MANIFEST_DIR")).join("python/matte_mitsuba/ground_truth");
+    let tables = crate::common::repo().join("python/matte_mitsuba/ground_truth");
     for t in matte::study::configuration::TRUTHS {
         let file = tables.join(t.table().expect("a true surface names its table"));
         assert!(file.is_file(), "{}", file.display());
@@ -452,7 +452,7 @@ fn every_true_surface_has_its_table_in_the_package() {
 fn derived_true_surface_scene_names_its_table_by_an_absolute_existing_path() {
     use matte::study::configuration::TRUTHS;
     let out = temp_dir("truth_scene");
-    let cornell = Path::new(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/study/cornell.xml");
+    let cornell = crate::common::repo().join("mitsuba_scenes/study/cornell.xml");
     for t in TRUTHS {
         let file =
             matte::study::derived_scene(&cornell, t, &study_options(&out), Path::new("cornell/truth")).expect("derive");
@@ -505,7 +505,7 @@ fn truth_ratio_and_growth_match_hand_computed_values() {
 #[test]
 fn study_compares_each_rough_model_with_its_own_surface() {
     let out = temp_dir("e2e_truth");
-    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/mitsuba_scenes/study/cornell.xml");
+    let scene = &crate::common::repo().join("mitsuba_scenes/study/cornell.xml").display().to_string();
     let o = Command::new(env!("CARGO_BIN_EXE_matte"))
         .envs(crate::common::source_package_env())
         .args(["study", scene, "--spp", "4", "--passes", "2", "--res", "16", "--no-variants", "--no-convergence"])

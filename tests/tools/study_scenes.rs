@@ -5,11 +5,11 @@
 //! volumes of their closed forms.
 
 use glam::Vec3;
-use matte::brdf::BSDF_TYPES;
-use matte::render::film::Image;
-use matte::render::load::{load_file, load_str};
-use matte::render::renderer::render;
-use matte::scene_file::mesh::{MeshOptions, TriangleMesh, load_obj, load_ply};
+use matte_brdf::BSDF_TYPES;
+use matte_render::film::Image;
+use matte_render::load::{load_file, load_str};
+use matte_render::renderer::render;
+use matte_scene_file::mesh::{MeshOptions, TriangleMesh, load_obj, load_ply};
 use std::collections::HashSet;
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -17,7 +17,7 @@ use std::path::PathBuf;
 const SCENES: &[&str] = &["bunny", "cornell", "room", "curved"];
 
 fn study_dir() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("mitsuba_scenes/study")
+    crate::common::repo().join("mitsuba_scenes/study")
 }
 
 fn defines(pairs: &[(&str, &str)]) -> Vec<(String, String)> {

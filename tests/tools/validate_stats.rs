@@ -53,9 +53,9 @@ fn crop_box_of_an_empty_or_edge_region_is_one_pixel_inside() {
 // ---- Tests across scales ---------------------------------------------------------------------
 
 use glam::Vec3;
-use matte::render::film::Image;
 use matte::validate::power;
 use matte::validate::scales::{BlockMoments, MultiScale, Scale, blocks, scales_for};
+use matte_render::film::Image;
 
 /// xorshift64* and Box–Muller: reproducible Gaussian noise without a dependency.
 struct Rng(u64);

@@ -97,7 +97,7 @@ def bsdf_inclusive(out_file):
     # A function's inclusive total is its largest line (the others are its inlined parts).
     most = {"eval_pdf": 0, "sample": 0}
     for count, name in listing(annotate(out_file, inclusive=True)):
-        f = re.search(r":matte::render::bsdf::Bsdf::(eval_pdf|sample)( \[.*\])?$", name)
+        f = re.search(r":matte_render::bsdf::Bsdf::(eval_pdf|sample)( \[.*\])?$", name)
         if f:
             most[f.group(1)] = max(most[f.group(1)], count)
     return sum(most.values())

@@ -3,11 +3,11 @@
 //! deterministic, evenly spread, no RNG dependency).
 
 use super::{Ginneken, GinnekenKernel};
-use crate::brdf::dual::Dual;
-use crate::brdf::frame::spherical_direction_f64;
-use crate::brdf::kernel::Kernel;
-use crate::brdf::model::DiffuseBrdf;
-use crate::brdf::real::{Nodes, Real, V3};
+use crate::dual::Dual;
+use crate::frame::spherical_direction_f64;
+use crate::kernel::Kernel;
+use crate::model::DiffuseBrdf;
+use crate::real::{Nodes, Real, V3};
 
 #[derive(Clone, Copy, Debug)]
 pub struct FastPathAccuracy {

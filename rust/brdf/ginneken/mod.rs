@@ -360,8 +360,8 @@ impl Registered for Ginneken {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::brdf::model::DiffuseBrdf;
-    use crate::brdf::frame::spherical_direction_f64;
+    use crate::model::DiffuseBrdf;
+    use crate::frame::spherical_direction_f64;
     use glam::DVec3;
     use table::{C_NODES, U_NODES};
 

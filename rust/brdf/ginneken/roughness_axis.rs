@@ -18,10 +18,10 @@
 use super::shadowing::Shadowing;
 use super::table::{SLOPE_NODES, SlopeTable, lookup_layer_in};
 use super::{Ginneken, reduced_with, sampler};
-use crate::brdf::cltc::{self, Sampling};
-use crate::brdf::frame::spherical_direction_f64;
-use crate::brdf::kernel::Kernel;
-use crate::brdf::real::{Nodes, Real, V3};
+use crate::cltc::{self, Sampling};
+use crate::frame::spherical_direction_f64;
+use crate::kernel::Kernel;
+use crate::real::{Nodes, Real, V3};
 use std::sync::OnceLock;
 
 /// Smallest and largest roughness on the axis.
@@ -214,7 +214,7 @@ pub struct AxisAccuracy {
 /// numbers for `∂f/∂m`) against [`Ginneken::eval_reference`] at `samples` quasi-random
 /// configurations (R3 sequence) with θi, θo ≤ `max_theta_deg`, Δφ ∈ [0°, 180°].
 pub fn axis_accuracy(m: f64, shadowing: Shadowing, max_theta_deg: f64, samples: usize) -> AxisAccuracy {
-    use crate::brdf::dual::Dual;
+    use crate::dual::Dual;
     let tables = RoughnessAxisTables::shared();
     let kernel = GinnekenAxisKernel::<Dual>::new(tables.nodes(), Dual::variable(m), shadowing);
     let (reference, plus, minus) = (

@@ -9,7 +9,7 @@
 //! `P = 1 / (1 + Λ(θmax) + α(φ) Λ(θmin))`, `α(φ) = 4.41 φ / (4.41 φ + 1)`, φ = |Δφ| ∈ [0, π]
 //! in radians. The `height_correlated` alternative is `1 / (1 + Λi + Λo)`.
 
-use crate::brdf::real::Real;
+use crate::real::Real;
 use std::f64::consts::PI;
 
 /// Which joint masking-shadowing function to use.
@@ -120,7 +120,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::brdf::quadrature::GaussLegendre;
+    use crate::quadrature::GaussLegendre;
 
     /// Smith's definition: `Λ = (1/cot θ) ∫_{cot θ}^{∞} (q − cot θ) p(q) dq`, p the 1-D slope
     /// density N(0, m²) along the direction's azimuth.
@@ -162,7 +162,7 @@ mod tests {
             }
         }
         // Normal incidence: zero, and a finite derivative in m (dual numbers).
-        use crate::brdf::dual::Dual;
+        use crate::dual::Dual;
         let d = mu_lambda_closed(Dual::c(1.0), Dual::c(0.0), Dual::variable(0.3));
         assert_eq!((d.v, d.d), (0.0, 0.0));
         // ∂(μΛ)/∂m = ½ √(2/π) sin θ e^{−a²/2} (the a-terms cancel), against the dual numbers.

@@ -16,7 +16,7 @@
 //! 2-D midpoint rule on [−7m, 7m]² (how the reference tables of `docs/models.md` were
 //! computed), kept as an independent check.
 
-use crate::brdf::quadrature::GaussLegendre;
+use crate::quadrature::GaussLegendre;
 use std::f64::consts::{PI, TAU};
 
 /// Gauss–Legendre nodes per radial piece used by the reference integral.

@@ -14,7 +14,7 @@
 //! `I(θi, θo, Δφ) = I(θo, θi, Δφ)`, so only `x_i ≤ x_o` is integrated and the rest mirrored.
 
 use super::slope_integral::SlopeIntegrator;
-use crate::brdf::real::Real;
+use crate::real::Real;
 use rayon::prelude::*;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock, Weak};

@@ -4,8 +4,8 @@
 //! (`super::embree`) it holds the analytic shapes only; without, everything.
 
 use super::Hit;
-use crate::render::geometry::Ray;
-use crate::render::shape::{Geometry, Shape};
+use crate::geometry::Ray;
+use crate::shape::{Geometry, Shape};
 use glam::{Vec2, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::cwbvh::CwBvh;

@@ -7,8 +7,8 @@
 
 use super::Hit;
 use super::embree_api::{self as rtc, Api, BoundsArgs, IntersectContext, RtcRay, RtcRayHit, UserQueryArgs};
-use crate::render::geometry::Ray;
-use crate::render::shape::{Geometry, Shape};
+use crate::geometry::Ray;
+use crate::shape::{Geometry, Shape};
 use glam::{Vec2, Vec3};
 
 pub struct EmbreeScene {
@@ -32,7 +32,7 @@ impl EmbreeScene {
     /// when `with_analytic` (`Ok(None)` if that leaves nothing), or says why Embree is
     /// unavailable.
     pub fn build(shapes: &[Shape], with_analytic: bool) -> Result<Option<Self>, String> {
-        let meshes: Vec<(u32, &crate::render::shape::Triangles)> = shapes
+        let meshes: Vec<(u32, &crate::shape::Triangles)> = shapes
             .iter()
             .enumerate()
             .filter_map(|(i, s)| match &s.geometry {

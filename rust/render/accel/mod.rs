@@ -15,8 +15,8 @@ pub mod cwbvh;
 pub mod embree;
 pub mod embree_api;
 
-use crate::render::geometry::Ray;
-use crate::render::shape::Shape;
+use crate::geometry::Ray;
+use crate::shape::Shape;
 use cwbvh::CwBvhAccel;
 use embree::EmbreeScene;
 use glam::Vec2;

@@ -10,11 +10,11 @@
 //!   direction (one-sample MIS over the two). The picked sample's Dirac flag and η are kept.
 
 use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Mitsuba's `blendbsdf`: `(1 − weight)·first + weight·second`.
 #[derive(Clone, Debug)]

@@ -17,12 +17,12 @@
 //! explicitly (tested against Mitsuba at given geometry).
 
 use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample, perturbed_frame};
-use crate::render::geometry::Frame;
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::geometry::Frame;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// What `bumpmap` reads from Mitsuba's `SurfaceInteraction3f`, in world space.
 #[derive(Clone, Copy, Debug)]
@@ -66,7 +66,7 @@ impl FromProps for BumpMap {
             return Err(p.err(format!("needs exactly one nested texture (the height map), found {}", textures.len())));
         };
         if height.plugin != "bitmap" {
-            return Err(crate::render::load::err(
+            return Err(crate::load::err(
                 height,
                 "a bumpmap needs a bitmap height texture (Mitsuba's other textures have no gradient)",
             ));

@@ -5,10 +5,10 @@ use super::conductor_ior::conductor_ior_from_props;
 use super::fresnel::fresnel_conductor;
 use super::parameter_checks::{check_colour, check_finite};
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Smooth conductor. Mitsuba's default `material` "none" (η = 0, k = 1) is a perfect mirror.
 #[derive(Clone, Copy, Debug, PartialEq)]

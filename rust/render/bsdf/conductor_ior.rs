@@ -10,10 +10,10 @@
 //! normal-incidence furnace values (0.96668, 0.80201, 0.32412).
 
 use super::conductor_ior_data::MATERIALS;
-use crate::brdf::params::{MAX_MAGNITUDE, too_large};
-use crate::render::load::props::PluginProps;
-use crate::scene_file::SceneError;
+use crate::load::props::PluginProps;
 use glam::Vec3;
+use matte_brdf::params::{MAX_MAGNITUDE, too_large};
+use matte_scene_file::SceneError;
 
 /// RGB `(eta, k)` of a named conductor as Mitsuba computes it in RGB mode. "none" is
 /// Mitsuba's default: η = 0, k = 1, Fresnel ≡ 1. Names are case-sensitive, as Mitsuba's file

@@ -5,10 +5,10 @@
 use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Smooth dielectric interface (radiance transport).
 #[derive(Clone, Copy, Debug, PartialEq)]

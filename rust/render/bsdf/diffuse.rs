@@ -2,12 +2,12 @@
 //! direction is below the shading surface), cosine-weighted sampling with weight ρ.
 
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use matte_scene_file::SceneError;
 use std::f32::consts::FRAC_1_PI;
 
 /// Mitsuba's `diffuse`: `reflectance` ρ (a texture, default 0.5).

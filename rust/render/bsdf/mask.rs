@@ -13,11 +13,11 @@
 //! through masks (Mitsuba's `Scene::ray_test` only tests geometry).
 
 use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Mitsuba's `mask`: the nested BSDF with probability `opacity`, else pass-through.
 #[derive(Clone, Debug)]

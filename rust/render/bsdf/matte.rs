@@ -1,4 +1,4 @@
-//! The matte kernels (`crate::brdf`, every registered model) as renderer BSDFs: `f·cos θo` from the kernel's `f`, the kernel's own
+//! The matte kernels (`matte_brdf`, every registered model) as renderer BSDFs: `f·cos θo` from the kernel's `f`, the kernel's own
 //! sampling, reflectance per RGB channel (several models are non-linear in ρ). Direction
 //! convention as in the plugin: the renderer's `wi` (towards the camera side) is the kernel's
 //! given direction; every model is reciprocal.
@@ -6,25 +6,25 @@
 //! The numeric parameters (σ, r, α, int_ior, …) are numbers or textures, as in the Mitsuba
 //! plugin (`cpp/matte_bsdf.h`). With numbers only, the model's constants are computed once
 //! ([`DiffuseModel`]); with a texture, the parameters are looked up at the hit with Mitsuba's
-//! `eval_1` and turned into kernel constants per hit (`crate::brdf::lane`;
+//! `eval_1` and turned into kernel constants per hit (`matte_brdf::lane`;
 //! `docs/models.md#spatially-varying-parameters`).
 
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::brdf::kernel;
-use crate::brdf::registry::MAX_NUMERIC;
-use crate::brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, dispatch};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::Value;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::kernel;
+use matte_brdf::registry::MAX_NUMERIC;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::Value;
 
 /// A matte model with its reflectance and numeric parameters.
 #[derive(Clone, Debug)]
 pub struct Matte {
     /// The model, with the numeric parameters' values (a textured parameter's: a placeholder
-    /// in its valid range, see [`crate::brdf::lane::textured_placeholder`]).
+    /// in its valid range, see [`matte_brdf::lane::textured_placeholder`]).
     pub model: DiffuseModel,
     pub reflectance: Texture,
     /// When a numeric parameter is a texture: every numeric parameter as a texture (numbers
@@ -86,7 +86,7 @@ impl FromProps for Matte {
         // the model is validated with each texture's mean, then evaluated per hit.
         let mut textured: Vec<(String, Texture)> = Vec::new();
         for name in nested_names {
-            if !crate::brdf::lane::numeric_parameter_names(kind).contains(&name.as_str()) {
+            if !matte_brdf::lane::numeric_parameter_names(kind).contains(&name.as_str()) {
                 return Err(p.prop_err(&name, "is not a numeric parameter of this model, so it cannot be a texture"));
             }
             let t = p.texture(&name)?;
@@ -97,11 +97,11 @@ impl FromProps for Matte {
         let number = |n: &str| match obj.properties.get(n).map(|p| &p.value) {
             Some(Value::Float(x)) => Some(*x),
             Some(Value::Integer(i)) => Some(*i as f64),
-            Some(Value::String(s)) => crate::brdf::params::lookup_ior(s),
+            Some(Value::String(s)) => matte_brdf::params::lookup_ior(s),
             _ => None,
         };
         for (name, tex) in &textured {
-            let v = crate::brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
+            let v = matte_brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
             params.push(name, ParamValue::Number(v));
         }
         let model = DiffuseModel::from_params(kind, params).map_err(|e| p.prop_err(&e.param, e.message))?;
@@ -132,10 +132,10 @@ impl BsdfModel for Matte {
         }
         let rho = self.reflectance.eval(si);
         match &self.textured {
-            None => dispatch!(&self.model, k => {
-                let f = k.eval::<3>(wi, wo, rho.to_array());
-                (Vec3::from_array(f) * wo.z, k.pdf(wi, wo))
-            }),
+            None => {
+                let (f, pdf) = self.model.eval_pdf::<3>(wi, wo, rho.to_array());
+                (Vec3::from_array(f) * wo.z, pdf)
+            }
             Some(params) => {
                 let (v, n) = Self::values(params, si);
                 let Some(k) = self.model.lane_kernel_f32(&v[..n]) else {
@@ -155,13 +155,11 @@ impl BsdfModel for Matte {
         match &self.textured {
             None => {
                 let rho = self.reflectance.eval(si);
-                dispatch!(&self.model, k => {
-                    let s = k.sample::<3>(wi, u, rho.to_array())?;
-                    if !(s.pdf > 0.0) {
-                        return None;
-                    }
-                    Some(BsdfSample { wo: s.wo, weight: Vec3::from_array(s.weight), pdf: s.pdf, delta: false, eta: 1.0 })
-                })
+                let s = self.model.sample::<3>(wi, u, rho.to_array())?;
+                if !(s.pdf > 0.0) {
+                    return None;
+                }
+                Some(BsdfSample { wo: s.wo, weight: Vec3::from_array(s.weight), pdf: s.pdf, delta: false, eta: 1.0 })
             }
             Some(params) => {
                 let (v, n) = Self::values(params, si);

@@ -5,11 +5,11 @@
 //! [`super::vndf`] (visible normals) and [`Microfacet::sample_d_cos`] (plain D·cos θ).
 
 use super::vndf;
-use crate::brdf::params::{MAX_MAGNITUDE, too_large};
-use crate::render::load::props::PluginProps;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::PluginProps;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::params::{MAX_MAGNITUDE, too_large};
+use matte_scene_file::SceneError;
 use std::f32::consts::{PI, TAU};
 
 /// Which normal distribution function.

@@ -19,9 +19,9 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::vndf::erf_inv;
-use crate::brdf::quadrature::GaussLegendre;
-use crate::brdf::sampling::square_to_uniform_disk_concentric;
 use glam::{Vec2, Vec3};
+use matte_brdf::quadrature::GaussLegendre;
+use matte_brdf::sampling::square_to_uniform_disk_concentric;
 
 /// Mitsuba's `MI_ROUGH_TRANSMITTANCE_RES`: table size over cos θ ∈ [0, 1].
 pub const TABLE_RES: usize = 64;

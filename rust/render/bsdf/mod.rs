@@ -64,7 +64,7 @@ pub use tabulated_brdf::TabulatedBrdf;
 pub use thin_dielectric::ThinDielectric;
 pub use two_sided::TwoSided;
 
-use crate::render::shape::SurfaceInteraction;
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// The method set of every renderer BSDF (Mitsuba's `BSDF` interface: `eval_pdf`, `sample`,
@@ -140,7 +140,7 @@ macro_rules! bsdfs {
 bsdfs! {
     /// `diffuse`.
     Diffuse(Diffuse),
-    /// A registered matte diffuse model (`crate::brdf::BSDF_TYPES`).
+    /// A registered matte diffuse model (`matte_brdf::BSDF_TYPES`).
     Matte(Matte),
     /// `twosided`.
     TwoSided(TwoSided),

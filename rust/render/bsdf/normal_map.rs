@@ -14,12 +14,12 @@
 //! orientation exactly as in Mitsuba (`sh_frame.s` along ∂p/∂u there).
 
 use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample, perturbed_frame};
-use crate::render::geometry::Frame;
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::geometry::Frame;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Mitsuba's `normalmap` wrapper around a nested BSDF.
 #[derive(Clone, Debug)]

@@ -3,10 +3,10 @@
 //! it still blocks shadow rays, as in Mitsuba.
 
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Mitsuba's `null`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

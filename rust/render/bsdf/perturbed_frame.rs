@@ -6,8 +6,8 @@
 
 use super::sample::BsdfSample;
 use super::{Bsdf, BsdfModel};
-use crate::render::geometry::Frame;
-use crate::render::shape::SurfaceInteraction;
+use crate::geometry::Frame;
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 
 /// Mitsuba's `eval_shadow_terminator(perturbed_n, wo)`: 2/(1 + √(1 + α²·tan²θo)) with

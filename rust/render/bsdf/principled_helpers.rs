@@ -5,12 +5,12 @@
 //! both plugins share (`get_flag`: an optional lobe exists when its parameter is given and is
 //! not the float 0).
 
-use crate::brdf::params::{MAX_MAGNITUDE, too_large};
-use crate::render::load::props::PluginProps;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::Value;
+use crate::load::props::PluginProps;
+use crate::texture::Texture;
 use glam::Vec3;
+use matte_brdf::params::{MAX_MAGNITUDE, too_large};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::Value;
 use std::f32::consts::{PI, TAU};
 
 /// A parameter texture (default: the harvested one); constants beyond [`MAX_MAGNITUDE`] are

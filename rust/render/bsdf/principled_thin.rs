@@ -14,13 +14,13 @@ use super::principled_helpers::{
     schlick_weight, sheen_color, texture, tint_color,
 };
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::brdf::params::MAX_MAGNITUDE;
-use crate::brdf::sampling::square_to_cosine_hemisphere;
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::params::MAX_MAGNITUDE;
+use matte_brdf::sampling::square_to_cosine_hemisphere;
+use matte_scene_file::SceneError;
 use std::f32::consts::FRAC_1_PI;
 
 /// Parameters as Mitsuba reads them; `None` = the lobe's flag is off.

@@ -17,11 +17,11 @@ use super::fresnel::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::{check_colour, check_finite};
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Rough conductor (radiance transport).
 #[derive(Clone, Debug)]

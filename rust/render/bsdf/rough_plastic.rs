@@ -18,12 +18,12 @@ use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_reflectance, lerp_table};
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::sampling::{cosine_hemisphere_pdf, square_to_cosine_hemisphere};
+use matte_scene_file::SceneError;
 use std::f32::consts::FRAC_1_PI;
 
 /// Rough plastic.

@@ -1,18 +1,18 @@
 //! `<bsdf type="tabulated_brdf">`: a BRDF read from a table file
-//! (`crate::brdf::tabulated`, `docs/microgeometry.md#the-tabulated-ground-truth-brdf`), such as
+//! (`matte_brdf::tabulated`, `docs/microgeometry.md#the-tabulated-ground-truth-brdf`), such as
 //! the simulated microsurface `matte microgeometry --table` writes. Reflectance per RGB channel
 //! (the table is non-linear in ρ), one-sided like the matte models, cosine-weighted sampling.
 //! The interpolation is the generic kernel the Mitsuba plugin runs ([`TableModel`]).
 //! Properties: `filename` (required) and `reflectance` (a texture, default 0.5).
 
 use super::{BsdfFlags, BsdfModel, BsdfSample};
-use crate::brdf::DiffuseBrdf;
-use crate::brdf::tabulated::TableModel;
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
+use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::DiffuseBrdf;
+use matte_brdf::tabulated::TableModel;
+use matte_scene_file::SceneError;
 use std::sync::Arc;
 
 /// `tabulated_brdf`: the table and the reflectance ρ.
@@ -27,8 +27,7 @@ impl FromProps for TabulatedBrdf {
         let reflectance = p.texture("reflectance")?;
         let filename = p.string_opt("filename")?.ok_or_else(|| p.err("missing property \"filename\""))?;
         let path = p.resolve(&filename);
-        let table =
-            TableModel::read(&path).map_err(|e| p.prop_err("filename", crate::render::load::values::one_line(&e)))?;
+        let table = TableModel::read(&path).map_err(|e| p.prop_err("filename", crate::load::values::one_line(&e)))?;
         Ok(TabulatedBrdf { table: Arc::new(table), reflectance })
     }
 }

@@ -4,10 +4,10 @@
 //! `allow_transmission` is true, as in Mitsuba.
 
 use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
-use crate::render::load::props::{FromProps, PluginProps};
-use crate::render::shape::SurfaceInteraction;
-use crate::scene_file::SceneError;
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 /// Mitsuba's `twosided`: `front` for cos θi > 0, `back` for the other side.
 #[derive(Clone, Debug)]

@@ -10,8 +10,8 @@
 //! pdf is that density times a factor within 0.35 % of 1 that depends on wi only — the same
 //! in Mitsuba.
 
-use crate::brdf::sampling::square_to_uniform_disk_concentric;
 use glam::{Vec2, Vec3};
+use matte_brdf::sampling::square_to_uniform_disk_concentric;
 
 /// 1/√π
 const INV_SQRT_PI: f32 = 0.564_189_6;

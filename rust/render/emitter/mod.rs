@@ -9,9 +9,9 @@ pub mod sample_ray;
 pub use emitter_sample::EmitterSample;
 pub use envmap::EnvMap;
 
-use crate::render::geometry::warp;
-use crate::render::shape::{Shape, SurfaceInteraction};
-use crate::render::texture::Texture;
+use crate::geometry::warp;
+use crate::shape::{Shape, SurfaceInteraction};
+use crate::texture::Texture;
 use glam::{Affine3A, Vec2, Vec3};
 use std::f32::consts::PI;
 

@@ -14,8 +14,8 @@
 //! docs/renderer-semantics.md §7 (ptracer).
 
 use super::Emitter;
-use crate::render::geometry::{Frame, warp};
-use crate::render::shape::{Geometry, Shape};
+use crate::geometry::{Frame, warp};
+use crate::shape::{Geometry, Shape};
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -65,7 +65,7 @@ impl Emitter {
         match self {
             Emitter::Area { .. } => {
                 let ep = self.sample_position(u_pos, shapes)?;
-                let local = crate::brdf::sampling::square_to_cosine_hemisphere(u_dir);
+                let local = matte_brdf::sampling::square_to_cosine_hemisphere(u_dir);
                 let d = Frame::from_normal(ep.n).to_world(local);
                 Some(LightRay { o: ep.p, d, n: Some(ep.n), weight: ep.weight * PI })
             }

@@ -16,12 +16,12 @@ pub use direct::DirectIntegrator;
 pub use path::PathIntegrator;
 pub use ptracer::ParticleTracer;
 
-use crate::render::camera::Camera;
-use crate::render::film::ImageBlock;
-use crate::render::geometry::Ray;
-use crate::render::sampler::{Sampler, Sampling};
-use crate::render::scene::Scene;
-use crate::render::shape::SurfaceInteraction;
+use crate::camera::Camera;
+use crate::film::ImageBlock;
+use crate::geometry::Ray;
+use crate::sampler::{Sampler, Sampling};
+use crate::scene::Scene;
+use crate::shape::SurfaceInteraction;
 use glam::Vec3;
 
 /// How the renderer runs an integrator over a tile. Both give the same estimator

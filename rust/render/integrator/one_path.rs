@@ -2,10 +2,10 @@
 //! [`super::wavefront`]; `matte bench` times both on the same scenes).
 
 use super::{SampleIntegrator, ShadowTest, TileJob};
-use crate::render::film::ImageBlock;
-use crate::render::geometry::Ray;
-use crate::render::sampler::Sampler;
-use crate::render::scene::Scene;
+use crate::film::ImageBlock;
+use crate::geometry::Ray;
+use crate::sampler::Sampler;
+use crate::scene::Scene;
 use glam::{Vec2, Vec3};
 
 /// Renders `job.sampling.spp` samples of every pixel of `block`'s tile into `block`, pixel by

@@ -11,11 +11,11 @@
 
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
-use crate::render::bsdf::{BsdfFlags, BsdfModel};
-use crate::render::geometry::{Ray, ray};
-use crate::render::sampler::Sampler;
-use crate::render::scene::Scene;
-use crate::render::shape::SurfaceInteraction;
+use crate::bsdf::{BsdfFlags, BsdfModel};
+use crate::geometry::{Ray, ray};
+use crate::sampler::Sampler;
+use crate::scene::Scene;
+use crate::shape::SurfaceInteraction;
 use glam::Vec3;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -19,12 +19,12 @@
 //! BSDFs are evaluated as for radiance (matte has no importance-transport mode), so the loader
 //! refuses scenes whose BSDFs refract (those differ by η² between the two modes).
 
-use crate::render::bsdf::BsdfModel;
-use crate::render::camera::Camera;
-use crate::render::film::{Film, Image};
-use crate::render::geometry::ray;
-use crate::render::sampler::{Sampler, Sampling};
-use crate::render::scene::Scene;
+use crate::bsdf::BsdfModel;
+use crate::camera::Camera;
+use crate::film::{Film, Image};
+use crate::geometry::ray;
+use crate::sampler::{Sampler, Sampling};
+use crate::scene::Scene;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
 
@@ -116,7 +116,7 @@ impl ParticleTracer {
     fn sample(
         &self,
         scene: &Scene,
-        cam: &crate::render::camera::PerspectiveCamera,
+        cam: &crate::camera::PerspectiveCamera,
         sampler: &mut Sampler,
         out: &mut Splats,
         scale: f32,
@@ -133,7 +133,7 @@ impl ParticleTracer {
         }
         let mut r = match lr.n {
             Some(n) => ray::spawn_ray(lr.o, n, lr.d),
-            None => crate::render::geometry::Ray::new(lr.o, lr.d, f32::INFINITY),
+            None => crate::geometry::Ray::new(lr.o, lr.d, f32::INFINITY),
         };
         let mut eta = 1.0f32;
         let mut depth = 1u32;
@@ -186,7 +186,7 @@ impl ParticleTracer {
     fn visible_emitter(
         &self,
         scene: &Scene,
-        cam: &crate::render::camera::PerspectiveCamera,
+        cam: &crate::camera::PerspectiveCamera,
         sampler: &mut Sampler,
         out: &mut Splats,
         scale: f32,

@@ -7,17 +7,17 @@
 //! only the order in which samples reach the image block changes
 //! (`tests/render/render_drivers.rs`).
 //! Every step traces the lanes' pending rays eight at a time
-//! ([`Scene::intersect8`](crate::render::scene::Scene::intersect8): Embree's `rtcIntersect8`),
+//! ([`Scene::intersect8`](crate::scene::Scene::intersect8): Embree's `rtcIntersect8`),
 //! advances each lane's state machine with its hit, and tests all the shadow rays those
 //! advances asked for eight at a time
-//! ([`Scene::occluded8`](crate::render::scene::Scene::occluded8)). A lane whose sample ends
+//! ([`Scene::occluded8`](crate::scene::Scene::occluded8)). A lane whose sample ends
 //! splats it and starts its next sample (or its next pixel) at once, so the
 //! lanes stay full until the tile runs out of pixels.
 
 use super::{SampleIntegrator, ShadowTest, TileJob};
-use crate::render::film::{ImageBlock, Tile};
-use crate::render::geometry::Ray;
-use crate::render::sampler::{Sampler, Sampling};
+use crate::film::{ImageBlock, Tile};
+use crate::geometry::Ray;
+use crate::sampler::{Sampler, Sampling};
 use glam::{Vec2, Vec3};
 
 /// Paths in flight per thread. Each step runs Embree's packet traversal, then every lane's

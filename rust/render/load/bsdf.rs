@@ -3,20 +3,20 @@
 //! `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`, `conductor`,
 //! `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `null`, `bumpmap`, `mask`,
 //! `blendbsdf`, `principled`, `principledthin`, matte's `tabulated_brdf` (a table file,
-//! `docs/microgeometry.md`) and matte's registered diffuse models (`crate::brdf::BSDF_TYPES`; parameters validated by the kernels' own parser, the same one
+//! `docs/microgeometry.md`) and matte's registered diffuse models (`matte_brdf::BSDF_TYPES`; parameters validated by the kernels' own parser, the same one
 //! the Mitsuba plugin uses).
 
 use super::Builder;
 use super::props::{FromProps, PluginProps};
-use crate::brdf::BSDF_TYPES;
-use crate::render::bsdf::{
+use crate::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, Mask, Matte, NormalMap, Null, Plastic, Principled,
     PrincipledThin, RoughConductor, RoughDielectric, RoughPlastic, TabulatedBrdf, ThinDielectric, TwoSided,
 };
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::SceneObject;
+use crate::texture::Texture;
 use glam::Vec3;
+use matte_brdf::BSDF_TYPES;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::SceneObject;
 
 /// The BSDF index for this XML object, building it the first time it is seen.
 /// A BSDF that depends on its shape (a `mesh_attribute` texture, a `bumpmap`) is built again

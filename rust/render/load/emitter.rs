@@ -3,13 +3,13 @@
 //! `envmap` (`src/emitters/envmap.cpp`: filename, scale, to_world, mis_compensation).
 
 use super::{Builder, err, values};
-use crate::render::camera::x_half_tan;
-use crate::render::emitter::{self, Emitter, EnvMap};
-use crate::render::texture::Texture;
-use crate::render::texture::{BitmapOptions, BitmapTexture};
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::{ColorUse, SceneObject};
+use crate::camera::x_half_tan;
+use crate::emitter::{self, Emitter, EnvMap};
+use crate::texture::Texture;
+use crate::texture::{BitmapOptions, BitmapTexture};
 use glam::Vec3;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::{ColorUse, SceneObject};
 use std::sync::Arc;
 
 fn weight(obj: &SceneObject) -> Result<f32, SceneError> {

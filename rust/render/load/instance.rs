@@ -5,8 +5,8 @@
 //! instance count). As in Mitsuba, groups cannot nest and grouped shapes cannot emit light.
 
 use super::{Builder, err, shape, values};
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::SceneObject;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::SceneObject;
 
 /// A top-level `shapegroup`: only shapes inside, no nested groups or instances.
 pub fn check_group(obj: &SceneObject) -> Result<(), SceneError> {

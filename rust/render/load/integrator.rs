@@ -7,9 +7,9 @@
 //! built, so an invalid one is reported.
 
 use super::{err, values};
-use crate::render::integrator::{DirectIntegrator, Integrator, ParticleTracer, PathIntegrator};
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::SceneObject;
+use crate::integrator::{DirectIntegrator, Integrator, ParticleTracer, PathIntegrator};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::SceneObject;
 
 pub fn build(obj: &SceneObject) -> Result<Integrator, SceneError> {
     let integrator = match obj.plugin.as_str() {

@@ -1,4 +1,4 @@
-//! Mitsuba XML object tree (`crate::scene_file::xml`) → a renderable scene. One file per plugin
+//! Mitsuba XML object tree (`matte_scene_file::xml`) → a renderable scene. One file per plugin
 //! family, each reading exactly the properties Mitsuba 3.9.1's plugin reads, with its
 //! defaults; whatever is left unread is an error naming file, line and property (Mitsuba
 //! does the same: `unused_properties = Error`).
@@ -18,14 +18,14 @@ mod shape;
 mod texture;
 pub(crate) mod values;
 
-use crate::render::camera::Camera;
-use crate::render::emitter::Emitter;
-use crate::render::film::Film;
-use crate::render::integrator::Integrator;
-use crate::render::sampler::Sampling;
-use crate::render::scene::Scene;
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::{self, SceneObject};
+use crate::camera::Camera;
+use crate::emitter::Emitter;
+use crate::film::Film;
+use crate::integrator::Integrator;
+use crate::sampler::Sampling;
+use crate::scene::Scene;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::{self, SceneObject};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -34,7 +34,7 @@ use std::rc::Rc;
 /// own properties). Every property each of them reads in Mitsuba's sources
 /// ([`mitsuba_plugins`]) is implemented by its builder here or accepted as one that cannot
 /// change the image ([`no_effect`]); `tests/scene_file/load.rs` walks the list. matte's own BSDFs
-/// (the registered diffuse models, `crate::brdf::BSDF_TYPES`, and `tabulated_brdf`) come
+/// (the registered diffuse models, `matte_brdf::BSDF_TYPES`, and `tabulated_brdf`) come
 /// on top; what is refused by scope is in [`scope`].
 pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("scene", &["scene"]),
@@ -86,9 +86,9 @@ pub(crate) struct Builder {
     pub base_dir: PathBuf,
     /// `<path>` folders, searched first (Mitsuba's file resolver).
     pub search_paths: Vec<PathBuf>,
-    pub bsdfs: Vec<crate::render::bsdf::Bsdf>,
+    pub bsdfs: Vec<crate::bsdf::Bsdf>,
     pub bsdf_index: HashMap<*const SceneObject, u32>,
-    pub shapes: Vec<crate::render::shape::Shape>,
+    pub shapes: Vec<crate::shape::Shape>,
     pub emitters: Vec<Emitter>,
     pub sampling_weights: Vec<f32>,
     /// The shape whose BSDF is being built (`None` at the top level).
@@ -107,8 +107,20 @@ pub(crate) struct ShapeContext {
     /// A triangle mesh (`obj`, `ply`, `rectangle`, `cube`), which has ∂p/∂u, ∂p/∂v and
     /// attributes in matte; the analytic shapes have neither.
     pub is_mesh: bool,
-    pub attributes: Vec<std::sync::Arc<crate::scene_file::mesh::MeshAttribute>>,
+    pub attributes: Vec<std::sync::Arc<matte_scene_file::mesh::MeshAttribute>>,
     pub triangles: std::sync::Arc<Vec<[u32; 3]>>,
+}
+
+/// Where the installed package's data is (`ground_truth/<table>.json` names a packaged table),
+/// as `import matte_mitsuba` registers its folder with Mitsuba's file resolver. The `matte`
+/// command registers its lookup at start ([`set_package_folder`]); it is asked only for a
+/// relative path found nowhere before it.
+static PACKAGE_FOLDER: std::sync::OnceLock<fn() -> Option<PathBuf>> = std::sync::OnceLock::new();
+
+/// Registers the lookup of the package folder [`Builder::resolve`] falls back on (once; later
+/// calls are ignored).
+pub fn set_package_folder(lookup: fn() -> Option<PathBuf>) {
+    let _ = PACKAGE_FOLDER.set(lookup);
 }
 
 impl Builder {
@@ -124,7 +136,7 @@ impl Builder {
             return p.to_path_buf();
         }
         let in_base = self.base_dir.join(p);
-        let package = || crate::installation::package_dir().ok().map(|d| d.join(p));
+        let package = || PACKAGE_FOLDER.get().and_then(|lookup| lookup()).map(|d| d.join(p));
         self.search_paths
             .iter()
             .map(|d| d.join(p))
@@ -228,7 +240,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
     let integrator = match integrator {
         Some(i) => i,
         // Mitsuba's default integrator.
-        None => Integrator::Path(crate::render::integrator::PathIntegrator {
+        None => Integrator::Path(crate::integrator::PathIntegrator {
             max_depth: u32::MAX,
             rr_depth: 5,
             hide_emitters: false,
@@ -247,11 +259,11 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
 /// directional, area lights on analytic shapes), BSDFs that refract (matte evaluates BSDFs
 /// for radiance only; importance transport differs by η² there).
 fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObject) -> Result<(), SceneError> {
-    use crate::render::bsdf::{BsdfFlags, BsdfModel};
+    use crate::bsdf::{BsdfFlags, BsdfModel};
     if !matches!(sensor.camera, Camera::Perspective(_)) {
         return Err(err(obj, "matte's ptracer needs a perspective sensor (not orthographic or thinlens)"));
     }
-    if !matches!(sensor.film.filter(), crate::render::film::ReconstructionFilter::Box) {
+    if !matches!(sensor.film.filter(), crate::film::ReconstructionFilter::Box) {
         return Err(err(obj, "matte's ptracer needs the box reconstruction filter (rfilter type=\"box\")"));
     }
     if b.emitters.iter().any(|e| !e.can_sample_ray(&b.shapes)) {
@@ -277,7 +289,7 @@ pub(crate) fn err(obj: &SceneObject, what: impl Into<String>) -> SceneError {
 /// loading, the default, the mesh emitters' order among themselves varies from run to run).
 /// Only `ldsampler`'s expectation depends on it (docs/renderer-semantics.md §5).
 fn into_mitsuba_emitter_order(b: &mut Builder) {
-    use crate::render::shape::Geometry;
+    use crate::shape::Geometry;
     let emitters = std::mem::take(&mut b.emitters);
     let weights = std::mem::take(&mut b.sampling_weights);
     let mut items: Vec<(usize, Emitter, f32)> =

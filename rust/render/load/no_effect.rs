@@ -7,8 +7,8 @@
 //! of every supported plugin is one of the two.
 
 use super::mitsuba_plugins::{self, Kind};
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::{SceneObject, Value};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::{SceneObject, Value};
 
 /// A group of properties of one element tag accepted without effect.
 pub struct NoEffect {

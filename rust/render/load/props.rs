@@ -12,16 +12,16 @@
 
 use super::mitsuba_plugins::{self, Kind, Plugin, PluginProperty};
 use super::{Builder, err, texture, values};
-use crate::brdf::params::{MAX_MAGNITUDE, too_large};
-use crate::render::bsdf::Bsdf;
-use crate::render::texture::Texture;
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::{self, ColorUse, SceneObject, Value};
+use crate::bsdf::Bsdf;
+use crate::texture::Texture;
 use glam::Vec3;
+use matte_brdf::params::{MAX_MAGNITUDE, too_large};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::{self, ColorUse, SceneObject, Value};
 use std::path::PathBuf;
 use std::rc::Rc;
 
-/// matte's diffuse models (the registry, `crate::brdf::BSDF_TYPES`): `reflectance`, then every other property goes to the kernels' own
+/// matte's diffuse models (the registry, `matte_brdf::BSDF_TYPES`): `reflectance`, then every other property goes to the kernels' own
 /// parameter parser, as in the Mitsuba plugin (`cpp/matte_bsdf.h`).
 pub static MATTE_MODEL: Plugin = Plugin {
     tag: "bsdf",
@@ -66,7 +66,7 @@ pub static TABULATED_BRDF: Plugin = Plugin {
 pub fn plugin_entry(tag: &str, name: &str) -> Option<&'static Plugin> {
     mitsuba_plugins::plugin(tag, name).or(match (tag, name) {
         ("bsdf", "tabulated_brdf") => Some(&TABULATED_BRDF),
-        ("bsdf", n) if crate::brdf::BSDF_TYPES.contains(&n) => Some(&MATTE_MODEL),
+        ("bsdf", n) if matte_brdf::BSDF_TYPES.contains(&n) => Some(&MATTE_MODEL),
         _ => None,
     })
 }
@@ -274,9 +274,9 @@ impl<'a> PluginProps<'a> {
         let v = match self.obj.properties.get(name).map(|p| &p.value) {
             None => {
                 let lit = Self::literal(e, name);
-                lit.parse().ok().or_else(|| crate::brdf::params::lookup_ior(lit)).ok_or_else(|| unknown(lit))?
+                lit.parse().ok().or_else(|| matte_brdf::params::lookup_ior(lit)).ok_or_else(|| unknown(lit))?
             }
-            Some(Value::String(s)) => crate::brdf::params::lookup_ior(s).ok_or_else(|| unknown(s))?,
+            Some(Value::String(s)) => matte_brdf::params::lookup_ior(s).ok_or_else(|| unknown(s))?,
             Some(_) => self.obj.properties.float(name)?.unwrap_or_default(),
         };
         if !(v.is_finite() && v >= 1.0) {

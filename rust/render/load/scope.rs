@@ -3,8 +3,8 @@
 //! grids) are refused with one line naming the element and the reason, wherever they
 //! appear (top level, nested, or through a `<ref>`). The README's scope table lists the same.
 
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::SceneObject;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::SceneObject;
 
 /// A refused class of Mitsuba plugins: the element tags and plugin names it covers (`"*"`:
 /// every plugin of that tag) and the reason given.

@@ -9,14 +9,14 @@
 //! (`src/samplers/*.cpp`) with `sample_count` rounded as each rounds it.
 
 use super::{err, values};
-use crate::render::camera::{Camera, FovAxis, PerspectiveCamera};
-use crate::render::film::{CropWindow, Film, ReconstructionFilter};
-use crate::render::orthographic::OrthographicCamera;
-use crate::render::sampler::{SamplerKind, Sampling};
-use crate::render::thinlens::ThinLensCamera;
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::SceneObject;
+use crate::camera::{Camera, FovAxis, PerspectiveCamera};
+use crate::film::{CropWindow, Film, ReconstructionFilter};
+use crate::orthographic::OrthographicCamera;
+use crate::sampler::{SamplerKind, Sampling};
+use crate::thinlens::ThinLensCamera;
 use glam::Vec2;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::SceneObject;
 
 pub struct Sensor {
     pub camera: Camera,

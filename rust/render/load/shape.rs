@@ -4,12 +4,12 @@
 //! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
 
 use super::{Builder, ShapeContext, bsdf, emitter, err, values};
-use crate::render::geometry::Frame;
-use crate::render::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use crate::scene_file::SceneError;
-use crate::scene_file::mesh::{self, MeshOptions};
-use crate::scene_file::xml::SceneObject;
+use crate::geometry::Frame;
+use crate::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
 use glam::{Affine3A, Mat3, Mat4, Vec3};
+use matte_scene_file::SceneError;
+use matte_scene_file::mesh::{self, MeshOptions};
+use matte_scene_file::xml::SceneObject;
 use std::sync::Arc;
 
 pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {

@@ -2,11 +2,11 @@
 //! nested/referenced `<texture type="bitmap">` (docs/renderer-semantics.md §2, §11) or `checkerboard`.
 
 use super::{Builder, err, values};
-use crate::render::texture::Texture;
-use crate::render::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::{ColorUse, SceneObject, Value};
+use crate::texture::Texture;
+use crate::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
 use glam::{Affine2, Mat2, Vec2, Vec3};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::{ColorUse, SceneObject, Value};
 use std::sync::Arc;
 
 /// The parameter `name` of `obj` as a texture: nested texture child of that name, else a

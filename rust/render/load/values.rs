@@ -1,9 +1,9 @@
 //! Typed property access with Mitsuba's defaults and range checks, shared by the plugin
 //! builders: every error names the property's own line.
 
-use crate::scene_file::SceneError;
-use crate::scene_file::xml::{ColorUse, SceneObject};
 use glam::{Affine3A, DMat4, Mat3, Vec3};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::{ColorUse, SceneObject};
 
 pub fn float(obj: &SceneObject, name: &str, default: f64) -> Result<f64, SceneError> {
     Ok(obj.properties.float(name)?.unwrap_or(default))

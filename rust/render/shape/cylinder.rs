@@ -6,7 +6,7 @@
 
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use crate::render::geometry::Ray;
+use crate::geometry::Ray;
 use glam::{Affine3A, DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
 

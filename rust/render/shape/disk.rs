@@ -4,9 +4,9 @@
 
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use crate::brdf::sampling::square_to_uniform_disk_concentric;
-use crate::render::geometry::Ray;
+use crate::geometry::Ray;
 use glam::{Affine3A, Vec2, Vec3};
+use matte_brdf::sampling::square_to_uniform_disk_concentric;
 use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]

@@ -1,6 +1,6 @@
 //! A ray–surface hit with everything shading needs (Mitsuba `SurfaceInteraction3f`).
 
-use crate::render::geometry::Frame;
+use crate::geometry::Frame;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Copy, Debug)]

@@ -15,7 +15,7 @@ pub use interaction::{DirectionSample, SurfaceInteraction};
 pub use sphere::Sphere;
 pub use triangles::Triangles;
 
-use crate::render::geometry::Ray;
+use crate::geometry::Ray;
 use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]

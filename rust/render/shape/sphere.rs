@@ -6,8 +6,8 @@
 //! copying them keeps the expected image identical).
 
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use crate::render::geometry::ray::RAY_EPSILON;
-use crate::render::geometry::{Frame, Ray, warp};
+use crate::geometry::ray::RAY_EPSILON;
+use crate::geometry::{Frame, Ray, warp};
 use glam::{Affine3A, DVec3, Vec2, Vec3};
 use std::f32::consts::PI;
 

@@ -5,9 +5,9 @@
 
 use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use crate::render::geometry::{Frame, warp};
-use crate::scene_file::mesh::TriangleMesh;
+use crate::geometry::{Frame, warp};
 use glam::{Affine3A, Vec2, Vec3};
+use matte_scene_file::mesh::TriangleMesh;
 
 #[derive(Clone, Debug)]
 pub struct Triangles {
@@ -72,7 +72,7 @@ impl Triangles {
     /// Mitsuba's `dp_du`, `dp_dv` (`src/render/mesh.cpp`): p1 − p0 and p2 − p0 without
     /// texture coordinates; with them, the uv-parameterisation derivatives
     /// ((dp0·Δv1 − dp1·Δv0)/det, (dp1·Δu0 − dp0·Δu1)/det), or the
-    /// [`coordinate_system`](crate::render::geometry::orthonormal_frame::coordinate_system) of the face
+    /// [`coordinate_system`](crate::geometry::orthonormal_frame::coordinate_system) of the face
     /// normal when the uv triangle is degenerate.
     #[inline]
     fn dp_duv(&self, tri: u32, n: Vec3) -> (Vec3, Vec3) {
@@ -86,7 +86,7 @@ impl Triangles {
         let (duv0, duv1) = (uv1 - uv0, uv2 - uv0);
         let det = duv0.x * duv1.y - duv0.y * duv1.x;
         if det == 0.0 {
-            return crate::render::geometry::orthonormal_frame::coordinate_system(n);
+            return crate::geometry::orthonormal_frame::coordinate_system(n);
         }
         let inv_det = 1.0 / det;
         ((dp0 * duv1.y - dp1 * duv0.y) * inv_det, (dp1 * duv0.x - dp0 * duv1.x) * inv_det)

@@ -12,7 +12,7 @@
 //! * Images smaller than 2×2 are padded to 2 by repeating the last column/row
 //!   (`Bitmap::pad_to`), which changes the texel grid the lookup uses.
 
-use crate::render::image_io::read_exr;
+use crate::image_io::read_exr;
 use exr::prelude::f16;
 use glam::Vec3;
 use image::DynamicImage;

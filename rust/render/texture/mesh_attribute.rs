@@ -9,8 +9,8 @@
 //!
 //! docs/renderer-semantics.md §11 (mesh attributes).
 
-use crate::scene_file::mesh::MeshAttribute;
 use glam::{Vec2, Vec3};
+use matte_scene_file::mesh::MeshAttribute;
 use std::sync::Arc;
 
 /// One mesh's attribute as a texture.

@@ -3,7 +3,7 @@
 //! `get_texture`).
 
 use super::{BitmapTexture, BoundAttribute, Checkerboard};
-use crate::render::shape::SurfaceInteraction;
+use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 use std::sync::Arc;
 

@@ -17,7 +17,7 @@
 //!   `vt`/`vn` indices may refer forward and are checked at the end.
 
 use super::{LoadedMesh, MeshError, MeshOptions, finish, world_normal};
-use crate::scene_file::mesh::TriangleMesh;
+use crate::mesh::TriangleMesh;
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;

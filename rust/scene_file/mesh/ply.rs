@@ -20,7 +20,7 @@
 
 use super::ply_attributes::{AttributeFields, find_attributes};
 use super::{LoadedMesh, MeshAttribute, MeshError, MeshOptions, finish, world_normal};
-use crate::scene_file::mesh::TriangleMesh;
+use crate::mesh::TriangleMesh;
 use glam::{Vec2, Vec3};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult};

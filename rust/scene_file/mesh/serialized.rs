@@ -22,7 +22,7 @@
 //! a stream that ends early are errors naming the file and the problem.
 
 use super::{LoadedMesh, MeshError, MeshOptions, finish, world_normal};
-use crate::scene_file::mesh::TriangleMesh;
+use crate::mesh::TriangleMesh;
 use flate2::bufread::ZlibDecoder;
 use glam::{Vec2, Vec3};
 use std::io::{BufReader, Read, Seek, SeekFrom};

@@ -5,7 +5,7 @@
 use glam::DVec3;
 
 use super::numbers::{parse_f64, tokenize};
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 pub(crate) struct Attrs {
     pub tag: String,

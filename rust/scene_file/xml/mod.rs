@@ -76,7 +76,7 @@ pub use color::{ColorUse, spectrum_list_to_srgb};
 pub use object::{Child, SceneObject};
 pub use properties::{Properties, Property, Spectrum, Value};
 
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 /// Reads and parses the scene file at `path`. `overrides` are `-D name=value` pairs; each
 /// must be used by some `$name`, and they beat `<default>`s.

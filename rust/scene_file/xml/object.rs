@@ -7,7 +7,7 @@ use std::collections::HashSet;
 use std::rc::Rc;
 
 use super::properties::Properties;
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 /// A nested object or a resolved `<ref>` of a [`SceneObject`].
 #[derive(Debug)]

@@ -13,7 +13,7 @@ use super::property_values::{is_value_tag, property_value, spectrum_file};
 use super::raw::{RawChild, RawNode, RawScene, Target};
 use super::substitute::Substitutions;
 use super::transform::build_transform;
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 /// Includes nest at most this deep (Mitsuba's `ParserConfig::max_include_depth`).
 pub(crate) const MAX_INCLUDE_DEPTH: usize = 15;

@@ -7,7 +7,7 @@ use std::cell::Cell;
 use glam::{DMat4, DVec3};
 
 use super::color::{ColorUse, constant_spectrum_rgb, sampled_spectrum_rgb};
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 /// A spectrum property (`<spectrum value=...>`).
 #[derive(Clone, Debug, PartialEq)]

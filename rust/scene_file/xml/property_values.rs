@@ -5,7 +5,7 @@
 use super::attrs::Attrs;
 use super::numbers::{parse_bool, parse_f64, parse_i64, tokenize};
 use super::properties::{Spectrum, Value};
-use crate::scene_file::error::SceneError;
+use crate::error::SceneError;
 
 /// Whether `tag` is a property tag handled by [`property_value`] (`<transform>` is separate).
 pub(crate) fn is_value_tag(tag: &str) -> bool {

@@ -5,7 +5,7 @@
 use std::collections::HashMap;
 
 use super::properties::{Properties, Property};
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 /// What a child slot points at.
 pub(crate) enum Target {

@@ -8,7 +8,7 @@ use std::rc::Rc;
 
 use super::object::{Child, SceneObject};
 use super::raw::{RawNode, RawScene, Target};
-use crate::scene_file::error::SceneError;
+use crate::error::SceneError;
 
 /// A node as named in a cycle message: its id, else `<tag type="plugin">`.
 fn label(n: &RawNode) -> String {

@@ -2,7 +2,7 @@
 //! applies to every attribute value (`src/core/parser.cpp::substitute_parameters`,
 //! `make_sorted_parameters`, `TagType::Default`; docs/renderer-semantics.md §1 "Parameters").
 
-use crate::scene_file::error::{SceneError, SourcePos};
+use crate::error::{SceneError, SourcePos};
 
 struct Param {
     /// The search key, `$` included.

@@ -9,7 +9,7 @@ use glam::{DMat4, DVec3, DVec4};
 
 use super::attrs::Attrs;
 use super::numbers::tokenize;
-use crate::scene_file::error::SceneError;
+use crate::error::SceneError;
 
 /// Composes `ops` (each the attributes of one child of `<transform>`, in document order).
 pub(crate) fn build_transform(ops: Vec<Attrs>) -> Result<DMat4, SceneError> {

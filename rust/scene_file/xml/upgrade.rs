@@ -7,7 +7,7 @@ use glam::{DMat4, DVec3};
 
 use super::properties::{Property, Value};
 use super::raw::RawNode;
-use crate::scene_file::error::SceneError;
+use crate::error::SceneError;
 
 /// `fooBar` → `foo_bar`; a run of capitals after a lower-case letter is lowered as one word
 /// (`intIOR` → `int_ior`), exactly like Mitsuba's `camel_to_underscore_case`.

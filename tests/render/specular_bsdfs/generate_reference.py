@@ -75,7 +75,7 @@ def main():
     print("//! with lobe-centred wo. `eval` is the same for both `sample_visible` settings (checked by")
     print("//! the script); `pdf` is given for both.")
     print()
-    print("use matte::render::bsdf::MicrofacetDistribution;")
+    print("use matte_render::bsdf::MicrofacetDistribution;")
     print()
     print("/// (wi, wo, eval RGB, pdf with sample_visible = true, pdf with sample_visible = false)")
     print("pub type Row = ([f32; 3], [f32; 3], [f32; 3], f32, f32);")

@@ -5,7 +5,7 @@
 //! with lobe-centred wo. `eval` is the same for both `sample_visible` settings (checked by
 //! the script); `pdf` is given for both.
 
-use matte::render::bsdf::MicrofacetDistribution;
+use matte_render::bsdf::MicrofacetDistribution;
 
 /// (wi, wo, eval RGB, pdf with sample_visible = true, pdf with sample_visible = false)
 pub type Row = ([f32; 3], [f32; 3], [f32; 3], f32, f32);

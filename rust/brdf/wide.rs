@@ -1,14 +1,35 @@
 //! Every model's kernel twice, in `f32` and in the 8-wide [`F32x8`], with its constants built
 //! by the same generic constructor from the same f32 parameter (so lane `i` of the wide
 //! kernel is the f32 kernel, operation for operation). The criterion benchmark
-//! (`benches/kernels.rs`, group `wide`) times both; `tests/kernels/simd_kernels.rs` compares them lane
-//! by lane.
+//! (`benches/kernels.rs`, group `wide`) and `matte bench` time both, on the same
+//! [`direction_pairs`]; `tests/kernels/simd_kernels.rs` compares them lane by lane.
 
-use crate::brdf::kernel;
-use crate::brdf::real::{Nodes, Real, V3};
-use crate::brdf::registry::Registered;
-use crate::brdf::simd::F32x8;
-use crate::brdf::{DiffuseModel, LaneKernel, ParamValue, Params, dispatch};
+use crate::kernel;
+use crate::real::{Nodes, Real, V3};
+use crate::registry::Registered;
+use crate::simd::F32x8;
+use crate::{DiffuseModel, LaneKernel, ParamValue, Params, dispatch};
+use glam::{Vec2, Vec3};
+
+/// `n` deterministic (wi, wo, u) triples: directions uniform on the upper hemisphere, u
+/// uniform in [0,1)².
+pub fn direction_pairs(n: usize) -> Vec<(Vec3, Vec3, Vec2)> {
+    // xorshift64*: deterministic, no dependency
+    let mut s = 0x9E37_79B9_7F4A_7C15u64;
+    let mut next = || {
+        s ^= s >> 12;
+        s ^= s << 25;
+        s ^= s >> 27;
+        (s.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let dir = |a: f32, b: f32| {
+        let z = a;
+        let r = (1.0 - z * z).sqrt();
+        let p = 2.0 * std::f32::consts::PI * b;
+        Vec3::new(r * p.cos(), r * p.sin(), z)
+    };
+    (0..n).map(|_| (dir(next(), next()), dir(next(), next()), Vec2::new(next(), next()))).collect()
+}
 
 /// A model at its default parameters, whose kernel is built in both widths.
 pub struct ModelPair {
@@ -17,7 +38,7 @@ pub struct ModelPair {
 }
 
 impl ModelPair {
-    /// `model` (one of [`crate::brdf::BSDF_TYPES`]) at its default parameters.
+    /// `model` (one of [`crate::BSDF_TYPES`]) at its default parameters.
     pub fn new(model: &'static str) -> Option<Self> {
         Some(ModelPair { model, bsdf: DiffuseModel::from_params(model, Params::new()).ok()? })
     }

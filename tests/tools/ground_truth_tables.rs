@@ -6,18 +6,18 @@
 //! with their roughness.
 
 use glam::Vec3;
-use matte::brdf::DiffuseBrdf;
-use matte::brdf::tabulated::BrdfTable;
-use matte::microgeometry::tabulation::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
-use matte::render::bsdf::{Bsdf as RenderBsdf, tabulated_brdf};
-use matte::render::load::load_str;
-use std::path::{Path, PathBuf};
+use matte_brdf::DiffuseBrdf;
+use matte_brdf::tabulated::BrdfTable;
+use matte_brdf::tabulated::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
+use matte_render::bsdf::{Bsdf as RenderBsdf, tabulated_brdf};
+use matte_render::load::load_str;
+use std::path::PathBuf;
 
 /// The roughness values of both surfaces (`validation/generators/ground_truth_tables.sh`).
 const ROUGHNESS: [&str; 6] = ["0.1", "0.2", "0.3", "0.5", "0.7", "1.0"];
 
 fn folder() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("python/matte_mitsuba/ground_truth")
+    crate::common::repo().join("python/matte_mitsuba/ground_truth")
 }
 
 fn v_cavities(s: &str) -> String {
