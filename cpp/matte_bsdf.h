@@ -59,9 +59,10 @@ public:
 
     MatteBSDF(const Properties &props) : Base(props), m_kind(props.plugin_name()) {
         m_reflectance = props.get_texture<Texture>("reflectance", .5f);
-        // Hand every scalar property to the Rust parser, which validates names and values
-        // (one parser for plugin, renderer and CLI). Anything else stays unqueried, so
-        // Mitsuba reports it as an unreferenced property.
+        // Collect every other property and wrap the textures; the Rust construction
+        // (matte_brdf::construction, the renderer's too) validates names and values and says
+        // which parameters a texture may give. Anything else stays unqueried, so Mitsuba
+        // reports it as an unreferenced property.
         std::vector<std::string> names;
         for (const auto &p : props)
             names.emplace_back(p.name());
@@ -71,48 +72,36 @@ public:
             if (name == "reflectance")
                 continue;
             switch (props.type(name)) {
-                case Properties::Type::Object:
+                case Properties::Type::Object: {
                     // A texture for a numeric parameter (sigma, roughness, alpha, int_ior, ...):
-                    // evaluated per lane (docs/models.md#spatially-varying-parameters).
-                    if (!matte::ffi::is_numeric_parameter(rust::Str(m_kind.data(), m_kind.size()),
-                                                          rust::Str(name.data(), name.size())))
-                        Throw("bsdf \"%s\": parameter \"%s\": is not a numeric parameter of this "
-                              "model, so it cannot be a texture",
-                              m_kind, name);
-                    textured.emplace_back(name, props.get_unbounded_texture<Texture>(name));
+                    // evaluated per lane (docs/models.md#spatially-varying-parameters); the model
+                    // is built and validated with its mean.
+                    ref<Texture> texture = props.get_unbounded_texture<Texture>(name);
+                    m_params.push_back(param(name, matte::ffi::ParamKind::Texture, scalar_value(texture->mean())));
+                    textured.emplace_back(name, texture);
                     break;
+                }
                 case Properties::Type::Float:
                 case Properties::Type::Integer:
-                    m_params.push_back(number_param(name, props.get<double>(name)));
+                    m_params.push_back(param(name, matte::ffi::ParamKind::Number, props.get<double>(name)));
                     break;
                 case Properties::Type::String:
                     if (name == "filename") {
                         // A file (tabulated_brdf's table): resolved as Mitsuba resolves files
                         // (next to the scene, then the search path); Rust reads it.
                         fs::path path = file_resolver()->resolve(props.get<std::string>(name));
-                        m_params.push_back(text_param(name, path.string()));
+                        m_params.push_back(param(name, matte::ffi::ParamKind::Text, 0.0, path.string()));
                     } else {
-                        m_params.push_back(text_param(name, props.get<std::string>(name)));
+                        m_params.push_back(param(name, matte::ffi::ParamKind::Text, 0.0, props.get<std::string>(name)));
                     }
                     break;
                 case Properties::Type::Bool:
-                    m_params.push_back(text_param(name, props.get<bool>(name) ? "true" : "false"));
+                    m_params.push_back(param(name, matte::ffi::ParamKind::Flag, props.get<bool>(name) ? 1.0 : 0.0));
                     break;
                 default:
                     break;
             }
         }
-        // A textured parameter stands for a number when the model is built (its mean clamped
-        // into the per-lane range, so any texture is accepted: its values are clamped per lane).
-        std::vector<matte::ffi::Param> placeholders;
-        for (auto &[name, texture] : textured)
-            placeholders.push_back(
-                number_param(name, matte::ffi::textured_placeholder(
-                                       rust::Str(m_kind.data(), m_kind.size()), rust::Str(name.data(), name.size()),
-                                       scalar_value(texture->mean()),
-                                       rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size()))));
-        for (auto &p : placeholders)
-            m_params.push_back(std::move(p));
         build_model();
         // The numeric parameters with their effective values (defaults filled in), as the
         // variant's Float: fixed from here on (traverse hands out references to them).
@@ -149,12 +138,12 @@ public:
             bool found = false;
             for (auto &p : m_params)
                 if (std::string(p.name) == n.name) {
-                    p.is_number = true;
+                    p.kind = matte::ffi::ParamKind::Number;
                     p.number = value;
                     found = true;
                 }
             if (!found)
-                m_params.push_back(number_param(n.name, value));
+                m_params.push_back(param(n.name, matte::ffi::ParamKind::Number, value));
         }
         build_model();
         update_traced_kernel();
@@ -255,7 +244,7 @@ public:
                     tex = n.texture.get();
             if (tex)
                 oss << string::indent(tex);
-            else if (p.is_number)
+            else if (p.kind == matte::ffi::ParamKind::Number)
                 oss << p.number;
             else
                 oss << "\"" << std::string(p.text) << "\"";
@@ -270,11 +259,9 @@ public:
 private:
     static constexpr size_t Channels = dr::size_v<UnpolarizedSpectrum>;
 
-    static matte::ffi::Param number_param(const std::string &name, double x) {
-        return matte::ffi::Param{ rust::String(name), true, x, rust::String() };
-    }
-    static matte::ffi::Param text_param(const std::string &name, const std::string &s) {
-        return matte::ffi::Param{ rust::String(name), false, 0.0, rust::String(s) };
+    static matte::ffi::Param param(const std::string &name, matte::ffi::ParamKind kind, double number,
+                                   const std::string &text = {}) {
+        return matte::ffi::Param{ rust::String(name), kind, number, rust::String(text) };
     }
 
     void build_model() {

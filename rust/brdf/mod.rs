@@ -6,6 +6,7 @@
 
 pub mod approx;
 pub mod cltc;
+pub mod construction;
 pub mod dual;
 pub mod frame;
 pub mod fresnel;

@@ -5,10 +5,23 @@
 #[allow(clippy::too_many_arguments)]
 #[cxx::bridge(namespace = "matte::ffi")]
 pub mod ffi {
-    /// One `<float>`/`<integer>`/`<string>` property of the `<bsdf>` element.
+    /// How a [`Param`] is given (`matte_brdf::construction::Property`).
+    enum ParamKind {
+        /// `<float>` or `<integer>`: `number`.
+        Number,
+        /// `<string>`: `text`.
+        Text,
+        /// `<boolean>`: `number` is 1 or 0.
+        Flag,
+        /// A nested `<texture>`: `number` is its mean.
+        Texture,
+    }
+
+    /// One property of the `<bsdf>` element (to Rust), or one parameter of a model with its
+    /// effective value (from Rust: `Number` or `Text`).
     struct Param {
         name: String,
-        is_number: bool,
+        kind: ParamKind,
         number: f64,
         text: String,
     }
@@ -64,15 +77,13 @@ pub mod ffi {
     extern "Rust" {
         type Model;
 
-        /// Builds `kind` (plugin name) from its parameters; throws `rust::Error` with a
-        /// message naming the bad parameter.
-        fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>>;
+        /// Builds `kind` (plugin name) from the element's properties, textures given by their
+        /// mean (`matte_brdf::construction::construct`, the renderer's construction too);
+        /// throws `rust::Error` with a message naming the bad parameter.
+        fn model_new(kind: &str, properties: &[Param]) -> Result<Box<Model>>;
         fn describe_parameters(self: &Model) -> Vec<Param>;
-        /// Whether `name` is a numeric parameter of the model `kind` (a texture may give it).
-        fn is_numeric_parameter(kind: &str, name: &str) -> bool;
-        /// The number a textured parameter stands for when the model is built: the texture's
-        /// `mean` clamped into the parameter's per-lane range (`params`: the other parameters).
-        fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64;
+        /// The numeric parameters with their effective values (a textured one's: the number it
+        /// stands for), in the order per-lane values are given.
         fn numeric_parameters(self: &Model) -> Vec<Param>;
         // Every evaluation takes the model's parameters one of two ways: its own constants, or
         // per-lane values of its numeric parameters (textures, in the order of
@@ -148,4 +159,4 @@ pub mod ffi {
     }
 }
 
-use super::{Model, is_numeric_parameter, model_new, textured_placeholder};
+use super::{Model, model_new};

@@ -14,11 +14,12 @@ mod bridge;
 pub mod traced;
 mod traced_entry;
 
-use bridge::ffi::{Channels, Param, Vec3f};
+use bridge::ffi::{Channels, Param, ParamKind, Vec3f};
 use glam::{Vec2, Vec3};
+use matte_brdf::construction::{Property, construct};
 use matte_brdf::kernel;
 use matte_brdf::tabulated::{self, TableModel};
-use matte_brdf::{BrdfSample, DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_brdf::{BrdfSample, DiffuseBrdf, DiffuseModel, ParamValue};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use bridge::ffi;
@@ -63,14 +64,14 @@ impl DiffuseBrdf for Bsdf {
     }
 }
 
-/// `tabulated_brdf` from its parameters: `filename` (required; the plugin resolves it with
+/// `tabulated_brdf` from its properties: `filename` (required; the plugin resolves it with
 /// Mitsuba's file resolver first), nothing else. Errors are one line naming the file.
-fn table_new(params: &[Param]) -> Result<TableModel, String> {
+fn table_new(properties: &[(&str, Property)]) -> Result<TableModel, String> {
     let mut filename = None;
-    for p in params {
-        match (p.name.as_str(), p.is_number) {
-            ("filename", false) => filename = Some(p.text.as_str()),
-            ("filename", true) => return Err("parameter \"filename\": must be a file name".into()),
+    for (name, p) in properties {
+        match (*name, p) {
+            ("filename", Property::Text(s)) => filename = Some(s.as_str()),
+            ("filename", _) => return Err("parameter \"filename\": must be a file name".into()),
             (other, _) => return Err(format!("unknown parameter \"{other}\" (known: filename)")),
         }
     }
@@ -82,6 +83,17 @@ fn table_new(params: &[Param]) -> Result<TableModel, String> {
     })
 }
 
+/// A property as [`construct`] takes it.
+fn property(p: &Param) -> (&str, Property) {
+    let value = match p.kind {
+        ParamKind::Text => Property::Text(p.text.clone()),
+        ParamKind::Flag => Property::Flag(p.number != 0.0),
+        ParamKind::Texture => Property::Texture { mean: p.number },
+        _ => Property::Number(p.number),
+    };
+    (p.name.as_str(), value)
+}
+
 /// Largest number of spectral channels a variant uses (Mitsuba's spectral variants: 4).
 const MAX_CHANNELS: usize = 4;
 
@@ -90,35 +102,19 @@ fn v3(v: &Vec3f) -> Vec3 {
     Vec3::new(v.x, v.y, v.z)
 }
 
-fn model_new(kind: &str, params: &[Param]) -> Result<Box<Model>, String> {
+fn model_new(kind: &str, properties: &[Param]) -> Result<Box<Model>, String> {
     let built = catch_unwind(AssertUnwindSafe(|| {
+        let properties: Vec<(&str, Property)> = properties.iter().map(property).collect();
         if kind == tabulated::PLUGIN_NAME {
-            return table_new(params).map(Bsdf::Table);
+            return table_new(&properties).map(Bsdf::Table);
         }
-        let mut p = Params::new();
-        for param in params {
-            let value =
-                if param.is_number { ParamValue::Number(param.number) } else { ParamValue::Text(param.text.clone()) };
-            p.push(&param.name, value);
-        }
-        DiffuseModel::from_params(kind, p).map(Bsdf::Model).map_err(|e| e.to_string())
+        construct(kind, &properties).map(|c| Bsdf::Model(c.model)).map_err(|e| e.to_string())
     }));
     match built {
         Ok(Ok(bsdf)) => Ok(Box::new(Model { bsdf })),
         Ok(Err(message)) => Err(message),
         Err(_) => Err(format!("internal error while constructing bsdf \"{kind}\" (a bug in matte; please report it)")),
     }
-}
-
-fn is_numeric_parameter(kind: &str, name: &str) -> bool {
-    matte_brdf::lane::numeric_parameter_names(kind).contains(&name)
-}
-
-fn textured_placeholder(kind: &str, name: &str, mean: f64, params: &[Param]) -> f64 {
-    matte_brdf::lane::textured_placeholder(kind, name, mean, |other| {
-        let p = params.iter().find(|p| p.name == other)?;
-        if p.is_number { Some(p.number) } else { matte_brdf::params::lookup_ior(&p.text) }
-    })
 }
 
 /// The used channels of a [`Channels`], zero-padded to [`MAX_CHANNELS`].
@@ -168,7 +164,7 @@ impl Model {
 
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
-        self.describe_parameters().into_iter().filter(|p| p.is_number).collect()
+        self.describe_parameters().into_iter().filter(|p| p.kind == ParamKind::Number).collect()
     }
 
     fn describe_parameters(&self) -> Vec<Param> {
@@ -179,8 +175,10 @@ impl Model {
         parameters
             .into_iter()
             .map(|(name, value)| match value {
-                ParamValue::Number(x) => Param { name: name.into(), is_number: true, number: x, text: String::new() },
-                ParamValue::Text(s) => Param { name: name.into(), is_number: false, number: 0.0, text: s },
+                ParamValue::Number(x) => {
+                    Param { name: name.into(), kind: ParamKind::Number, number: x, text: String::new() }
+                }
+                ParamValue::Text(s) => Param { name: name.into(), kind: ParamKind::Text, number: 0.0, text: s },
             })
             .collect()
     }

@@ -14,9 +14,10 @@ use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
+use matte_brdf::construction::{Property, construct};
 use matte_brdf::kernel;
 use matte_brdf::registry::MAX_NUMERIC;
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_brdf::{DiffuseBrdf, DiffuseModel};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::Value;
 
@@ -59,68 +60,49 @@ impl Matte {
 }
 
 impl FromProps for Matte {
-    /// `reflectance` (a texture, default 0.5), then every other property for the kernels'
-    /// parameter parser (numbers and strings; numbers are range-checked there, as in every
-    /// front end), and nested textures for numeric parameters.
+    /// `reflectance` (a texture, default 0.5), then every other property and nested texture
+    /// for the kernels' construction ([`construct`], the plugin's too): numbers range-checked,
+    /// textures validated with their mean and evaluated per hit.
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
-        let obj = p.object();
-        let kind = obj.plugin.as_str();
+        let kind = p.object().plugin.clone();
         let reflectance = p.texture("reflectance")?;
         let nested_names = p.remaining_nested_names();
-        let mut params = Params::new();
+        let mut properties: Vec<(String, Property)> = Vec::new();
         for prop in p.remaining_properties() {
             let value = match &prop.value {
-                Value::Float(x) => ParamValue::Number(*x),
-                Value::Integer(i) => ParamValue::Number(*i as f64),
-                Value::String(s) => ParamValue::Text(s.clone()),
-                Value::Boolean(v) => ParamValue::Text(v.to_string()),
+                Value::Float(x) => Property::Number(*x),
+                Value::Integer(i) => Property::Number(*i as f64),
+                Value::String(s) => Property::Text(s.clone()),
+                Value::Boolean(v) => Property::Flag(*v),
                 other => {
                     return Err(
                         p.prop_err(&prop.name, format!("must be a number or a string, not {}", other.type_name()))
                     );
                 }
             };
-            params.push(&prop.name, value);
+            properties.push((prop.name.clone(), value));
         }
-        // Numeric parameters given as nested textures (sigma, roughness, alpha, int_ior, …):
-        // the model is validated with each texture's mean, then evaluated per hit.
-        let mut textured: Vec<(String, Texture)> = Vec::new();
+        let mut textures: Vec<(String, Texture)> = Vec::new();
         for name in nested_names {
-            if !matte_brdf::lane::numeric_parameter_names(kind).contains(&name.as_str()) {
-                return Err(p.prop_err(&name, "is not a numeric parameter of this model, so it cannot be a texture"));
-            }
             let t = p.texture(&name)?;
-            textured.push((name, t));
+            properties.push((name.clone(), Property::Texture { mean: t.mean() as f64 }));
+            textures.push((name, t));
         }
-        // A textured parameter stands for a number when the model is built: its mean,
-        // clamped into the per-lane range (any texture is accepted; values clamp per hit).
-        let number = |n: &str| match obj.properties.get(n).map(|p| &p.value) {
-            Some(Value::Float(x)) => Some(*x),
-            Some(Value::Integer(i)) => Some(*i as f64),
-            Some(Value::String(s)) => matte_brdf::params::lookup_ior(s),
-            _ => None,
-        };
-        for (name, tex) in &textured {
-            let v = matte_brdf::lane::textured_placeholder(kind, name, tex.mean() as f64, number);
-            params.push(name, ParamValue::Number(v));
+        let named: Vec<(&str, Property)> = properties.iter().map(|(n, v)| (n.as_str(), v.clone())).collect();
+        let c = construct(&kind, &named).map_err(|e| p.prop_err(&e.param, e.message))?;
+        if !c.is_textured() {
+            return Ok(Matte::new(c.model, reflectance));
         }
-        let model = DiffuseModel::from_params(kind, params).map_err(|e| p.prop_err(&e.param, e.message))?;
-        if textured.is_empty() {
-            return Ok(Matte::new(model, reflectance));
-        }
-        // Every other numeric parameter becomes a constant texture of its value.
-        let mut all = Vec::new();
-        for (name, value) in model.parameters() {
-            let ParamValue::Number(x) = value else { continue };
-            match textured.iter().position(|(n, _)| n == name) {
-                Some(k) => all.push(textured.swap_remove(k).1),
-                None => all.push(Texture::Constant(Vec3::splat(x as f32))),
-            }
-        }
-        if let Some((name, _)) = textured.first() {
-            return Err(p.prop_err(name, "is not a numeric parameter of this model, so it cannot be a texture"));
-        }
-        Ok(Matte { model, reflectance, textured: Some(all.into_boxed_slice()) })
+        // Every numeric parameter as a texture: the given ones, numbers as constant textures.
+        let all = c
+            .numeric
+            .iter()
+            .map(|n| match textures.iter().position(|(name, _)| name == n.name) {
+                Some(k) if n.textured => textures.swap_remove(k).1,
+                _ => Texture::Constant(Vec3::splat(n.value as f32)),
+            })
+            .collect();
+        Ok(Matte { model: c.model, reflectance, textured: Some(all) })
     }
 }
 
