@@ -39,8 +39,8 @@ g++ "${CXXFLAGS[@]}" -c cpp/plugin_stub.cpp -o "$OBJ/plugin_stub.o"
 g++ -shared -o "$OUT/libmatte_bsdfs.so" "$OBJ/plugin.o" target/release/libmatte_plugin.a \
     -Wl,--gc-sections -Wl,--version-script=cpp/exports.map -s "${MILIBS[@]}"
 rm -f "$OUT/matte_bsdfs.so"   # the single-library layout of earlier builds
-# The registered models and tabulated_brdf (a table file, rust/brdf/tabulated.rs: PLUGIN_NAME).
-for t in $(./target/release/matte types) tabulated_brdf; do
+# One stub per registered type (`matte types`: the models and tabulated_brdf).
+for t in $(./target/release/matte types); do
     rm -f "$OUT/$t.so"
     g++ -shared -o "$OUT/$t.so" "$OBJ/plugin_stub.o" -Wl,--version-script=cpp/stub_exports.map -s \
         -L"$OUT" -lmatte_bsdfs -Wl,-rpath,'$ORIGIN'

@@ -14,10 +14,10 @@
  * eval/sample/pdf (rust/brdf/lane.rs; docs/models.md#spatially-varying-parameters), traversed
  * as the texture (gradients reach its data). Constant parameters keep the per-value constants.
  *
- * `tabulated_brdf` is a table file (`filename`, resolved by Mitsuba's file resolver; Rust reads
- * and checks it, errors are one line naming the file): the same class, its values one
- * registered table the traced kernel gathers from, its interpolation in the reflectance per
- * lane and channel (differentiable), no numeric parameters (rust/ffi/mod.rs, `Bsdf`).
+ * `tabulated_brdf` is a registered type like the others: its parameter is a file (`filename`,
+ * resolved by Mitsuba's file resolver; Rust reads and checks it, errors are one line naming the
+ * file), its values one registered table the traced kernel gathers from, its interpolation in
+ * the reflectance per lane and channel (differentiable), no numeric parameters.
  *
  * Every model is one-sided (use `twosided` for two-sided surfaces) and is sampled
  * cosine-weighted by default. `eval` returns f·cos θo as Mitsuba expects; the kernels return f.
@@ -86,7 +86,8 @@ public:
                     m_params.push_back(param(name, matte::ffi::ParamKind::Number, props.get<double>(name)));
                     break;
                 case Properties::Type::String:
-                    if (name == "filename") {
+                    if (matte::ffi::is_file_parameter(rust::Str(m_kind.data(), m_kind.size()),
+                                                      rust::Str(name.data(), name.size()))) {
                         // A file (tabulated_brdf's table): resolved as Mitsuba resolves files
                         // (next to the scene, then the search path); Rust reads it.
                         fs::path path = file_resolver()->resolve(props.get<std::string>(name));

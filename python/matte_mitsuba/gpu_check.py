@@ -50,7 +50,9 @@ def gradient_cases(models):
     for m in models:
         numeric = [p for p in m["params"] if p["kind"]["type"] in ("number", "ior")]
         if not numeric:
-            cases.append((m["name"], {}, "reflectance.value", 1e-2))
+            # The properties a type needs beyond its defaults (tabulated_brdf's table).
+            required = bench_plugin.REQUIRED.get(m["name"], dict)()
+            cases.append((m["name"], required, "reflectance.value", 1e-2))
             continue
         fixed, h = GRADIENT_OVERRIDES.get(m["name"], ({}, 1e-2))
         if m.get("sampler", "cosine") != "cosine":

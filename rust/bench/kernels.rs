@@ -4,7 +4,7 @@
 
 use glam::Vec3;
 use matte_brdf::wide::direction_pairs;
-use matte_brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, Params};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, Params};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -15,12 +15,12 @@ pub struct KernelTime {
     pub ns_per_eval: f64,
 }
 
-/// Best-of-`repeats` ns per RGB eval for every model at its default parameters.
+/// Best-of-`repeats` ns per RGB eval for every model at its default parameters (the models
+/// that build from their defaults: not `tabulated_brdf`).
 pub fn time_kernels(repeats: u32) -> Vec<KernelTime> {
     let data = direction_pairs(4096);
-    BSDF_TYPES
-        .iter()
-        .map(|&model| {
+    matte_brdf::default_models()
+        .map(|model| {
             let bsdf = DiffuseModel::from_params(model, Params::new()).expect("default parameters are valid");
             let pass = || {
                 let t = Instant::now();
@@ -56,9 +56,8 @@ pub fn time_wide_kernels(repeats: u32) -> Vec<WideKernelTime> {
     use matte_brdf::wide::{ModelPair, eval_scalar, eval_wide, to_lanes};
     let pairs: Vec<(Vec3, Vec3)> = direction_pairs(4096).into_iter().map(|p| (p.0, p.1)).collect();
     let lanes = to_lanes(&pairs);
-    BSDF_TYPES
-        .iter()
-        .filter_map(|&model| {
+    matte_brdf::default_models()
+        .filter_map(|model| {
             let m = ModelPair::new(model)?;
             let (scalar, wide) = (m.scalar(), m.wide());
             let per_pair = |t: Instant| t.elapsed().as_secs_f64() * 1e9 / (64 * pairs.len()) as f64;

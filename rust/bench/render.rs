@@ -112,22 +112,25 @@ pub fn other_driver() -> Driver {
 }
 
 /// The diffuse models whose render time `matte bench` compares with Lambert's: every registered
-/// one (Lambert first).
-pub const MODELS: &[&str] = matte_brdf::BSDF_TYPES;
+/// one that builds from its defaults (Lambert first; not `tabulated_brdf`, which needs a table).
+pub fn models() -> Vec<&'static str> {
+    matte_brdf::default_models().collect()
+}
 
-/// Render time of the study's room (`scenes/study/room.xml`) with every diffuse surface as each of [`MODELS`] (its
+/// Render time of the study's room (`scenes/study/room.xml`) with every diffuse surface as each of [`models`] (its
 /// `$bsdf` parameter; the model's default parameters), at `res`² and `spp`, the models taking
 /// turns, best of `repeats` after a warm-up round. Returns `(model, seconds)`.
 pub fn time_models(scenes: &std::path::Path, res: u32, spp: u32, repeats: u32) -> Result<Vec<(String, f64)>, String> {
     let file = scenes.join("study/room.xml");
-    let scenes = MODELS
+    let models = models();
+    let scenes = models
         .iter()
         .map(|m| {
             let defines = vec![("res".to_string(), res.to_string()), ("bsdf".to_string(), m.to_string())];
             load::load_file(&file, &defines).map_err(|e| e.to_string())
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let mut best = vec![f64::INFINITY; MODELS.len()];
+    let mut best = vec![f64::INFINITY; models.len()];
     for round in 0..=repeats.max(1) {
         for (k, loaded) in scenes.iter().enumerate() {
             let film = loaded.film.clone();
@@ -138,7 +141,7 @@ pub fn time_models(scenes: &std::path::Path, res: u32, spp: u32, repeats: u32) -
             }
         }
     }
-    Ok(MODELS.iter().map(|m| m.to_string()).zip(best).collect())
+    Ok(models.iter().map(|m| m.to_string()).zip(best).collect())
 }
 
 /// Samples/s of `job` at each of `spp` (best of `repeats` renders each, after a warm-up):

@@ -110,7 +110,7 @@ fn build(kind: &str, params: &[(&str, String)]) -> Option<DiffuseModel> {
 pub fn measure(quick: bool) -> Vec<SamplerRow> {
     let (n, count) = if quick { (100, 20_000) } else { (600, 2_000_000) };
     let mut rows = Vec::new();
-    for spec in matte_brdf::MODELS {
+    for spec in matte_brdf::MODELS.iter().filter(|s| s.builds_from_defaults()) {
         let roughness = spec.numeric().next().filter(|p| p.name != "int_ior").map(|p| p.name);
         let values: &[f64] = if roughness.is_some() { &[0.3, 1.0] } else { &[0.0] };
         for &r in values {

@@ -49,7 +49,7 @@ impl DiffuseModel {
     /// The kernel from constants `c` ([`Self::kernel_coefficients`]) and tables in `T`'s table
     /// type ([`Self::kernel_tables`] of the same `lane`). `None` if either is short.
     pub fn kernel_from<'t, T: Real + 't>(
-        &self,
+        &'t self,
         c: &[T],
         tables: &[T::Table<'t>],
         lane: bool,
@@ -58,9 +58,9 @@ impl DiffuseModel {
     }
 
     /// The f32 kernel for per-lane parameter `values`; `None` if `values` is too short.
-    pub fn lane_kernel_f32(&self, values: &[f32]) -> Option<LaneKernel<'static, f32>> {
+    pub fn lane_kernel_f32(&self, values: &[f32]) -> Option<LaneKernel<'_, f32>> {
         dispatch!(self, m => {
-            let tables: Vec<Nodes<'static>> = m.lane_tables().into_iter().filter_map(Nodes::from_slice).collect();
+            let tables: Vec<Nodes<'_>> = m.lane_tables().into_iter().filter_map(Nodes::from_slice).collect();
             m.lane_coefficients(values).and_then(|c| m.kernel_from(&c, &tables, true))
         }, lane)
     }

@@ -22,7 +22,6 @@ pub mod rng;
 pub mod sampler_fits;
 pub mod sampling;
 pub mod simd;
-pub mod tabulated;
 pub mod wide;
 
 // The models, in the README's order: one line each (`docs/adding-a-model.md`).
@@ -34,9 +33,17 @@ registry::models! {
     Ginneken: ginneken::Ginneken,
     RoughDiffuse: rough_diffuse::RoughDiffuse,
     Burley: burley::Burley,
+    Tabulated: tabulated::TableModel,
 }
 
 pub use model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+
+/// The registered types that build from their defaults alone, in the README's order: every
+/// model but `tabulated_brdf`, whose table file is required. The sweeps over every model at
+/// its defaults (tests, `matte bench`, the study's scenes) run these.
+pub fn default_models() -> impl Iterator<Item = &'static str> {
+    MODELS.iter().filter(|s| s.builds_from_defaults()).map(|s| s.name)
+}
 pub use oren_nayar::OrenNayarModel;
 pub use params::{ParamError, ParamValue, Params};
 pub use wolff::WolffNormalization;

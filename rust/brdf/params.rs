@@ -139,6 +139,16 @@ impl Params {
         Ok(self.choice(name, &["true", "false"], if default { "true" } else { "false" })? == "true")
     }
 
+    /// A required file name (`tabulated_brdf`'s table).
+    pub fn file(&mut self, name: &str) -> Result<String, ParamError> {
+        match self.take(name)? {
+            Some(ParamValue::Text(s)) if !s.is_empty() => Ok(s),
+            Some(ParamValue::Text(_)) => Err(ParamError::new(name, "must name a file (got \"\")")),
+            Some(ParamValue::Number(x)) => Err(ParamError::new(name, format!("must be a file name (got {x})"))),
+            None => Err(ParamError::new(name, "is missing (required: the file to read)")),
+        }
+    }
+
     /// An index of refraction: a number (within [`MAX_MAGNITUDE`]) or one of Mitsuba's named
     /// materials.
     pub fn ior(&mut self, name: &str, default: f64) -> Result<f64, ParamError> {

@@ -52,7 +52,7 @@ pub struct ParamSpec {
 }
 
 /// How a parameter is given.
-#[derive(Debug, serde::Serialize)]
+#[derive(Debug, PartialEq, serde::Serialize)]
 #[serde(tag = "type", rename_all = "snake_case")]
 pub enum ParamKind {
     /// A number; texturable (a `<texture>` gives it per lane).
@@ -63,6 +63,10 @@ pub enum ParamKind {
     Choice { choices: &'static [&'static str], default: &'static str },
     /// A boolean.
     Flag { default: bool },
+    /// A file the model reads when it is built (`tabulated_brdf`'s table); required. Front
+    /// ends resolve the name as they resolve every file of a scene (next to the scene, then the
+    /// search path) before handing it over.
+    File,
 }
 
 /// The valid numbers of a numeric parameter (always finite, within `MAX_MAGNITUDE`).
@@ -129,6 +133,11 @@ impl ParamSpec {
         Self { kind: ParamKind::Flag { default }, ..Self::word(name, doc) }
     }
 
+    /// A required file name.
+    pub const fn file(name: &'static str, doc: &'static str) -> Self {
+        Self { kind: ParamKind::File, ..Self::word(name, doc) }
+    }
+
     const fn word(name: &'static str, doc: &'static str) -> Self {
         Self {
             name,
@@ -150,12 +159,14 @@ impl ParamSpec {
         matches!(self.kind, ParamKind::Number { .. } | ParamKind::Ior { .. })
     }
 
-    /// The default as a [`ParamValue`] (what `parameters()` reports when nothing is given).
-    pub fn default_value(&self) -> ParamValue {
+    /// The default as a [`ParamValue`] (what `parameters()` reports when nothing is given);
+    /// `None` for a required parameter.
+    pub fn default_value(&self) -> Option<ParamValue> {
         match self.kind {
-            ParamKind::Number { default } | ParamKind::Ior { default } => ParamValue::Number(default),
-            ParamKind::Choice { default, .. } => ParamValue::Text(default.into()),
-            ParamKind::Flag { default } => ParamValue::Text(default.to_string()),
+            ParamKind::Number { default } | ParamKind::Ior { default } => Some(ParamValue::Number(default)),
+            ParamKind::Choice { default, .. } => Some(ParamValue::Text(default.into())),
+            ParamKind::Flag { default } => Some(ParamValue::Text(default.to_string())),
+            ParamKind::File => None,
         }
     }
 
@@ -197,6 +208,12 @@ impl ModelSpec {
     pub fn names(&self) -> Vec<&'static str> {
         self.params.iter().map(|p| p.name).collect()
     }
+
+    /// Whether the model builds from its defaults alone: no required parameter (a file). The
+    /// sweeps over every model at its defaults (tests, `matte bench`) run these.
+    pub fn builds_from_defaults(&self) -> bool {
+        self.params.iter().all(|p| p.default_value().is_some())
+    }
 }
 
 /// Counts the numeric parameters of `spec` (a `const fn`, for the compile-time limit below).
@@ -221,6 +238,7 @@ enum Value {
     Number(f64),
     Choice(&'static str),
     Flag(bool),
+    File(String),
 }
 
 /// A model's parameters read from [`Params`] by its [`ModelSpec`]: every parameter present
@@ -242,6 +260,7 @@ impl Values {
                 ParamKind::Ior { default } => Value::Number(p.check(params.ior(p.name, default)?)?),
                 ParamKind::Choice { choices, default } => Value::Choice(params.choice(p.name, choices, default)?),
                 ParamKind::Flag { default } => Value::Flag(params.flag(p.name, default)?),
+                ParamKind::File => Value::File(params.file(p.name)?),
             });
         }
         Ok(Self { spec, values })
@@ -272,6 +291,14 @@ impl Values {
         match self.get(name) {
             Value::Flag(b) => *b,
             other => panic!("parameter \"{name}\" is not a flag ({other:?})"),
+        }
+    }
+
+    /// A file parameter's name (resolved by the front end).
+    pub fn file(&self, name: &str) -> &str {
+        match self.get(name) {
+            Value::File(f) => f,
+            other => panic!("parameter \"{name}\" is not a file ({other:?})"),
         }
     }
 }
@@ -317,7 +344,12 @@ pub trait Registered: KernelBrdf + Clone + Debug + PartialEq + Sized + 'static {
     /// The kernel from constants `c` (of either coefficient method) and the tables
     /// ([`Self::tables`] or, when `lane`, [`Self::lane_tables`]) in `T`'s table type.
     /// `None` if `c` or `tables` is short.
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], tables: &[T::Table<'t>], lane: bool) -> Option<Self::Lane<'t, T>>;
+    fn kernel_from<'t, T: Real + 't>(
+        &'t self,
+        c: &[T],
+        tables: &[T::Table<'t>],
+        lane: bool,
+    ) -> Option<Self::Lane<'t, T>>;
 
     /// Tables the constant-parameter kernel reads (van Ginneken's slope integral and μΛ);
     /// the plugin registers them as Dr.Jit arrays.

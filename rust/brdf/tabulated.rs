@@ -21,14 +21,15 @@ use super::DiffuseBrdf;
 use super::approx::{acos_unit, angle};
 use super::kernel::Kernel;
 use super::real::{Nodes, Real, V3};
-use super::registry::KernelBrdf;
+use super::params::{ParamError, ParamValue};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
-/// The plugin name of a table file as a BSDF (`<bsdf type="tabulated_brdf">`, in `matte
-/// render` and the Mitsuba plugin).
+/// The plugin name of a table file as a BSDF (`<bsdf type="tabulated_brdf">`, in every front
+/// end).
 pub const PLUGIN_NAME: &str = "tabulated_brdf";
 
 /// Zenith nodes of the ground-truth tables (`matte microgeometry --table` writes them; degrees).
@@ -319,9 +320,16 @@ impl Axis {
 
 /// A table ready for evaluation: the values and the kernel's view of the nodes. `tabulated_brdf`
 /// in `matte render` and in the Mitsuba plugin.
+///
+/// Shared (`Arc`): cloning a model or a scene's BSDF copies a pointer, and the registry's
+/// `DiffuseModel` stays as small as its analytic models.
 #[derive(Clone, Debug)]
-pub struct TableModel {
-    table: Arc<BrdfTable>,
+pub struct TableModel(Arc<TableData>);
+
+/// What a [`TableModel`] holds.
+#[derive(Debug)]
+pub struct TableData {
+    table: BrdfTable,
     /// The file it was read from (empty for a table built in memory).
     path: std::path::PathBuf,
     theta: Axis,
@@ -332,20 +340,24 @@ pub struct TableModel {
 impl TableModel {
     /// The model of a checked table.
     pub fn new(table: BrdfTable) -> Self {
+        Self::with_path(table, std::path::PathBuf::new())
+    }
+
+    fn with_path(table: BrdfTable, path: std::path::PathBuf) -> Self {
         let (nt, np) = (table.theta_deg.len(), table.delta_phi_deg.len());
         let rad = PI / 180.0;
-        TableModel {
+        TableModel(Arc::new(TableData {
             theta: Axis::new(&table.theta_deg, rad, np),
             delta_phi: Axis::new(&table.delta_phi_deg, rad, 1),
             reflectance: Axis::new(&table.reflectance, 1.0, nt * nt * np),
-            table: Arc::new(table),
-            path: std::path::PathBuf::new(),
-        }
+            table,
+            path,
+        }))
     }
 
     /// Reads and checks a table file ([`BrdfTable::read`]).
     pub fn read(path: &std::path::Path) -> Result<Self, String> {
-        BrdfTable::read(path).map(|t| Self { path: path.to_path_buf(), ..Self::new(t) })
+        BrdfTable::read(path).map(|t| Self::with_path(t, path.to_path_buf()))
     }
 
     /// The file the table was read from (empty if built in memory).
@@ -358,14 +370,69 @@ impl TableModel {
     }
 
     /// The values the kernel gathers from: [`BrdfTable::f_over_reflectance`].
-    pub fn values(&self) -> &[f32] {
+    pub fn table_values(&self) -> &[f32] {
         &self.table.f_over_reflectance
     }
 
-    /// The kernel reading `values` (the CPU's slice of [`Self::values`], or the plugin's
+    /// The kernel reading `values` (the CPU's slice of [`Self::table_values`], or the plugin's
     /// registered Dr.Jit buffer).
     pub fn kernel<'t, T: Real + 't>(&'t self, values: T::Table<'t>) -> TableKernel<'t, T> {
         TableKernel { model: self, values }
+    }
+}
+
+impl std::ops::Deref for TableModel {
+    type Target = TableData;
+    fn deref(&self) -> &TableData {
+        &self.0
+    }
+}
+
+/// Two models are the same table read from the same place.
+impl PartialEq for TableModel {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path && self.table.f_over_reflectance == other.table.f_over_reflectance
+    }
+}
+
+/// `tabulated_brdf` in the registry: its one parameter is the file; its one table, the
+/// values the kernel gathers from (a registered Dr.Jit array in the traced plugin). No
+/// numeric parameters, so no kernel constants and no textured parameters.
+impl Registered for TableModel {
+    const SPEC: ModelSpec = ModelSpec {
+        name: PLUGIN_NAME,
+        label: "Tabulated",
+        summary: "a BRDF table file, `f/ρ` on (ρ, θi, θo, Δφ) nodes, multilinear: the simulated surfaces of `matte microgeometry --table` ([docs](docs/microgeometry.md#the-tabulated-ground-truth-brdf))",
+        params: &[ParamSpec::file(
+            "filename",
+            "the table file (the package's are `ground_truth/<table>.json`)",
+        )],
+        examples: &[],
+        in_study: false,
+    };
+    type Lane<'t, T: Real + 't> = TableKernel<'t, T>;
+
+    fn build(values: &Values) -> Result<Self, ParamError> {
+        TableModel::read(std::path::Path::new(values.file("filename"))).map_err(|e| {
+            let line = e.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
+            ParamError::new("filename", line)
+        })
+    }
+
+    fn values(&self) -> Vec<ParamValue> {
+        vec![ParamValue::Text(self.path.display().to_string())]
+    }
+
+    fn constant_coefficients<T: Real>(&self, _: &[T], _: bool) -> Option<Vec<T>> {
+        Some(Vec::new())
+    }
+
+    fn kernel_from<'t, T: Real + 't>(&'t self, _: &[T], tables: &[T::Table<'t>], _: bool) -> Option<TableKernel<'t, T>> {
+        Some(self.kernel(*tables.first()?))
+    }
+
+    fn tables(&self) -> Vec<&[f32]> {
+        vec![self.table_values()]
     }
 }
 
@@ -373,7 +440,7 @@ impl TableModel {
 impl KernelBrdf for TableModel {
     fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
         // `check` guarantees at least one value.
-        self.kernel(Nodes::from_slice(self.values()).expect("a checked table has values"))
+        self.kernel(Nodes::from_slice(self.table_values()).expect("a checked table has values"))
     }
 }
 

@@ -71,5 +71,6 @@ fn parameter(p: &ParamSpec) -> String {
             format!("`{}` = {}", p.name, words.join(" \\| "))
         }
         ParamKind::Flag { default } => format!("`{}` ({default})", p.name),
+        ParamKind::File => format!("`{}` (required: {})", p.name, p.doc),
     }
 }

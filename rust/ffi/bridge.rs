@@ -82,6 +82,9 @@ pub mod ffi {
         /// throws `rust::Error` with a message naming the bad parameter.
         fn model_new(kind: &str, properties: &[Param]) -> Result<Box<Model>>;
         fn describe_parameters(self: &Model) -> Vec<Param>;
+        /// Whether `name` names a file of the model `kind` (`tabulated_brdf`'s `filename`),
+        /// which the plugin resolves with Mitsuba's file resolver before handing it over.
+        fn is_file_parameter(kind: &str, name: &str) -> bool;
         /// The numeric parameters with their effective values (a textured one's: the number it
         /// stands for), in the order per-lane values are given.
         fn numeric_parameters(self: &Model) -> Vec<Param>;
@@ -159,4 +162,4 @@ pub mod ffi {
     }
 }
 
-use super::{Model, model_new};
+use super::{Model, is_file_parameter, model_new};

@@ -18,69 +18,15 @@ use bridge::ffi::{Channels, Param, ParamKind, Vec3f};
 use glam::{Vec2, Vec3};
 use matte_brdf::construction::{Property, construct};
 use matte_brdf::kernel;
-use matte_brdf::tabulated::{self, TableModel};
-use matte_brdf::{BrdfSample, DiffuseBrdf, DiffuseModel, ParamValue};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use bridge::ffi;
 
-/// A constructed model as the plugin holds it.
+/// A constructed model as the plugin holds it: any registered type, `tabulated_brdf`
+/// included.
 pub struct Model {
-    bsdf: Bsdf,
-}
-
-/// What a plugin name builds: a registered model (`matte_brdf::MODELS`), or
-/// `tabulated_brdf`, a table file ([`TableModel`]; its only parameter is the file, so it has no
-/// kernel constants and no textured parameters). Both run generic kernels, in f32 here and
-/// traced in [`traced_entry`].
-enum Bsdf {
-    Model(DiffuseModel),
-    Table(TableModel),
-}
-
-impl DiffuseBrdf for Bsdf {
-    #[inline]
-    fn eval<const N: usize>(&self, wi: Vec3, wo: Vec3, reflectance: [f32; N]) -> [f32; N] {
-        match self {
-            Bsdf::Model(m) => m.eval(wi, wo, reflectance),
-            Bsdf::Table(t) => t.eval(wi, wo, reflectance),
-        }
-    }
-
-    #[inline]
-    fn pdf(&self, wi: Vec3, wo: Vec3) -> f32 {
-        match self {
-            Bsdf::Model(m) => m.pdf(wi, wo),
-            Bsdf::Table(t) => t.pdf(wi, wo),
-        }
-    }
-
-    #[inline]
-    fn sample<const N: usize>(&self, wi: Vec3, u: Vec2, reflectance: [f32; N]) -> Option<BrdfSample<N>> {
-        match self {
-            Bsdf::Model(m) => m.sample(wi, u, reflectance),
-            Bsdf::Table(t) => t.sample(wi, u, reflectance),
-        }
-    }
-}
-
-/// `tabulated_brdf` from its properties: `filename` (required; the plugin resolves it with
-/// Mitsuba's file resolver first), nothing else. Errors are one line naming the file.
-fn table_new(properties: &[(&str, Property)]) -> Result<TableModel, String> {
-    let mut filename = None;
-    for (name, p) in properties {
-        match (*name, p) {
-            ("filename", Property::Text(s)) => filename = Some(s.as_str()),
-            ("filename", _) => return Err("parameter \"filename\": must be a file name".into()),
-            (other, _) => return Err(format!("unknown parameter \"{other}\" (known: filename)")),
-        }
-    }
-    let filename =
-        filename.ok_or("missing parameter \"filename\" (a table file, docs/microgeometry.md#file-format)")?;
-    TableModel::read(std::path::Path::new(filename)).map_err(|e| {
-        let line = e.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
-        format!("parameter \"filename\": {line}")
-    })
+    model: DiffuseModel,
 }
 
 /// A property as [`construct`] takes it.
@@ -105,16 +51,19 @@ fn v3(v: &Vec3f) -> Vec3 {
 fn model_new(kind: &str, properties: &[Param]) -> Result<Box<Model>, String> {
     let built = catch_unwind(AssertUnwindSafe(|| {
         let properties: Vec<(&str, Property)> = properties.iter().map(property).collect();
-        if kind == tabulated::PLUGIN_NAME {
-            return table_new(&properties).map(Bsdf::Table);
-        }
-        construct(kind, &properties).map(|c| Bsdf::Model(c.model)).map_err(|e| e.to_string())
+        construct(kind, &properties).map(|c| c.model).map_err(|e| e.to_string())
     }));
     match built {
-        Ok(Ok(bsdf)) => Ok(Box::new(Model { bsdf })),
+        Ok(Ok(model)) => Ok(Box::new(Model { model })),
         Ok(Err(message)) => Err(message),
         Err(_) => Err(format!("internal error while constructing bsdf \"{kind}\" (a bug in matte; please report it)")),
     }
+}
+
+fn is_file_parameter(kind: &str, name: &str) -> bool {
+    matte_brdf::spec(kind)
+        .and_then(|s| s.param(name))
+        .is_some_and(|p| matches!(p.kind, matte_brdf::registry::ParamKind::File))
 }
 
 /// The used channels of a [`Channels`], zero-padded to [`MAX_CHANNELS`].
@@ -153,26 +102,14 @@ fn eval_channels(bsdf: &impl DiffuseBrdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f
 }
 
 impl Model {
-    /// The per-lane f32 kernel of a registered model for the values `params`; `None` for a
-    /// table (which has no numeric parameters) or short `params`.
-    fn lane_kernel_f32(&self, params: &[f32]) -> Option<matte_brdf::LaneKernel<'static, f32>> {
-        match &self.bsdf {
-            Bsdf::Model(m) => m.lane_kernel_f32(params),
-            Bsdf::Table(_) => None,
-        }
-    }
-
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
         self.describe_parameters().into_iter().filter(|p| p.kind == ParamKind::Number).collect()
     }
 
     fn describe_parameters(&self) -> Vec<Param> {
-        let parameters = match &self.bsdf {
-            Bsdf::Model(m) => m.parameters(),
-            Bsdf::Table(t) => vec![("filename", ParamValue::Text(t.path().display().to_string()))],
-        };
-        parameters
+        self.model
+            .parameters()
             .into_iter()
             .map(|(name, value)| match value {
                 ParamValue::Number(x) => {
@@ -191,11 +128,11 @@ impl Model {
         let (wi, wo) = (v3(wi), v3(wo));
         f.n = reflectance.n;
         if params.is_empty() {
-            f.v = eval_channels(&self.bsdf, wi, wo, used(reflectance));
-            return self.bsdf.pdf(wi, wo);
+            f.v = eval_channels(&self.model, wi, wo, used(reflectance));
+            return self.model.pdf(wi, wo);
         }
         f.v = [0.0; MAX_CHANNELS];
-        let Some(k) = self.lane_kernel_f32(params) else {
+        let Some(k) = self.model.lane_kernel_f32(params) else {
             return 0.0;
         };
         f.v = kernel::eval(&k, wi.into(), wo.into(), padded(reflectance));
@@ -205,9 +142,9 @@ impl Model {
     fn pdf(&self, params: &[f32], wi: &Vec3f, wo: &Vec3f) -> f32 {
         let (wi, wo) = (v3(wi), v3(wo));
         if params.is_empty() {
-            return self.bsdf.pdf(wi, wo);
+            return self.model.pdf(wi, wo);
         }
-        self.lane_kernel_f32(params).map_or(0.0, |k| kernel::pdf(&k, wi.into(), wo.into()))
+        self.model.lane_kernel_f32(params).map_or(0.0, |k| kernel::pdf(&k, wi.into(), wo.into()))
     }
 
     /// Samples `wo`; writes it and the weight `f cos θo / pdf`; returns the pdf (0: no sample).
@@ -228,15 +165,15 @@ impl Model {
         weight.v = [0.0; MAX_CHANNELS];
         let drawn = if params.is_empty() {
             match *used(reflectance) {
-                [a] => self.bsdf.sample(wi, u, [a]).map(|s| (s.wo, s.pdf, [s.weight[0], 0.0, 0.0, 0.0])),
+                [a] => self.model.sample(wi, u, [a]).map(|s| (s.wo, s.pdf, [s.weight[0], 0.0, 0.0, 0.0])),
                 [a, b, c] => self
-                    .bsdf
+                    .model
                     .sample(wi, u, [a, b, c])
                     .map(|s| (s.wo, s.pdf, [s.weight[0], s.weight[1], s.weight[2], 0.0])),
-                _ => self.bsdf.sample(wi, u, padded(reflectance)).map(|s| (s.wo, s.pdf, s.weight)),
+                _ => self.model.sample(wi, u, padded(reflectance)).map(|s| (s.wo, s.pdf, s.weight)),
             }
         } else {
-            self.lane_kernel_f32(params).and_then(|k| {
+            self.model.lane_kernel_f32(params).and_then(|k| {
                 let (dir, w, pdf) = kernel::sample(&k, wi.into(), u1, u2, padded(reflectance));
                 (pdf > 0.0).then_some((dir.into(), pdf, w))
             })

@@ -8,55 +8,12 @@
 //!
 //! Slices of unexpected lengths (a bug in the C++ caller) give zeros, never a panic.
 
+use super::Model;
 use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
-use super::{Bsdf, Model};
 use matte_brdf::LaneKernel;
-use matte_brdf::kernel::{self, Kernel};
+use matte_brdf::kernel;
 use matte_brdf::real::V3;
-use matte_brdf::tabulated::TableKernel;
-
-/// The traced kernel of what the plugin built: a registered model's (traced constants), or a
-/// table's (`'m`: the borrow of the table's nodes).
-enum TracedKernel<'m, 'a: 'm> {
-    Model(LaneKernel<'a, Traced<'a>>),
-    Table(TableKernel<'m, Traced<'a>>),
-}
-
-impl<'m, 'a: 'm> Kernel<Traced<'a>> for TracedKernel<'m, 'a> {
-    fn reduced_f<const N: usize>(
-        &self,
-        wi: V3<Traced<'a>>,
-        wo: V3<Traced<'a>>,
-        rho: [Traced<'a>; N],
-    ) -> [Traced<'a>; N] {
-        match self {
-            TracedKernel::Model(k) => k.reduced_f(wi, wo, rho),
-            TracedKernel::Table(k) => k.reduced_f(wi, wo, rho),
-        }
-    }
-
-    fn cosine_sampling(&self) -> bool {
-        match self {
-            TracedKernel::Model(k) => k.cosine_sampling(),
-            TracedKernel::Table(k) => k.cosine_sampling(),
-        }
-    }
-
-    fn sample_wo(&self, wi: V3<Traced<'a>>, u1: Traced<'a>, u2: Traced<'a>) -> (V3<Traced<'a>>, Traced<'a>) {
-        match self {
-            TracedKernel::Model(k) => k.sample_wo(wi, u1, u2),
-            TracedKernel::Table(k) => k.sample_wo(wi, u1, u2),
-        }
-    }
-
-    fn pdf_wo(&self, wi: V3<Traced<'a>>, wo: V3<Traced<'a>>) -> Traced<'a> {
-        match self {
-            TracedKernel::Model(k) => k.pdf_wo(wi, wo),
-            TracedKernel::Table(k) => k.pdf_wo(wi, wo),
-        }
-    }
-}
 
 /// The first `N` indices of `ids` as traced values, or `None` if there are fewer.
 fn nodes<'a, const N: usize>(arena: &'a Arena, ids: &[u32]) -> Option<[Traced<'a>; N]> {
@@ -96,20 +53,13 @@ impl Model {
     /// with `lane` the per-lane kernel's ([`Registered::lane_tables`]: van Ginneken's four
     /// roughness-axis stacks, built on first use).
     pub(super) fn table_count(&self, lane: bool) -> usize {
-        match &self.bsdf {
-            Bsdf::Model(b) => b.kernel_tables(lane).len(),
-            Bsdf::Table(_) => 1,
-        }
+        self.model.kernel_tables(lane).len()
     }
 
     /// Table `k` in the order the traced kernel gathers them (van Ginneken: `I`, `∂I/∂m`,
     /// `μΛ`, `∂(μΛ)/∂m`; `tabulated_brdf`: its values); empty past the end.
     pub(super) fn table(&self, k: usize, lane: bool) -> &[f32] {
-        match &self.bsdf {
-            Bsdf::Model(b) => b.kernel_tables(lane).get(k).copied().unwrap_or(&[]),
-            Bsdf::Table(t) if k == 0 => t.values(),
-            Bsdf::Table(_) => &[],
-        }
+        self.model.kernel_tables(lane).get(k).copied().unwrap_or(&[])
     }
 
     /// The kernel constants for the numeric parameters `params` (traced, in the order of
@@ -123,11 +73,8 @@ impl Model {
         lane: bool,
         differentiable: bool,
     ) -> Vec<u32> {
-        let Bsdf::Model(b) = &self.bsdf else {
-            return vec![]; // a table has no constants
-        };
         let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
-        let c = b.kernel_coefficients(&values, lane, differentiable);
+        let c = self.model.kernel_coefficients(&values, lane, differentiable);
         c.map_or(vec![], |c| c.iter().map(|v| v.id(arena)).collect())
     }
 
@@ -138,15 +85,11 @@ impl Model {
         arena: &'a Arena,
         coefficients: &[u32],
         lane: bool,
-    ) -> Option<TracedKernel<'m, 'a>> {
-        let b = match &self.bsdf {
-            Bsdf::Model(b) => b,
-            Bsdf::Table(t) => return Some(TracedKernel::Table(t.kernel(TracedTable { arena, id: 0 }))),
-        };
+    ) -> Option<LaneKernel<'m, Traced<'a>>> {
         let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
         let tables: Vec<TracedTable<'a>> =
             (0..self.table_count(lane) as u32).map(|id| TracedTable { arena, id }).collect();
-        b.kernel_from(&c, &tables, lane).map(TracedKernel::Model)
+        self.model.kernel_from(&c, &tables, lane)
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs

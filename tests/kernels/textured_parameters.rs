@@ -99,7 +99,8 @@ fn lane_values_out_of_range_are_clamped() {
             if *kind == "wolff" {
                 lane.push(1.0);
             }
-            let k = model(kind, &[]).lane_kernel_f32(&lane).unwrap();
+            let m = model(kind, &[]);
+            let k = m.lane_kernel_f32(&lane).unwrap();
             let got = kernel::eval(&k, wi.into(), wo.into(), [0.7])[0];
             assert!(got.is_finite(), "{kind} {name} = {v}: {got}");
             // van Ginneken: the roughness axis against the single-roughness table at the bound.

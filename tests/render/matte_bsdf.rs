@@ -8,9 +8,10 @@
 
 use crate::common::{direction, model, table_of};
 use glam::{Vec2, Vec3};
-use matte_brdf::{DiffuseBrdf, ParamValue};
-use matte_render::bsdf::{Bsdf, BsdfModel, Matte, tabulated_brdf};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
+use matte_render::bsdf::{Bsdf, BsdfModel, Matte};
 use matte_render::load::load_str;
+use matte_render::shape::SurfaceInteraction;
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -91,10 +92,11 @@ fn the_renderer_loads_a_table_file_as_a_bsdf() {
         )
     };
     let scene = load_str(&xml("truth.json"), &dir.join("scene.xml"), &[]).unwrap();
-    let Bsdf::Tabulated(t) = &scene.scene.bsdfs[0] else { panic!("{:?}", scene.scene.bsdfs[0]) };
+    let bsdf = &scene.scene.bsdfs[0];
+    let Bsdf::Matte(Matte { model: DiffuseModel::Tabulated(_), .. }) = bsdf else { panic!("{bsdf:?}") };
     let (wi, wo) = (direction(60f64.to_radians(), 0.0), direction(30f64.to_radians(), PI));
     let rho = Vec3::new(0.2, 0.5, 0.75);
-    let (f_cos, pdf) = tabulated_brdf::eval_pdf(&t.table, rho, wi, wo);
+    let (f_cos, pdf) = bsdf.eval_pdf(&SurfaceInteraction::at_uv(Vec2::ZERO), wi, wo);
     let want = on.eval(wi, wo, rho.to_array());
     for c in 0..3 {
         assert!((f_cos[c] / wo.z / want[c] - 1.0).abs() < 1e-4, "channel {c}: {} vs {}", f_cos[c] / wo.z, want[c]);

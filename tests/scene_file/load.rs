@@ -2474,7 +2474,7 @@ fn readme_scope_table_matches_the_loader() {
         let tags: Vec<&str> = if row[0] == "film, rfilter" { vec!["film", "rfilter"] } else { vec![row[0].as_str()] };
         for name in names(&row[1]) {
             if name == "tabulated_brdf" {
-                continue; // needs a table file: loaded in tests/kernels/tabulated_brdf.rs
+                continue; // needs a table file: loaded in tests/render/matte_bsdf.rs
             }
             let tag = tags.iter().copied().find(|t| mitsuba_plugins::plugin(t, &name).is_some()).unwrap_or(tags[0]);
             if let Err(e) = load(&scene_with_plugin(tag, &name, "", &[])) {

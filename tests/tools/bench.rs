@@ -25,10 +25,10 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
     }
     // Every model's render time against Lambert's, as targets.
     let models: Vec<&str> = m.models.iter().map(|(k, _)| k.as_str()).collect();
-    assert_eq!(models, matte::bench::render::MODELS.to_vec());
+    assert_eq!(models, matte::bench::render::models());
     assert!(m.models.iter().all(|(_, s)| *s > 0.0 && s.is_finite()));
     let models: Vec<&str> = m.kernels.iter().map(|k| k.model).collect();
-    assert_eq!(models, matte_brdf::BSDF_TYPES.to_vec());
+    assert_eq!(models, matte_brdf::default_models().collect::<Vec<_>>());
     assert!(m.kernels.iter().all(|k| k.ns_per_eval.is_finite() && k.ns_per_eval > 0.0));
     assert_eq!(m.scaling.len(), 2);
     // Every arrangement of the ray queries on every scene's rays (Embree is installed by the
@@ -40,13 +40,16 @@ fn quick_bench_measures_every_scene_kernel_and_spp() {
         assert!(times.iter().all(|t| t.rays > 0 && t.shadow_rays > 0 && t.ns_per_ray > 0.0), "{scene}");
     }
     let wide: Vec<&str> = m.wide_kernels.iter().map(|k| k.model).collect();
-    assert_eq!(wide, matte_brdf::BSDF_TYPES.to_vec());
+    assert_eq!(wide, matte_brdf::default_models().collect::<Vec<_>>());
     // Without Mitsuba: no renderer ratios, but the spp, BVH and kernel targets.
     let t = targets(&m);
     assert!(t.iter().all(|t| !t.what.contains("scalar_rgb") && !t.what.contains("llvm")));
     assert!(t.iter().any(|t| t.what.starts_with("bunny: BVH build")));
-    assert_eq!(t.iter().filter(|t| t.what.contains("/ with lambert")).count(), matte::bench::render::MODELS.len() - 1);
-    assert_eq!(t.iter().filter(|t| t.what.starts_with("kernel ")).count(), matte_brdf::BSDF_TYPES.len() - 1);
+    assert_eq!(
+        t.iter().filter(|t| t.what.contains("/ with lambert")).count(),
+        matte::bench::render::models().len() - 1
+    );
+    assert_eq!(t.iter().filter(|t| t.what.starts_with("kernel ")).count(), matte_brdf::default_models().count() - 1);
     let json = matte::bench::report::json(&m);
     assert_eq!(json.renders.len(), 3);
 }

@@ -17,23 +17,22 @@ fn matte(args: &[&str]) -> (bool, String, String) {
 
 #[test]
 fn brdf_answers_for_every_type() {
+    // A type with a file parameter (tabulated_brdf) reads the packaged V-cavity table.
+    let table = common::repo().join("python/matte_mitsuba/ground_truth/v_cavities_sigma0.3.json").display().to_string();
     for kind in BSDF_TYPES {
-        let (ok, out, err) = matte(&[
-            "brdf",
-            "--bsdf",
-            kind,
-            "--reflectance",
-            "0.8",
-            "--theta-i",
-            "30",
-            "--theta-o",
-            "60",
-            "--phi",
-            "45",
-        ]);
+        let file = !matte_brdf::spec(kind).unwrap().builds_from_defaults();
+        let params: Vec<(&str, &str)> = if file { vec![("filename", table.as_str())] } else { vec![] };
+        let mut args: Vec<String> =
+            ["brdf", "--bsdf", kind, "--reflectance", "0.8", "--theta-i", "30", "--theta-o", "60", "--phi", "45"]
+                .map(String::from)
+                .to_vec();
+        for (k, v) in &params {
+            args.extend(["--param".to_string(), format!("{k}={v}")]);
+        }
+        let (ok, out, err) = matte(&args.iter().map(String::as_str).collect::<Vec<_>>());
         assert!(ok, "{kind}: {err}");
         let v: serde_json::Value = serde_json::from_str(&out).unwrap();
-        let bsdf = common::model(kind, &[]);
+        let bsdf = common::model(kind, &params);
         let (wi, wo) =
             (spherical_direction(30f32.to_radians(), 0.0), spherical_direction(60f32.to_radians(), 45f32.to_radians()));
         let want = bsdf.eval(wi, wo, [0.8])[0];

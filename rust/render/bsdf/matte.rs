@@ -1,4 +1,4 @@
-//! The matte kernels (`matte_brdf`, every registered model) as renderer BSDFs: `f·cos θo` from the kernel's `f`, the kernel's own
+//! The matte kernels (`matte_brdf`, every registered type, `tabulated_brdf` included) as renderer BSDFs: `f·cos θo` from the kernel's `f`, the kernel's own
 //! sampling, reflectance per RGB channel (several models are non-linear in ρ). Direction
 //! convention as in the plugin: the renderer's `wi` (towards the camera side) is the kernel's
 //! given direction; every model is reciprocal.
@@ -17,6 +17,7 @@ use glam::{Vec2, Vec3};
 use matte_brdf::construction::{Property, construct};
 use matte_brdf::kernel;
 use matte_brdf::registry::MAX_NUMERIC;
+use matte_brdf::registry::ParamKind;
 use matte_brdf::{DiffuseBrdf, DiffuseModel};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::Value;
@@ -68,10 +69,14 @@ impl FromProps for Matte {
         let reflectance = p.texture("reflectance")?;
         let nested_names = p.remaining_nested_names();
         let mut properties: Vec<(String, Property)> = Vec::new();
+        let spec = matte_brdf::spec(&kind);
+        let is_file = |name: &str| spec.and_then(|s| s.param(name)).is_some_and(|p| p.kind == ParamKind::File);
         for prop in p.remaining_properties() {
             let value = match &prop.value {
                 Value::Float(x) => Property::Number(*x),
                 Value::Integer(i) => Property::Number(*i as f64),
+                // A file (`tabulated_brdf`'s table) is resolved as every file of the scene.
+                Value::String(s) if is_file(&prop.name) => Property::Text(p.resolve(s).display().to_string()),
                 Value::String(s) => Property::Text(s.clone()),
                 Value::Boolean(v) => Property::Flag(*v),
                 other => {

@@ -35,7 +35,6 @@ pub mod rough_conductor;
 pub mod rough_dielectric;
 pub mod rough_plastic;
 pub mod sample;
-pub mod tabulated_brdf;
 pub mod thin_dielectric;
 pub mod two_sided;
 pub mod vndf;
@@ -60,7 +59,6 @@ pub use rough_conductor::RoughConductor;
 pub use rough_dielectric::RoughDielectric;
 pub use rough_plastic::RoughPlastic;
 pub use sample::BsdfSample;
-pub use tabulated_brdf::TabulatedBrdf;
 pub use thin_dielectric::ThinDielectric;
 pub use two_sided::TwoSided;
 
@@ -170,8 +168,6 @@ bsdfs! {
     Principled(Box<Principled>),
     /// `principledthin`.
     PrincipledThin(Box<PrincipledThin>),
-    /// `tabulated_brdf`: a BRDF read from a table file.
-    Tabulated(TabulatedBrdf),
     /// `null`.
     Null(Null),
 }

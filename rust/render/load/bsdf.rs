@@ -2,15 +2,15 @@
 //! (`from_props` in its file under `rust/render/bsdf/`, through [`PluginProps`]): Mitsuba's
 //! `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`, `conductor`,
 //! `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `null`, `bumpmap`, `mask`,
-//! `blendbsdf`, `principled`, `principledthin`, matte's `tabulated_brdf` (a table file,
-//! `docs/microgeometry.md`) and matte's registered diffuse models (`matte_brdf::BSDF_TYPES`; parameters validated by the kernels' own parser, the same one
-//! the Mitsuba plugin uses).
+//! `blendbsdf`, `principled`, `principledthin`, and matte's registered types
+//! (`matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`, built as [`Matte`] by the
+//! kernels' own construction, the one the Mitsuba plugin uses).
 
 use super::Builder;
 use super::props::{FromProps, PluginProps};
 use crate::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, Mask, Matte, NormalMap, Null, Plastic, Principled,
-    PrincipledThin, RoughConductor, RoughDielectric, RoughPlastic, TabulatedBrdf, ThinDielectric, TwoSided,
+    PrincipledThin, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use crate::texture::Texture;
 use glam::Vec3;
@@ -73,10 +73,6 @@ const MITSUBA: [(&str, Constructor); 16] = [
     ("principledthin", make::<PrincipledThin>),
 ];
 
-/// matte's own BSDF plugins besides the registered diffuse models ([`BSDF_TYPES`], built as
-/// [`Matte`]).
-const MATTE: [(&str, Constructor); 1] = [("tabulated_brdf", make::<TabulatedBrdf>)];
-
 /// The names of [`MITSUBA`]: the bsdf entry of [`super::MITSUBA_PLUGINS`].
 pub(super) const MITSUBA_NAMES: [&str; MITSUBA.len()] = {
     let mut names = [""; MITSUBA.len()];
@@ -91,7 +87,7 @@ pub(super) const MITSUBA_NAMES: [&str; MITSUBA.len()] = {
 /// Builds the BSDF of `obj` (nested BSDFs are built by their wrapper's `from_props`).
 pub(crate) fn build(b: &Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
     let name = obj.plugin.as_str();
-    let plugins = || MITSUBA.iter().chain(MATTE.iter());
+    let plugins = || MITSUBA.iter();
     let constructor = match plugins().find(|(n, _)| *n == name) {
         Some(&(_, c)) => c,
         None if BSDF_TYPES.contains(&name) => make::<Matte>,

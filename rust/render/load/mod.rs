@@ -34,8 +34,8 @@ use std::rc::Rc;
 /// own properties). Every property each of them reads in Mitsuba's sources
 /// ([`mitsuba_plugins`]) is implemented by its builder here or accepted as one that cannot
 /// change the image ([`no_effect`]); `tests/scene_file/load.rs` walks the list. matte's own BSDFs
-/// (the registered diffuse models, `matte_brdf::BSDF_TYPES`, and `tabulated_brdf`) come
-/// on top; what is refused by scope is in [`scope`].
+/// (the registered types, `matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`)
+/// come on top; what is refused by scope is in [`scope`].
 pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("scene", &["scene"]),
     ("bsdf", &bsdf::MITSUBA_NAMES),

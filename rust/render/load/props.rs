@@ -2,7 +2,7 @@
 //! `Properties` seen from `Plugin(const Properties &props)`). A type reads `float("alpha")`,
 //! `texture("reflectance")`, `string("distribution")`, …; the default and the value kinds a
 //! name accepts come from the harvested entry for (tag, plugin, name) in
-//! [`super::mitsuba_plugins`] (matte's own plugins: [`MATTE_MODEL`], [`TABULATED_BRDF`]).
+//! [`super::mitsuba_plugins`] (matte's own plugins, `tabulated_brdf` included: [`MATTE_MODEL`]).
 //! Where Mitsuba's default is an expression rather than a literal (another property, a
 //! constructor argument), the plugin's file supplies it, as its `.cpp` does.
 //!
@@ -21,8 +21,9 @@ use matte_scene_file::xml::{self, ColorUse, SceneObject, Value};
 use std::path::PathBuf;
 use std::rc::Rc;
 
-/// matte's diffuse models (the registry, `matte_brdf::BSDF_TYPES`): `reflectance`, then every other property goes to the kernels' own
-/// parameter parser, as in the Mitsuba plugin (`cpp/matte_bsdf.h`).
+/// matte's registered types (`matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`):
+/// `reflectance`, then every other property goes to the kernels' own construction, as in the
+/// Mitsuba plugin (`cpp/matte_bsdf.h`).
 pub static MATTE_MODEL: Plugin = Plugin {
     tag: "bsdf",
     name: "<matte model>",
@@ -37,35 +38,10 @@ pub static MATTE_MODEL: Plugin = Plugin {
     reads_any_property: true,
 };
 
-/// matte's `tabulated_brdf` (`rust/render/bsdf/tabulated_brdf.rs`): a BRDF table file.
-pub static TABULATED_BRDF: Plugin = Plugin {
-    tag: "bsdf",
-    name: "tabulated_brdf",
-    source: "rust/render/bsdf/tabulated_brdf.rs",
-    properties: &[
-        PluginProperty {
-            name: "filename",
-            kind: Kind::String,
-            default: None,
-            literal: None,
-            source: "rust/render/bsdf/tabulated_brdf.rs",
-        },
-        PluginProperty {
-            name: "reflectance",
-            kind: Kind::Texture,
-            default: Some("0.5"),
-            literal: Some("0.5"),
-            source: "rust/render/bsdf/tabulated_brdf.rs",
-        },
-    ],
-    reads_any_property: false,
-};
-
 /// The entry describing what plugin (`tag`, `name`) reads: the harvested one, or matte's own.
 #[must_use]
 pub fn plugin_entry(tag: &str, name: &str) -> Option<&'static Plugin> {
     mitsuba_plugins::plugin(tag, name).or(match (tag, name) {
-        ("bsdf", "tabulated_brdf") => Some(&TABULATED_BRDF),
         ("bsdf", n) if matte_brdf::BSDF_TYPES.contains(&n) => Some(&MATTE_MODEL),
         _ => None,
     })
