@@ -268,8 +268,8 @@ private:
     void build_model() {
         try {
             m_model.emplace(
-                matte::ffi::model_new(rust::Str(m_kind.data(), m_kind.size()),
-                                      rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size())));
+                matte::ffi::bsdf_new(rust::Str(m_kind.data(), m_kind.size()),
+                                     rust::Slice<const matte::ffi::Param>(m_params.data(), m_params.size())));
         } catch (const rust::Error &e) {
             Throw("bsdf \"%s\": %s", m_kind, e.what());
         }
@@ -448,7 +448,7 @@ private:
     std::vector<Float> m_coefficients;
     std::vector<Float> m_tables;
     /// Always set after construction (optional only because rust::Box has no empty state).
-    std::optional<rust::Box<matte::ffi::Model>> m_model;
+    std::optional<rust::Box<matte::ffi::PluginBsdf>> m_model;
 
     MI_TRAVERSE_CB(Base, m_reflectance, m_numeric)
 };

@@ -58,18 +58,8 @@ impl<T: Real> Kernel<T> for BurleyKernel<T> {
     }
 
     #[inline(always)]
-    fn cosine_sampling(&self) -> bool {
-        !self.cltc
-    }
-
-    #[inline(always)]
-    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| self.sampler(mu))
-    }
-
-    #[inline(always)]
-    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        cltc::pdf_wo(self.cltc, wi, wo, |mu| self.sampler(mu))
+    fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
+        self.cltc.then_some(move |mu| self.sampler(mu))
     }
 }
 

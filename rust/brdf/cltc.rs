@@ -24,7 +24,7 @@
 
 use super::real::{Real, V3};
 use super::registry::ParamSpec;
-use super::sampling::{concentric_disk, cosine_hemisphere, cosine_pdf};
+use super::sampling::concentric_disk;
 use std::f64::consts::{FRAC_1_PI, PI};
 
 /// One CLTC lobe: the matrix entries and the uniform component's probability at one `μ`.
@@ -194,24 +194,4 @@ impl Sampling {
 /// what `cltc` is.
 pub const fn sampling_param(doc: &'static str) -> ParamSpec {
     ParamSpec::choice("sampling", Sampling::CHOICES, "cosine", doc)
-}
-
-/// [`super::kernel::Kernel::sample_wo`] of a model with a CLTC sampler: `sampler(μ)`'s
-/// sample when `cltc`, else the cosine's.
-#[inline(always)]
-pub fn sample_wo<T: Real>(cltc: bool, wi: V3<T>, u1: T, u2: T, sampler: impl FnOnce(T) -> ClippedLtc<T>) -> (V3<T>, T) {
-    if !cltc {
-        let wo = cosine_hemisphere(u1, u2);
-        return (wo, cosine_pdf(wo.z));
-    }
-    sampler(wi.z.clamp_to(0.0, 1.0)).sample(wi, u1, u2)
-}
-
-/// [`super::kernel::Kernel::pdf_wo`] to go with [`sample_wo`].
-#[inline(always)]
-pub fn pdf_wo<T: Real>(cltc: bool, wi: V3<T>, wo: V3<T>, sampler: impl FnOnce(T) -> ClippedLtc<T>) -> T {
-    if !cltc {
-        return cosine_pdf(wo.z);
-    }
-    sampler(wi.z.clamp_to(0.0, 1.0)).pdf(wi, wo)
 }

@@ -5,6 +5,7 @@
 //! sampling the weight `f cos θo / pdf` is exactly `π f` (cosine and `1/π` cancel
 //! analytically), so `lambert`'s weight is `ρ` exactly, as Mitsuba's `diffuse` returns.
 
+use super::cltc::ClippedLtc;
 use super::real::{Real, V3};
 use super::sampling::{cosine_hemisphere, cosine_pdf};
 use std::f64::consts::FRAC_1_PI;
@@ -15,30 +16,46 @@ pub trait Kernel<T: Real> {
     /// (callers mask the others). Must be finite for every input, including the masked ones.
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N];
 
+    /// The model's own sampler (`docs/sampling.md`): the clipped LTC fitted to the model, as a
+    /// function of μ = cos θi ∈ [0, 1], when the kernel samples with it; `None` (the default)
+    /// for the cosine-weighted sampler. The one sampling hook a model implements: the three
+    /// methods below follow it. Which sampler is known when the kernel is built (and traced).
+    #[inline(always)]
+    fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
+        None::<fn(T) -> ClippedLtc<T>>
+    }
+
     /// Whether [`Self::sample_wo`] is the default cosine-weighted sampler: the sampling weight
     /// is then `π f` itself, with no division by the pdf. Not a value of `T`: known when
     /// the kernel is built (and when it is traced).
     #[inline(always)]
     fn cosine_sampling(&self) -> bool {
-        true
+        self.fitted_sampler().is_none()
     }
 
-    /// Draws `wo` for `wi` strictly above the surface from two uniform numbers: `(wo, pdf)`.
-    /// Default: cosine-weighted (Mitsuba's warp). Must be finite for every input (callers
-    /// mask `wi` at or below the horizon, and `wo` at or below it or with a zero pdf).
+    /// Draws `wo` for `wi` strictly above the surface from two uniform numbers: `(wo, pdf)`:
+    /// [`Self::fitted_sampler`]'s, else cosine-weighted (Mitsuba's warp). Must be finite for
+    /// every input (callers mask `wi` at or below the horizon, and `wo` at or below it or with
+    /// a zero pdf).
     #[inline(always)]
     fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        let _ = wi;
-        let wo = cosine_hemisphere(u1, u2);
-        (wo, cosine_pdf(wo.z))
+        match self.fitted_sampler() {
+            Some(ltc) => ltc(wi.z.clamp_to(0.0, 1.0)).sample(wi, u1, u2),
+            None => {
+                let wo = cosine_hemisphere(u1, u2);
+                (wo, cosine_pdf(wo.z))
+            }
+        }
     }
 
     /// Solid-angle density of [`Self::sample_wo`] at `wo`, for both directions strictly above
     /// the surface (callers mask the others). Must be finite for every input.
     #[inline(always)]
     fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        let _ = wi;
-        cosine_pdf(wo.z)
+        match self.fitted_sampler() {
+            Some(ltc) => ltc(wi.z.clamp_to(0.0, 1.0)).pdf(wi, wo),
+            None => cosine_pdf(wo.z),
+        }
     }
 }
 

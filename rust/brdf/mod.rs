@@ -7,13 +7,13 @@
 pub mod approx;
 pub mod cltc;
 pub mod construction;
+pub mod diffuse_brdf;
 pub mod dual;
 pub mod frame;
 pub mod fresnel;
 pub mod fresnel_fit;
 pub mod kernel;
 pub mod lane;
-pub mod model;
 pub mod params;
 pub mod quadrature;
 pub mod real;
@@ -33,10 +33,10 @@ registry::models! {
     Ginneken: ginneken::Ginneken,
     RoughDiffuse: rough_diffuse::RoughDiffuse,
     Burley: burley::Burley,
-    Tabulated: tabulated::TableModel,
+    Tabulated: tabulated::Tabulated,
 }
 
-pub use model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+pub use diffuse_brdf::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 
 /// The registered types that build from their defaults alone, in the README's order: every
 /// model but `tabulated_brdf`, whose table file is required. The sweeps over every model at
@@ -44,7 +44,7 @@ pub use model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 pub fn default_models() -> impl Iterator<Item = &'static str> {
     MODELS.iter().filter(|s| s.builds_from_defaults()).map(|s| s.name)
 }
-pub use oren_nayar::OrenNayarModel;
+pub use oren_nayar::OrenNayarForm;
 pub use params::{ParamError, ParamValue, Params};
 pub use wolff::WolffNormalization;
 

@@ -15,18 +15,18 @@ use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
 /// Which of the 1994 forms to evaluate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum OrenNayarModel {
+pub enum OrenNayarForm {
     /// `A + B max(0, cos Δφ) sin α tan β` (the form the seed paper uses).
     Qualitative,
     /// Direct term with C1, C2, C3 and the two-bounce interreflection term (quadratic in ρ).
     Full,
 }
 
-impl OrenNayarModel {
+impl OrenNayarForm {
     pub fn as_str(self) -> &'static str {
         match self {
-            OrenNayarModel::Qualitative => "qualitative",
-            OrenNayarModel::Full => "full",
+            OrenNayarForm::Qualitative => "qualitative",
+            OrenNayarForm::Full => "full",
         }
     }
 }
@@ -43,14 +43,14 @@ pub struct OrenNayarKernel<T> {
     pub c3: T,
     /// `0.17 σ²/(σ²+0.13)`: the interreflection prefactor.
     pub l2: T,
-    pub model: OrenNayarModel,
+    pub model: OrenNayarForm,
     /// Sample the fitted lobe ([`OrenNayarKernel::sampler`]) rather than the cosine (the
     /// `sampling` parameter). Not a coefficient: the model sets it.
     pub cltc: bool,
 }
 
 impl<T: Real> OrenNayarKernel<T> {
-    pub fn new(sigma: T, model: OrenNayarModel) -> Self {
+    pub fn new(sigma: T, model: OrenNayarForm) -> Self {
         let s2 = sigma * sigma;
         let ratio = |k: f64, d: f64| s2.scale(k) / (s2 + T::c(d));
         Self {
@@ -72,7 +72,7 @@ impl<T: Real> OrenNayarKernel<T> {
         [self.a, self.b, self.c3, self.l2]
     }
 
-    pub fn from_coefficients([a, b, c3, l2]: [T; 4], model: OrenNayarModel) -> Self {
+    pub fn from_coefficients([a, b, c3, l2]: [T; 4], model: OrenNayarForm) -> Self {
         Self { a, b, c3, l2, model, cltc: false }
     }
 
@@ -85,8 +85,8 @@ impl<T: Real> OrenNayarKernel<T> {
     pub fn sampler(&self, mu: T) -> ClippedLtc<T> {
         let t = self.b.scale(1.0 / 0.45);
         match self.model {
-            OrenNayarModel::Qualitative => OREN_NAYAR_QUALITATIVE.sampler(mu, t),
-            OrenNayarModel::Full => OREN_NAYAR_FULL.sampler(mu, t),
+            OrenNayarForm::Qualitative => OREN_NAYAR_QUALITATIVE.sampler(mu, t),
+            OrenNayarForm::Full => OREN_NAYAR_FULL.sampler(mu, t),
         }
     }
 
@@ -133,7 +133,7 @@ impl<T: Real> Kernel<T> for OrenNayarKernel<T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
         match self.model {
-            OrenNayarModel::Qualitative => {
+            OrenNayarForm::Qualitative => {
                 // Trig-free form: max(0, cos Δφ) sin α tan β = max(0, s) / max(μi, μo). The
                 // denominator is cos β; clamped as tan β is in the full model (both grazing).
                 // B / cos β is formed first, so the division overlaps the dot product instead
@@ -142,23 +142,13 @@ impl<T: Real> Kernel<T> for OrenNayarKernel<T> {
                 let g = azimuthal_dot(wi, wo).max(T::c(0.0)).fma(b_over_cos_beta, self.a);
                 rho.map(|r| r * g)
             }
-            OrenNayarModel::Full => self.reduced_full(wi, wo, rho),
+            OrenNayarForm::Full => self.reduced_full(wi, wo, rho),
         }
     }
 
     #[inline(always)]
-    fn cosine_sampling(&self) -> bool {
-        !self.cltc
-    }
-
-    #[inline(always)]
-    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| self.sampler(mu))
-    }
-
-    #[inline(always)]
-    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        cltc::pdf_wo(self.cltc, wi, wo, |mu| self.sampler(mu))
+    fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
+        self.cltc.then_some(move |mu| self.sampler(mu))
     }
 }
 
@@ -170,11 +160,11 @@ pub struct OrenNayar {
 }
 
 impl OrenNayar {
-    pub fn new(sigma: f64, model: OrenNayarModel) -> Result<Self, ParamError> {
+    pub fn new(sigma: f64, model: OrenNayarForm) -> Result<Self, ParamError> {
         Self::with_sampling(sigma, model, Sampling::Cosine)
     }
 
-    pub fn with_sampling(sigma: f64, model: OrenNayarModel, sampling: Sampling) -> Result<Self, ParamError> {
+    pub fn with_sampling(sigma: f64, model: OrenNayarForm, sampling: Sampling) -> Result<Self, ParamError> {
         let sigma = Self::SPEC.params[0].check(sigma)?;
         let k = OrenNayarKernel::<f64>::new(sigma, model);
         Ok(Self {
@@ -193,7 +183,7 @@ impl OrenNayar {
         self.sigma
     }
 
-    pub fn model(&self) -> OrenNayarModel {
+    pub fn model(&self) -> OrenNayarForm {
         self.kernel.model
     }
 
@@ -236,7 +226,7 @@ impl Registered for OrenNayar {
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        let model = if v.choice("model") == "full" { OrenNayarModel::Full } else { OrenNayarModel::Qualitative };
+        let model = if v.choice("model") == "full" { OrenNayarForm::Full } else { OrenNayarForm::Qualitative };
         Self::with_sampling(v.number("sigma"), model, Sampling::parse(v.choice("sampling")))
     }
 

@@ -8,9 +8,9 @@
 //! Mitsuba plugin) and `matte types --json`, which the Python side and the tests read.
 //! `docs/adding-a-model.md` walks through adding one.
 
+use super::diffuse_brdf::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf, albedo_by_quadrature};
 use super::kernel;
 use super::kernel::Kernel;
-use super::model::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf, albedo_by_quadrature};
 use super::params::{ParamError, ParamValue, Params};
 use super::real::Real;
 use glam::{Vec2, Vec3};
@@ -521,7 +521,7 @@ macro_rules! models {
 pub(crate) use models;
 
 /// A BRDF given by an f32 [`Kernel`]: every registered model, and matte's tabulated BRDF
-/// (`super::tabulated::TableModel`). Each is a [`DiffuseBrdf`] through the blanket
+/// (`super::tabulated::Tabulated`). Each is a [`DiffuseBrdf`] through the blanket
 /// implementation below.
 pub trait KernelBrdf {
     /// The kernel in f32 with its constants: what every [`DiffuseBrdf`] method runs.

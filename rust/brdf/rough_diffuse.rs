@@ -7,7 +7,7 @@
 
 use super::cltc::{self, Sampling};
 use super::kernel::Kernel;
-use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarModel};
+use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarForm};
 use super::params::{ParamError, ParamValue};
 use super::real::Real;
 use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
@@ -33,7 +33,7 @@ impl RoughDiffuse {
     /// With Oren–Nayar's sampler (`Sampling::Cltc`) or the cosine.
     pub fn with_sampling(alpha: f64, use_fast_approx: bool, sampling: Sampling) -> Result<Self, ParamError> {
         let alpha = Self::SPEC.params[0].check(alpha)?;
-        let model = if use_fast_approx { OrenNayarModel::Qualitative } else { OrenNayarModel::Full };
+        let model = if use_fast_approx { OrenNayarForm::Qualitative } else { OrenNayarForm::Full };
         Ok(Self {
             alpha: alpha as f32,
             oren_nayar: OrenNayar::with_sampling(Self::sigma_of_alpha(alpha), model, sampling)?,
@@ -45,7 +45,7 @@ impl RoughDiffuse {
     }
 
     pub fn use_fast_approx(&self) -> bool {
-        self.oren_nayar.model() == OrenNayarModel::Qualitative
+        self.oren_nayar.model() == OrenNayarForm::Qualitative
     }
 
     /// The Oren–Nayar model it evaluates.

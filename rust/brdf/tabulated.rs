@@ -8,7 +8,7 @@
 //! Two evaluations of the same interpolant:
 //! - [`BrdfTable`]'s own ([`BrdfTable::eval_angles`], its [`DiffuseBrdf`]): angles in f64
 //!   degrees, nodes located by search. The reference, and what the microgeometry tools use.
-//! - [`TableModel`]: the kernel written over [`Real`] ([`TableKernel`]), branch-free, which
+//! - [`Tabulated`]: the kernel written over [`Real`] ([`TableKernel`]), branch-free, which
 //!   `matte render`'s `tabulated_brdf` runs in f32 and the Mitsuba plugin runs in f32 (scalar
 //!   variants) and traced into Dr.Jit (JIT variants, the values a gathered table, gradients
 //!   with respect to the reflectance through the interpolation weights).
@@ -324,11 +324,11 @@ impl Axis {
 /// Shared (`Arc`): cloning a model or a scene's BSDF copies a pointer, and the registry's
 /// `DiffuseModel` stays as small as its analytic models.
 #[derive(Clone, Debug)]
-pub struct TableModel(Arc<TableData>);
+pub struct Tabulated(Arc<TabulatedData>);
 
-/// What a [`TableModel`] holds.
+/// What a [`Tabulated`] holds.
 #[derive(Debug)]
-pub struct TableData {
+pub struct TabulatedData {
     table: BrdfTable,
     /// The file it was read from (empty for a table built in memory).
     path: std::path::PathBuf,
@@ -337,7 +337,7 @@ pub struct TableData {
     reflectance: Axis,
 }
 
-impl TableModel {
+impl Tabulated {
     /// The model of a checked table.
     pub fn new(table: BrdfTable) -> Self {
         Self::with_path(table, std::path::PathBuf::new())
@@ -346,7 +346,7 @@ impl TableModel {
     fn with_path(table: BrdfTable, path: std::path::PathBuf) -> Self {
         let (nt, np) = (table.theta_deg.len(), table.delta_phi_deg.len());
         let rad = PI / 180.0;
-        TableModel(Arc::new(TableData {
+        Tabulated(Arc::new(TabulatedData {
             theta: Axis::new(&table.theta_deg, rad, np),
             delta_phi: Axis::new(&table.delta_phi_deg, rad, 1),
             reflectance: Axis::new(&table.reflectance, 1.0, nt * nt * np),
@@ -381,15 +381,15 @@ impl TableModel {
     }
 }
 
-impl std::ops::Deref for TableModel {
-    type Target = TableData;
-    fn deref(&self) -> &TableData {
+impl std::ops::Deref for Tabulated {
+    type Target = TabulatedData;
+    fn deref(&self) -> &TabulatedData {
         &self.0
     }
 }
 
 /// Two models are the same table read from the same place.
-impl PartialEq for TableModel {
+impl PartialEq for Tabulated {
     fn eq(&self, other: &Self) -> bool {
         self.path == other.path && self.table.f_over_reflectance == other.table.f_over_reflectance
     }
@@ -398,14 +398,14 @@ impl PartialEq for TableModel {
 /// `tabulated_brdf` in the registry: its one parameter is the file; its one table, the
 /// values the kernel gathers from (a registered Dr.Jit array in the traced plugin). No
 /// numeric parameters, so no kernel constants and no textured parameters.
-impl Registered for TableModel {
+impl Registered for Tabulated {
     const SPEC: ModelSpec = ModelSpec {
         name: PLUGIN_NAME,
         label: "Tabulated",
         summary: "a BRDF table file, `f/ρ` on (ρ, θi, θo, Δφ) nodes, multilinear: the simulated surfaces of `matte microgeometry --table` ([docs](docs/microgeometry.md#the-tabulated-ground-truth-brdf))",
         params: &[ParamSpec::file(
             "filename",
-            "the table file (the package's are `ground_truth/<table>.json`)",
+            "the table file; the package's are `ground_truth/<table>.json`",
         )],
         examples: &[],
         in_study: false,
@@ -413,7 +413,7 @@ impl Registered for TableModel {
     type Lane<'t, T: Real + 't> = TableKernel<'t, T>;
 
     fn build(values: &Values) -> Result<Self, ParamError> {
-        TableModel::read(std::path::Path::new(values.file("filename"))).map_err(|e| {
+        Tabulated::read(std::path::Path::new(values.file("filename"))).map_err(|e| {
             let line = e.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
             ParamError::new("filename", line)
         })
@@ -437,7 +437,7 @@ impl Registered for TableModel {
 }
 
 /// The renderer's and the scalar plugin's f32 kernel; [`DiffuseBrdf`] through it.
-impl KernelBrdf for TableModel {
+impl KernelBrdf for Tabulated {
     fn f32_kernel(&self) -> impl Kernel<f32> + '_ {
         // `check` guarantees at least one value.
         self.kernel(Nodes::from_slice(self.table_values()).expect("a checked table has values"))
@@ -450,7 +450,7 @@ impl KernelBrdf for TableModel {
 /// each channel's ρ: 16 gathers per channel.
 #[derive(Clone, Copy)]
 pub struct TableKernel<'t, T: Real + 't> {
-    model: &'t TableModel,
+    model: &'t Tabulated,
     values: T::Table<'t>,
 }
 

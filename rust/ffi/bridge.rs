@@ -75,19 +75,19 @@ pub mod ffi {
     }
 
     extern "Rust" {
-        type Model;
+        type PluginBsdf;
 
         /// Builds `kind` (plugin name) from the element's properties, textures given by their
         /// mean (`matte_brdf::construction::construct`, the renderer's construction too);
         /// throws `rust::Error` with a message naming the bad parameter.
-        fn model_new(kind: &str, properties: &[Param]) -> Result<Box<Model>>;
-        fn describe_parameters(self: &Model) -> Vec<Param>;
+        fn bsdf_new(kind: &str, properties: &[Param]) -> Result<Box<PluginBsdf>>;
+        fn describe_parameters(self: &PluginBsdf) -> Vec<Param>;
         /// Whether `name` names a file of the model `kind` (`tabulated_brdf`'s `filename`),
         /// which the plugin resolves with Mitsuba's file resolver before handing it over.
         fn is_file_parameter(kind: &str, name: &str) -> bool;
         /// The numeric parameters with their effective values (a textured one's: the number it
         /// stands for), in the order per-lane values are given.
-        fn numeric_parameters(self: &Model) -> Vec<Param>;
+        fn numeric_parameters(self: &PluginBsdf) -> Vec<Param>;
         // Every evaluation takes the model's parameters one of two ways: its own constants, or
         // per-lane values of its numeric parameters (textures, in the order of
         // `numeric_parameters`; clamped into range, matte_brdf::lane).
@@ -95,7 +95,7 @@ pub mod ffi {
         /// f (no cosine) into `f`; returns the pdf of sampling `wo` given `wi`. `params`: the
         /// numeric parameters' values for this call, empty for the model's own constants.
         fn eval_pdf(
-            self: &Model,
+            self: &PluginBsdf,
             params: &[f32],
             wi: &Vec3f,
             wo: &Vec3f,
@@ -103,11 +103,11 @@ pub mod ffi {
             f: &mut Channels,
         ) -> f32;
         /// The pdf of sampling `wo` given `wi`; `params` as in `eval_pdf`.
-        fn pdf(self: &Model, params: &[f32], wi: &Vec3f, wo: &Vec3f) -> f32;
+        fn pdf(self: &PluginBsdf, params: &[f32], wi: &Vec3f, wo: &Vec3f) -> f32;
         /// Draws `wo`, writes the weight f·cos/pdf; returns the pdf (0: no sample). `params` as
         /// in `eval_pdf`.
         fn sample(
-            self: &Model,
+            self: &PluginBsdf,
             params: &[f32],
             wi: &Vec3f,
             u1: f32,
@@ -122,14 +122,14 @@ pub mod ffi {
         /// How many tables the traced kernel gathers from (van Ginneken: 4), and their
         /// contents (uploaded once): the constants' tables, or with `lane` the tables per-lane
         /// values need (van Ginneken's roughness-axis stacks).
-        fn table_count(self: &Model, lane: bool) -> usize;
-        fn table(self: &Model, k: usize, lane: bool) -> &[f32];
+        fn table_count(self: &PluginBsdf, lane: bool) -> usize;
+        fn table(self: &PluginBsdf, k: usize, lane: bool) -> &[f32];
         /// The kernel's coefficients from the traced numeric parameters (in the order of
         /// `numeric_parameters`): once per parameter change, or with `lane` per call from the
         /// textures' values. `differentiable`: a parameter carries a gradient (van Ginneken
         /// then adds its roughness-derivative tables to the kernel). Empty if `params` is short.
         fn traced_coefficients(
-            self: &Model,
+            self: &PluginBsdf,
             arena: &Arena,
             params: &[u32],
             lane: bool,
@@ -137,7 +137,7 @@ pub mod ffi {
         ) -> Vec<u32>;
         /// f·cos θo per channel into `value`; returns the pdf.
         fn traced_eval_pdf(
-            self: &Model,
+            self: &PluginBsdf,
             arena: &Arena,
             coefficients: &[u32],
             lane: bool,
@@ -148,7 +148,7 @@ pub mod ffi {
         ) -> u32;
         /// Draws wo (into `wo`), the weight f·cos θo/pdf (into `weight`); returns the pdf.
         fn traced_sample(
-            self: &Model,
+            self: &PluginBsdf,
             arena: &Arena,
             coefficients: &[u32],
             lane: bool,
@@ -162,4 +162,4 @@ pub mod ffi {
     }
 }
 
-use super::{Model, is_file_parameter, model_new};
+use super::{PluginBsdf, bsdf_new, is_file_parameter};

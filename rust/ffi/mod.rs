@@ -23,9 +23,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use bridge::ffi;
 
-/// A constructed model as the plugin holds it: any registered type, `tabulated_brdf`
-/// included.
-pub struct Model {
+/// The Rust side of one plugin BSDF (`cpp/matte_bsdf.h` holds it): the constructed model,
+/// any registered type, `tabulated_brdf` included.
+pub struct PluginBsdf {
     model: DiffuseModel,
 }
 
@@ -48,13 +48,13 @@ fn v3(v: &Vec3f) -> Vec3 {
     Vec3::new(v.x, v.y, v.z)
 }
 
-fn model_new(kind: &str, properties: &[Param]) -> Result<Box<Model>, String> {
+fn bsdf_new(kind: &str, properties: &[Param]) -> Result<Box<PluginBsdf>, String> {
     let built = catch_unwind(AssertUnwindSafe(|| {
         let properties: Vec<(&str, Property)> = properties.iter().map(property).collect();
         construct(kind, &properties).map(|c| c.model).map_err(|e| e.to_string())
     }));
     match built {
-        Ok(Ok(model)) => Ok(Box::new(Model { model })),
+        Ok(Ok(model)) => Ok(Box::new(PluginBsdf { model })),
         Ok(Err(message)) => Err(message),
         Err(_) => Err(format!("internal error while constructing bsdf \"{kind}\" (a bug in matte; please report it)")),
     }
@@ -101,7 +101,7 @@ fn eval_channels(bsdf: &impl DiffuseBrdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f
     }
 }
 
-impl Model {
+impl PluginBsdf {
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
         self.describe_parameters().into_iter().filter(|p| p.kind == ParamKind::Number).collect()

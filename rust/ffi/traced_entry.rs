@@ -1,14 +1,14 @@
 //! The traced entry points (Mitsuba's JIT variants): the same generic kernels as the CPU
 //! (`matte_brdf::kernel`), run with [`Traced`] values, so every operation is recorded into
 //! Dr.Jit on the C++ side. Two steps per parameter value and per call:
-//! 1. [`Model::traced_coefficients`] turns the numeric parameters (traced, possibly with
+//! 1. [`PluginBsdf::traced_coefficients`] turns the numeric parameters (traced, possibly with
 //!    gradients) into the kernel's constants, once per `parameters_changed`;
-//! 2. [`Model::traced_eval_pdf`] / [`Model::traced_sample`] rebuild the kernel from those
+//! 2. [`PluginBsdf::traced_eval_pdf`] / [`PluginBsdf::traced_sample`] rebuild the kernel from those
 //!    constants and evaluate it on the call's directions and reflectance.
 //!
 //! Slices of unexpected lengths (a bug in the C++ caller) give zeros, never a panic.
 
-use super::Model;
+use super::PluginBsdf;
 use super::bridge::ffi::Arena;
 use super::traced::{Traced, TracedTable};
 use matte_brdf::LaneKernel;
@@ -48,7 +48,7 @@ macro_rules! with_channels {
     };
 }
 
-impl Model {
+impl PluginBsdf {
     /// The number of tables the kernel reads: the constants' ([`Registered::tables`]), or
     /// with `lane` the per-lane kernel's ([`Registered::lane_tables`]: van Ginneken's four
     /// roughness-axis stacks, built on first use).

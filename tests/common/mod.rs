@@ -11,7 +11,7 @@ mod kernels;
 pub use kernels::*;
 
 use glam::Vec3;
-use matte_render::bsdf::BsdfModel;
+use matte_render::bsdf::Bxdf;
 use matte_render::shape::SurfaceInteraction;
 use matte_scene_file::SceneError;
 use std::path::Path;
@@ -23,7 +23,7 @@ use std::path::Path;
 /// boundaries but the plane z = 0 mid-row, and its trapezoid rule per cell cannot integrate
 /// the pdf's jump to 0 at the horizon there (densities are invariant under the rotation).
 #[allow(dead_code)]
-pub fn chi2_render_bsdf<B: BsdfModel>(
+pub fn chi2_render_bsdf<B: Bxdf>(
     bsdf: &B,
     si: &SurfaceInteraction,
     wi: Vec3,

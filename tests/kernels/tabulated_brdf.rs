@@ -6,7 +6,7 @@
 
 use crate::common::{Pcg32, PcgExt, chi2_sampling, direction, model, sidak, table_of};
 use glam::Vec3;
-use matte_brdf::tabulated::{BrdfTable, TableModel};
+use matte_brdf::tabulated::{BrdfTable, Tabulated};
 use matte_brdf::tabulated::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
 use matte_brdf::{DiffuseBrdf, DiffuseModel};
 use std::f64::consts::PI;
@@ -124,7 +124,7 @@ fn noise_table(theta: Vec<f64>, delta_phi: Vec<f64>, reflectance: Vec<f64>, seed
     BrdfTable::new("noise", theta, delta_phi, reflectance, values, Vec::new()).unwrap()
 }
 
-/// The kernel the renderer and the plugin run (`TableModel`: polynomial acos/atan2, branch-free
+/// The kernel the renderer and the plugin run (`Tabulated`: polynomial acos/atan2, branch-free
 /// cell location, gathers) equals the table's own interpolation (`BrdfTable::eval_angles`:
 /// f64 angles, nodes found by search) to float precision, on random directions over the whole
 /// hemisphere (beyond the last θ node too) and reflectances beyond both ends, for the
@@ -142,7 +142,7 @@ fn the_kernel_is_the_tables_own_interpolation() {
     ];
     let mut rng = Pcg32::new(21, 3);
     for (name, t) in tables {
-        let k = TableModel::new(t.clone());
+        let k = Tabulated::new(t.clone());
         let scale = t.f_over_reflectance.iter().fold(0.0f64, |m, &v| m.max(v as f64));
         let mut worst = 0.0f64;
         for _ in 0..50_000 {

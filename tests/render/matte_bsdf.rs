@@ -9,7 +9,7 @@
 use crate::common::{direction, model, table_of};
 use glam::{Vec2, Vec3};
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
-use matte_render::bsdf::{Bsdf, BsdfModel, Matte};
+use matte_render::bsdf::{Bsdf, Bxdf, Matte};
 use matte_render::load::load_str;
 use matte_render::shape::SurfaceInteraction;
 use std::f64::consts::PI;

@@ -13,7 +13,7 @@ mod reference;
 
 use crate::common::{Pcg32, PcgExt, chi2_render_bsdf, sidak};
 use glam::{Vec2, Vec3};
-use matte_render::bsdf::{Bsdf, BsdfModel};
+use matte_render::bsdf::{Bsdf, Bxdf};
 use matte_render::load::load_str;
 use matte_render::shape::SurfaceInteraction;
 use reference::CONFIGS;

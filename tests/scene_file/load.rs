@@ -16,9 +16,7 @@ use std::process::Command;
 
 use glam::{Vec2, Vec3};
 use matte_brdf::ParamValue;
-use matte_render::bsdf::{
-    Bsdf, BsdfFlags, BsdfModel, Diffuse, Matte, MicrofacetDistribution, RoughConductor, TwoSided,
-};
+use matte_render::bsdf::{Bsdf, BsdfFlags, Bxdf, Diffuse, Matte, MicrofacetDistribution, RoughConductor, TwoSided};
 use matte_render::emitter::Emitter;
 use matte_render::film::{CropWindow, ReconstructionFilter};
 use matte_render::geometry::Ray;

@@ -10,7 +10,7 @@ use matte_brdf::DiffuseBrdf;
 use matte_brdf::DiffuseModel;
 use matte_brdf::tabulated::BrdfTable;
 use matte_brdf::tabulated::{TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
-use matte_render::bsdf::{Bsdf, BsdfModel, Matte};
+use matte_render::bsdf::{Bsdf, Bxdf, Matte};
 use matte_render::load::load_str;
 use matte_render::shape::SurfaceInteraction;
 use std::path::PathBuf;

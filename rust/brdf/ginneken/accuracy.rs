@@ -6,7 +6,7 @@ use super::{Ginneken, GinnekenKernel};
 use crate::dual::Dual;
 use crate::frame::spherical_direction_f64;
 use crate::kernel::Kernel;
-use crate::model::DiffuseBrdf;
+use crate::diffuse_brdf::DiffuseBrdf;
 use crate::real::{Nodes, Real, V3};
 
 #[derive(Clone, Copy, Debug)]

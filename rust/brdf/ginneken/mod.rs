@@ -91,18 +91,8 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     }
 
     #[inline(always)]
-    fn cosine_sampling(&self) -> bool {
-        !self.cltc
-    }
-
-    #[inline(always)]
-    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(mu, self.sampler_t))
-    }
-
-    #[inline(always)]
-    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(mu, self.sampler_t))
+    fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
+        self.cltc.then_some(move |mu| sampler(mu, self.sampler_t))
     }
 }
 
@@ -360,7 +350,7 @@ impl Registered for Ginneken {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::DiffuseBrdf;
+    use crate::diffuse_brdf::DiffuseBrdf;
     use crate::frame::spherical_direction_f64;
     use glam::DVec3;
     use table::{C_NODES, U_NODES};

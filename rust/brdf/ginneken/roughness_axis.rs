@@ -18,7 +18,7 @@
 use super::shadowing::Shadowing;
 use super::table::{SLOPE_NODES, SlopeTable, lookup_layer_in};
 use super::{Ginneken, reduced_with, sampler};
-use crate::cltc::{self, Sampling};
+use crate::cltc::{ClippedLtc, Sampling};
 use crate::frame::spherical_direction_f64;
 use crate::kernel::Kernel;
 use crate::real::{Nodes, Real, V3};
@@ -182,18 +182,8 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
     }
 
     #[inline(always)]
-    fn cosine_sampling(&self) -> bool {
-        !self.cltc
-    }
-
-    #[inline(always)]
-    fn sample_wo(&self, wi: V3<T>, u1: T, u2: T) -> (V3<T>, T) {
-        cltc::sample_wo(self.cltc, wi, u1, u2, |mu| sampler(mu, self.sampler_t))
-    }
-
-    #[inline(always)]
-    fn pdf_wo(&self, wi: V3<T>, wo: V3<T>) -> T {
-        cltc::pdf_wo(self.cltc, wi, wo, |mu| sampler(mu, self.sampler_t))
+    fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
+        self.cltc.then_some(move |mu| sampler(mu, self.sampler_t))
     }
 }
 

@@ -9,7 +9,7 @@
 //!   `f` is its sample weight times its pdf and the other's is evaluated in the sampled
 //!   direction (one-sample MIS over the two). The picked sample's Dirac flag and η are kept.
 
-use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
+use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -54,7 +54,7 @@ impl Blend {
     }
 }
 
-impl BsdfModel for Blend {
+impl Bxdf for Blend {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let w = self.weight(si);

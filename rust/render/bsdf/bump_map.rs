@@ -16,7 +16,7 @@
 //! meshes only. [`BumpMap::eval_pdf_at`] and [`BumpMap::sample_at`] take the geometry
 //! explicitly (tested against Mitsuba at given geometry).
 
-use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample, perturbed_frame};
+use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf, perturbed_frame};
 use crate::geometry::Frame;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
@@ -92,7 +92,7 @@ impl FromProps for BumpMap {
     }
 }
 
-impl BsdfModel for BumpMap {
+impl Bxdf for BumpMap {
     /// `(f·|cos θo|, pdf)` at the hit `si`.
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {

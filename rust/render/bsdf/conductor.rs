@@ -4,7 +4,7 @@
 use super::conductor_ior::conductor_ior_from_props;
 use super::fresnel::fresnel_conductor;
 use super::parameter_checks::{check_colour, check_finite};
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
@@ -54,7 +54,7 @@ impl FromProps for Conductor {
     }
 }
 
-impl BsdfModel for Conductor {
+impl Bxdf for Conductor {
     #[inline]
     fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
         (Vec3::ZERO, 0.0)

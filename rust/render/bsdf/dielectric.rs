@@ -4,7 +4,7 @@
 
 use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
@@ -91,7 +91,7 @@ impl FromProps for Dielectric {
     }
 }
 
-impl BsdfModel for Dielectric {
+impl Bxdf for Dielectric {
     #[inline]
     fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
         (Vec3::ZERO, 0.0)

@@ -1,7 +1,7 @@
 //! Mitsuba's built-in `diffuse` (`src/bsdfs/diffuse.cpp`): ρ/π, one-sided (zero when either
 //! direction is below the shading surface), cosine-weighted sampling with weight ρ.
 
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -22,7 +22,7 @@ impl FromProps for Diffuse {
     }
 }
 
-impl BsdfModel for Diffuse {
+impl Bxdf for Diffuse {
     /// `(ρ/π·cos θo, cos θo/π)`.
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {

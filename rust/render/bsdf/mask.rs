@@ -12,7 +12,7 @@
 //! after a Dirac sample, and there is no light sampling through it. Shadow rays do not see
 //! through masks (Mitsuba's `Scene::ray_test` only tests geometry).
 
-use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
+use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -54,7 +54,7 @@ impl Mask {
     }
 }
 
-impl BsdfModel for Mask {
+impl Bxdf for Mask {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let a = self.opacity(si);

@@ -9,7 +9,7 @@
 //! `eval_1` and turned into kernel constants per hit (`matte_brdf::lane`;
 //! `docs/models.md#spatially-varying-parameters`).
 
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -111,7 +111,7 @@ impl FromProps for Matte {
     }
 }
 
-impl BsdfModel for Matte {
+impl Bxdf for Matte {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if wi.z <= 0.0 || wo.z <= 0.0 {

@@ -4,9 +4,9 @@
 //! kernels and `tabulated_brdf`, all in the local shading frame with Mitsuba's conventions
 //! (`eval` returns `f·cos θo`; `wi` points to the previous vertex).
 //!
-//! One type per plugin, one file each; every type implements [`BsdfModel`] and reads its own
+//! One type per plugin, one file each; every type implements [`Bxdf`] and reads its own
 //! properties (`from_props`, through `render::load::props::PluginProps`, as Mitsuba's plugin
-//! constructors do). [`Bsdf`] is the closed set of them: an enum whose [`BsdfModel`] impl
+//! constructors do). [`Bsdf`] is the closed set of them: an enum whose [`Bxdf`] impl
 //! forwards to the variant's type (static dispatch), generated from one list below.
 
 pub mod blend;
@@ -68,7 +68,7 @@ use glam::{Vec2, Vec3};
 /// The method set of every renderer BSDF (Mitsuba's `BSDF` interface: `eval_pdf`, `sample`,
 /// `flags`), in the local shading frame (z = shading normal). `wi` points from the surface
 /// towards the previous path vertex (the camera side), `wo` towards the next one.
-pub trait BsdfModel {
+pub trait Bxdf {
     /// `(f·|cos θo|, pdf)` of the smooth part (Dirac lobes contribute nothing here).
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32);
 
@@ -91,7 +91,7 @@ macro_rules! unboxed {
     };
 }
 
-/// Declares [`Bsdf`] with one variant per BSDF type, its [`BsdfModel`] impl (one forwarding
+/// Declares [`Bsdf`] with one variant per BSDF type, its [`Bxdf`] impl (one forwarding
 /// match arm per variant and method) and `From` every type.
 macro_rules! bsdfs {
     ($($(#[$doc:meta])* $variant:ident($($ty:tt)+)),* $(,)?) => {
@@ -101,25 +101,25 @@ macro_rules! bsdfs {
             $($(#[$doc])* $variant($($ty)+),)*
         }
 
-        impl BsdfModel for Bsdf {
+        impl Bxdf for Bsdf {
             #[inline]
             fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
                 match self {
-                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as BsdfModel>::eval_pdf(b, si, wi, wo),)*
+                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as Bxdf>::eval_pdf(b, si, wi, wo),)*
                 }
             }
 
             #[inline]
             fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
                 match self {
-                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as BsdfModel>::sample(b, si, wi, u_lobe, u),)*
+                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as Bxdf>::sample(b, si, wi, u_lobe, u),)*
                 }
             }
 
             #[inline]
             fn flags(&self) -> BsdfFlags {
                 match self {
-                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as BsdfModel>::flags(b),)*
+                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as Bxdf>::flags(b),)*
                 }
             }
         }

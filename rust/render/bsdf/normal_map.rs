@@ -13,7 +13,7 @@
 //! Only the local shading frame is involved, so the result depends on the shape's tangent
 //! orientation exactly as in Mitsuba (`sh_frame.s` along ∂p/∂u there).
 
-use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample, perturbed_frame};
+use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf, perturbed_frame};
 use crate::geometry::Frame;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
@@ -62,7 +62,7 @@ impl NormalMap {
     }
 }
 
-impl BsdfModel for NormalMap {
+impl Bxdf for NormalMap {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(si, wi);

@@ -2,7 +2,7 @@
 //! through with weight 1 (a Dirac "null" lobe: no light sampling, no MIS). Like every surface
 //! it still blocks shadow rays, as in Mitsuba.
 
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
@@ -19,7 +19,7 @@ impl FromProps for Null {
     }
 }
 
-impl BsdfModel for Null {
+impl Bxdf for Null {
     #[inline]
     fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
         (Vec3::ZERO, 0.0)

@@ -5,7 +5,7 @@
 //! Each wrapper builds its own frame (from a normal map, from a height map's gradient).
 
 use super::sample::BsdfSample;
-use super::{Bsdf, BsdfModel};
+use super::{Bsdf, Bxdf};
 use crate::geometry::Frame;
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

@@ -16,7 +16,7 @@
 //! p_d·cos θo/π.
 
 use super::fresnel::fresnel_dielectric;
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -106,7 +106,7 @@ impl Plastic {
     }
 }
 
-impl BsdfModel for Plastic {
+impl Bxdf for Plastic {
     /// `(f·cos θo, pdf)` of the diffuse lobe (the mirror has no density).
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {

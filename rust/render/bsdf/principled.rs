@@ -15,7 +15,7 @@ use super::principled_helpers::{
     Gtr1, calc_schlick, diffuse_lobe, dist_params, flagged, luminance, mac_mic_compatibility, sampling_rate,
     schlick_r0_eta, schlick_weight, sheen_color, smith_ggx1, texture,
 };
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -310,7 +310,7 @@ impl Principled {
     }
 }
 
-impl BsdfModel for Principled {
+impl Bxdf for Principled {
     /// `(f·|cos θo|, pdf)`.
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {

@@ -13,7 +13,7 @@ use super::principled_helpers::{
     calc_schlick, diffuse_lobe, dist_params, flagged, mac_mic_compatibility, sampling_rate, schlick_r0_eta,
     schlick_weight, sheen_color, texture, tint_color,
 };
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -202,7 +202,7 @@ impl PrincipledThin {
     }
 }
 
-impl BsdfModel for PrincipledThin {
+impl Bxdf for PrincipledThin {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         (self.eval(si, wi, wo), self.pdf(si, wi, wo))

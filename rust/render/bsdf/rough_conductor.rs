@@ -16,7 +16,7 @@ use super::conductor_ior::conductor_ior_from_props;
 use super::fresnel::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::{check_colour, check_finite};
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -88,7 +88,7 @@ impl RoughConductor {
 
     /// Mitsuba's `eval` at the constant roughness: f·cos θo per channel; zero unless both
     /// directions are strictly above the surface. (A textured roughness needs the hit:
-    /// [`BsdfModel::eval_pdf`].)
+    /// [`Bxdf::eval_pdf`].)
     #[inline]
     pub fn eval(&self, wi: Vec3, wo: Vec3) -> Vec3 {
         self.lobe.eval(wi, wo)
@@ -122,7 +122,7 @@ impl RoughConductor {
     }
 }
 
-impl BsdfModel for RoughConductor {
+impl Bxdf for RoughConductor {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         self.at(si, |l| (l.eval(wi, wo), l.pdf(wi, wo)))

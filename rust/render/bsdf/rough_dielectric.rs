@@ -21,7 +21,7 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::check_colour;
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -83,7 +83,7 @@ impl RoughDielectric {
     }
 }
 
-impl BsdfModel for RoughDielectric {
+impl Bxdf for RoughDielectric {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         self.at(si, |l| (l.eval(wi, wo), l.pdf(wi, wo)))

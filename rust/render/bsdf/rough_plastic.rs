@@ -17,7 +17,7 @@
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_reflectance, lerp_table};
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
@@ -115,7 +115,7 @@ impl RoughPlastic {
     }
 }
 
-impl BsdfModel for RoughPlastic {
+impl Bxdf for RoughPlastic {
     /// `(f·cos θo, pdf)`; zero unless both directions are above the surface.
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {

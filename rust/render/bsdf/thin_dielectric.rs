@@ -5,7 +5,7 @@
 
 use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
-use super::{BsdfFlags, BsdfModel, BsdfSample};
+use super::{BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
@@ -70,7 +70,7 @@ impl FromProps for ThinDielectric {
     }
 }
 
-impl BsdfModel for ThinDielectric {
+impl Bxdf for ThinDielectric {
     #[inline]
     fn eval_pdf(&self, _si: &SurfaceInteraction, _wi: Vec3, _wo: Vec3) -> (Vec3, f32) {
         (Vec3::ZERO, 0.0)

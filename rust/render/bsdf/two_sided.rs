@@ -3,7 +3,7 @@
 //! both directions mirrored through the surface. A transmissive nested BSDF is refused unless
 //! `allow_transmission` is true, as in Mitsuba.
 
-use super::{Bsdf, BsdfFlags, BsdfModel, BsdfSample};
+use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
@@ -45,7 +45,7 @@ fn flip(v: Vec3) -> Vec3 {
     Vec3::new(v.x, v.y, -v.z)
 }
 
-impl BsdfModel for TwoSided {
+impl Bxdf for TwoSided {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if wi.z > 0.0 { self.front.eval_pdf(si, wi, wo) } else { self.back.eval_pdf(si, flip(wi), flip(wo)) }

@@ -12,7 +12,7 @@
 
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
-use crate::bsdf::{BsdfFlags, BsdfModel, BsdfSample};
+use crate::bsdf::{BsdfFlags, BsdfSample, Bxdf};
 use crate::geometry::{Ray, ray};
 use crate::sampler::Sampler;
 use crate::scene::Scene;

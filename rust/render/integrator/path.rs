@@ -11,7 +11,7 @@
 
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
-use crate::bsdf::{BsdfFlags, BsdfModel};
+use crate::bsdf::{BsdfFlags, Bxdf};
 use crate::geometry::{Ray, ray};
 use crate::sampler::Sampler;
 use crate::scene::Scene;

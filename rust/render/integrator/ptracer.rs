@@ -19,7 +19,7 @@
 //! BSDFs are evaluated as for radiance (matte has no importance-transport mode), so the loader
 //! refuses scenes whose BSDFs refract (those differ by η² between the two modes).
 
-use crate::bsdf::BsdfModel;
+use crate::bsdf::Bxdf;
 use crate::camera::Camera;
 use crate::film::{Film, Image};
 use crate::geometry::ray;

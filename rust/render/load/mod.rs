@@ -259,7 +259,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
 /// directional, area lights on analytic shapes), BSDFs that refract (matte evaluates BSDFs
 /// for radiance only; importance transport differs by η² there).
 fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObject) -> Result<(), SceneError> {
-    use crate::bsdf::{BsdfFlags, BsdfModel};
+    use crate::bsdf::{BsdfFlags, Bxdf};
     if !matches!(sensor.camera, Camera::Perspective(_)) {
         return Err(err(obj, "matte's ptracer needs a perspective sensor (not orthographic or thinlens)"));
     }
