@@ -13,7 +13,11 @@ and evaluates `eval` and `eval_1` at the row's world-space point (`si.p`; the uv
 The rows cover trilinear and nearest filtering, the clamp, repeat and mirror wrap modes,
 `to_world`, `use_grid_bbox`, a one-channel grid, `raw`/`accel`/`max_value` (no effect in RGB),
 and `constvolume` with a colour, a float and a checkerboard value. `--print` prints the rows
-in Rust syntax. Prints one line per check and exits 1 if any differs.
+in Rust syntax. It also checks the refusals `property_and_placement_errors` mirrors: a number
+as `volume` ("wrong type (expected object, got float)"), and a volume texture where Mitsuba
+asks for `mean()` (a `plastic`'s `diffuse_reflectance`, an `oren_nayar` `sigma` through
+matte's plugin: "Texture::mean(): not implemented!"). Prints one line per check and exits 1 if
+any differs.
 """
 
 import re
@@ -22,10 +26,11 @@ import sys
 import tempfile
 from pathlib import Path
 
+import matte_mitsuba  # noqa: F401 (registers matte's BSDFs: oren_nayar)
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "common"))
-from reference_check import check, finish  # noqa: E402
+from reference_check import check, check_true, finish  # noqa: E402
 
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
@@ -77,6 +82,24 @@ for xml, point, want_eval, want_eval_1 in rows:
         f'    (r#"{xml}"#, [{", ".join(v.strip() for v in point.split(","))}], '
         f"[{', '.join(f'{v:.7}' for v in got)}], {got_1:.7}),"
     )
+
+
+def refusal(xml):
+    try:
+        mi.load_string(xml)
+    except Exception as e:  # noqa: BLE001 (Mitsuba raises RuntimeError)
+        return str(e)
+    return "loaded"
+
+
+CONST = '<texture type="volume" name="NAME"><volume type="constvolume" name="volume"/></texture>'
+msg = refusal('<texture version="3.0.0" type="volume"><float name="volume" value="0.5"/></texture>')
+check_true("a float as volume", "wrong type (expected object, got float)" in msg, msg[-120:])
+for bsdf, name in [("plastic", "diffuse_reflectance"), ("oren_nayar", "sigma")]:
+    msg = refusal(f'<bsdf version="3.0.0" type="{bsdf}">{CONST.replace("NAME", name)}</bsdf>')
+    check_true(f"{bsdf} {name} as a volume texture", "Texture::mean(): not implemented!" in msg, msg[-120:])
+msg = refusal(f'<bsdf version="3.0.0" type="oren_nayar">{CONST.replace("NAME", "reflectance")}</bsdf>')
+check_true("oren_nayar reflectance as a volume texture loads", msg == "loaded", msg[-120:])
 if "--print" in sys.argv:
     print("\n".join(printed))
 finish()
