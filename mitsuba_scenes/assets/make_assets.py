@@ -15,8 +15,14 @@ committed. Run from anywhere: `python3 mitsuba_scenes/assets/make_assets.py`.
   from the description in Mitsuba's `src/shapes/serialized.cpp`.
 * sky.png: 32x16 latitude-longitude sky for `envmap` (Mitsuba's layout: row 0 is straight
   up, +y), a blue gradient with a warm sun patch, 8-bit sRGB.
+* rgb_grid.vol: Mitsuba's voxel grid format (`src/volumes/grid.cpp`: `VOL`, version 3,
+  float32), 12x10x8 RGB voxels of colour bands (hue varying along all three axes, saturation 0.75, value 0.85) over the bounding box
+  (-1.5, -1.5, 0)-(1.5, 1.5, 2), for the `volume` texture (`gridvolume`).
+* scalar_grid.vol: the same format, 6x6x6 one-channel voxels, a 3-D checkerboard of 0.15 and
+  0.85 over the unit cube, for a `volume` texture read as a scalar (a blend weight).
 """
 
+import colorsys
 import math
 import struct
 import zlib
@@ -203,6 +209,19 @@ def twisted_box():
     return {"positions": pos, "faces": faces, "colors": colors, "name": "twisted box"}
 
 
+def vol(path, res, channels, bbox, value):
+    """Mitsuba's .vol grid: header, bounding box, then the values (x fastest, channel innermost)."""
+    xres, yres, zres = res
+    data = [value(x, y, z)[c] for z in range(zres) for y in range(yres) for x in range(xres) for c in range(channels)]
+    head = b"VOL" + bytes([3]) + struct.pack("<iiiii", 1, xres, yres, zres, channels) + struct.pack("<6f", *bbox)
+    path.write_bytes(head + struct.pack(f"<{len(data)}f", *data))
+
+
+def colour_bands(x, y, z):
+    hue = (x / 12 + 0.35 * y / 10 + 0.5 * z / 8) % 1.0
+    return colorsys.hsv_to_rgb(hue, 0.75, 0.85)
+
+
 def bumps(x, y):
     h = 0.5 + 0.5 * math.sin(2 * math.pi * x / 8) * math.sin(2 * math.pi * y / 8)
     g = int(round(255 * h))
@@ -224,3 +243,5 @@ if __name__ == "__main__":
     wavy_grid(HERE / "wavy_grid.ply")
     png(HERE / "bumps.png", 16, 16, bumps)
     serialized(HERE / "shapes.serialized", [torus(), twisted_box()])
+    vol(HERE / "rgb_grid.vol", (12, 10, 8), 3, (-1.5, -1.5, 0, 1.5, 1.5, 2), colour_bands)
+    vol(HERE / "scalar_grid.vol", (6, 6, 6), 1, (0, 0, 0, 1, 1, 1), lambda x, y, z: (0.15 + 0.7 * ((x + y + z) % 2),))

@@ -17,3 +17,4 @@ mod render_drivers;
 mod samplers;
 mod shading_frames;
 mod specular_bsdfs;
+mod volume_texture;

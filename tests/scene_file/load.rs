@@ -1885,11 +1885,12 @@ fn texture_errors() {
         4,
         "unreferenced property \"gamma\"",
     );
-    // Out of scope nested, unknown at the top level.
+    // A volume texture needs its volume (tests/render/volume_texture.rs has the rest); unknown
+    // types are refused.
     assert_body_err(
         "<bsdf type=\"diffuse\">\n<texture type=\"volume\" name=\"reflectance\"/>\n</bsdf>",
         2,
-        "<texture type=\"volume\">: volume textures belong to participating media",
+        "missing property \"volume\"",
     );
     assert_body_err("<texture type=\"voronoi\"/>", 1, "unsupported texture type \"voronoi\"");
     // Given twice: as a property and as a texture (the parser rejects the duplicate name).
@@ -2231,6 +2232,7 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
             let extra = match plugin {
                 "bitmap" => string("filename", &asset("checker.png")),
                 "rawconstant" => req("value", "<float name=\"value\" value=\"0.5\"/>".into()),
+                "volume" => "<volume type=\"constvolume\" name=\"volume\"/>".into(),
                 _ => String::new(),
             };
             format!(
@@ -2238,6 +2240,12 @@ fn scene_with_plugin(tag: &str, plugin: &str, props: &str, given: &[&str]) -> St
                 object(extra).replace("<texture ", "<texture name=\"reflectance\" ")
             )
         }
+        // A volume is rendered as the volume of a surface's volume texture.
+        ("volume", _) => format!(
+            "<shape type=\"rectangle\"><bsdf type=\"diffuse\"><texture type=\"volume\" name=\"reflectance\">{}</texture></bsdf></shape>",
+            object(if plugin == "gridvolume" { string("filename", &asset("rgb_grid.vol")) } else { String::new() })
+                .replace("<volume ", "<volume name=\"volume\" ")
+        ),
         ("emitter", "area") => format!("<shape type=\"rectangle\">{}</shape>", object(String::new())),
         ("emitter", "envmap") => object(string("filename", &asset("sky.png"))),
         ("emitter", "projector") => object(bitmap("irradiance", "sky.png")),
@@ -2290,6 +2298,7 @@ fn valid_property_xml(tag: &str, plugin: &str, p: &matte_render::load::mitsuba_p
             ("shape", "obj") => asset("icosahedron.obj"),
             ("shape", "serialized") => asset("shapes.serialized"),
             ("emitter", "envmap") | ("texture", "bitmap") => asset("sky.png"),
+            ("volume", "gridvolume") => asset("rgb_grid.vol"),
             _ => asset("checker.png"),
         }),
         (_, _, "fov") => Some("45".into()),
@@ -2440,7 +2449,7 @@ fn readme_scope_table_matches_the_loader() {
     let row_of = |tag: &str| -> &Vec<String> {
         let label = match tag {
             "film" | "rfilter" => "film, rfilter",
-            "medium" | "phase" | "volume" => "medium, phase, volume",
+            "medium" | "phase" => "medium, phase",
             t => t,
         };
         rows.iter().find(|r| r[0] == label).unwrap_or_else(|| panic!("no row for {tag}"))

@@ -49,6 +49,7 @@ TAG_DIRS = [
     ("sensors", "sensor"),
     ("shapes", "shape"),
     ("textures", "texture"),
+    ("volumes", "volume"),
     ("spectra", "texture"),  # <spectrum type=...> and <texture type=...> are both Texture objects
 ]
 

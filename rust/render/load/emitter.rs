@@ -47,7 +47,7 @@ pub fn build_area(b: &mut Builder, obj: &SceneObject, shape: u32) -> Result<u32,
     }
     let radiance = match obj.child("radiance") {
         Some(c) if c.object.tag == "texture" => {
-            let t = super::texture::build(b, &c.object)?;
+            let t = super::texture::build_for_emitter(b, &c.object, "radiance")?;
             if matches!(t, Texture::MeshAttribute(_)) {
                 return Err(err(
                     &c.object,
@@ -87,7 +87,9 @@ pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneE
             // `texture` (`get_texture`, default 1) must vary spatially when given.
             let texture = match obj.child("texture") {
                 None => None,
-                Some(c) if c.object.tag == "texture" => Some(super::texture::build(b, &c.object)?),
+                Some(c) if c.object.tag == "texture" => {
+                    Some(super::texture::build_for_emitter(b, &c.object, "texture")?)
+                }
                 Some(c) => return Err(err(&c.object, "\"texture\" must be a texture (e.g. bitmap)")),
             };
             if obj.properties.contains("texture") {
@@ -170,7 +172,7 @@ fn envmap(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
 fn projector(b: &Builder, obj: &SceneObject) -> Result<Emitter, SceneError> {
     let (irradiance, aspect) = match obj.child("irradiance") {
         Some(c) if c.object.tag == "texture" => {
-            let t = super::texture::build(b, &c.object)?;
+            let t = super::texture::build_for_emitter(b, &c.object, "irradiance")?;
             let aspect = match &t {
                 Texture::Bitmap(bm) => {
                     let [w, h] = bm.resolution();

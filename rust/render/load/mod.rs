@@ -49,7 +49,9 @@ pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
         "shape",
         &["cube", "cylinder", "disk", "instance", "obj", "ply", "rectangle", "serialized", "shapegroup", "sphere"],
     ),
-    ("texture", &["bitmap", "checkerboard", "mesh_attribute", "rawconstant"]),
+    ("texture", &["bitmap", "checkerboard", "mesh_attribute", "rawconstant", "volume"]),
+    // Only as the `volume` of a `volume` texture, or declared at the top level ([`scope`]).
+    ("volume", &["constvolume", "gridvolume"]),
 ];
 
 /// Everything `matte render` needs.
@@ -170,7 +172,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
     let mut top_level_area = Vec::new();
     // Mitsuba's `Scene` constructor (`src/render/scene.cpp`) takes any object at the top
     // level: shapes, emitters, sensors and the integrator make the scene; every other object
-    // (a BSDF, texture, sampler, film, filter declared with an id for `<ref>`s) is
+    // (a BSDF, texture, volume, sampler, film, filter declared with an id for `<ref>`s) is
     // instantiated, so its properties are checked, and otherwise unused.
     for child in &root.children {
         child.mark_used();
@@ -212,6 +214,10 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
             }
             "texture" => {
                 texture::build(&b, obj)?;
+            }
+            // Declared for a `volume` texture to `<ref>` (scope allows it here and there only).
+            "volume" => {
+                texture::build_volume(&b, obj)?;
             }
             "sampler" => {
                 sensor::build_sampler(obj)?;

@@ -91,6 +91,24 @@ pub const NO_EFFECT: &[NoEffect] = &[
         why: "hardware texture filtering on GPUs: the same interpolation, the same image",
     },
     NoEffect {
+        tag: "volume",
+        plugins: &["gridvolume"],
+        names: &["accel"],
+        why: "hardware texture interpolation on GPUs: the same interpolation, the same image",
+    },
+    NoEffect {
+        tag: "volume",
+        plugins: &["gridvolume"],
+        names: &["raw"],
+        why: "it only turns off the spectral upsampling of RGB grids, which RGB variants do not do",
+    },
+    NoEffect {
+        tag: "volume",
+        plugins: &["gridvolume"],
+        names: &["max_value"],
+        why: "it fixes the value the volume reports as its maximum (a medium's majorant), not its values",
+    },
+    NoEffect {
         tag: "shape",
         plugins: &["shapegroup"],
         names: &["to_world"],

@@ -1,7 +1,10 @@
 //! What stays outside matte's renderer, said once: Mitsuba 3.9.1 plugins of the kinds matte
 //! does not render (participating media, polarisation-only plugins, curves, hair, SDF
 //! grids) are refused with one line naming the element and the reason, wherever they
-//! appear (top level, nested, or through a `<ref>`). The README's scope table lists the same.
+//! appear (top level, nested, or through a `<ref>`). A `<volume>` is the one exception: it is
+//! rendered as the `volume` of a `<texture type="volume">` (a surface texture) and may be
+//! declared at the top level for such a texture to `<ref>`; anywhere else it belongs to a
+//! participating medium. The README's scope table lists the same.
 
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
@@ -21,11 +24,11 @@ const REFUSED: &[Refused] = &[
         plugins: &["*"],
         why: "phase functions belong to participating media, outside matte's scope",
     },
-    Refused { tag: "volume", plugins: &["*"], why: "volumes belong to participating media, outside matte's scope" },
     Refused {
-        tag: "texture",
-        plugins: &["volume"],
-        why: "volume textures belong to participating media, outside matte's scope",
+        tag: "volume",
+        plugins: &["*"],
+        why: "a volume outside a volume texture belongs to a participating medium, outside matte's scope \
+              (matte renders a <volume> only as the \"volume\" of a <texture type=\"volume\">)",
     },
     Refused {
         tag: "bsdf",
@@ -49,17 +52,23 @@ pub(crate) fn refused(obj: &SceneObject) -> Option<SceneError> {
 }
 
 /// The first object reachable from `root` (depth first, document order) that is out of scope.
+/// A `<volume>` is in scope as a child of a `<texture type="volume">` (which reads the one named
+/// `volume` and reports any other as unused) and at the top level (declared for a `<ref>`); a volume reached both ways (a declared one that a
+/// medium refers to) is refused where it is out of place, as its parent is visited too.
 pub(crate) fn check_tree(root: &SceneObject) -> Result<(), SceneError> {
     let mut seen = std::collections::HashSet::new();
-    let mut stack = vec![root];
-    while let Some(o) = stack.pop() {
-        if !seen.insert(o as *const SceneObject) {
+    let mut stack = vec![(root, false)];
+    while let Some((o, volume_allowed)) = stack.pop() {
+        if !seen.insert((o as *const SceneObject, volume_allowed)) {
             continue;
         }
-        if let Some(e) = refused(o) {
+        if !(volume_allowed && o.tag == "volume")
+            && let Some(e) = refused(o)
+        {
             return Err(e);
         }
-        stack.extend(o.children.iter().rev().map(|c| &*c.object));
+        let volume_texture = o.tag == "texture" && o.plugin == "volume";
+        stack.extend(o.children.iter().rev().map(|c| (&*c.object, o.tag == "scene" || volume_texture)));
     }
     Ok(())
 }

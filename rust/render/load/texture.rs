@@ -1,10 +1,15 @@
 //! Reflectance-like parameters: a colour property (`<rgb>`, `<float>`, `<spectrum>`) or a
-//! nested/referenced `<texture type="bitmap">` (docs/renderer-semantics.md §2, §11) or `checkerboard`.
+//! nested/referenced `<texture>`: `bitmap`, `checkerboard`, `rawconstant`, `mesh_attribute` or
+//! `volume` with its nested `<volume>` (`gridvolume`, `constvolume`) (docs/renderer-semantics.md
+//! §2, §11).
 
 use super::{Builder, err, values};
 use crate::texture::Texture;
-use crate::texture::{BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, WrapMode};
-use glam::{Affine2, Mat2, Vec2, Vec3};
+use crate::texture::{
+    BitmapFilter, BitmapOptions, BitmapTexture, BoundAttribute, Checkerboard, GridFilter, GridVolume, Volume,
+    VolumeData, VolumeGrid, WrapMode,
+};
+use glam::{Affine2, Affine3A, Mat2, Vec2, Vec3};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::{ColorUse, SceneObject, Value};
 use std::sync::Arc;
@@ -19,25 +24,188 @@ pub fn get(b: &Builder, obj: &SceneObject, name: &str, usage: ColorUse, default:
         if child.object.tag != "texture" {
             return Err(err(&child.object, format!("\"{name}\" must be a texture or a colour")));
         }
-        return build(b, &child.object);
+        let t = build(b, &child.object)?;
+        if matches!(t, Texture::Volume(_)) && calls_mean(obj, name) {
+            return Err(err(
+                &child.object,
+                format!(
+                    "{} \"{}\" asks its \"{name}\" for its mean, which Mitsuba's volume texture does not have \
+                     (Texture::mean(): not implemented!)",
+                    obj.tag, obj.plugin
+                ),
+            ));
+        }
+        return Ok(t);
     }
     Ok(Texture::Constant(values::color(obj, name, usage, default)?))
 }
 
-/// A `<texture>` object: `bitmap` or `checkerboard`.
+/// Whether Mitsuba asks the texture given as parameter `name` of `obj` for its `mean()` when it
+/// builds `obj`: `plastic` and `roughplastic` for their lobe-selection weight, matte's plugin for
+/// a textured numeric parameter of its models (a number standing for the texture).
+fn calls_mean(obj: &SceneObject, name: &str) -> bool {
+    obj.tag == "bsdf"
+        && match obj.plugin.as_str() {
+            "plastic" | "roughplastic" => name == "diffuse_reflectance",
+            p => matte_brdf::BSDF_TYPES.contains(&p) && name != "reflectance",
+        }
+}
+
+/// A `<texture>` object: `bitmap`, `checkerboard`, `rawconstant`, `mesh_attribute` or `volume`.
 pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     match obj.plugin.as_str() {
         "bitmap" => build_bitmap(b, obj),
         "checkerboard" => checkerboard(b, obj),
         "rawconstant" => rawconstant(obj),
         "mesh_attribute" => mesh_attribute(b, obj),
+        "volume" => volume_texture(b, obj),
         other => Err(err(
             obj,
             format!(
-                "unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant, mesh_attribute)"
+                "unsupported texture type \"{other}\" (matte renders: bitmap, checkerboard, rawconstant, mesh_attribute, \
+                 volume)"
             ),
         )),
     }
+}
+
+/// A `<texture>` given to an emitter (`what`: its parameter): as [`build`], except a volume
+/// texture, which matte's emitters cannot look up (their light sampling knows only the uv).
+pub fn build_for_emitter(b: &Builder, obj: &SceneObject, what: &str) -> Result<Texture, SceneError> {
+    let t = build(b, obj)?;
+    if matches!(t, Texture::Volume(_)) {
+        return Err(err(obj, format!("a volume texture as an emitter's {what} is not supported by matte render")));
+    }
+    Ok(t)
+}
+
+/// Mitsuba's `volume` texture (`src/textures/volume.cpp`): one property, `volume`, a nested or
+/// referenced `<volume>` (`gridvolume`, `constvolume`), looked up at the world-space hit point.
+/// Mitsuba reads it as an object (a number there is "wrong type (expected object, got float)"),
+/// and without one it loads and crashes when evaluated: matte requires it.
+fn volume_texture(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
+    if let Some(p) = obj.properties.iter().find(|p| p.name == "volume") {
+        return Err(values::prop_err(
+            obj,
+            "volume",
+            format!(
+                "has the wrong type (expected a nested <volume>, found {}); write <volume name=\"volume\" \
+                 type=\"gridvolume\"> or type=\"constvolume\"",
+                p.value.type_name()
+            ),
+        ));
+    }
+    if obj.child("volume").is_none() {
+        // Another nested object is reported as such (unused), before the missing one.
+        obj.check_all_used()?;
+    }
+    let child = obj.child("volume").ok_or_else(|| {
+        err(
+            obj,
+            "missing property \"volume\" (a nested <volume name=\"volume\" type=\"gridvolume\"> or \"constvolume\")",
+        )
+    })?;
+    if child.object.tag != "volume" {
+        return Err(err(
+            &child.object,
+            format!("\"volume\" must be a <volume> (gridvolume, constvolume), not a <{}>", child.object.tag),
+        ));
+    }
+    let volume = build_volume(b, &child.object)?;
+    obj.check_all_used()?;
+    Ok(Texture::Volume(Arc::new(volume)))
+}
+
+/// A `<volume>` object: `gridvolume` or `constvolume` (`src/volumes/`), with the `to_world` of
+/// their base class (`Volume::Volume`, `src/render/volume.cpp`: points are taken to local space
+/// by its inverse).
+pub fn build_volume(b: &Builder, obj: &SceneObject) -> Result<Volume, SceneError> {
+    let to_world = values::transform(obj, "to_world")?;
+    match obj.plugin.as_str() {
+        "gridvolume" => {
+            let to_local = to_world.inverse();
+            if !(to_world.matrix3.determinant() != 0.0 && to_local.is_finite()) {
+                return Err(values::prop_err(
+                    obj,
+                    "to_world",
+                    "must be invertible (points are looked up through its inverse)",
+                ));
+            }
+            gridvolume(b, obj, to_local)
+        }
+        // Its value does not depend on the point: to_world is read and has no effect.
+        "constvolume" => constvolume(b, obj),
+        other => {
+            Err(err(obj, format!("unsupported volume type \"{other}\" (Mitsuba's are gridvolume and constvolume)")))
+        }
+    }
+}
+
+/// Mitsuba's `gridvolume` (`src/volumes/grid.cpp`): `filename` (a `.vol` file), `filter_type`
+/// (trilinear, nearest), `wrap_mode` (clamp, repeat, mirror) and `use_grid_bbox`, with
+/// Mitsuba's messages. `raw`, `accel` and `max_value` are accepted without effect
+/// (`load/no_effect.rs`).
+fn gridvolume(b: &Builder, obj: &SceneObject, to_local: Affine3A) -> Result<Volume, SceneError> {
+    let filter = match values::string(obj, "filter_type", "trilinear")?.as_str() {
+        "trilinear" => GridFilter::Trilinear,
+        "nearest" => GridFilter::Nearest,
+        other => {
+            return Err(values::prop_err(
+                obj,
+                "filter_type",
+                format!("Invalid filter type \"{other}\", must be one of: \"nearest\" or \"trilinear\"!"),
+            ));
+        }
+    };
+    let wrap = match values::string(obj, "wrap_mode", "clamp")?.as_str() {
+        "repeat" => WrapMode::Repeat,
+        "mirror" => WrapMode::Mirror,
+        "clamp" => WrapMode::Clamp,
+        other => {
+            return Err(values::prop_err(
+                obj,
+                "wrap_mode",
+                format!("Invalid wrap mode \"{other}\", must be one of: \"repeat\", \"mirror\", or \"clamp\"!"),
+            ));
+        }
+    };
+    let use_grid_bbox = values::boolean(obj, "use_grid_bbox", false)?;
+    let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
+    obj.check_all_used()?;
+    let path = b.resolve(&filename);
+    let file_err =
+        |msg: &str| values::prop_err(obj, "filename", format!("\"{}\": {}", path.display(), values::one_line(msg)));
+    let grid = VolumeGrid::read(&path).map_err(|e| file_err(&e))?;
+    let to_local = if use_grid_bbox {
+        // `VolumeGrid::bbox_transform`: scale(1/extents)·translate(−min), after to_local.
+        let extents = grid.bbox_max - grid.bbox_min;
+        if !(extents.min_element() > 0.0) {
+            return Err(file_err(&format!(
+                "use_grid_bbox needs a bounding box with positive extents, the file's is {} to {}",
+                grid.bbox_min, grid.bbox_max
+            )));
+        }
+        Affine3A::from_scale(extents.recip()) * Affine3A::from_translation(-grid.bbox_min) * to_local
+    } else {
+        to_local
+    };
+    let data = GridVolume::new(&grid, filter, wrap).map_err(|e| file_err(&e))?;
+    Ok(Volume { to_local, data: VolumeData::Grid(data) })
+}
+
+/// Mitsuba's `constvolume` (`src/volumes/const.cpp`): `value`, an unbounded colour or a texture
+/// (default 1), looked up at uv = (0, 0) whatever the point.
+fn constvolume(b: &Builder, obj: &SceneObject) -> Result<Volume, SceneError> {
+    let value = get(b, obj, "value", ColorUse::Unbounded, Vec3::ONE)?;
+    if matches!(value, Texture::MeshAttribute(_) | Texture::Volume(_)) {
+        let c = obj.child("value").expect("a nested texture");
+        return Err(err(
+            &c.object,
+            "constvolume looks its value up without a surface point: a mesh_attribute or volume texture is not supported",
+        ));
+    }
+    obj.check_all_used()?;
+    Ok(Volume { to_local: Affine3A::IDENTITY, data: VolumeData::Constant(value) })
 }
 
 /// Mitsuba's `checkerboard` (`src/textures/checkerboard.cpp`): `color0` and `color1` (colours,

@@ -178,7 +178,7 @@ impl BitmapTexture {
 /// Dr.Jit's `tex_wrap` for one integer coordinate: clamp to the edge, repeat (Euclidean
 /// modulo), or mirror (every other period reflected, edge texels repeated at the seams).
 #[inline]
-fn wrap(pos: i64, res: i64, mode: WrapMode) -> i64 {
+pub(crate) fn wrap(pos: i64, res: i64, mode: WrapMode) -> i64 {
     match mode {
         WrapMode::Clamp => pos.clamp(0, res - 1),
         WrapMode::Repeat => pos.rem_euclid(res),
