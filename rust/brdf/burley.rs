@@ -13,7 +13,7 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first, param};
 use super::sampler_fits::BURLEY;
 
 /// Burley's diffuse with its roughness in any [`Real`].
@@ -108,7 +108,7 @@ impl Registered for Burley {
     type Lane<'t, T: Real + 't> = BurleyKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        Self::with_sampling(v.number("roughness"), Sampling::parse(v.choice("sampling")))
+        Self::with_sampling(v.number(param!("roughness")), Sampling::parse(v.choice(param!("sampling"))))
     }
 
     fn values(&self) -> Vec<ParamValue> {

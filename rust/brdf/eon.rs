@@ -10,7 +10,7 @@ pub use super::cltc::Sampling;
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first, param};
 use std::f64::consts::PI;
 
 const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
@@ -232,7 +232,7 @@ impl Registered for Eon {
     type Lane<'t, T: Real + 't> = EonKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        Self::with_sampling(v.number("roughness"), Sampling::parse(v.choice("sampling")))
+        Self::with_sampling(v.number(param!("roughness")), Sampling::parse(v.choice(param!("sampling"))))
     }
 
     fn values(&self) -> Vec<ParamValue> {

@@ -9,7 +9,7 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first, param};
 use super::sampler_fits::{OREN_NAYAR_FULL, OREN_NAYAR_QUALITATIVE};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
@@ -226,8 +226,8 @@ impl Registered for OrenNayar {
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        let model = if v.choice("model") == "full" { OrenNayarForm::Full } else { OrenNayarForm::Qualitative };
-        Self::with_sampling(v.number("sigma"), model, Sampling::parse(v.choice("sampling")))
+        let model = if v.choice(param!("model")) == "full" { OrenNayarForm::Full } else { OrenNayarForm::Qualitative };
+        Self::with_sampling(v.number(param!("sigma")), model, Sampling::parse(v.choice(param!("sampling"))))
     }
 
     fn values(&self) -> Vec<ParamValue> {

@@ -266,42 +266,83 @@ impl Values {
         Ok(Self { spec, values })
     }
 
-    fn get(&self, name: &str) -> &Value {
-        let k = self.spec.params.iter().position(|p| p.name == name);
-        // A model asking for a parameter its own SPEC does not declare is a bug in that file,
-        // caught by the registry tests on every model.
-        &self.values[k.unwrap_or_else(|| panic!("model \"{}\" has no parameter \"{name}\"", self.spec.name))]
+    fn get(&self, p: Param) -> &Value {
+        &self.values[p.0]
     }
 
-    pub fn number(&self, name: &str) -> f64 {
-        match self.get(name) {
+    pub fn number(&self, p: Param) -> f64 {
+        match self.get(p) {
             Value::Number(x) => *x,
-            other => panic!("parameter \"{name}\" is not a number ({other:?})"),
+            other => panic!("parameter \"{}\" is not a number ({other:?})", self.spec.params[p.0].name),
         }
     }
 
-    pub fn choice(&self, name: &str) -> &'static str {
-        match self.get(name) {
+    pub fn choice(&self, p: Param) -> &'static str {
+        match self.get(p) {
             Value::Choice(c) => c,
-            other => panic!("parameter \"{name}\" is not a choice ({other:?})"),
+            other => panic!("parameter \"{}\" is not a choice ({other:?})", self.spec.params[p.0].name),
         }
     }
 
-    pub fn flag(&self, name: &str) -> bool {
-        match self.get(name) {
+    pub fn flag(&self, p: Param) -> bool {
+        match self.get(p) {
             Value::Flag(b) => *b,
-            other => panic!("parameter \"{name}\" is not a flag ({other:?})"),
+            other => panic!("parameter \"{}\" is not a flag ({other:?})", self.spec.params[p.0].name),
         }
     }
 
     /// A file parameter's name (resolved by the front end).
-    pub fn file(&self, name: &str) -> &str {
-        match self.get(name) {
+    pub fn file(&self, p: Param) -> &str {
+        match self.get(p) {
             Value::File(f) => f,
-            other => panic!("parameter \"{name}\" is not a file ({other:?})"),
+            other => panic!("parameter \"{}\" is not a file ({other:?})", self.spec.params[p.0].name),
         }
     }
 }
+
+/// A parameter of a model's SPEC by position, for reading [`Values`]: made by [`param!`] at
+/// compile time, so a name the SPEC does not declare does not compile.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Param(usize);
+
+impl Param {
+    /// The parameter `name` of `spec`; in a `const` context (as [`param!`] evaluates it), a
+    /// name `spec` does not declare is a compile error.
+    pub const fn of(spec: &ModelSpec, name: &str) -> Param {
+        let mut i = 0;
+        while i < spec.params.len() {
+            if str_eq(spec.params[i].name, name) {
+                return Param(i);
+            }
+            i += 1;
+        }
+        panic!("a model reads a parameter its SPEC does not declare")
+    }
+}
+
+const fn str_eq(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// `param!("roughness")` in a [`Registered`] impl: that model's parameter, checked against its
+/// SPEC at compile time ([`Param::of`]).
+macro_rules! param {
+    ($name:literal) => {
+        const { $crate::registry::Param::of(&<Self as $crate::registry::Registered>::SPEC, $name) }
+    };
+}
+pub(crate) use param;
 
 /// What a model implements to be registered; everything else about it is derived. `T` in the
 /// kernel methods is any [`Real`]: f32 and f64 on the CPU, `F32x8`, and the plugin's traced

@@ -10,7 +10,7 @@ use super::kernel::Kernel;
 use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarForm};
 use super::params::{ParamError, ParamValue};
 use super::real::Real;
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first, param};
 use std::f64::consts::FRAC_1_SQRT_2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -77,7 +77,7 @@ impl Registered for RoughDiffuse {
     type Lane<'t, T: Real + 't> = OrenNayarKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        Self::with_sampling(v.number("alpha"), v.flag("use_fast_approx"), Sampling::parse(v.choice("sampling")))
+        Self::with_sampling(v.number(param!("alpha")), v.flag(param!("use_fast_approx")), Sampling::parse(v.choice(param!("sampling"))))
     }
 
     fn values(&self) -> Vec<ParamValue> {

@@ -22,7 +22,7 @@ use super::approx::{acos_unit, angle};
 use super::kernel::Kernel;
 use super::real::{Nodes, Real, V3};
 use super::params::{ParamError, ParamValue};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, param};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -413,7 +413,7 @@ impl Registered for Tabulated {
     type Lane<'t, T: Real + 't> = TableKernel<'t, T>;
 
     fn build(values: &Values) -> Result<Self, ParamError> {
-        Tabulated::read(std::path::Path::new(values.file("filename"))).map_err(|e| {
+        Tabulated::read(std::path::Path::new(values.file(param!("filename")))).map_err(|e| {
             let line = e.lines().map(str::trim).filter(|l| !l.is_empty()).collect::<Vec<_>>().join(" ");
             ParamError::new("filename", line)
         })

@@ -21,7 +21,7 @@ use super::fresnel_fit::diffuse_fresnel_external_fit;
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first, param};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WolffNormalization {
@@ -207,12 +207,12 @@ impl Registered for Wolff {
     type Lane<'t, T: Real + 't> = WolffKernel<T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        let normalization = match v.choice("normalization") {
+        let normalization = match v.choice(param!("normalization")) {
             "normal" => WolffNormalization::Normal,
             "raw" => WolffNormalization::Raw,
             _ => WolffNormalization::Physical,
         };
-        Self::new(v.number("int_ior"), v.number("ext_ior"), normalization)
+        Self::new(v.number(param!("int_ior")), v.number(param!("ext_ior")), normalization)
     }
 
     fn values(&self) -> Vec<ParamValue> {

@@ -22,7 +22,7 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first};
+use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first, param};
 use super::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{
@@ -283,11 +283,11 @@ impl Registered for Ginneken {
     type Lane<'t, T: Real + 't> = GinnekenLane<'t, T>;
 
     fn build(v: &Values) -> Result<Self, ParamError> {
-        let shadowing = match v.choice("shadowing") {
+        let shadowing = match v.choice(param!("shadowing")) {
             "height_correlated" => Shadowing::HeightCorrelated,
             _ => Shadowing::VanGinneken,
         };
-        Self::with_sampling(v.number("roughness"), shadowing, Sampling::parse(v.choice("sampling")))
+        Self::with_sampling(v.number(param!("roughness")), shadowing, Sampling::parse(v.choice(param!("sampling"))))
     }
 
     fn values(&self) -> Vec<ParamValue> {
