@@ -436,6 +436,7 @@ fn study_options(out: &Path) -> matte::study::StudyOptions {
         mitsuba_variant: "scalar_rgb".into(),
         ground_truth: PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/python/matte_mitsuba/ground_truth")),
         truth_slices: None,
+        perceptual: false,
     }
 }
 
