@@ -29,8 +29,8 @@ import json
 import os
 import sys
 
-# flip-evaluator's OpenMP threads cost more than they give on small images (a fixed start-up
-# per exposure); the comparisons run in parallel processes instead (`workers`).
+# flip-evaluator's OpenMP threads cost more than they give on the study's images (a fixed
+# start-up per exposure, worst on a busy machine); `matte study` runs one process per lighting.
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
@@ -143,31 +143,6 @@ def compare(reference_passes, test_passes, parameters):
     return {"mean": mean, "p95": p95, "jackknife_mean": jack_mean, "jackknife_p95": jack_p95}, full
 
 
-def _compare(task):
-    return compare(*task)
-
-
-def workers():
-    """Processes for the comparisons: the CPUs this process may use, at most 8."""
-    try:
-        n = len(os.sched_getaffinity(0))
-    except AttributeError:
-        n = os.cpu_count() or 1
-    return max(1, min(n, 8))
-
-
-def evaluate_all(tasks):
-    """`compare` of every (reference passes, test passes, exposure) task, in order; in
-    parallel processes when there are several CPUs and tasks."""
-    n = min(workers(), len(tasks))
-    if n <= 1:
-        return [_compare(t) for t in tasks]
-    import multiprocessing
-
-    with multiprocessing.get_context("fork").Pool(n) as pool:
-        return pool.map(_compare, tasks, chunksize=1)
-
-
 def run(job):
     """Evaluates a job (the parsed JOB.json); returns the result document."""
     import flip_evaluator  # noqa: F401  (fails here, with its own message, when missing)
@@ -175,43 +150,46 @@ def run(job):
     groups = job.get("groups") if isinstance(job, dict) else None
     if not isinstance(groups, list):
         raise ValueError('the job must be {"groups": [...]}')
-    out = []
-    for g in groups:
-        name = g.get("name", "?")
-        try:
-            params = exposure_parameters(load_passes(g["exposure"]).mean(axis=0))
-            cache = {}
-
-            def passes(paths, cache=cache):
-                key = tuple(paths)
-                if key not in cache:
-                    cache[key] = load_passes(paths)
-                return cache[key]
-
-            tasks = [(passes(c["reference"]), passes(c["test"]), params) for c in g["comparisons"]]
-            results = []
-            for c, (r, full) in zip(g["comparisons"], evaluate_all(tasks)):
-                if c.get("map"):
-                    full.astype("<f4").tofile(c["map"])
-                results.append({"name": c.get("name", ""), "width": full.shape[1], "height": full.shape[0], **r})
-        except KeyError as e:
-            raise ValueError(f"group {name}: missing {e}") from e
-        except ValueError as e:
-            raise ValueError(f"group {name}: {e}") from e
-        out.append(
-            {
-                "name": name,
-                "exposure": {
-                    "start": float(params["startExposure"]),
-                    "stop": float(params["stopExposure"]),
-                    "count": int(params["numExposures"]),
-                    "tonemapper": str(params["tonemapper"]),
-                    "pixels_per_degree": float(params["ppd"]),
-                },
-                "comparisons": results,
-            }
-        )
+    out = [run_group(g) for g in groups]
     return {"metric": "HDR-FLIP", "implementation": "flip-evaluator " + flip_version(), "groups": out}
+
+
+def run_group(g):
+    """One group of the job: its exposure range and its comparisons."""
+    if not isinstance(g, dict):
+        raise ValueError("each group must be an object")
+    name = g.get("name", "?")
+    try:
+        params = exposure_parameters(load_passes(g["exposure"]).mean(axis=0))
+        cache = {}
+
+        def passes(paths, cache=cache):
+            key = tuple(paths)
+            if key not in cache:
+                cache[key] = load_passes(paths)
+            return cache[key]
+
+        results = []
+        for c in g["comparisons"]:
+            r, full = compare(passes(c["reference"]), passes(c["test"]), params)
+            if c.get("map"):
+                full.astype("<f4").tofile(c["map"])
+            results.append({"name": c.get("name", ""), "width": full.shape[1], "height": full.shape[0], **r})
+    except KeyError as e:
+        raise ValueError(f"group {name}: missing {e}") from e
+    except ValueError as e:
+        raise ValueError(f"group {name}: {e}") from e
+    return {
+        "name": name,
+        "exposure": {
+            "start": float(params["startExposure"]),
+            "stop": float(params["stopExposure"]),
+            "count": int(params["numExposures"]),
+            "tonemapper": str(params["tonemapper"]),
+            "pixels_per_degree": float(params["ppd"]),
+        },
+        "comparisons": results,
+    }
 
 
 def flip_version():

@@ -241,6 +241,8 @@ pub struct PerceptualStudy {
     pub scene_name: String,
     /// "flip-evaluator <version>".
     pub implementation: String,
+    /// Wall time of the HDR-FLIP evaluations (both lightings side by side).
+    pub seconds: f64,
     pub exposures: Vec<(Lighting, Exposure)>,
     /// Per lighting: Lambert against Lambert with other seeds.
     pub floors: Vec<(Lighting, FlipPair)>,
@@ -325,6 +327,7 @@ fn evaluate(
     opts: &StudyOptions,
     dir: &Path,
 ) -> Result<PerceptualStudy, String> {
+    let started = std::time::Instant::now();
     let k = opts.passes as usize;
     let files = |l: Lighting, key: &str| -> Option<Vec<PathBuf>> {
         let v: Vec<PathBuf> = (0..k).map(|i| pass_file(dir, l, key, i)).collect();
@@ -378,34 +381,55 @@ fn evaluate(
         groups.push(serde_json::json!({"name": l.name(), "exposure": lambert_files, "comparisons": comparisons}));
         pairs_by_group.push((l, pairs.into_iter().map(|(p, _, _)| p).collect()));
     }
-    let job = dir.join("job.json");
-    let out = dir.join("result.json");
-    std::fs::write(&job, serde_json::json!({ "groups": groups }).to_string())
-        .map_err(|e| format!("{}: {e}", job.display()))?;
+    // One process per lighting, run side by side.
     let python = crate::installation::python_side()?;
-    let output = python
-        .module("perceptual")
-        .arg(&job)
-        .arg("--out")
-        .arg(&out)
-        .output()
-        .map_err(|e| format!("cannot start {}: {e}", python.python.display()))?;
-    if !output.status.success() {
-        // flip-evaluator reports some errors on stdout.
-        let text = format!("{}\n{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
-        let line = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("failed without a message");
-        return Err(format!("python -m matte_mitsuba.perceptual ({}): {line}", python.python.display()));
+    let mut children = Vec::new();
+    for (group, (l, _)) in groups.iter().zip(&pairs_by_group) {
+        let job = dir.join(format!("job_{}.json", l.name()));
+        let out = dir.join(format!("result_{}.json", l.name()));
+        std::fs::write(&job, serde_json::json!({ "groups": [group] }).to_string())
+            .map_err(|e| format!("{}: {e}", job.display()))?;
+        let child = python
+            .module("perceptual")
+            .arg(&job)
+            .arg("--out")
+            .arg(&out)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .map_err(|e| format!("cannot start {}: {e}", python.python.display()))?;
+        children.push((child, out));
     }
-    let text = std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let result: ResultFile = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", out.display()))?;
-    if result.groups.len() != pairs_by_group.len() {
-        return Err(format!("{}: {} groups, expected {}", out.display(), result.groups.len(), pairs_by_group.len()));
+    let mut implementation = String::new();
+    let mut result_groups = Vec::new();
+    let mut failure = None;
+    for (child, out) in children {
+        let output = child.wait_with_output().map_err(|e| e.to_string())?;
+        if !output.status.success() {
+            // flip-evaluator reports some errors on stdout.
+            let text =
+                format!("{}\n{}", String::from_utf8_lossy(&output.stdout), String::from_utf8_lossy(&output.stderr));
+            let line = text.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("failed without a message");
+            failure.get_or_insert(format!("python -m matte_mitsuba.perceptual ({}): {line}", python.python.display()));
+            continue;
+        }
+        let text = std::fs::read_to_string(&out).map_err(|e| format!("{}: {e}", out.display()))?;
+        let result: ResultFile = serde_json::from_str(&text).map_err(|e| format!("{}: {e}", out.display()))?;
+        implementation = result.implementation;
+        result_groups.extend(result.groups);
+    }
+    if let Some(f) = failure {
+        return Err(f);
+    }
+    let out = dir.join("result_*.json");
+    if result_groups.len() != pairs_by_group.len() {
+        return Err(format!("{}: {} groups, expected {}", out.display(), result_groups.len(), pairs_by_group.len()));
     }
     let mut exposures = Vec::new();
     let mut floors = Vec::new();
     let mut comparisons = Vec::new();
     let mut strips = Vec::new();
-    for ((l, pairs), g) in pairs_by_group.iter().zip(result.groups) {
+    for ((l, pairs), g) in pairs_by_group.iter().zip(result_groups) {
         if g.name != l.name() || g.comparisons.len() != pairs.len() {
             return Err(format!("{}: group {} does not match the job", out.display(), g.name));
         }
@@ -470,7 +494,8 @@ fn evaluate(
     }
     let mut p = PerceptualStudy {
         scene_name: study.name.clone(),
-        implementation: result.implementation,
+        implementation,
+        seconds: started.elapsed().as_secs_f64(),
         exposures,
         floors,
         comparisons,

@@ -27,6 +27,8 @@ pub struct SceneJson {
     pub scene: String,
     /// "flip-evaluator <version>".
     pub implementation: String,
+    /// Wall time of the HDR-FLIP evaluations.
+    pub seconds: f64,
     pub direct_only: bool,
     pub exposure: Vec<ExposureJson>,
     pub noise_floor: Vec<FloorJson>,
@@ -131,6 +133,7 @@ pub fn json(studies: &[PerceptualStudy], notes: &[String]) -> PerceptualJson {
             .map(|p| SceneJson {
                 scene: p.scene_name.clone(),
                 implementation: p.implementation.clone(),
+                seconds: p.seconds,
                 direct_only: p.direct_only,
                 exposure: p
                     .exposures
