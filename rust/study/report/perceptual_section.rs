@@ -288,7 +288,15 @@ under global illumination when its interval lies above 0, <i>less visible</i> be
                 if p.direct_only { "global = direct lighting".to_string() } else { format!("{} lighting", l.name()) };
             let _ = write!(h, "<h4>{heading}</h4>");
             if let Some((_, _, diff)) = scene.and_then(|s| s.strips.iter().find(|(x, _, _)| x == l)) {
-                let _ = write!(h, r#"<p class="small">Signed heatmap (model − Lambert) / Lambert:</p>{}"#, img(diff));
+                let range =
+                    scene.and_then(|s| s.difference_ranges.iter().find(|(x, _)| x == l)).map_or(f32::NAN, |r| r.1);
+                let _ = write!(
+                    h,
+                    r#"<p class="small">Signed heatmap (model − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %:</p>{}"#,
+                    range * 100.0,
+                    range * 100.0,
+                    img(diff)
+                );
             }
             let _ = write!(
                 h,
@@ -297,9 +305,14 @@ under global illumination when its interval lies above 0, <i>less visible</i> be
             );
             if let Some(s) = against_surface {
                 let truth = truths.iter().find(|t| t.scene_name == p.scene_name);
-                if let Some((_, diff, _)) = truth.and_then(|t| t.strips.iter().find(|(x, _, _)| x == l)) {
-                    let _ =
-                        write!(h, r#"<p class="small">Signed heatmap (model − surface) / surface:</p>{}"#, img(diff));
+                if let Some((_, diff, range)) = truth.and_then(|t| t.strips.iter().find(|(x, _, _)| x == l)) {
+                    let _ = write!(
+                        h,
+                        r#"<p class="small">Signed heatmap (model − surface) / surface, blue −{:.0} % … red +{:.0} %:</p>{}"#,
+                        range * 100.0,
+                        range * 100.0,
+                        img(diff)
+                    );
                 }
                 let _ = write!(h, r#"<p class="small">HDR-FLIP against each model's own surface:</p>{}"#, img(s));
             }
