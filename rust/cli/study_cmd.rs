@@ -3,7 +3,7 @@
 //! series of the regions that ask for one.
 
 use super::render_cmd::parse_defines;
-use crate::study::{self, Study, StudyOptions, convergence, truth, variants};
+use crate::study::{self, Study, StudyOptions, convergence, perceptual, truth, variants};
 use crate::validate::passes::Renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -49,6 +49,10 @@ pub struct StudyArgs {
     /// Skip the convergence series.
     #[arg(long)]
     pub no_convergence: bool,
+    /// Skip the perceptual differences (HDR-FLIP with its noise floor, computed by the
+    /// `flip-evaluator` package in the Python side).
+    #[arg(long)]
+    pub no_perceptual: bool,
     #[arg(short, long, default_value = "study_out")]
     pub out: PathBuf,
     #[arg(short, long)]
@@ -89,11 +93,13 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         mitsuba_variant: a.variant.clone(),
         ground_truth: crate::installation::package_dir()?.join("ground_truth"),
         truth_slices: crate::installation::package_data("truth_slices").ok(),
+        perceptual: !a.no_perceptual,
     };
     // Progress total: main run (models and true surfaces), variants, true-surface comparison,
-    // convergence series.
+    // convergence series, the perceptual step's noise floor.
     let per_scene = study::configuration::main_run().len() + study::configuration::TRUTHS.len();
     let mut total = (scenes.len() * per_scene * 2) as u64 * a.passes as u64;
+    total += scenes.len() as u64 * perceptual::pass_count(&opts);
     let mut series_regions = Vec::new();
     for scene in &scenes {
         let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
@@ -125,6 +131,8 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     let mut studies = Vec::new();
     let mut variant_studies = Vec::new();
     let mut truth_studies = Vec::new();
+    let mut perceptual_studies = Vec::new();
+    let mut perceptual_notes = Vec::new();
     for scene in &scenes {
         let s = study::study_scene(scene, &opts, &progress).map_err(|e| format!("{}: {e}", scene.display()))?;
         let v = if opts.variants_for(&s.name) {
@@ -132,11 +140,18 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         } else {
             None
         };
-        if let Some(t) = truth::run(&s, v.as_ref(), &opts, &progress)
-            .map_err(|e| format!("{}: true surfaces: {e}", scene.display()))?
-        {
-            truth_studies.push(t);
+        let t = truth::run(&s, v.as_ref(), &opts, &progress)
+            .map_err(|e| format!("{}: true surfaces: {e}", scene.display()))?;
+        if opts.perceptual {
+            bar.set_message(format!("{} HDR-FLIP", s.name));
+            match perceptual::run(&s, t.as_ref(), &opts) {
+                Ok(p) => perceptual_studies.push(p),
+                Err(e) => {
+                    perceptual_notes.push(format!("{}: the perceptual differences were not computed: {e}", s.name))
+                }
+            }
         }
+        truth_studies.extend(t);
         variant_studies.extend(v);
         studies.push(s);
     }
@@ -160,6 +175,8 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         variants: variant_studies,
         truths: truth_studies,
         convergence: series,
+        perceptual: perceptual_studies,
+        perceptual_notes,
     };
     study::report::write(&a.out, &study, opts.truth_slices.as_deref())?;
     println!("{}", serde_json::to_string_pretty(&study::report::json(&study)).expect("json"));

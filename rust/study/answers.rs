@@ -3,6 +3,7 @@
 
 use super::configuration::{Configuration, VARIANTS, main_run};
 use super::convergence::Series;
+use super::perceptual::{Agreement, Answer, PerceptualStudy, Visibility};
 use super::ratio::{Ratio, Relation};
 use super::truth::{TruthStudy, Verdict};
 use super::variants::VariantStudy;
@@ -33,6 +34,17 @@ fn pct_ci(r: Ratio) -> String {
     format!("{:+.*} % ± {:.*} %", d, r.value * 100.0, d, r.half_width * 100.0)
 }
 
+/// [`pct_ci`] for other modules (the report's tables).
+pub(crate) fn pct(r: Ratio) -> String {
+    pct_ci(r)
+}
+
+/// A FLIP value with its interval, with the decimals its half-width needs.
+fn flip_ci(r: Ratio) -> String {
+    let d = decimals(r.half_width, 3);
+    format!("{:.*} ± {:.*}", d, r.value, d, r.half_width)
+}
+
 /// A ratio's change against Lambert's 1.
 fn change(r: Ratio) -> Ratio {
     r.minus(Ratio::exact(1.0))
@@ -51,7 +63,155 @@ pub fn answers(study: &Study) -> Vec<String> {
     for s in &study.convergence {
         out.extend(convergence_answers(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
     }
+    out.extend(perceptual_summary(&study.perceptual));
+    for p in &study.perceptual {
+        out.extend(perceptual_scene_answers(p));
+    }
+    out.extend(perceptual_closing(&study.perceptual));
     out
+}
+
+/// Whether the reference of a perceptual answer is Lambert (else the model's surface).
+fn against_lambert(a: &Answer) -> bool {
+    a.reference == Configuration::Lambert
+}
+
+/// The perceptual question over every scene lit globally: how many differences are more or
+/// less visible under global illumination, against Lambert and against the surfaces.
+pub fn perceptual_summary(studies: &[PerceptualStudy]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (lambert, what) in
+        [(true, "a model's difference to Lambert"), (false, "a rough model's difference from its own surface")]
+    {
+        let all: Vec<&Answer> = studies
+            .iter()
+            .flat_map(|p| &p.answers)
+            .filter(|a| against_lambert(a) == lambert && !(lambert && a.model.is_truth()))
+            .filter(|a| a.visibility != Visibility::DirectOnly)
+            .collect();
+        if all.is_empty() {
+            continue;
+        }
+        let count = |v: Visibility| all.iter().filter(|a| a.visibility == v).count();
+        let agree = all.iter().filter(|a| a.agreement == Agreement::Agree).count();
+        let disagree = all.iter().filter(|a| a.agreement == Agreement::Disagree).count();
+        out.push(format!(
+            "Perceptual question (HDR-FLIP: is {what} more or less visible under global illumination?): more visible in {} of {} scene×model cases, less visible in {}, undecided in {}, within the noise floor in {} (99 % jackknife interval of ΔFLIP; scenes lit directly only left out). The energy answer (Δ) agrees in {agree} and points the other way in {disagree}.",
+            count(Visibility::MoreVisible),
+            all.len(),
+            count(Visibility::LessVisible),
+            count(Visibility::Undecided),
+            count(Visibility::WithinNoise),
+        ));
+    }
+    out
+}
+
+/// Per scene, one sentence per reference kind: each model's mean FLIP in both lightings and
+/// the verdict, with the noise floors.
+pub fn perceptual_scene_answers(p: &PerceptualStudy) -> Vec<String> {
+    let mut out = Vec::new();
+    let floor = |l: Lighting| p.floor(l).map(|f| flip_ci(f.mean.value)).unwrap_or_default();
+    for lambert in [true, false] {
+        let parts: Vec<String> = p
+            .answers
+            .iter()
+            .filter(|a| against_lambert(a) == lambert)
+            .filter_map(|a| {
+                let g = p.comparison(a.model, a.reference, Lighting::Global)?;
+                let d = p.comparison(a.model, a.reference, Lighting::Direct)?;
+                let against = if lambert { String::new() } else { format!(" / {}", a.reference.label()) };
+                Some(if p.direct_only {
+                    format!("{}{against} {}", a.model.label(), flip_ci(g.flip.mean.value))
+                } else {
+                    format!(
+                        "{}{against} {} global, {} direct: {}",
+                        a.model.label(),
+                        flip_ci(g.flip.mean.value),
+                        flip_ci(d.flip.mean.value),
+                        a.visibility.name()
+                    )
+                })
+            })
+            .collect();
+        if parts.is_empty() {
+            continue;
+        }
+        let what = if lambert { "against Lambert" } else { "against its own surface" };
+        out.push(if p.direct_only {
+            format!(
+                "{}: mean HDR-FLIP {what} (the scene is lit directly only; noise floor {}): {}.",
+                p.scene_name,
+                floor(Lighting::Global),
+                parts.join("; ")
+            )
+        } else {
+            format!(
+                "{}: mean HDR-FLIP {what} (noise floor {} global, {} direct): {}.",
+                p.scene_name,
+                floor(Lighting::Global),
+                floor(Lighting::Direct),
+                parts.join("; ")
+            )
+        });
+    }
+    out
+}
+
+/// The closing note: where the perceptual and the energy answers differ.
+pub fn perceptual_closing(studies: &[PerceptualStudy]) -> Option<String> {
+    let decided: Vec<(&PerceptualStudy, &Answer)> = studies
+        .iter()
+        .flat_map(|p| p.answers.iter().map(move |a| (p, a)))
+        .filter(|(_, a)| a.visibility != Visibility::DirectOnly && !(against_lambert(a) && a.model.is_truth()))
+        .collect();
+    if decided.is_empty() {
+        return None;
+    }
+    let describe = |(p, a): &(&PerceptualStudy, &Answer)| {
+        let against = if against_lambert(a) { "Lambert".to_string() } else { a.reference.label().to_string() };
+        format!(
+            "{} {} vs {against} (energy {}, Δ = {}; perceptual {}, ΔFLIP = {})",
+            p.scene_name,
+            a.model.label(),
+            a.energy_verdict.name(),
+            pct_ci(a.energy),
+            a.visibility.name(),
+            flip_ci(a.delta)
+        )
+    };
+    let list = |g: Agreement| -> Vec<String> { decided.iter().filter(|x| x.1.agreement == g).map(describe).collect() };
+    let (opposite, energy_only, perceptual_only) =
+        (list(Agreement::Disagree), list(Agreement::EnergyOnly), list(Agreement::PerceptualOnly));
+    if opposite.is_empty() && energy_only.is_empty() && perceptual_only.is_empty() {
+        return Some(format!(
+            "Perceptual against energy: the two answers agree in every one of the {} scene×model cases.",
+            decided.len()
+        ));
+    }
+    let mut parts = Vec::new();
+    if !opposite.is_empty() {
+        parts.push(format!("they point opposite ways in {}: {}", opposite.len(), opposite.join("; ")));
+    }
+    if !energy_only.is_empty() {
+        parts.push(format!(
+            "the energy answer is decided but the perceptual one is not in {}: {}",
+            energy_only.len(),
+            energy_only.join("; ")
+        ));
+    }
+    if !perceptual_only.is_empty() {
+        parts.push(format!(
+            "the perceptual answer is decided but the energy one is not in {}: {}",
+            perceptual_only.len(),
+            perceptual_only.join("; ")
+        ));
+    }
+    Some(format!(
+        "Where the perceptual and the energy answers differ (of {} scene×model cases): {}.",
+        decided.len(),
+        parts.join(". And ")
+    ))
 }
 
 fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {

@@ -21,6 +21,7 @@ pub mod configuration;
 pub mod convergence;
 pub mod font;
 pub mod metrics;
+pub mod perceptual;
 pub mod ratio;
 pub mod report;
 pub mod strip;
@@ -78,6 +79,9 @@ pub struct StudyOptions {
     /// The report's BRDF slices (the installed package's `truth_slices/`; `None`: the report
     /// goes without them).
     pub truth_slices: Option<PathBuf>,
+    /// Whether the perceptual differences (HDR-FLIP, [`perceptual`]) are computed: keeps the
+    /// pass images and renders the noise floor's second Lambert.
+    pub perceptual: bool,
 }
 
 impl StudyOptions {
@@ -195,6 +199,10 @@ pub struct Study {
     /// Per scene with true surfaces: the models against them.
     pub truths: Vec<truth::TruthStudy>,
     pub convergence: Vec<convergence::Series>,
+    /// Per scene: HDR-FLIP against Lambert and the surfaces, with noise floors.
+    pub perceptual: Vec<perceptual::PerceptualStudy>,
+    /// Why a scene has no perceptual differences (one line each).
+    pub perceptual_notes: Vec<String>,
 }
 
 /// The `-D` parameters of one image: the user's, the model, the lighting and the resolution.
@@ -264,8 +272,11 @@ pub fn study_scene(scene: &Path, opts: &StudyOptions, progress: &dyn Fn(&str, u3
             let defines = image_defines(opts, model.bsdf(), lighting);
             let what = format!("{name} {} {}", lighting.name(), model.label());
             let side = render_side(file, opts, defines, &regions, &dir.join("work"), &|k| progress(&what, k))?;
+            perceptual::keep_passes(opts, &name, lighting, model.key(), &side)?;
             sides.push((*model, side));
         }
+        let what = format!("{name} {} Lambert, other seeds", lighting.name());
+        perceptual::render_floor(scene, &name, lighting, &regions, opts, &|k| progress(&what, k))?;
         let lambert = &sides[0].1;
         let lambert_img = lambert.moments.mean_image();
         let edges = metrics::edge_mask(&lambert_img, 0.1);

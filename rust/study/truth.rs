@@ -157,6 +157,7 @@ pub fn run(
                     &opts.out.join(&rel_dir).join("work"),
                     &|k| progress(&what, k),
                 )?;
+                super::perceptual::keep_passes(opts, &study.name, lighting, full.key(), &side)?;
                 let mean = side.moments.mean_image();
                 image_io::write_exr(
                     &opts.out.join(&rel_dir).join(format!("{}_{}.exr", lighting.name(), full.key())),

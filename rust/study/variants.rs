@@ -82,6 +82,9 @@ pub fn run(study: &SceneStudy, opts: &StudyOptions, progress: &dyn Fn(&str, u32)
                     &dir.join("work"),
                     &|k| progress(&what, k),
                 )?;
+                if v == Configuration::OrenNayarFull {
+                    super::perceptual::keep_passes(opts, &study.name, lighting, v.key(), &side)?;
+                }
                 let regs = super::region_ratios(&regions, &side, lambert);
                 let mean = side.moments.mean_image();
                 let exr = rel_dir.join(format!("{}_{}.exr", lighting.name(), v.key()));

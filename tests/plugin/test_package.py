@@ -2,16 +2,17 @@
 holds what builds, with the package data, and nothing else; the wheel is platlib, repaired to a
 manylinux tag with no library grafted in but Mitsuba's, which it loads from the mitsuba/drjit
 wheels); the repaired wheel installed with `pip install --no-index --find-links dist` (Mitsuba
-from the registry) in a fresh virtual environment outside the checkout, every command run with
+and flip-evaluator from the registry) in a fresh virtual environment outside the checkout, every command run with
 the checkout hidden behind an empty mount (tests/plugin/wheel_checks.py: renders in llvm_ad_rgb
 and scalar_rgb, roughdiffuse = oren_nayar with σ = α/√2, the mitsuba tool, the matte tool, the
-packaged ground-truth tables; then `matte validate`, `validate --all`, `study`, `bench` and the
+packaged ground-truth tables; then `matte validate`, `validate --all`, `study` (with its HDR-FLIP values), `bench` and the
 plugin benchmark); import before or after `mi.set_variant`; a Mitsuba other than the one it was
 built against is refused at import naming both versions."""
 
 import glob
 import io
 import json
+import math
 import os
 import re
 import shutil
@@ -227,8 +228,9 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     py = str(venv / "bin" / "python")
     pip = [py, "-m", "pip", "install", "-q", "--disable-pip-version-check"]
-    # The pinned Mitsuba (and numpy) from the registry, then matte only from the release files.
-    r = subprocess.run(pip + ["mitsuba==3.9.1", "numpy"], capture_output=True, text=True)
+    # The pinned Mitsuba (and numpy, flip-evaluator) from the registry, then matte only from
+    # the release files.
+    r = subprocess.run(pip + ["mitsuba==3.9.1", "numpy", "flip-evaluator"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     r = subprocess.run(
         pip + ["--no-index", "--find-links", os.path.dirname(wheel), "matte-mitsuba"],
@@ -309,6 +311,11 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     for part in html.split('src="')[1:]:
         assert (work / "study" / part.split('"')[0]).is_file(), part.split('"')[0]
     assert "truth_slices/truth_slice_eon.png" in html
+    # The perceptual differences, computed by the installed package's flip-evaluator.
+    perceptual = study["perceptual"]
+    assert perceptual["notes"] == [] and len(perceptual["scenes"]) == 1, perceptual["notes"]
+    assert all(math.isfinite(c["mean"]) for c in perceptual["scenes"][0]["comparisons"])
+    assert "cornell/flip_lambert_global.png" in html
 
     # The benchmarks: matte's side on the bundled scenes, and the plugin benchmark on one type.
     r = run(matte, "bench", "--quick", "--no-mitsuba", "-q", "-o", "bench")

@@ -436,6 +436,7 @@ fn study_options(out: &Path) -> matte::study::StudyOptions {
         mitsuba_variant: "scalar_rgb".into(),
         ground_truth: crate::common::repo().join("python/matte_mitsuba/ground_truth"),
         truth_slices: None,
+        perceptual: false,
     }
 }
 
@@ -562,4 +563,86 @@ fn study_compares_each_rough_model_with_its_own_surface() {
     assert_eq!(truth_strips, 2, "a (model − surface) heatmap strip per lighting");
     assert!(out.join("truth.json").is_file());
     let _ = std::fs::remove_dir_all(&out);
+}
+
+// ---- Perceptual difference ---------------------------------------------------------------------
+
+#[test]
+fn jackknife_interval_is_the_t_quantile_times_the_jackknife_standard_error() {
+    use matte::study::perceptual::jackknife_ci99;
+    // K = 4 leave-one-out values: mean 0.25, Σ (θᵢ − θ̄)² = 0.05, se = √(3/4 · 0.05); t(3) at
+    // 0.995 = 5.840909 (tables).
+    let r = jackknife_ci99(0.3, &[0.1, 0.2, 0.3, 0.4]);
+    let se = (0.75f64 * 0.05).sqrt();
+    assert_eq!(r.value, 0.3, "the estimate is the full-budget value, not the replicates' mean");
+    assert!((r.half_width - 5.840909 * se).abs() < 1e-5, "{}", r.half_width);
+    assert_eq!(jackknife_ci99(0.2, &[0.2; 5]).half_width, 0.0);
+    assert!(jackknife_ci99(0.2, &[0.2]).half_width.is_infinite(), "one pass: no interval");
+}
+
+#[test]
+fn perceptual_and_energy_verdicts_agree_only_in_the_same_direction() {
+    use matte::study::perceptual::{Agreement, Visibility};
+    use matte::study::truth::Verdict;
+    let cases = [
+        (Verdict::Grows, Visibility::MoreVisible, Agreement::Agree),
+        (Verdict::Shrinks, Visibility::LessVisible, Agreement::Agree),
+        (Verdict::Grows, Visibility::LessVisible, Agreement::Disagree),
+        (Verdict::Shrinks, Visibility::MoreVisible, Agreement::Disagree),
+        (Verdict::Grows, Visibility::WithinNoise, Agreement::EnergyOnly),
+        (Verdict::Shrinks, Visibility::Undecided, Agreement::EnergyOnly),
+        (Verdict::Undecided, Visibility::MoreVisible, Agreement::PerceptualOnly),
+        (Verdict::Undecided, Visibility::WithinNoise, Agreement::Neither),
+        (Verdict::DirectOnly, Visibility::DirectOnly, Agreement::Neither),
+    ];
+    for (e, p, want) in cases {
+        assert_eq!(Agreement::of(e, p), want, "{e:?} {p:?}");
+    }
+}
+
+#[test]
+fn flip_map_tiles_use_flips_magma_scale_clamped_to_zero_one() {
+    use matte::study::perceptual::{colour_bar, map_tile};
+    let t = map_tile("x", 4, 1, &[0.0, 1.0, -3.0, f32::NAN]);
+    // Magma's ends: black-violet at 0 (#000004), pale yellow at 1 (#fcfdbf).
+    assert_eq!(&t.rgb[0..3], &[0, 0, 4]);
+    assert_eq!(&t.rgb[3..6], &[252, 253, 191]);
+    assert_eq!(&t.rgb[6..9], &[0, 0, 4], "below 0 is 0");
+    assert!(t.rgb.len() == 12);
+    let bar = colour_bar(64);
+    assert_eq!(bar.height, 64);
+    assert_eq!(&bar.rgb[0..3], &[252, 253, 191], "1 at the top");
+}
+
+#[test]
+fn study_without_flip_evaluator_says_why_and_keeps_the_rest() {
+    // The machine's python3 (the checkout's source package) has no flip-evaluator (nor
+    // Mitsuba): the study runs, and the perceptual part is a note; --no-perceptual skips it.
+    let scene = &crate::common::repo().join("mitsuba_scenes/study/cornell.xml").display().to_string();
+    for skip in [false, true] {
+        let out = temp_dir(if skip { "e2e_no_perceptual" } else { "e2e_perceptual_note" });
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_matte"));
+        cmd.envs(crate::common::source_package_env())
+            .args(["study", scene, "--spp", "2", "--passes", "2", "--res", "8", "--no-variants", "--no-convergence"])
+            .args(["-q", "-o"])
+            .arg(&out);
+        if skip {
+            cmd.arg("--no-perceptual");
+        }
+        let o = cmd.output().expect("run matte");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+        let p = &j["perceptual"];
+        assert!(p["scenes"].as_array().is_some_and(Vec::is_empty), "{p}");
+        let notes = p["notes"].as_array().unwrap();
+        if skip {
+            assert!(notes.is_empty(), "{notes:?}");
+        } else {
+            assert!(notes[0].as_str().is_some_and(|n| n.contains("not computed")), "{notes:?}");
+            let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
+            assert!(html.contains("perceptual differences were not computed"));
+        }
+        assert!(!out.join("cornell/perceptual_work").exists(), "the pass images are removed");
+        let _ = std::fs::remove_dir_all(&out);
+    }
 }

@@ -6,6 +6,7 @@
 //! part is also written on its own as `truth.json`.
 
 pub mod convergence_section;
+pub mod perceptual_section;
 pub mod plot;
 pub mod scenes;
 pub mod truth_section;
@@ -30,6 +31,8 @@ pub struct StudyJson {
     /// The rough models against the surfaces they describe.
     pub truths: truth_section::TruthsJson,
     pub convergence: Vec<convergence_section::SeriesJson>,
+    /// HDR-FLIP against Lambert and the surfaces, with noise floors and intervals.
+    pub perceptual: perceptual_section::PerceptualJson,
 }
 
 /// A region's ratio to Lambert in both lightings.
@@ -79,6 +82,7 @@ pub fn json(study: &Study) -> StudyJson {
         variants: study.variants.iter().map(variants_section::json).collect(),
         truths: truth_section::json(&study.truths),
         convergence: study.convergence.iter().map(convergence_section::json).collect(),
+        perceptual: perceptual_section::json(&study.perceptual, &study.perceptual_notes),
     }
 }
 
@@ -126,6 +130,9 @@ Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs 
     h.push_str("</ul>");
     if !study.truths.is_empty() {
         h.push_str(&truth_section::html(&study.truths, slices));
+    }
+    if !study.perceptual.is_empty() || !study.perceptual_notes.is_empty() {
+        h.push_str(&perceptual_section::html(&study.perceptual, &study.scenes, &study.truths, &study.perceptual_notes));
     }
     for s in &study.scenes {
         h.push_str(&scenes::html(s));
