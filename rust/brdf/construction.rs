@@ -51,29 +51,40 @@ impl Construction {
     }
 }
 
+/// Whether `name` is a file parameter of the model `kind` (`tabulated_brdf`'s `filename`): the
+/// front end resolves it as it resolves a scene's files before handing it to [`construct`].
+pub fn is_file_parameter(kind: &str, name: &str) -> bool {
+    spec(kind).and_then(|s| s.param(name)).is_some_and(|p| p.kind == super::registry::ParamKind::File)
+}
+
 /// The model `kind` (a plugin name) from `properties`. Errors name the parameter: an unknown
 /// type, an unknown parameter, a value out of range, or a texture for a parameter that is not
 /// numeric.
-pub fn construct(kind: &str, properties: &[(&str, Property)]) -> Result<Construction, ParamError> {
+pub fn construct<S: AsRef<str>>(kind: &str, properties: &[(S, Property)]) -> Result<Construction, ParamError> {
     if spec(kind).is_none() {
         // The unknown type's error, listing the known ones.
         DiffuseModel::from_params(kind, Params::new())?;
     }
     let numeric_names = numeric_parameter_names(kind);
-    let is_texture = |name: &str| properties.iter().any(|(n, p)| *n == name && matches!(p, Property::Texture { .. }));
+    let is_texture =
+        |name: &str| properties.iter().any(|(n, p)| n.as_ref() == name && matches!(p, Property::Texture { .. }));
     if let Some((name, _)) =
-        properties.iter().find(|(n, p)| matches!(p, Property::Texture { .. }) && !numeric_names.contains(n))
+        properties.iter().find(|(n, p)| matches!(p, Property::Texture { .. }) && !numeric_names.contains(&n.as_ref()))
     {
-        return Err(ParamError::new(name, "is not a numeric parameter of this model, so it cannot be a texture"));
+        return Err(ParamError::new(
+            name.as_ref(),
+            "is not a numeric parameter of this model, so it cannot be a texture",
+        ));
     }
     // Another parameter's value as a number (Wolff's indices bound each other: int ≥ ext).
-    let number = |other: &str| match properties.iter().find(|(n, _)| *n == other).map(|(_, p)| p) {
+    let number = |other: &str| match properties.iter().find(|(n, _)| n.as_ref() == other).map(|(_, p)| p) {
         Some(Property::Number(x)) => Some(*x),
         Some(Property::Text(s)) => lookup_ior(s),
         _ => None,
     };
     let mut params = Params::new();
     for (name, p) in properties {
+        let name = name.as_ref();
         let value = match p {
             Property::Number(x) => ParamValue::Number(*x),
             Property::Text(s) => ParamValue::Text(s.clone()),

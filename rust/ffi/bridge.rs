@@ -162,4 +162,5 @@ pub mod ffi {
     }
 }
 
-use super::{PluginBsdf, bsdf_new, is_file_parameter};
+use super::{PluginBsdf, bsdf_new};
+use matte_brdf::construction::is_file_parameter;

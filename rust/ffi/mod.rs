@@ -60,12 +60,6 @@ fn bsdf_new(kind: &str, properties: &[Param]) -> Result<Box<PluginBsdf>, String>
     }
 }
 
-fn is_file_parameter(kind: &str, name: &str) -> bool {
-    matte_brdf::spec(kind)
-        .and_then(|s| s.param(name))
-        .is_some_and(|p| matches!(p.kind, matte_brdf::registry::ParamKind::File))
-}
-
 /// The used channels of a [`Channels`], zero-padded to [`MAX_CHANNELS`].
 #[inline]
 fn padded(c: &Channels) -> [f32; MAX_CHANNELS] {

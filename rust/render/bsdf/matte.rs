@@ -14,10 +14,9 @@ use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
-use matte_brdf::construction::{Property, construct};
+use matte_brdf::construction::{Property, construct, is_file_parameter};
 use matte_brdf::kernel;
 use matte_brdf::registry::MAX_NUMERIC;
-use matte_brdf::registry::ParamKind;
 use matte_brdf::{DiffuseBrdf, DiffuseModel};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::Value;
@@ -69,14 +68,14 @@ impl FromProps for Matte {
         let reflectance = p.texture("reflectance")?;
         let nested_names = p.remaining_nested_names();
         let mut properties: Vec<(String, Property)> = Vec::new();
-        let spec = matte_brdf::spec(&kind);
-        let is_file = |name: &str| spec.and_then(|s| s.param(name)).is_some_and(|p| p.kind == ParamKind::File);
         for prop in p.remaining_properties() {
             let value = match &prop.value {
                 Value::Float(x) => Property::Number(*x),
                 Value::Integer(i) => Property::Number(*i as f64),
                 // A file (`tabulated_brdf`'s table) is resolved as every file of the scene.
-                Value::String(s) if is_file(&prop.name) => Property::Text(p.resolve(s).display().to_string()),
+                Value::String(s) if is_file_parameter(&kind, &prop.name) => {
+                    Property::Text(p.resolve(s).display().to_string())
+                }
                 Value::String(s) => Property::Text(s.clone()),
                 Value::Boolean(v) => Property::Flag(*v),
                 other => {
@@ -93,8 +92,7 @@ impl FromProps for Matte {
             properties.push((name.clone(), Property::Texture { mean: t.mean() as f64 }));
             textures.push((name, t));
         }
-        let named: Vec<(&str, Property)> = properties.iter().map(|(n, v)| (n.as_str(), v.clone())).collect();
-        let c = construct(&kind, &named).map_err(|e| p.prop_err(&e.param, e.message))?;
+        let c = construct(&kind, &properties).map_err(|e| p.prop_err(&e.param, e.message))?;
         if !c.is_textured() {
             return Ok(Matte::new(c.model, reflectance));
         }

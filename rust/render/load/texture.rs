@@ -157,18 +157,11 @@ fn gridvolume(b: &Builder, obj: &SceneObject, to_local: Affine3A) -> Result<Volu
             ));
         }
     };
-    let wrap = match values::string(obj, "wrap_mode", "clamp")?.as_str() {
-        "repeat" => WrapMode::Repeat,
-        "mirror" => WrapMode::Mirror,
-        "clamp" => WrapMode::Clamp,
-        other => {
-            return Err(values::prop_err(
-                obj,
-                "wrap_mode",
-                format!("Invalid wrap mode \"{other}\", must be one of: \"repeat\", \"mirror\", or \"clamp\"!"),
-            ));
-        }
-    };
+    let word = values::string(obj, "wrap_mode", "clamp")?;
+    let wrap = WrapMode::parse(&word).ok_or_else(|| {
+        let message = format!("Invalid wrap mode \"{word}\", must be one of: \"repeat\", \"mirror\", or \"clamp\"!");
+        values::prop_err(obj, "wrap_mode", message)
+    })?;
     let use_grid_bbox = values::boolean(obj, "use_grid_bbox", false)?;
     let filename = obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
     obj.check_all_used()?;
@@ -317,18 +310,10 @@ fn build_bitmap(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
             return Err(values::prop_err(obj, "filter_type", format!("must be bilinear or nearest, got \"{other}\"")));
         }
     };
-    let wrap = match values::string(obj, "wrap_mode", "repeat")?.as_str() {
-        "repeat" => WrapMode::Repeat,
-        "mirror" => WrapMode::Mirror,
-        "clamp" => WrapMode::Clamp,
-        other => {
-            return Err(values::prop_err(
-                obj,
-                "wrap_mode",
-                format!("must be repeat, mirror or clamp, got \"{other}\""),
-            ));
-        }
-    };
+    let word = values::string(obj, "wrap_mode", "repeat")?;
+    let wrap = WrapMode::parse(&word).ok_or_else(|| {
+        values::prop_err(obj, "wrap_mode", format!("must be repeat, mirror or clamp, got \"{word}\""))
+    })?;
     let raw = values::boolean(obj, "raw", false)?;
     let to_uv = to_uv(obj)?;
     let _ = values::string(obj, "format", "variant")?;

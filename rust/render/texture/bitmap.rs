@@ -27,6 +27,18 @@ pub enum WrapMode {
     Clamp,
 }
 
+impl WrapMode {
+    /// The `wrap_mode` word (Mitsuba's `repeat`, `mirror`, `clamp`), or `None`.
+    pub fn parse(word: &str) -> Option<Self> {
+        match word {
+            "repeat" => Some(WrapMode::Repeat),
+            "mirror" => Some(WrapMode::Mirror),
+            "clamp" => Some(WrapMode::Clamp),
+            _ => None,
+        }
+    }
+}
+
 /// The texture's XML properties.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BitmapOptions {
