@@ -14,7 +14,7 @@ PY     := .venv/bin/python
 WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
 # The wheel's inputs: sources, the package with its tables, and the package data setup.py copies
 # in (the bundled scenes, the study report's slices); not the copies themselves.
-SOURCES := $(shell find rust cpp python/matte_mitsuba mitsuba_scenes -type f -not -path '*/plugins/*' -not -path '*/bin/*' \
+SOURCES := $(shell find rust cpp python/matte_mitsuba mitsuba_scenes -type f -not -path '*/plugins/*' -not -path '*/bin/*' -not -path 'python/matte_mitsuba/lib/*' \
 	-not -name '_build.py' -not -path '*__pycache__*' -not -path 'python/matte_mitsuba/scenes/*' \
 	-not -path 'python/matte_mitsuba/truth_slices/*') Cargo.toml Cargo.lock build.rs pyproject.toml setup.py MANIFEST.in \
 	$(wildcard docs/microgeometry/truth_slice_*.png docs/microgeometry/slices_*_r0.3_rho0.8.png)

@@ -1,9 +1,10 @@
-"""The wheel's build step (pyproject.toml has the metadata): build the plugins and the `matte`
-binary with cpp/build_plugin.sh against the Mitsuba of the building Python, put into the package
-what the `matte` tool reads at run time besides the ground-truth tables it already holds (the
-binary, the bundled scenes of mitsuba_scenes/ as `scenes/`, the study report's BRDF slices of
-docs/microgeometry/ as `truth_slices/`), and tag the wheel for this platform (it holds native
-code, but no Python extension: any Python 3 that runs Mitsuba can load it)."""
+"""The wheel's build step (pyproject.toml has the metadata): build the plugins (the Rust kernels
+once, a C++ layer per Mitsuba release of cpp/mitsuba_releases.txt) and the `matte` binary with
+cpp/build_plugin.sh, put into the package what the `matte` tool reads at run time besides the
+ground-truth tables it already holds (the binary, the bundled scenes of mitsuba_scenes/ as
+`scenes/`, the study report's BRDF slices of docs/microgeometry/ as `truth_slices/`), and tag
+the wheel for this platform (it holds native code, but no Python extension: any Python 3 that
+runs Mitsuba can load it)."""
 
 import glob
 import os
@@ -45,6 +46,9 @@ class BuildPlugins(build_py):
         for pattern in SLICES:
             for png in glob.glob(os.path.join(ROOT, "docs", "microgeometry", pattern)):
                 shutil.copy2(png, slices)
+        # build_py adds to what an earlier build left in build/lib, so files of a layout since
+        # changed (a release no longer built) would ship: start the package there afresh.
+        shutil.rmtree(os.path.join(self.build_lib, "matte_mitsuba"), ignore_errors=True)
         super().run()
 
 

@@ -36,10 +36,9 @@ public:
     uint32_t mul(uint32_t a, uint32_t b) const override { return push(f(a) * f(b)); }
     uint32_t div(uint32_t a, uint32_t b) const override { return push(f(a) / f(b)); }
     // A NaN operand gives the other one, as the kernels' clamps need (rust/brdf/real.rs:
-    // `Real::min`): Dr.Jit's fmin/fmax (IEEE 754 minNum/maxNum). Its minimum/maximum
-    // propagate NaN since Dr.Jit 1.5.0.
-    uint32_t minimum(uint32_t a, uint32_t b) const override { return push(drjit::fmin(f(a), f(b))); }
-    uint32_t maximum(uint32_t a, uint32_t b) const override { return push(drjit::fmax(f(a), f(b))); }
+    // `Real::min`): IEEE 754 minNum/maxNum, see min_num below.
+    uint32_t minimum(uint32_t a, uint32_t b) const override { return push(min_num(f(a), f(b))); }
+    uint32_t maximum(uint32_t a, uint32_t b) const override { return push(max_num(f(a), f(b))); }
     uint32_t neg(uint32_t a) const override { return push(-f(a)); }
     uint32_t abs(uint32_t a) const override { return push(drjit::abs(f(a))); }
     uint32_t sqrt(uint32_t a) const override { return push(drjit::sqrt(f(a))); }
@@ -90,6 +89,16 @@ public:
     }
 
 private:
+#if DRJIT_VERSION_MAJOR > 1 || DRJIT_VERSION_MINOR >= 5
+    // Dr.Jit's fmin/fmax. Its minimum/maximum propagate NaN since Dr.Jit 1.5.0.
+    static Float min_num(const Float &a, const Float &b) { return drjit::fmin(a, b); }
+    static Float max_num(const Float &a, const Float &b) { return drjit::fmax(a, b); }
+#else
+    // Dr.Jit before 1.5.0 (Mitsuba 3.7.0 to 3.9.0) has no fmin/fmax, and its minimum/maximum do
+    // not say what a NaN operand gives: the operand that is not NaN, written out.
+    static Float min_num(const Float &a, const Float &b) { return drjit::select((a <= b) || drjit::isnan(b), a, b); }
+    static Float max_num(const Float &a, const Float &b) { return drjit::select((a >= b) || drjit::isnan(b), a, b); }
+#endif
     /// The registered table number `table` when it holds at least `n` values, else null.
     const Float *table_of(uint32_t table, size_t n) const {
         if (!m_tables || table >= m_tables->size() || drjit::width((*m_tables)[table]) < n)

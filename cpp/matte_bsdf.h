@@ -107,7 +107,7 @@ public:
         // The numeric parameters with their effective values (defaults filled in), as the
         // variant's Float: fixed from here on (traverse hands out references to them).
         for (const auto &p : (*m_model)->numeric_parameters()) {
-            NumericParameter n{ std::string(p.name), Float((ScalarFloat) p.number), nullptr };
+            NumericParameter n{ text_of(p.name), Float((ScalarFloat) p.number), nullptr };
             for (auto &[name, texture] : textured)
                 if (name == n.name)
                     n.texture = texture;
@@ -138,7 +138,7 @@ public:
             double value = scalar_value(n.value);
             bool found = false;
             for (auto &p : m_params)
-                if (std::string(p.name) == n.name) {
+                if (text_of(p.name) == n.name) {
                     p.kind = matte::ffi::ParamKind::Number;
                     p.number = value;
                     found = true;
@@ -238,17 +238,17 @@ public:
             << "  type = \"" << m_kind << "\"," << std::endl
             << "  reflectance = " << string::indent(m_reflectance) << "," << std::endl;
         for (const auto &p : (*m_model)->describe_parameters()) {
-            oss << "  " << std::string(p.name) << " = ";
+            oss << "  " << text_of(p.name) << " = ";
             const Texture *tex = nullptr;
             for (const NumericParameter &n : m_numeric)
-                if (n.name == std::string(p.name) && n.texture)
+                if (n.name == text_of(p.name) && n.texture)
                     tex = n.texture.get();
             if (tex)
                 oss << string::indent(tex);
             else if (p.kind == matte::ffi::ParamKind::Number)
                 oss << p.number;
             else
-                oss << "\"" << std::string(p.text) << "\"";
+                oss << "\"" << text_of(p.text) << "\"";
             oss << "," << std::endl;
         }
         oss << "]";
@@ -262,8 +262,13 @@ private:
 
     static matte::ffi::Param param(const std::string &name, matte::ffi::ParamKind kind, double number,
                                    const std::string &text = {}) {
-        return matte::ffi::Param{ rust::String(name), kind, number, rust::String(text) };
+        return matte::ffi::Param{ rust::String(name.data(), name.size()), kind, number,
+                                  rust::String(text.data(), text.size()) };
     }
+    /// Strings cross the bridge as pointer and length only: cxx's own std::string conversions are
+    /// compiled into the kernels library (lib/libmatte_kernels.so) with one C++ string ABI, and
+    /// the layers of Mitsuba 3.7.x use the other (cpp/build_plugin.sh).
+    static std::string text_of(const rust::String &s) { return std::string(s.data(), s.size()); }
 
     void build_model() {
         try {

@@ -6,17 +6,20 @@
     mi.load_file('scene.xml')       # <bsdf type="wolff"/> etc. now load
 
 Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` through its process-wide file
-resolver (the same for every variant); this package's folder holds one small ``NAME.so`` per
-type and the library they share (``libmatte_bsdfs.so``), so prepending the folder is all that
-is needed. For the ``mitsuba`` command-line tool use ``-a``: ``mitsuba -a "$(python -m
-matte_mitsuba)" scene.xml``.
+resolver (the same for every variant). The package holds one plugin folder per supported Mitsuba
+release (``releases/<release>/plugins/``: one small ``NAME.so`` per type and the release's C++
+layer they share, ``libmatte_bsdfs.so``) and the Rust kernels every layer calls, once
+(``lib/libmatte_kernels.so``). Importing it prepends the folder of the running release
+(:data:`PLUGIN_ROOT`) to the resolver. For the ``mitsuba`` command-line tool use ``-a``:
+``mitsuba -a "$(python -m matte_mitsuba)" scene.xml``.
 
 Every variant of the Mitsuba wheel is supported, scalar, llvm and cuda, in Dr.Jit's default
 (symbolic) mode: the JIT variants trace the Rust kernels into Dr.Jit, so they run in symbolic
 loops and calls, and ``reflectance`` and the numeric parameters are differentiable.
 
-The plugins are compiled against one Mitsuba version (its C++ ABI); another version is refused
-at import with an error naming both.
+Supported Mitsuba releases: :data:`MITSUBA_RELEASES` (3.7.0 to 3.9.1; each layer is compiled
+against that release's headers, libraries, instruction set and C++ ABI). Another release is
+refused at import with one line naming the supported ones.
 
 The package also holds what the ``matte`` command-line tool needs at run time: the Mitsuba
 side of its commands (``python -m matte_mitsuba.passes`` for ``matte validate`` and ``matte
@@ -28,34 +31,68 @@ study`` render) and the simulated surfaces' tables (:data:`GROUND_TRUTH`).
 
 import os as _os
 
-#: Folder to add to Mitsuba's search path (it contains ``plugins/``).
-PLUGIN_ROOT = _os.path.dirname(_os.path.abspath(__file__))
+#: The package's folder: its data (``ground_truth/``, ``scenes/``), the ``matte`` binary
+#: (``bin/``) and the plugins of every release (``releases/``).
+PACKAGE_ROOT = _os.path.dirname(_os.path.abspath(__file__))
 
-_PLUGINS = _os.path.join(PLUGIN_ROOT, "plugins")
 _LIBRARY = "libmatte_bsdfs.so"
 
 
-def _built_plugins():
-    if not _os.path.exists(_os.path.join(_PLUGINS, _LIBRARY)):
+def _releases():
+    try:
+        from ._build import MITSUBA_RELEASES
+    except ImportError:
         raise ImportError(
             "matte_mitsuba: the plugins are not built in %s; run 'make plugin' in the matte "
-            "repository, or install the matte-mitsuba wheel" % _PLUGINS
-        )
-    return tuple(sorted(f[:-3] for f in _os.listdir(_PLUGINS) if f.endswith(".so") and f != _LIBRARY))
+            "repository, or install the matte-mitsuba wheel" % PACKAGE_ROOT
+        ) from None
+    return MITSUBA_RELEASES
 
+
+#: The Mitsuba releases this installation has plugins for (oldest first).
+MITSUBA_RELEASES = _releases()
+
+
+def _release_root(version):
+    """The folder holding ``plugins/`` for Mitsuba ``version``; ImportError (one line naming
+    the supported releases) when this installation has none for it."""
+    root = _os.path.join(PACKAGE_ROOT, "releases", version)
+    if version not in MITSUBA_RELEASES or not _os.path.isfile(_os.path.join(root, "plugins", _LIBRARY)):
+        supported = ", ".join(MITSUBA_RELEASES[:-1]) + " and " + MITSUBA_RELEASES[-1]
+        if len(MITSUBA_RELEASES) == 1:
+            supported = MITSUBA_RELEASES[0]
+        raise ImportError(
+            "matte_mitsuba: Mitsuba %s is installed, but matte's plugins support Mitsuba %s only; "
+            "install one of them (pip install 'mitsuba>=%s,<=%s')"
+            % (version, supported, MITSUBA_RELEASES[0], MITSUBA_RELEASES[-1])
+        )
+    return root
+
+
+def _mitsuba_version():
+    import mitsuba
+
+    return mitsuba.__version__
+
+
+#: Folder to add to Mitsuba's search path: it contains ``plugins/``, built for the running
+#: Mitsuba release.
+PLUGIN_ROOT = _release_root(_mitsuba_version())
 
 #: The ``<bsdf type=...>`` names this package provides (the plugin files the build wrote).
-BSDF_TYPES = _built_plugins()
+BSDF_TYPES = tuple(
+    sorted(f[:-3] for f in _os.listdir(_os.path.join(PLUGIN_ROOT, "plugins")) if f.endswith(".so") and f != _LIBRARY)
+)
 
 #: Folder of the simulated microsurfaces' BRDF tables, files for ``tabulated_brdf``
 #: (``v_cavities_sigma<σ>.json``, ``height_field_m<m>.json``; matte's docs/microgeometry.md).
-#: Since the import adds :data:`PLUGIN_ROOT` to Mitsuba's file resolver, a scene may name a
+#: Since the import adds :data:`PACKAGE_ROOT` to Mitsuba's file resolver, a scene may name a
 #: table as ``ground_truth/v_cavities_sigma0.3.json``.
-GROUND_TRUTH = _os.path.join(PLUGIN_ROOT, "ground_truth")
+GROUND_TRUTH = _os.path.join(PACKAGE_ROOT, "ground_truth")
 
 #: Folder of the bundled scenes (``matte validate --all`` renders its ``*.xml``, ``matte
 #: study`` its ``study/*.xml``), with their assets.
-SCENES = _os.path.join(PLUGIN_ROOT, "scenes")
+SCENES = _os.path.join(PACKAGE_ROOT, "scenes")
 
 
 def ground_truth_path(name):
@@ -81,25 +118,16 @@ def numeric_parameters(model):
     return [p for p in model["params"] if p["kind"]["type"] in ("number", "ior")]
 
 
-def _check_mitsuba_version(mi):
-    from ._build import MITSUBA_VERSION
-
-    if mi.__version__ != MITSUBA_VERSION:
-        raise ImportError(
-            "matte_mitsuba: its plugins were compiled against Mitsuba %s, but Mitsuba %s is "
-            "installed; install mitsuba==%s (or rebuild matte against %s)"
-            % (MITSUBA_VERSION, mi.__version__, MITSUBA_VERSION, mi.__version__)
-        )
-
-
 def register():
-    """Adds the plugin folder to Mitsuba's file resolver (idempotent). Called on import."""
+    """Adds the running release's plugin folder and the package folder (for relative paths to
+    its tables) to Mitsuba's file resolver (idempotent). Called on import."""
     import mitsuba as mi
 
-    _check_mitsuba_version(mi)
     resolver = mi.file_resolver()
-    if PLUGIN_ROOT not in [str(p) for p in resolver]:
-        resolver.prepend(PLUGIN_ROOT)
+    present = [str(p) for p in resolver]
+    for folder in (PACKAGE_ROOT, PLUGIN_ROOT):
+        if folder not in present:
+            resolver.prepend(folder)
 
 
 register()

@@ -15,7 +15,7 @@ import sys
 import matte_mitsuba
 import pytest
 
-INSTALLED = os.path.join(matte_mitsuba.PLUGIN_ROOT, "bin", "matte")
+INSTALLED = os.path.join(matte_mitsuba.PACKAGE_ROOT, "bin", "matte")
 # A Python without matte_mitsuba: the interpreter the test environment was made from.
 BARE_PYTHON = getattr(sys, "_base_executable", None)
 
