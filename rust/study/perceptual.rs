@@ -451,7 +451,7 @@ fn evaluate(
                 p95: Flip::new(c.p95, c.jackknife_p95.clone()),
             };
             let map = read_map(&maps.join(format!("{}_{}_{}.f32", l.name(), p.0.key(), p.1.key())), c.width, c.height)?;
-            let label = if is_floor(*p) { "Lambert (other seeds)" } else { p.0.tile() };
+            let label = if is_floor(*p) { "noise floor" } else { p.0.tile() };
             let tile = map_tile(label, c.width, c.height, &map);
             if p.1 == lambert {
                 lambert_tiles.push(tile)

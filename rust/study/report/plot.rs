@@ -18,7 +18,9 @@ const FAMILY: &str = "DejaVu Sans, sans-serif";
 /// Empty when the series has no point of `model`.
 pub fn ratio_over_spp(s: &Series, model: Configuration, title: &str) -> String {
     static FONT: Once = Once::new();
-    FONT.call_once(|| assert!(register_font(FAMILY, FontStyle::Normal, DEJAVU_SANS).is_ok(), "the embedded font parses"));
+    FONT.call_once(|| {
+        assert!(register_font(FAMILY, FontStyle::Normal, DEJAVU_SANS).is_ok(), "the embedded font parses")
+    });
     let pts: Vec<&Point> = s.points.iter().filter(|p| p.model == model).collect();
     if pts.is_empty() || s.levels.is_empty() {
         return String::new();
@@ -90,5 +92,8 @@ pub fn ratio_over_spp(s: &Series, model: Configuration, title: &str) -> String {
         root.present()?;
         Ok(())
     })();
-    drawn.map_or_else(|e| format!(r#"<p class="note">{}: no plot ({}).</p>"#, escape(title), escape(&e.to_string())), |()| svg)
+    drawn.map_or_else(
+        |e| format!(r#"<p class="note">{}: no plot ({}).</p>"#, escape(title), escape(&e.to_string())),
+        |()| svg,
+    )
 }
