@@ -1,4 +1,4 @@
-//! Escaping text for HTML and XML: the one rule every report and derived scene uses.
+//! Escaping text for XML and HTML: the derived scenes' values (the reports escape through their askama templates).
 
 /// `&`, `<`, `>`, `"` and `'` as entities: safe in HTML and XML text and in quoted attribute
 /// values.

@@ -121,7 +121,7 @@ impl Configuration {
                 key: "oren_nayar_qualitative",
                 bsdf: "oren_nayar",
                 label: "Oren–Nayar (qualitative)",
-                tile: "Oren-Nayar",
+                tile: "Oren–Nayar qual.",
                 property: Some(("model", "qualitative")),
                 meaning: "The 1994 qualitative model (ρ/π)(A + B max(0, cos Δφ) sin α tan β), as in the seed paper. It loses energy at normal incidence (E(0) = A) and is retro-reflective.",
             },
@@ -129,7 +129,7 @@ impl Configuration {
                 key: "oren_nayar_full",
                 bsdf: "oren_nayar",
                 label: "Oren–Nayar (full)",
-                tile: "O-N full",
+                tile: "Oren–Nayar full",
                 property: Some(("model", "full")),
                 meaning: "The full 1994 model: the C1–C3 terms, which darken forward scattering, plus the interreflection term f2 = 0.17 (ρ²/π) σ²/(σ² + 0.13) (1 − cos Δφ (2β/π)²). f2 grows with ρ², so bright surfaces gain the most.",
             },
@@ -137,7 +137,7 @@ impl Configuration {
                 key: "ginneken",
                 bsdf: "ginneken",
                 label: "van Ginneken",
-                tile: "Ginneken",
+                tile: "van Ginneken",
                 property: None,
                 meaning: "Lambertian facets on a Gaussian random surface, with shadowing and masking.",
             },
@@ -153,7 +153,7 @@ impl Configuration {
                 key: "truth_v_cavities",
                 bsdf: "tabulated_brdf",
                 label: "V-cavities σ=0.3",
-                tile: "V-cav",
+                tile: "V-cavities",
                 property: None,
                 meaning: "Oren & Nayar's surface, simulated: long symmetric V-cavities with Lambertian facets, Gaussian slope angles σ = 0.3, all interreflections (python/matte_mitsuba/ground_truth/v_cavities_sigma0.3.json).",
             },
@@ -161,7 +161,7 @@ impl Configuration {
                 key: "truth_height_field",
                 bsdf: "tabulated_brdf",
                 label: "height field m=0.3",
-                tile: "H-field",
+                tile: "height field",
                 property: None,
                 meaning: "van Ginneken's surface, simulated: a Gaussian random height field with Lambertian facets, rms slope m = 0.3, all interreflections (python/matte_mitsuba/ground_truth/height_field_m0.3.json).",
             },
@@ -171,7 +171,7 @@ impl Configuration {
                     key: spec.name,
                     bsdf: spec.name,
                     label: spec.label,
-                    tile: if spec.label.is_ascii() { spec.label } else { spec.name },
+                    tile: spec.label,
                     property: None,
                     meaning: spec.summary,
                 }
@@ -194,7 +194,7 @@ impl Configuration {
         self.entry().label
     }
 
-    /// The short name in the strips (5×7 pixel font, ASCII).
+    /// The short name in the strips.
     pub fn tile(self) -> &'static str {
         self.entry().tile
     }

@@ -1,82 +1,79 @@
-//! A 5×7 pixel font for labelling the study's strips (upper-case letters, digits and a few
-//! signs), drawn at an integer scale. Hand-made here so labels need no font file at run
-//! time.
+//! Text in the study's figures: DejaVu Sans (`fonts/DejaVuSans.ttf`, Bitstream Vera licence in
+//! `fonts/LICENSE`), embedded in the binary. ab_glyph lays out and rasterises the strips' labels
+//! anti-aliased; the plots' SVG is laid out with the same font's metrics.
 
-/// Glyph rows, top to bottom, `#` = ink.
-fn glyph(c: char) -> [&'static str; 7] {
-    match c.to_ascii_uppercase() {
-        'A' => [" ### ", "#   #", "#   #", "#####", "#   #", "#   #", "#   #"],
-        'B' => ["#### ", "#   #", "#   #", "#### ", "#   #", "#   #", "#### "],
-        'C' => [" ### ", "#   #", "#    ", "#    ", "#    ", "#   #", " ### "],
-        'D' => ["#### ", "#   #", "#   #", "#   #", "#   #", "#   #", "#### "],
-        'E' => ["#####", "#    ", "#    ", "#### ", "#    ", "#    ", "#####"],
-        'F' => ["#####", "#    ", "#    ", "#### ", "#    ", "#    ", "#    "],
-        'G' => [" ### ", "#   #", "#    ", "# ###", "#   #", "#   #", " ####"],
-        'H' => ["#   #", "#   #", "#   #", "#####", "#   #", "#   #", "#   #"],
-        'I' => [" ### ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### "],
-        'J' => ["  ###", "   # ", "   # ", "   # ", "   # ", "#  # ", " ##  "],
-        'K' => ["#   #", "#  # ", "# #  ", "##   ", "# #  ", "#  # ", "#   #"],
-        'L' => ["#    ", "#    ", "#    ", "#    ", "#    ", "#    ", "#####"],
-        'M' => ["#   #", "## ##", "# # #", "# # #", "#   #", "#   #", "#   #"],
-        'N' => ["#   #", "##  #", "# # #", "#  ##", "#   #", "#   #", "#   #"],
-        'O' => [" ### ", "#   #", "#   #", "#   #", "#   #", "#   #", " ### "],
-        'P' => ["#### ", "#   #", "#   #", "#### ", "#    ", "#    ", "#    "],
-        'Q' => [" ### ", "#   #", "#   #", "#   #", "# # #", "#  # ", " ## #"],
-        'R' => ["#### ", "#   #", "#   #", "#### ", "# #  ", "#  # ", "#   #"],
-        'S' => [" ####", "#    ", "#    ", " ### ", "    #", "    #", "#### "],
-        'T' => ["#####", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  "],
-        'U' => ["#   #", "#   #", "#   #", "#   #", "#   #", "#   #", " ### "],
-        'V' => ["#   #", "#   #", "#   #", "#   #", "#   #", " # # ", "  #  "],
-        'W' => ["#   #", "#   #", "#   #", "# # #", "# # #", "## ##", "#   #"],
-        'X' => ["#   #", "#   #", " # # ", "  #  ", " # # ", "#   #", "#   #"],
-        'Y' => ["#   #", "#   #", " # # ", "  #  ", "  #  ", "  #  ", "  #  "],
-        'Z' => ["#####", "    #", "   # ", "  #  ", " #   ", "#    ", "#####"],
-        '0' => [" ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### "],
-        '1' => ["  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### "],
-        '2' => [" ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####"],
-        '3' => ["#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### "],
-        '4' => ["   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # "],
-        '5' => ["#####", "#    ", "#### ", "    #", "    #", "#   #", " ### "],
-        '6' => ["  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### "],
-        '7' => ["#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   "],
-        '8' => [" ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### "],
-        '9' => [" ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  "],
-        '-' => ["     ", "     ", "     ", "#####", "     ", "     ", "     "],
-        '+' => ["     ", "  #  ", "  #  ", "#####", "  #  ", "  #  ", "     "],
-        '.' => ["     ", "     ", "     ", "     ", "     ", " ##  ", " ##  "],
-        '%' => ["##   ", "##  #", "   # ", "  #  ", " #   ", "#  ##", "   ##"],
-        '(' => ["   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # "],
-        ')' => [" #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   "],
-        '=' => ["     ", "     ", "#####", "     ", "#####", "     ", "     "],
-        _ => ["     "; 7],
+use ab_glyph::{Font, FontRef, PxScale, ScaleFont, point};
+use image::{Rgb, RgbImage};
+use std::sync::LazyLock;
+
+/// DejaVu Sans Book, the font of matplotlib's figures.
+pub static DEJAVU_SANS: &[u8] = include_bytes!("fonts/DejaVuSans.ttf");
+
+static FONT: LazyLock<FontRef<'static>> =
+    LazyLock::new(|| FontRef::try_from_slice(DEJAVU_SANS).expect("the embedded font parses"));
+
+/// The glyphs of `text` at `px` pixels per em with their pen positions, baseline at y = 0.
+fn layout(text: &str, px: f32) -> (Vec<ab_glyph::Glyph>, f32) {
+    let font = FONT.as_scaled(PxScale::from(px));
+    let (mut x, mut last) = (0.0, None);
+    let mut glyphs = Vec::new();
+    for c in text.chars() {
+        let id = font.glyph_id(c);
+        x += last.map_or(0.0, |l| font.kern(l, id));
+        glyphs.push(id.with_scale_and_position(px, point(x, 0.0)));
+        x += font.h_advance(id);
+        last = Some(id);
     }
+    (glyphs, x)
 }
 
-/// Width in pixels of `text` at `scale` (6 px advance per character).
-pub fn text_width(text: &str, scale: u32) -> u32 {
-    (text.chars().count() as u32 * 6).saturating_sub(1) * scale
+/// Advance width of `text` in pixels at `px` pixels per em.
+#[must_use]
+pub fn width(text: &str, px: f32) -> f32 {
+    layout(text, px).1
 }
 
-/// Draws `text` into an RGB8 buffer of width `w` at (x, y) (top-left) in `color`.
-#[allow(clippy::too_many_arguments)] // a buffer, its size, a place, a text and its style
-pub fn draw_text(buf: &mut [u8], w: u32, h: u32, x: u32, y: u32, text: &str, scale: u32, color: [u8; 3]) {
-    for (i, c) in text.chars().enumerate() {
-        let gx = x + i as u32 * 6 * scale;
-        for (row, bits) in glyph(c).iter().enumerate() {
-            for (col, b) in bits.bytes().enumerate() {
-                if b != b'#' {
-                    continue;
-                }
-                for dy in 0..scale {
-                    for dx in 0..scale {
-                        let (px, py) = (gx + col as u32 * scale + dx, y + row as u32 * scale + dy);
-                        if px < w && py < h {
-                            let o = ((py * w + px) * 3) as usize;
-                            buf[o..o + 3].copy_from_slice(&color);
-                        }
-                    }
-                }
-            }
+/// Ascent and descent (negative) in pixels at `px` pixels per em.
+#[must_use]
+pub fn extent(px: f32) -> (f32, f32) {
+    let font = FONT.as_scaled(PxScale::from(px));
+    (font.ascent(), font.descent())
+}
+
+/// `text`, or its longest prefix with "…" that is at most `max` pixels wide at `px`.
+#[must_use]
+pub fn ellipsize(text: &str, px: f32, max: f32) -> String {
+    if width(text, px) <= max {
+        return text.to_string();
+    }
+    let mut cut: String = text.to_string();
+    while cut.pop().is_some() {
+        let s = format!("{}…", cut.trim_end());
+        if width(&s, px) <= max {
+            return s;
         }
+    }
+    String::new()
+}
+
+/// Draws `text` anti-aliased in `colour` with its top (the font's ascent) at `top` and its pen
+/// starting at `left`.
+pub fn draw(img: &mut RgbImage, left: f32, top: f32, text: &str, px: f32, colour: Rgb<u8>) {
+    let (glyphs, _) = layout(text, px);
+    let baseline = top + extent(px).0;
+    for g in glyphs {
+        let Some(outline) = FONT.outline_glyph(g) else { continue };
+        let b = outline.px_bounds();
+        outline.draw(|x, y, coverage| {
+            let (x, y) = (b.min.x + left + x as f32, b.min.y + baseline + y as f32);
+            if x < 0.0 || y < 0.0 || x >= img.width() as f32 || y >= img.height() as f32 {
+                return;
+            }
+            let p = img.get_pixel_mut(x as u32, y as u32);
+            let a = coverage.clamp(0.0, 1.0);
+            for (d, s) in p.0.iter_mut().zip(colour.0) {
+                *d = (*d as f32 * (1.0 - a) + s as f32 * a).round() as u8;
+            }
+        });
     }
 }

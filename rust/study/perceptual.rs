@@ -451,7 +451,7 @@ fn evaluate(
                 p95: Flip::new(c.p95, c.jackknife_p95.clone()),
             };
             let map = read_map(&maps.join(format!("{}_{}_{}.f32", l.name(), p.0.key(), p.1.key())), c.width, c.height)?;
-            let label = if is_floor(*p) { "Lambert (other seeds)" } else { p.0.tile() };
+            let label = if is_floor(*p) { "noise floor" } else { p.0.tile() };
             let tile = map_tile(label, c.width, c.height, &map);
             if p.1 == lambert {
                 lambert_tiles.push(tile)
@@ -565,20 +565,24 @@ pub fn map_tile(label: &str, width: u32, height: u32, map: &[f32]) -> strip::Str
     strip::StripTile { label: label.to_string(), width, height, rgb }
 }
 
-/// The colour bar of the FLIP strips: magma from 0 (bottom) to 1 (top), labelled.
+/// The colour bar of the FLIP strips: magma from 0 (bottom) to 1 (top), its ticks labelled.
 pub fn colour_bar(height: u32) -> strip::StripTile {
-    let width = 36;
-    let h = height.max(16);
-    let mut rgb = Vec::with_capacity((width * h * 3) as usize);
-    for y in 0..h {
+    const BAR: u32 = 14;
+    const TICK_PX: f32 = 12.0;
+    let ink = image::Rgb([20, 20, 20]);
+    let width = (BAR as f32 + 4.0 + font::width("0.5", TICK_PX)).max(font::width("FLIP", strip::LABEL_PX) + 2.0).ceil();
+    let (ascent, descent) = font::extent(TICK_PX);
+    let text_h = ascent - descent;
+    let (width, h) = (width as u32, height.max((2.0 * text_h).ceil() as u32));
+    let mut img = image::RgbImage::from_fn(width, h, |x, y| {
         let v = 1.0 - y as f64 / (h - 1) as f64;
-        let c = colorous::MAGMA.eval_continuous(v).as_array();
-        for x in 0..width {
-            rgb.extend(if x < 14 { c } else { [255, 255, 255] });
-        }
+        image::Rgb(if x < BAR { colorous::MAGMA.eval_continuous(v).as_array() } else { [255, 255, 255] })
+    });
+    let x = BAR as f32 + 4.0;
+    font::draw(&mut img, x, 0.0, "1", TICK_PX, ink);
+    if h as f32 >= 3.0 * text_h {
+        font::draw(&mut img, x, ((h as f32 - text_h) / 2.0).round(), "0.5", TICK_PX, ink);
     }
-    font::draw_text(&mut rgb, width, h, 17, 1, "1", 1, [20, 20, 20]);
-    font::draw_text(&mut rgb, width, h, 17, (h - 4) / 2, ".5", 1, [20, 20, 20]);
-    font::draw_text(&mut rgb, width, h, 17, h - 8, "0", 1, [20, 20, 20]);
-    strip::StripTile { label: "FLIP".into(), width, height: h, rgb }
+    font::draw(&mut img, x, h as f32 - text_h, "0", TICK_PX, ink);
+    strip::StripTile { label: "FLIP".into(), width, height: h, rgb: img.into_raw() }
 }

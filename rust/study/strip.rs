@@ -3,13 +3,16 @@
 //! and the matching strip of relative-difference heatmaps against Lambert.
 
 use super::font;
+use image::{Rgb, RgbImage};
 use matte_render::film::Image;
 use matte_render::image_io::encode_srgb8;
 use std::path::Path;
 
 const GAP: u32 = 4;
-const SCALE: u32 = 2;
-const LABEL_H: u32 = 7 * SCALE + 8;
+/// The labels' size in pixels per em where the tiles are wide enough (256-pixel tiles are).
+pub const LABEL_PX: f32 = 16.0;
+/// The smallest size labels shrink to before they are shortened.
+pub const MIN_LABEL_PX: f32 = 9.0;
 
 /// One labelled tile: RGB8 pixels of a fixed size.
 pub struct StripTile {
@@ -42,24 +45,25 @@ impl StripTile {
     }
 }
 
-/// Writes the tiles side by side with their labels above, on white.
+/// Writes the tiles side by side with their labels above, on white. Every label has one size,
+/// the largest up to [`LABEL_PX`] at which each fits its tile (at least [`MIN_LABEL_PX`]; a
+/// label still too wide is shortened with "…").
 pub fn write_strip(path: &Path, tiles: &[StripTile]) -> Result<(), String> {
-    let h = tiles.iter().map(|t| t.height).max().unwrap_or(1) + LABEL_H;
+    let fits = |t: &StripTile| LABEL_PX * t.width.saturating_sub(2) as f32 / font::width(&t.label, LABEL_PX);
+    let px = tiles.iter().map(fits).fold(LABEL_PX, f32::min).max(MIN_LABEL_PX);
+    let (ascent, descent) = font::extent(px);
+    let label_h = (ascent - descent).ceil() as u32 + 2 * GAP;
+    let h = tiles.iter().map(|t| t.height).max().unwrap_or(1) + label_h;
     let w = tiles.iter().map(|t| t.width).sum::<u32>() + GAP * (tiles.len() as u32 + 1);
-    let mut buf = vec![255u8; (w * h * 3) as usize];
+    let mut strip = RgbImage::from_pixel(w, h, Rgb([255, 255, 255]));
     let mut x0 = GAP;
     for t in tiles {
-        // Half size when the label would not fit above a narrow tile.
-        let scale = if font::text_width(&t.label, SCALE) <= t.width { SCALE } else { 1 };
-        let tw = font::text_width(&t.label, scale);
-        let lx = x0 + t.width.saturating_sub(tw) / 2;
-        font::draw_text(&mut buf, w, h, lx, 4, &t.label, scale, [20, 20, 20]);
-        for y in 0..t.height {
-            let src = (y * t.width * 3) as usize;
-            let dst = (((y + LABEL_H) * w + x0) * 3) as usize;
-            buf[dst..dst + (t.width * 3) as usize].copy_from_slice(&t.rgb[src..src + (t.width * 3) as usize]);
-        }
+        let label = font::ellipsize(&t.label, px, t.width as f32);
+        let left = x0 as f32 + ((t.width as f32 - font::width(&label, px)) / 2.0).round();
+        font::draw(&mut strip, left, GAP as f32, &label, px, Rgb([20, 20, 20]));
+        let tile = RgbImage::from_raw(t.width, t.height, t.rgb.clone()).ok_or("tile size")?;
+        image::imageops::replace(&mut strip, &tile, x0.into(), label_h.into());
         x0 += t.width + GAP;
     }
-    image::RgbImage::from_raw(w, h, buf).ok_or("strip size")?.save(path).map_err(|e| format!("{}: {e}", path.display()))
+    strip.save(path).map_err(|e| format!("{}: {e}", path.display()))
 }

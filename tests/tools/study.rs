@@ -646,3 +646,120 @@ fn study_without_flip_evaluator_says_why_and_keeps_the_rest() {
         let _ = std::fs::remove_dir_all(&out);
     }
 }
+
+// ---- Figures: the strips' labels and the convergence plot ---------------------------------
+
+/// The label rows of a strip written by `write_strip`: (width, height, RGB8 pixels).
+fn strip_pixels(tiles: &[matte::study::strip::StripTile], tag: &str) -> image::RgbImage {
+    let path = temp_dir(tag).join("strip.png");
+    matte::study::strip::write_strip(&path, tiles).unwrap();
+    image::open(&path).unwrap().to_rgb8()
+}
+
+fn grey_tile(label: &str, width: u32) -> matte::study::strip::StripTile {
+    matte::study::strip::StripTile { label: label.into(), width, height: 8, rgb: vec![128; (width * 8 * 3) as usize] }
+}
+
+#[test]
+fn strip_labels_are_antialiased_one_size_and_inside_their_tiles() {
+    use matte::study::font;
+    use matte::study::strip::{LABEL_PX, MIN_LABEL_PX};
+    // Three labels that fit 160-pixel tiles at the full size, then the same with one label too
+    // long for its tile: every label shrinks with it, none leaves its tile's columns.
+    for (long, tag) in [("EON", "strip_fit"), ("Oren–Nayar (qualitative), σ = 0.3", "strip_shrink")] {
+        let tiles = [grey_tile("Lambert", 160), grey_tile("Wolff", 160), grey_tile(long, 160)];
+        let img = strip_pixels(&tiles, tag);
+        let label_rows = img.height() - 8;
+        let ink: Vec<(u32, u32, u8)> = (0..label_rows)
+            .flat_map(|y| (0..img.width()).map(move |x| (x, y)))
+            .map(|(x, y)| (x, y, img.get_pixel(x, y)[0]))
+            .filter(|p| p.2 < 250)
+            .collect();
+        // Tiles start at 4, 168, 332 (4-pixel gaps): ink only over a tile.
+        assert!(ink.iter().all(|&(x, _, _)| x >= 4 && (x - 4) % 164 < 160), "{tag}: ink in a gap");
+        for t in 0..3 {
+            assert!(ink.iter().any(|&(x, _, _)| (x - 4) / 164 == t), "{tag}: tile {t} has no label");
+        }
+        assert!(ink.iter().any(|p| p.2 > 60 && p.2 < 200), "{tag}: no anti-aliased edge");
+        // One size: the rows' height follows the one size chosen for the strip.
+        let px = if tag == "strip_fit" { LABEL_PX } else { LABEL_PX * 158.0 / font::width(long, LABEL_PX) };
+        assert!((MIN_LABEL_PX..=LABEL_PX).contains(&px), "{px}");
+        let (a, d) = font::extent(px);
+        assert_eq!(label_rows, (a - d).ceil() as u32 + 8, "{tag}");
+        // "Lambert" is drawn at that size in both strips (its ink about its advance width).
+        let lambert = ink.iter().filter(|p| p.0 < 164).map(|p| p.0);
+        let span = lambert.clone().max().unwrap() - lambert.min().unwrap();
+        assert!((span as f32 - font::width("Lambert", px)).abs() < 3.0, "{tag}: {span} at {px} px");
+        assert!(tag == "strip_fit" || px < 0.9 * LABEL_PX, "{px}");
+    }
+}
+
+#[test]
+fn labels_too_long_at_the_smallest_size_are_shortened_to_fit() {
+    use matte::study::font::{ellipsize, width};
+    assert_eq!(ellipsize("Lambert", 16.0, 100.0), "Lambert");
+    let short = ellipsize("Oren–Nayar (qualitative)", 9.0, 30.0);
+    assert!(short.ends_with('…') && short.len() < "Oren–Nayar (qualitative)".len(), "{short}");
+    assert!(width(&short, 9.0) <= 30.0);
+    // A strip of narrow tiles: the labels are drawn at the smallest size, shortened, and
+    // still leave the 4-pixel gaps between tiles blank.
+    let img = strip_pixels(&[grey_tile("Oren–Nayar full", 24), grey_tile("van Ginneken", 24)], "strip_narrow");
+    for y in 0..img.height() - 8 {
+        for x in [0, 1, 2, 3, 28, 29, 30, 31] {
+            assert_eq!(img.get_pixel(x, y).0, [255, 255, 255], "ink at ({x}, {y})");
+        }
+    }
+}
+
+fn series(ratios: &[(u32, &str, f64)]) -> matte::study::convergence::Series {
+    use matte::study::configuration::Configuration;
+    use matte::study::convergence::{Point, Series};
+    use matte::study::ratio::Ratio;
+    Series {
+        scene_name: "cornell".into(),
+        region: "floor".into(),
+        crop: [0, 0, 4, 4],
+        film: [8, 8],
+        passes: 4,
+        levels: vec![16, 64, 256],
+        renderers: vec!["matte".into(), "mitsuba <scalar_rgb>".into()],
+        points: ratios
+            .iter()
+            .map(|&(spp, renderer, value)| Point {
+                spp,
+                renderer: renderer.into(),
+                model: Configuration::OrenNayarFull,
+                ratio: Ratio::new(value, 0.01),
+                seconds: 1.0,
+            })
+            .collect(),
+        notes: Vec::new(),
+    }
+}
+
+#[test]
+fn convergence_plot_has_axes_ticks_legend_and_lamberts_level() {
+    use matte::study::configuration::Configuration;
+    use matte::study::report::plot::ratio_over_spp;
+    let m = "mitsuba <scalar_rgb>";
+    let around_one =
+        series(&[(16, "matte", 0.99), (64, "matte", 1.0), (256, "matte", 1.01), (16, m, 1.0), (256, m, 1.0)]);
+    let svg = ratio_over_spp(&around_one, Configuration::OrenNayarFull, "Oren–Nayar (full) / Lambert");
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"), "{svg}");
+    for text in ["Oren–Nayar (full) / Lambert", "total spp", "region ratio to Lambert", "matte", "Lambert (1)"] {
+        assert!(svg.contains(&format!(">\n{text}\n<")), "no text {text:?}");
+    }
+    // The levels are the x ticks; the renderer's name is escaped.
+    for spp in ["16", "64", "256"] {
+        assert!(svg.contains(&format!(">\n{spp}\n<")), "no tick {spp}");
+    }
+    assert!(svg.contains("mitsuba &lt;scalar_rgb&gt;") && !svg.contains("<scalar_rgb>"));
+    assert!(svg.contains("font-family=\"DejaVu Sans, sans-serif\""));
+    // Five points with error bars (a circle each) and the two legend markers.
+    assert_eq!(svg.matches("<circle").count(), 5 + 2);
+    // All the data far below 1: the legend says Lambert's level is above the plot.
+    let below = series(&[(16, "matte", 0.8), (64, "matte", 0.81)]);
+    let svg = ratio_over_spp(&below, Configuration::OrenNayarFull, "t");
+    assert!(svg.contains("Lambert (1): ↑ above"), "{svg}");
+    assert!(ratio_over_spp(&below, Configuration::OrenNayarQualitative, "t").is_empty(), "no points, no plot");
+}

@@ -243,3 +243,22 @@ fn predicted_power_is_a_lower_bound_close_to_injection() {
         assert!(predicted <= measured * 2.5, "{what}: predicted {predicted} is far above measured {measured}");
     }
 }
+
+#[test]
+fn validation_report_escapes_text_and_states_the_verdict() {
+    use matte::validate::summary::Provenance;
+    let provenance = Provenance {
+        matte: "0.1.0".into(),
+        mitsuba: None,
+        references: vec!["matte".into()],
+        python: None,
+        scenes: "<script>alert('x')</script> & co".into(),
+    };
+    let html = matte::validate::validation_report::html(&[], &provenance).unwrap();
+    assert!(html.starts_with("<!doctype html>") && html.trim_end().ends_with("</html>"));
+    assert!(html.contains("&#60;script&#62;alert(&#39;x&#39;)&#60;/script&#62; &#38; co"), "{html}");
+    assert!(!html.contains("<script>"));
+    assert!(html.contains("<tr><th>Mitsuba</th><td>not run</td></tr>"));
+    assert!(html.contains(r#"Overall: <span class="pass">PASS</span> — 0 scene(s)"#), "{html}");
+    assert!(html.contains(r#"<table class="summary">"#));
+}

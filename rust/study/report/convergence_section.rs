@@ -3,13 +3,13 @@
 //! A plot and a table of the region ratio per spp level and renderer, and the verdicts.
 
 use super::plot::ratio_over_spp;
-use crate::markup::escape;
 use crate::study::configuration::{Configuration, SERIES};
 use crate::study::convergence::{Point, Series};
+use crate::study::ratio::RegionRatio;
 use crate::study::variants::VariantStudy;
 use crate::study::{Lighting, answers};
+use askama::Template;
 use serde::Serialize;
-use std::fmt::Write as _;
 
 #[derive(Serialize)]
 pub struct SeriesJson {
@@ -115,74 +115,31 @@ pub fn json(s: &Series) -> SeriesJson {
     }
 }
 
-pub fn html(s: &Series, variants: Option<&VariantStudy>) -> String {
-    let mut h = String::new();
-    let _ = write!(
-        h,
-        r#"<div class="scene"><h2>{}: convergence in the region "{}" (global illumination)</h2>
-<p>Is the paper's Oren–Nayar "glow" real or a bias? The region ratio to Lambert is rendered at increasing total spp by matte and by Mitsuba. {} paired passes per level, and each level has its own seeds.
-Only the region's pixels are rendered: the film is cropped to x {}…{}, y {}…{} of {}×{} (derived scenes in <code>{}/convergence/</code>). A real effect stays within its 99 % intervals as spp grows, and the two renderers' intervals overlap.
-A bias or noise artefact drifts with spp or differs between the renderers.</p>"#,
-        escape(&s.scene_name),
-        escape(&s.region),
-        s.passes,
-        s.crop[0],
-        s.crop[0] + s.crop[2] - 1,
-        s.crop[1],
-        s.crop[1] + s.crop[3] - 1,
-        s.film[0],
-        s.film[1],
-        escape(&s.scene_name)
-    );
-    for n in &s.notes {
-        let _ = write!(h, r#"<p class="note">{}</p>"#, escape(n));
+/// The series' section of report.html.
+#[derive(Template)]
+#[template(path = "convergence.html")]
+struct ConvergenceHtml<'a> {
+    s: &'a Series,
+    plots: Vec<String>,
+    tracked: &'static [Configuration],
+    /// Per level, per tracked configuration, each renderer's point.
+    rows: Vec<(u32, Vec<Vec<Option<&'a Point>>>)>,
+    /// Oren–Nayar full's ratio in the region from the variant run, at the full budget.
+    full_budget: Option<&'a RegionRatio>,
+    answers: Vec<String>,
+}
+
+pub fn html(s: &Series, variants: Option<&VariantStudy>) -> askama::Result<String> {
+    let points = |spp: u32, m: &Configuration| s.renderers.iter().map(|r| s.point(*m, r, spp)).collect();
+    ConvergenceHtml {
+        s,
+        plots: tracked().iter().map(|m| ratio_over_spp(s, *m, &format!("{} / Lambert", m.label()))).collect(),
+        tracked: tracked(),
+        rows: s.levels.iter().map(|&spp| (spp, tracked().iter().map(|m| points(spp, m)).collect())).collect(),
+        full_budget: variants
+            .and_then(|v| v.result(Configuration::OrenNayarFull, Lighting::Global))
+            .and_then(|r| r.regions.iter().find(|x| x.name == s.region)),
+        answers: answers::convergence_answers(s, variants),
     }
-    for m in tracked() {
-        h.push_str(&ratio_over_spp(s, *m, &format!("{} / Lambert", m.label())));
-    }
-    h.push_str("<table><tr><th>total spp</th>");
-    for m in tracked() {
-        for r in &s.renderers {
-            let _ = write!(h, "<th>{}, {}</th>", escape(m.label()), escape(r));
-        }
-        if s.renderers.len() == 2 {
-            h.push_str("<th>overlap</th>");
-        }
-    }
-    h.push_str("</tr>");
-    for spp in &s.levels {
-        let _ = write!(h, "<tr><td>{spp}</td>");
-        for m in tracked() {
-            let pts: Vec<Option<&Point>> = s.renderers.iter().map(|r| s.point(*m, r, *spp)).collect();
-            for p in &pts {
-                match p {
-                    Some(p) => h.push_str(&super::ratio_cell(p.ratio)),
-                    None => h.push_str("<td>–</td>"),
-                }
-            }
-            if let [Some(a), Some(b)] = pts.as_slice() {
-                h.push_str(if a.ratio.overlaps(b.ratio) { "<td>yes</td>" } else { "<td><b>no</b></td>" });
-            } else if s.renderers.len() == 2 {
-                h.push_str("<td>–</td>");
-            }
-        }
-        h.push_str("</tr>");
-    }
-    h.push_str("</table>");
-    if let Some(r) = variants
-        .and_then(|v| v.result(Configuration::OrenNayarFull, Lighting::Global))
-        .and_then(|r| r.regions.iter().find(|x| x.name == s.region))
-    {
-        let _ = write!(
-            h,
-            r#"<p class="small">The model-variant run at the study's full budget (whole image) gives Oren–Nayar full / Lambert = {:.4} ± {:.4} in this region.</p>"#,
-            r.ratio.value, r.ratio.half_width
-        );
-    }
-    h.push_str("<ul>");
-    for a in answers::convergence_answers(s, variants) {
-        let _ = write!(h, "<li>{}</li>", escape(&a));
-    }
-    h.push_str("</ul></div>");
-    h
+    .render()
 }

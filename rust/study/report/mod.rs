@@ -12,10 +12,9 @@ pub mod scenes;
 pub mod truth_section;
 pub mod variants_section;
 
-use super::{Lighting, Study};
-use crate::markup::escape;
+use super::Study;
+use askama::Template;
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// study.json.
@@ -86,65 +85,45 @@ pub fn json(study: &Study) -> StudyJson {
     }
 }
 
-/// One lighting's strip and heatmap strip with the heatmap's colour scale (`what` − Lambert).
-pub(super) fn strips_html(l: Lighting, strip: &Path, diff: &Path, range: f32, what: &str) -> String {
-    format!(
-        r#"<h3>{} lighting</h3><img src="{}"><br><img src="{}"><p>Heatmap: ({what} − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %.</p>"#,
-        l.name(),
-        escape(&strip.display().to_string()),
-        escape(&diff.display().to_string()),
-        range * 100.0,
-        range * 100.0
-    )
+/// `value ± half-width` with four decimals, the tables' cell.
+pub(super) fn ci(r: &super::ratio::Ratio) -> String {
+    format!("{:.4} ± {:.4}", r.value, r.half_width)
 }
 
-/// `value ± half-width` in a table cell.
-pub(super) fn ratio_cell(r: super::ratio::Ratio) -> String {
-    format!("<td>{:.4} ± {:.4}</td>", r.value, r.half_width)
+/// report.html: what the numbers mean, the answers, then the sections in order.
+#[derive(Template)]
+#[template(path = "study_report.html")]
+struct ReportHtml<'a> {
+    renderer: &'a str,
+    passes: u32,
+    spp: u32,
+    answers: Vec<String>,
+    /// The sections, rendered by their own templates.
+    sections: Vec<String>,
 }
 
 /// report.html; `slices` are the BRDF slice plots copied next to it (relative to it).
-pub fn html(study: &Study, slices: &[PathBuf]) -> String {
-    let mut h = String::new();
-    let _ = write!(
-        h,
-        r#"<!doctype html><html><head><meta charset="utf-8"><title>matte study</title><style>
-body{{font-family:system-ui,sans-serif;margin:24px;color:#222;max-width:1400px}} img{{max-width:100%;border:1px solid #ddd}}
-table{{border-collapse:collapse;font-size:14px;margin:8px 0;display:block;overflow-x:auto;max-width:100%}} td,th{{padding:3px 10px;border-bottom:1px solid #eee;text-align:right}} td{{white-space:nowrap}}
-th:first-child,td:first-child{{text-align:left}} .scene{{border-top:1px solid #ccc;padding-top:12px;margin-top:16px}}
-.note{{background:#fff4d6;border-left:4px solid #e0a800;padding:6px 10px}} td.l{{text-align:left}} .small{{font-size:13px;color:#555}}
-</style></head><body><h1>matte study: diffuse models under global illumination</h1>
-<p>Renderer: {renderer}; {passes} passes, {spp} spp per image in total; every model uses the same seeds (paired passes).
-Ratio = image-mean luminance of the model / Lambert, ± 99 % confidence interval from the paired per-pass ratios.
-"Global" is the scene's path depth, "direct" is max_depth 2. Δ = |ratio<sub>global</sub> − 1| − |ratio<sub>direct</sub> − 1|:
-positive = the difference to Lambert grows under global illumination. Edge/flat = mean |relative luminance difference| to
-Lambert on the 10 % of pixels with the strongest gradient of Lambert's image vs on the others.</p>"#,
-        renderer = escape(&study.renderer),
-        passes = study.passes,
-        spp = study.spp,
-    );
-    h.push_str("<h2>Answers, computed from the measurements below</h2><ul>");
-    for a in super::answers::answers(study) {
-        let _ = write!(h, "<li>{}</li>", escape(&a));
-    }
-    h.push_str("</ul>");
+pub fn html(study: &Study, slices: &[PathBuf]) -> askama::Result<String> {
+    let mut sections = Vec::new();
     if !study.truths.is_empty() {
-        h.push_str(&truth_section::html(&study.truths, slices));
+        sections.push(truth_section::html(&study.truths, slices)?);
     }
     if !study.perceptual.is_empty() || !study.perceptual_notes.is_empty() {
-        h.push_str(&perceptual_section::html(&study.perceptual, &study.scenes, &study.truths, &study.perceptual_notes));
+        let p = &study.perceptual;
+        sections.push(perceptual_section::html(p, &study.scenes, &study.truths, &study.perceptual_notes)?);
     }
     for s in &study.scenes {
-        h.push_str(&scenes::html(s));
+        sections.push(scenes::html(s)?);
     }
     for v in &study.variants {
-        h.push_str(&variants_section::html(v));
+        sections.push(variants_section::html(v)?);
     }
     for s in &study.convergence {
-        h.push_str(&convergence_section::html(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
+        let v = study.variants.iter().find(|v| v.scene_name == s.scene_name);
+        sections.push(convergence_section::html(s, v)?);
     }
-    h.push_str("</body></html>\n");
-    h
+    let answers = super::answers::answers(study);
+    ReportHtml { renderer: &study.renderer, passes: study.passes, spp: study.spp, answers, sections }.render()
 }
 
 /// study.json, truth.json and report.html in `out`; the BRDF slices copied from `slices`.
@@ -161,5 +140,6 @@ pub fn write(out: &Path, study: &Study, slices: Option<&Path>) -> Result<(), Str
         Some(from) if !study.truths.is_empty() => truth_section::copy_slices(from, out),
         _ => Vec::new(),
     };
-    std::fs::write(out.join("report.html"), html(study, &slices)).map_err(|e| e.to_string())
+    let page = html(study, &slices).map_err(|e| format!("report.html: {e}"))?;
+    std::fs::write(out.join("report.html"), page).map_err(|e| e.to_string())
 }

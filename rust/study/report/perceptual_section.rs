@@ -3,14 +3,13 @@
 //! percentile of HDR-FLIP with their 99 % jackknife intervals and the noise floor, and the
 //! verdicts (more or less visible under global illumination, against the energy verdict).
 
-use crate::markup::escape;
 use crate::study::configuration::Configuration;
 use crate::study::perceptual::{Answer, Comparison, Exposure, FlipPair, PerceptualStudy};
 use crate::study::ratio::Ratio;
 use crate::study::truth::TruthStudy;
 use crate::study::{Lighting, SceneStudy, answers};
+use askama::Template;
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 #[derive(Serialize)]
@@ -191,157 +190,127 @@ fn answer_json(a: &Answer) -> AnswerJson {
     }
 }
 
-/// `value ± half-width` with three significant digits of FLIP.
-fn flip_cell(r: Ratio) -> String {
-    format!("<td>{:.4} ± {:.4}</td>", r.value, r.half_width)
+/// The perceptual section of report.html.
+#[derive(Template)]
+#[template(path = "perceptual.html")]
+struct PerceptualHtml<'a> {
+    metric: &'static str,
+    /// The colour stops of FLIP's magma, for a CSS gradient.
+    magma: String,
+    notes: &'a [String],
+    scenes: Vec<SceneHtml<'a>>,
 }
 
-/// The colour bar of the FLIP maps in HTML: magma, 0 … 1.
-fn colour_bar() -> String {
-    let stops: Vec<String> = (0..=10)
+struct SceneHtml<'a> {
+    name: &'a str,
+    lightings: Vec<LightingHtml<'a>>,
+    exposure: Option<String>,
+    floor_global: (f64, f64),
+    floor_direct: (f64, f64),
+    rows: Vec<Row<'a>>,
+    answers: Vec<String>,
+}
+
+/// One lighting's strips: the signed heatmaps (with their range) beside the FLIP maps.
+struct LightingHtml<'a> {
+    heading: String,
+    against_lambert_signed: Option<(&'a Path, f32)>,
+    against_lambert: &'a Path,
+    against_surface_signed: Option<(&'a Path, f32)>,
+    against_surface: Option<&'a Path>,
+}
+
+/// One pair in both lightings (no direct one when the scene is direct only), with its answer.
+struct Row<'a> {
+    reference: &'static str,
+    global: &'a Comparison,
+    global_above: bool,
+    direct: Option<&'a Comparison>,
+    direct_above: bool,
+    answer: Option<&'a Answer>,
+}
+
+/// A luminance-ratio change in percent with its interval.
+fn pct(r: &Ratio) -> String {
+    answers::pct(*r)
+}
+
+fn scene_html<'a>(
+    p: &'a PerceptualStudy,
+    scene: Option<&'a SceneStudy>,
+    truth: Option<&'a TruthStudy>,
+) -> SceneHtml<'a> {
+    let lightings = p
+        .strips
+        .iter()
+        .map(|(l, against_lambert, against_surface)| LightingHtml {
+            heading: if p.direct_only { "global = direct lighting".into() } else { format!("{} lighting", l.name()) },
+            against_lambert_signed: scene.and_then(|s| {
+                let (_, _, diff) = s.strips.iter().find(|(x, _, _)| x == l)?;
+                Some((diff.as_path(), super::scenes::range_of(s, l)))
+            }),
+            against_lambert,
+            against_surface_signed: against_surface.as_ref().and(truth).and_then(|t| {
+                let (_, diff, range) = t.strips.iter().find(|(x, _, _)| x == l)?;
+                Some((diff.as_path(), *range))
+            }),
+            against_surface: against_surface.as_deref(),
+        })
+        .collect();
+    let exposure = |e: &Exposure| format!("{:.2} … {:.2} stops, {} exposures", e.start, e.stop, e.count);
+    let rows = p
+        .comparisons
+        .iter()
+        .filter(|c| c.lighting == Lighting::Global)
+        .map(|c| {
+            let direct = p.comparison(c.model, c.reference, Lighting::Direct).filter(|_| !p.direct_only);
+            Row {
+                reference: if c.reference == Configuration::Lambert { "Lambert" } else { c.reference.label() },
+                global: c,
+                global_above: p.above_floor(c),
+                direct,
+                direct_above: direct.is_some_and(|d| p.above_floor(d)),
+                answer: p.answers.iter().find(|a| a.model == c.model && a.reference == c.reference),
+            }
+        })
+        .collect();
+    SceneHtml {
+        name: &p.scene_name,
+        lightings,
+        exposure: p.exposure(Lighting::Global).map(|e| {
+            format!("{}; (direct): {}", exposure(e), p.exposure(Lighting::Direct).map(exposure).unwrap_or_default())
+        }),
+        floor_global: floor_of(p, Lighting::Global),
+        floor_direct: floor_of(p, Lighting::Direct),
+        rows,
+        answers: answers::perceptual_scene_answers(p),
+    }
+}
+
+/// The section: what is measured, then per scene the strips, the table and the answers.
+pub fn html(
+    studies: &[PerceptualStudy],
+    scenes: &[SceneStudy],
+    truths: &[TruthStudy],
+    notes: &[String],
+) -> askama::Result<String> {
+    let magma: Vec<String> = (0..=10)
         .map(|i| {
             let c = colorous::MAGMA.eval_continuous(i as f64 / 10.0);
             format!("#{:02x}{:02x}{:02x}", c.r, c.g, c.b)
         })
         .collect();
-    format!(
-        r#"<div class="small" style="display:flex;align-items:center;gap:6px">FLIP 0<span style="display:inline-block;width:240px;height:12px;background:linear-gradient(to right,{})"></span>1 (magma, as FLIP draws it)</div>"#,
-        stops.join(",")
-    )
-}
-
-fn img(path: &Path) -> String {
-    format!(r#"<img src="{}">"#, escape(&path.display().to_string()))
-}
-
-fn row(p: &PerceptualStudy, c: &Comparison, answer: Option<&Answer>, direct: Option<&Comparison>) -> String {
-    let mut h = String::new();
-    let floor = |l: Lighting| {
-        let (m, q) = floor_of(p, l);
-        format!("<td>{m:.4} / {q:.4}</td>")
-    };
-    let mark = |c: &Comparison| if p.above_floor(c) { "" } else { " ≤ floor" };
-    let _ = write!(
-        h,
-        "<tr><td>{}</td><td class=\"l\">{}</td>{}{}{}<td class=\"l\">{}</td>",
-        escape(c.model.label()),
-        escape(if c.reference == Configuration::Lambert { "Lambert" } else { c.reference.label() }),
-        flip_cell(c.flip.mean.value),
-        flip_cell(c.flip.p95.value),
-        floor(Lighting::Global),
-        mark(c)
-    );
-    match direct {
-        Some(d) if !p.direct_only => {
-            let _ = write!(
-                h,
-                "{}{}{}<td class=\"l\">{}</td>",
-                flip_cell(d.flip.mean.value),
-                flip_cell(d.flip.p95.value),
-                floor(Lighting::Direct),
-                mark(d)
-            );
-        }
-        _ => h.push_str(r#"<td colspan="4">(direct only)</td>"#),
+    PerceptualHtml {
+        metric: METRIC,
+        magma: magma.join(","),
+        notes,
+        scenes: studies
+            .iter()
+            .map(|p| {
+                let scene = scenes.iter().find(|s| s.name == p.scene_name);
+                scene_html(p, scene, truths.iter().find(|t| t.scene_name == p.scene_name))
+            })
+            .collect(),
     }
-    match answer {
-        Some(a) => {
-            let _ = write!(
-                h,
-                "<td>{:+.4} ± {:.4}</td><td class=\"l\">{}</td><td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>",
-                a.delta.value,
-                a.delta.half_width,
-                a.visibility.name(),
-                answers::pct(a.energy),
-                a.energy_verdict.name(),
-                a.agreement.name()
-            );
-        }
-        None => h.push_str(r#"<td colspan="5"></td>"#),
-    }
-    h.push_str("</tr>");
-    h
-}
-
-/// The section: what is measured, then per scene the strips, the table and the answers.
-pub fn html(studies: &[PerceptualStudy], scenes: &[SceneStudy], truths: &[TruthStudy], notes: &[String]) -> String {
-    let mut h = String::new();
-    h.push_str(r#"<div class="scene"><h2>Is the difference visible? Perceptual difference (HDR-FLIP)</h2>"#);
-    let _ = write!(
-        h,
-        "<p>{}. A value is above the noise floor when its interval lies entirely above the floor's (“≤ floor” marks the others). \
-ΔFLIP = mean FLIP<sub>global</sub> − mean FLIP<sub>direct</sub> (paired per left-out pass): the difference is <i>more visible</i> \
-under global illumination when its interval lies above 0, <i>less visible</i> below 0, <i>undecided</i> when it contains 0, \
-<i>within the noise</i> when a lighting's value is not above its floor. The energy verdict is on Δ of the luminance ratios \
-(grows / shrinks / undecided).</p>",
-        escape(METRIC)
-    );
-    h.push_str(&colour_bar());
-    for n in notes {
-        let _ = write!(h, r#"<p class="note">{}</p>"#, escape(n));
-    }
-    for p in studies {
-        let _ = write!(h, "<h3>{}</h3>", escape(&p.scene_name));
-        let scene = scenes.iter().find(|s| s.name == p.scene_name);
-        for (l, against_lambert, against_surface) in &p.strips {
-            let heading =
-                if p.direct_only { "global = direct lighting".to_string() } else { format!("{} lighting", l.name()) };
-            let _ = write!(h, "<h4>{heading}</h4>");
-            if let Some((_, _, diff)) = scene.and_then(|s| s.strips.iter().find(|(x, _, _)| x == l)) {
-                let range =
-                    scene.and_then(|s| s.difference_ranges.iter().find(|(x, _)| x == l)).map_or(f32::NAN, |r| r.1);
-                let _ = write!(
-                    h,
-                    r#"<p class="small">Signed heatmap (model − Lambert) / Lambert, blue −{:.0} % … red +{:.0} %:</p>{}"#,
-                    range * 100.0,
-                    range * 100.0,
-                    img(diff)
-                );
-            }
-            let _ = write!(
-                h,
-                r#"<p class="small">HDR-FLIP against Lambert (first tile: the noise floor, Lambert with other seeds):</p>{}"#,
-                img(against_lambert)
-            );
-            if let Some(s) = against_surface {
-                let truth = truths.iter().find(|t| t.scene_name == p.scene_name);
-                if let Some((_, diff, range)) = truth.and_then(|t| t.strips.iter().find(|(x, _, _)| x == l)) {
-                    let _ = write!(
-                        h,
-                        r#"<p class="small">Signed heatmap (model − surface) / surface, blue −{:.0} % … red +{:.0} %:</p>{}"#,
-                        range * 100.0,
-                        range * 100.0,
-                        img(diff)
-                    );
-                }
-                let _ = write!(h, r#"<p class="small">HDR-FLIP against each model's own surface:</p>{}"#, img(s));
-            }
-            h.push_str(&colour_bar());
-        }
-        if let Some(e) = p.exposure(Lighting::Global) {
-            let _ = write!(
-                h,
-                r#"<p class="small">Exposure range (global): {:.2} … {:.2} stops, {} exposures; (direct): {}.</p>"#,
-                e.start,
-                e.stop,
-                e.count,
-                p.exposure(Lighting::Direct)
-                    .map(|d| format!("{:.2} … {:.2} stops, {} exposures", d.start, d.stop, d.count))
-                    .unwrap_or_default()
-            );
-        }
-        h.push_str("<table><tr><th>model</th><th>against</th><th>mean, global</th><th>p95, global</th><th>floor mean / p95</th><th></th><th>mean, direct</th><th>p95, direct</th><th>floor mean / p95</th><th></th><th>ΔFLIP</th><th>perceptual</th><th>energy Δ</th><th>energy</th><th>agreement</th></tr>");
-        for c in p.comparisons.iter().filter(|c| c.lighting == Lighting::Global) {
-            let d = p.comparison(c.model, c.reference, Lighting::Direct);
-            let a = p.answers.iter().find(|a| a.model == c.model && a.reference == c.reference);
-            h.push_str(&row(p, c, a, d));
-        }
-        h.push_str("</table><ul>");
-        for a in answers::perceptual_scene_answers(p) {
-            let _ = write!(h, "<li>{}</li>", escape(&a));
-        }
-        h.push_str("</ul>");
-    }
-    h.push_str("</div>");
-    h
+    .render()
 }

@@ -3,12 +3,11 @@
 //! between them (the paper's question), the edge/flat concentration of the difference, and
 //! the named regions' ratios.
 
-use super::{RegionJson, StripJson, ratio_cell, strips_html};
-use crate::markup::escape;
+use super::{RegionJson, StripJson};
 use crate::study::configuration::{TRUTHS, main_run};
 use crate::study::{Lighting, ModelResult, SceneStudy, metrics};
+use askama::Template;
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 #[derive(Serialize)]
@@ -60,7 +59,7 @@ fn both_lightings(s: &SceneStudy) -> impl Iterator<Item = (&ModelResult, &ModelR
 
 /// The paper's question for one model: does the difference to Lambert grow with global
 /// illumination?
-fn growth(g: &ModelResult, d: &ModelResult) -> f64 {
+pub(super) fn growth(g: &ModelResult, d: &ModelResult) -> f64 {
     (g.ratio.value - 1.0).abs() - (d.ratio.value - 1.0).abs()
 }
 
@@ -69,8 +68,8 @@ fn lambert_ratios(s: &SceneStudy, r: &ModelResult) -> Vec<f64> {
     s.lambert(r.lighting).map(|l| metrics::pass_ratios(&r.pass_means, &l.moments.pass_means)).unwrap_or_default()
 }
 
-fn range_of(s: &SceneStudy, l: Lighting) -> f32 {
-    s.difference_ranges.iter().find(|(x, _)| *x == l).map_or(f32::NAN, |r| r.1)
+pub(super) fn range_of(s: &SceneStudy, l: &Lighting) -> f32 {
+    s.difference_ranges.iter().find(|(x, _)| *x == *l).map_or(f32::NAN, |r| r.1)
 }
 
 pub fn json(s: &SceneStudy) -> SceneJson {
@@ -83,7 +82,7 @@ pub fn json(s: &SceneStudy) -> SceneJson {
                 lighting: l.name(),
                 strip: strip.clone(),
                 difference: diff.clone(),
-                difference_range: range_of(s, *l),
+                difference_range: range_of(s, l),
             })
             .collect(),
         models: both_lightings(s)
@@ -113,52 +112,16 @@ pub fn json(s: &SceneStudy) -> SceneJson {
     }
 }
 
-pub fn html(s: &SceneStudy) -> String {
-    let mut h = String::new();
-    let _ = write!(h, r#"<div class="scene"><h2>{}</h2>"#, escape(&s.name));
-    for (l, strip, diff) in &s.strips {
-        h.push_str(&strips_html(*l, strip, diff, range_of(s, *l), "model"));
-    }
-    h.push_str("<table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>edge / flat, global</th><th>edge / flat, direct</th></tr>");
-    for (g, d) in both_lightings(s) {
-        let _ = write!(
-            h,
-            "<tr><td>{}{}</td>{}{}<td>{:+.4}</td><td>{:.3} / {:.3}</td><td>{:.3} / {:.3}</td></tr>",
-            if g.model.is_truth() { "true surface: " } else { "" },
-            escape(g.model.label()),
-            ratio_cell(g.ratio),
-            ratio_cell(d.ratio),
-            growth(g, d),
-            g.edge_flat.0,
-            g.edge_flat.1,
-            d.edge_flat.0,
-            d.edge_flat.1
-        );
-    }
-    h.push_str("</table>");
-    let names: Vec<String> =
-        s.results.first().map(|r| r.regions.iter().map(|x| x.name.clone()).collect()).unwrap_or_default();
-    for (i, name) in names.iter().enumerate() {
-        let _ = write!(
-            h,
-            "<h4>Region: {}</h4><table><tr><th>model</th><th>ratio, global</th><th>ratio, direct</th></tr>",
-            escape(name)
-        );
-        for (g, d) in both_lightings(s) {
-            let (Some(gr), Some(dr)) = (g.regions.get(i), d.regions.get(i)) else { continue };
-            let _ = write!(
-                h,
-                "<tr><td>{}</td>{}{}</tr>",
-                escape(g.model.label()),
-                ratio_cell(gr.ratio),
-                ratio_cell(dr.ratio)
-            );
-        }
-        h.push_str("</table>");
-    }
-    for n in &s.notes {
-        let _ = write!(h, r#"<p class="note">{}</p>"#, escape(n));
-    }
-    h.push_str("</div>");
-    h
+/// The scene's section of report.html.
+#[derive(Template)]
+#[template(path = "scene.html")]
+struct SceneHtml<'a> {
+    s: &'a SceneStudy,
+    rows: Vec<(&'a ModelResult, &'a ModelResult)>,
+    regions: Vec<&'a str>,
+}
+
+pub fn html(s: &SceneStudy) -> askama::Result<String> {
+    let regions = s.results.first().map(|r| r.regions.iter().map(|x| x.name.as_str()).collect()).unwrap_or_default();
+    SceneHtml { s, rows: both_lightings(s).collect(), regions }.render()
 }

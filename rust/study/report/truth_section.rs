@@ -3,13 +3,12 @@
 //! global illumination), the closest model per scene, the heatmap strips (model − surface) /
 //! surface, and the BRDF slices of the models against the simulated surfaces.
 
-use crate::markup::escape;
-use crate::study::configuration::{Configuration, TRUTHS, main_run};
+use crate::study::configuration::{Configuration, TRUTHS, WITH_TRUTH, main_run};
 use crate::study::ratio::Ratio;
 use crate::study::truth::TruthStudy;
 use crate::study::{Lighting, answers};
+use askama::Template;
 use serde::Serialize;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// The BRDF slices of `docs/microgeometry/` shown in the section, at the study's roughness 0.3
@@ -130,11 +129,7 @@ pub fn json(truths: &[TruthStudy]) -> TruthsJson {
                 key: t.key(),
                 label: t.label(),
                 table: t.table().unwrap_or_default(),
-                models: crate::study::configuration::WITH_TRUTH
-                    .iter()
-                    .filter(|m| m.true_surface() == Some(*t))
-                    .map(|m| m.key())
-                    .collect(),
+                models: WITH_TRUTH.iter().filter(|m| m.true_surface() == Some(*t)).map(|m| m.key()).collect(),
             })
             .collect(),
         without_surface: without_surface().iter().map(|m| m.key()).collect(),
@@ -161,80 +156,39 @@ fn without_surface() -> Vec<Configuration> {
     main_run().into_iter().filter(|m| m.true_surface().is_none()).collect()
 }
 
+/// The true-surface section of report.html.
+#[derive(Template)]
+#[template(path = "truth.html")]
+struct TruthHtml<'a> {
+    /// Each surface with the models that describe it.
+    surfaces: Vec<(Configuration, String)>,
+    without_surface: String,
+    rows: Vec<(&'a TruthStudy, ComparisonJson)>,
+    closest: Vec<String>,
+    truths: &'a [TruthStudy],
+    slices: &'a [PathBuf],
+}
+
+/// `value ± half-width` with the decimals its half-width needs.
+fn ci(value: &f64, half_width: &f64) -> String {
+    answers::ci(Ratio::new(*value, *half_width))
+}
+
 /// The section; `slices` are the copied slice plots (relative to the output folder).
-pub fn html(truths: &[TruthStudy], slices: &[PathBuf]) -> String {
-    let mut h = String::new();
-    h.push_str(r#"<div class="scene"><h2>The rough models against the surfaces they describe</h2><p>"#);
-    for t in TRUTHS {
-        let models: Vec<&str> = crate::study::configuration::WITH_TRUTH
-            .iter()
-            .filter(|m| m.true_surface() == Some(t))
-            .map(|m| m.label())
-            .collect();
-        let _ = write!(
-            h,
-            "<b>{}</b>, the surface of {}: {} ",
-            escape(t.label()),
-            escape(&models.join(", ")),
-            escape(t.meaning())
-        );
+pub fn html(truths: &[TruthStudy], slices: &[PathBuf]) -> askama::Result<String> {
+    let labels = |ms: &mut dyn Iterator<Item = &Configuration>| ms.map(|m| m.label()).collect::<Vec<_>>().join(", ");
+    TruthHtml {
+        surfaces: TRUTHS
+            .into_iter()
+            .map(|t| (t, labels(&mut WITH_TRUTH.iter().filter(|m| m.true_surface() == Some(t)))))
+            .collect(),
+        without_surface: labels(&mut without_surface().iter()),
+        rows: truths.iter().flat_map(|t| comparisons(t).into_iter().map(move |c| (t, c))).collect(),
+        closest: truths.iter().flat_map(answers::closest_answers).collect(),
+        truths,
+        slices,
     }
-    let none: Vec<&str> = without_surface().iter().map(|m| m.label()).collect();
-    let _ = write!(
-        h,
-        r#"Each surface is a <code>tabulated_brdf</code> in a derived copy of the scene (<code>&lt;scene&gt;/truth/*.xml</code>, the table beside it), rendered with the models' seeds, so model / surface is paired per pass (99 % Student-t interval over the passes).
-Δ = |ratio<sub>global</sub> − 1| − |ratio<sub>direct</sub> − 1|, the signs taken from the mean ratios, with its 99 % interval paired per seed: <i>grows</i> when the interval lies above 0 (the model is further from its surface under global illumination), <i>shrinks</i> below 0, <i>undecided</i> when it contains 0.
-Rank: 1 = the model closest to its own surface in that scene and lighting. {} describe no simulated surface and have no row.</p>"#,
-        escape(&none.join(", "))
-    );
-    h.push_str("<table><tr><th>model</th><th>surface</th><th>scene</th><th>model / surface, global</th><th>model / surface, direct</th><th>Δ</th><th>difference under GI</th><th>rank, global</th><th>rank, direct</th></tr>");
-    for t in truths {
-        for c in comparisons(t) {
-            let _ = write!(
-                h,
-                "<tr><td>{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td></tr>",
-                escape(c.label),
-                escape(c.truth_label),
-                escape(&t.scene_name),
-                answers::ci(Ratio::new(c.ratio_global, c.ratio_global_ci99)),
-                answers::ci(Ratio::new(c.ratio_direct, c.ratio_direct_ci99)),
-                if t.direct_only { "—".to_string() } else { answers::ci(Ratio::new(c.growth, c.growth_ci99)) },
-                c.verdict,
-                c.rank_global,
-                c.rank_direct
-            );
-        }
-    }
-    h.push_str("</table><ul>");
-    for t in truths {
-        for a in answers::closest_answers(t) {
-            let _ = write!(h, "<li>{}</li>", escape(&a));
-        }
-    }
-    h.push_str("</ul><h3>Where the models go wrong: (model − surface) / surface</h3>");
-    for t in truths {
-        for (l, path, range) in &t.strips {
-            let _ = write!(
-                h,
-                r#"<h4>{}, {} lighting</h4><img src="{}"><p>Each model against its own surface, blue −{:.0} % … red +{:.0} %.</p>"#,
-                escape(&t.scene_name),
-                l.name(),
-                escape(&path.display().to_string()),
-                range * 100.0,
-                range * 100.0
-            );
-        }
-    }
-    if !slices.is_empty() {
-        h.push_str(r#"<h3>The BRDFs against the simulated surfaces</h3><p>Facet albedo ρ = 0.8, roughness 0.3, from <code>docs/microgeometry/</code>. First, per model, the slice through the (θi, θo, Δφ) node (θ ≤ 80°) where it differs most from its surface's table (<code>validation/generators/truth_error_slices.py</code>); then every model against each surface (points: the simulation with 99 % intervals, all bounces and first bounce; docs/microgeometry.md, comparison).</p>"#);
-        h.push_str("<p>");
-        for s in slices {
-            let _ = write!(h, r#"<img src="{}"> "#, escape(&s.display().to_string()));
-        }
-        h.push_str("</p>");
-    }
-    h.push_str("</div>");
-    h
+    .render()
 }
 
 /// Copies [`SLICES`] from `source` (the installed package's `truth_slices/`, copies of

@@ -1,14 +1,13 @@
 //! The model variants' section per scene ([`crate::study::variants`]): what each variant
 //! means, its strips and heatmaps, and its ratio to Lambert in both lightings.
 
-use super::{RegionJson, StripJson, ratio_cell, strips_html};
-use crate::markup::escape;
+use super::{RegionJson, StripJson};
 use crate::study::configuration::{Configuration, VARIANTS};
 use crate::study::variants::{VariantResult, VariantStudy};
 use crate::study::{Lighting, answers};
+use askama::Template;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 #[derive(Serialize)]
@@ -85,67 +84,17 @@ pub fn json(v: &VariantStudy) -> VariantsJson {
     }
 }
 
-pub fn html(v: &VariantStudy) -> String {
-    let mut h = String::new();
-    let name = escape(&v.scene_name);
-    let _ = write!(
-        h,
-        r#"<div class="scene"><h2>{name}: model variants</h2><p>Wolff's constant K and the Oren–Nayar model, each set as a property in a derived copy of the scene
-(<code>{name}/variants/*.xml</code>). The defaults are the main run's images. The other variants use the main run's seeds and budget, so their ratio to Lambert is paired with the same Lambert passes.
-n = 1.4, F = Fresnel reflectance, F<sub>dr</sub> = its cosine-weighted hemispherical average (docs/models.md: Wolff normalisations, Oren-Nayar qualitative and full).</p><ul>"#
-    );
-    for x in VARIANTS {
-        let property = x.property().map(|(k, val)| format!(" (<code>{}={}</code>)", escape(k), escape(val)));
-        let default = if x.is_main_run() { ", the default" } else { "" };
-        let _ = write!(
-            h,
-            "<li><b>{}</b>{}{default}: {}</li>",
-            escape(x.label()),
-            property.unwrap_or_default(),
-            escape(x.meaning())
-        );
-    }
-    h.push_str("</ul>");
-    for (l, strip, diff, range) in &v.strips {
-        h.push_str(&strips_html(*l, strip, diff, *range, "variant"));
-    }
-    h.push_str("<table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th><th>Δ</th><th>source</th></tr>");
-    for (x, g, d) in both_lightings(v) {
-        let _ = write!(
-            h,
-            "<tr><td>{}</td>{}{}<td>{:+.4}</td>",
-            escape(x.label()),
-            ratio_cell(g.ratio),
-            ratio_cell(d.ratio),
-            (g.ratio.value - 1.0).abs() - (d.ratio.value - 1.0).abs()
-        );
-        match &g.scene_file {
-            Some(f) => {
-                let _ = write!(
-                    h,
-                    r#"<td class="l"><a href="{}">derived scene</a></td></tr>"#,
-                    escape(&f.display().to_string())
-                );
-            }
-            None => h.push_str(r#"<td class="l">main run</td></tr>"#),
-        }
-    }
-    h.push_str("</table>");
-    let names: Vec<String> =
-        v.results.first().map(|r| r.regions.iter().map(|x| x.name.clone()).collect()).unwrap_or_default();
-    for (i, region) in names.iter().enumerate() {
-        let _ = write!(
-            h,
-            "<h4>Region: {}</h4><table><tr><th>variant</th><th>ratio, global</th><th>ratio, direct</th></tr>",
-            escape(region)
-        );
-        for (x, g, d) in both_lightings(v) {
-            let (Some(gr), Some(dr)) = (g.regions.get(i), d.regions.get(i)) else { continue };
-            let _ =
-                write!(h, "<tr><td>{}</td>{}{}</tr>", escape(x.label()), ratio_cell(gr.ratio), ratio_cell(dr.ratio));
-        }
-        h.push_str("</table>");
-    }
-    h.push_str("</div>");
-    h
+/// The variants' section of report.html.
+#[derive(Template)]
+#[template(path = "variants.html")]
+struct VariantsHtml<'a> {
+    v: &'a VariantStudy,
+    variants: [Configuration; VARIANTS.len()],
+    rows: Vec<(Configuration, &'a VariantResult, &'a VariantResult)>,
+    regions: Vec<&'a str>,
+}
+
+pub fn html(v: &VariantStudy) -> askama::Result<String> {
+    let regions = v.results.first().map(|r| r.regions.iter().map(|x| x.name.as_str()).collect()).unwrap_or_default();
+    VariantsHtml { v, variants: VARIANTS, rows: both_lightings(v).collect(), regions }.render()
 }
