@@ -13,6 +13,7 @@
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
 use crate::bsdf::{BsdfFlags, BsdfSample, Bxdf};
+use crate::emitter::Light;
 use crate::geometry::{Ray, ray};
 use crate::sampler::Sampler;
 use crate::scene::Scene;

@@ -21,6 +21,7 @@
 
 use crate::bsdf::Bxdf;
 use crate::camera::Camera;
+use crate::emitter::Light;
 use crate::film::{Film, Image};
 use crate::geometry::ray;
 use crate::sampler::{Sampler, Sampling};

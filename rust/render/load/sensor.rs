@@ -8,13 +8,14 @@
 //! Samplers: `independent`, `stratified`, `multijitter`, `orthogonal`, `ldsampler`
 //! (`src/samplers/*.cpp`) with `sample_count` rounded as each rounds it.
 
-use super::{err, values};
+use super::props::PluginProps;
+use super::{Builder, err};
 use crate::camera::{Camera, FovAxis, PerspectiveCamera};
 use crate::film::{CropWindow, Film, ReconstructionFilter};
 use crate::orthographic::OrthographicCamera;
 use crate::sampler::{SamplerKind, Sampling};
 use crate::thinlens::ThinLensCamera;
-use glam::Vec2;
+use glam::{Affine3A, Vec2};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
 
@@ -24,51 +25,57 @@ pub struct Sensor {
     pub sampling: Sampling,
 }
 
-pub fn build(obj: &SceneObject) -> Result<Sensor, SceneError> {
-    match obj.plugin.as_str() {
-        "perspective" => build_perspective(obj),
-        "orthographic" => build_orthographic(obj),
-        "thinlens" => build_thinlens(obj),
-        other => Err(err(
-            obj,
-            format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic, thinlens)"),
-        )),
-    }
+/// The sensor of `obj`, with its film and sampler.
+pub fn build(b: &Builder, obj: &SceneObject) -> Result<Sensor, SceneError> {
+    let build: fn(&mut PluginProps) -> Result<Sensor, SceneError> = match obj.plugin.as_str() {
+        "perspective" => perspective,
+        "orthographic" => orthographic,
+        "thinlens" => thinlens,
+        other => {
+            return Err(err(
+                obj,
+                format!("unsupported sensor type \"{other}\" (matte renders: perspective, orthographic, thinlens)"),
+            ));
+        }
+    };
+    let sensor = build(&mut PluginProps::new(b, obj))?;
+    obj.check_all_used()?;
+    Ok(sensor)
 }
 
 /// `ProjectiveCamera`'s properties (`src/render/sensor.cpp`): near_clip, far_clip and
 /// focus_distance (default far_clip; a positive finite distance).
-fn clip_range(obj: &SceneObject) -> Result<(f32, f32, f32), SceneError> {
-    let near = values::positive(obj, "near_clip", 0.01)? as f32;
-    let far = values::positive(obj, "far_clip", 10000.0)? as f32;
+fn clip_range(p: &mut PluginProps) -> Result<(f32, f32, f32), SceneError> {
+    let near = p.positive("near_clip")? as f32;
+    let far = p.positive("far_clip")? as f32;
     if far <= near {
-        return Err(err(obj, format!("far_clip ({far}) must exceed near_clip ({near})")));
+        return Err(p.err(format!("far_clip ({far}) must exceed near_clip ({near})")));
     }
-    let focus = values::float(obj, "focus_distance", far as f64)?;
+    let focus = p.float_or("focus_distance", far as f64)?;
     if !(focus > 0.0 && focus.is_finite()) {
-        return Err(values::prop_err(obj, "focus_distance", format!("must be a positive distance, got {focus}")));
+        return Err(p.prop_err("focus_distance", format!("must be a positive distance, got {focus}")));
     }
     Ok((near, far, focus as f32))
 }
 
-fn build_orthographic(obj: &SceneObject) -> Result<Sensor, SceneError> {
-    let to_world = values::transform(obj, "to_world")?;
+/// `orthographic` (`src/sensors/orthographic.cpp`): `to_world` may scale, but must be
+/// invertible.
+fn orthographic(p: &mut PluginProps) -> Result<Sensor, SceneError> {
+    let to_world = p.transform("to_world")?;
     if to_world.matrix3.determinant() == 0.0 || !to_world.is_finite() {
-        return Err(values::prop_err(obj, "to_world", "must be an invertible transform"));
+        return Err(p.prop_err("to_world", "must be an invertible transform"));
     }
-    let (near, far, _) = clip_range(obj)?;
-    let (film, sampling) = film_and_sampler(obj)?;
-    obj.check_all_used()?;
+    let (near, far, _) = clip_range(p)?;
+    let (film, sampling) = film_and_sampler(p)?;
     let camera = Camera::Orthographic(OrthographicCamera::new(to_world, (film.width(), film.height()), near, far));
     Ok(Sensor { camera, film, sampling })
 }
 
 /// `to_world` of `perspective` and `thinlens`: a rotation and translation.
-fn rigid_to_world(obj: &SceneObject) -> Result<glam::Affine3A, SceneError> {
-    let to_world = values::transform(obj, "to_world")?;
+fn rigid_to_world(p: &mut PluginProps) -> Result<Affine3A, SceneError> {
+    let to_world = p.transform("to_world")?;
     if has_scale(&to_world) {
-        return Err(values::prop_err(
-            obj,
+        return Err(p.prop_err(
             "to_world",
             "contains a scale or shear; scale factors are not allowed in a camera transform (as in Mitsuba)",
         ));
@@ -76,16 +83,16 @@ fn rigid_to_world(obj: &SceneObject) -> Result<glam::Affine3A, SceneError> {
     Ok(to_world)
 }
 
-fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
-    let to_world = rigid_to_world(obj)?;
-    let (fov_deg, axis) = field_of_view(obj)?;
-    let (near, far, _) = clip_range(obj)?;
+/// `perspective` (`src/sensors/perspective.cpp`).
+fn perspective(p: &mut PluginProps) -> Result<Sensor, SceneError> {
+    let to_world = rigid_to_world(p)?;
+    let (fov_deg, axis) = field_of_view(p)?;
+    let (near, far, _) = clip_range(p)?;
     let ppo = Vec2::new(
-        principal_point_offset(obj, "principal_point_offset_x")?,
-        principal_point_offset(obj, "principal_point_offset_y")?,
+        principal_point_offset(p, "principal_point_offset_x")?,
+        principal_point_offset(p, "principal_point_offset_y")?,
     );
-    let (film, sampling) = film_and_sampler(obj)?;
-    obj.check_all_used()?;
+    let (film, sampling) = film_and_sampler(p)?;
     let camera = PerspectiveCamera::new(to_world, fov_deg, axis, (film.width(), film.height()), ppo, near, far);
     Ok(Sensor { camera: Camera::Perspective(camera), film, sampling })
 }
@@ -93,52 +100,38 @@ fn build_perspective(obj: &SceneObject) -> Result<Sensor, SceneError> {
 /// `thinlens` (`src/sensors/thinlens.cpp`): `aperture_radius` has no default in Mitsuba
 /// (`props.get<float>`), 0 becomes 2⁻²⁴ there and here; matte also rejects a negative or
 /// non-finite radius.
-fn build_thinlens(obj: &SceneObject) -> Result<Sensor, SceneError> {
-    let to_world = rigid_to_world(obj)?;
-    let (fov_deg, axis) = field_of_view(obj)?;
-    let (near, far, focus) = clip_range(obj)?;
-    let radius = values::float_opt(obj, "aperture_radius")?
-        .ok_or_else(|| err(obj, "needs the property \"aperture_radius\" (as in Mitsuba, it has no default)"))?;
+fn thinlens(p: &mut PluginProps) -> Result<Sensor, SceneError> {
+    let to_world = rigid_to_world(p)?;
+    let (fov_deg, axis) = field_of_view(p)?;
+    let (near, far, focus) = clip_range(p)?;
+    let radius = p
+        .float_opt("aperture_radius")?
+        .ok_or_else(|| p.err("needs the property \"aperture_radius\" (as in Mitsuba, it has no default)"))?;
     if !(radius >= 0.0 && radius.is_finite()) {
-        return Err(values::prop_err(obj, "aperture_radius", format!("must be a finite radius ≥ 0, got {radius}")));
+        return Err(p.prop_err("aperture_radius", format!("must be a finite radius ≥ 0, got {radius}")));
     }
-    let (film, sampling) = film_and_sampler(obj)?;
-    obj.check_all_used()?;
+    let (film, sampling) = film_and_sampler(p)?;
     let size = (film.width(), film.height());
     let camera = ThinLensCamera::new(to_world, fov_deg, axis, size, radius as f32, focus, near, far);
     Ok(Sensor { camera: Camera::ThinLens(camera), film, sampling })
 }
 
-/// The field of view as `perspective` reads it (`src/sensors/perspective.cpp`), also used by
-/// the `projector` emitter: `fov` in degrees with `fov_axis` (default x), or `focal_length`
-/// (default "50mm", a diagonal field of view), never both.
-pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneError> {
-    let fov = values::float_opt(obj, "fov")?;
-    let focal = obj.properties.string("focal_length")?;
+/// The field of view as `perspective` reads it (`src/render/sensor.cpp`, `parse_fov`), also
+/// read by the `projector` emitter: `fov` in degrees with `fov_axis` (default x), or
+/// `focal_length` (default "50mm", a diagonal field of view), never both.
+pub(crate) fn field_of_view(p: &mut PluginProps) -> Result<(f64, FovAxis), SceneError> {
+    let fov = p.float_opt("fov")?;
+    let focal = p.string_opt("focal_length")?;
     match (fov, focal) {
-        (Some(_), Some(_)) => Err(err(obj, "give either fov or focal_length, not both")),
+        (Some(_), Some(_)) => Err(p.err("give either fov or focal_length, not both")),
         (Some(f), None) => {
             if !(f > 0.0 && f < 180.0) {
-                return Err(values::prop_err(obj, "fov", format!("must be in (0, 180) degrees, got {f}")));
+                return Err(p.prop_err("fov", format!("must be in (0, 180) degrees, got {f}")));
             }
-            let axis = match values::string(obj, "fov_axis", "x")?.to_lowercase().as_str() {
-                "x" => FovAxis::X,
-                "y" => FovAxis::Y,
-                "diagonal" => FovAxis::Diagonal,
-                "smaller" => FovAxis::Smaller,
-                "larger" => FovAxis::Larger,
-                other => {
-                    return Err(values::prop_err(
-                        obj,
-                        "fov_axis",
-                        format!("must be x, y, diagonal, smaller or larger, got \"{other}\""),
-                    ));
-                }
-            };
-            Ok((f, axis))
+            Ok((f, fov_axis(p)?))
         }
-        (None, focal) => {
-            let text = focal.unwrap_or_else(|| "50mm".into());
+        (None, _) => {
+            let text = p.string("focal_length")?;
             let mm: f64 = text
                 .trim()
                 .strip_suffix("mm")
@@ -147,17 +140,31 @@ pub(super) fn field_of_view(obj: &SceneObject) -> Result<(f64, FovAxis), SceneEr
                 .parse()
                 .ok()
                 .filter(|v: &f64| *v > 0.0)
-                .ok_or_else(|| {
-                    values::prop_err(obj, "focal_length", format!("must look like \"50mm\", got \"{text}\""))
-                })?;
+                .ok_or_else(|| p.prop_err("focal_length", format!("must look like \"50mm\", got \"{text}\"")))?;
             Ok((PerspectiveCamera::focal_length_to_diagonal_fov(mm), FovAxis::Diagonal))
         }
     }
 }
 
+/// `fov_axis` (default x): x, y, diagonal, smaller or larger.
+fn fov_axis(p: &mut PluginProps) -> Result<FovAxis, SceneError> {
+    Ok(match p.string("fov_axis")?.to_lowercase().as_str() {
+        "x" => FovAxis::X,
+        "y" => FovAxis::Y,
+        "diagonal" => FovAxis::Diagonal,
+        "smaller" => FovAxis::Smaller,
+        "larger" => FovAxis::Larger,
+        other => {
+            let message = format!("must be x, y, diagonal, smaller or larger, got \"{other}\"");
+            return Err(p.prop_err("fov_axis", message));
+        }
+    })
+}
+
 /// The sensor's nested film (default: 768×576, gaussian) and sampler (default:
 /// independent, 4 spp, seed 0).
-fn film_and_sampler(obj: &SceneObject) -> Result<(Film, Sampling), SceneError> {
+fn film_and_sampler(p: &mut PluginProps) -> Result<(Film, Sampling), SceneError> {
+    let (b, obj) = (p.builder(), p.object());
     let mut film = None;
     let mut sampler = None;
     for child in obj.children.iter() {
@@ -171,15 +178,15 @@ fn film_and_sampler(obj: &SceneObject) -> Result<(Film, Sampling), SceneError> {
             "sampler" if sampler.is_some() => {
                 return Err(SceneError::at(&child.pos, "only one sampler can be specified per sensor"));
             }
-            "film" => film = Some(build_film(c)?),
-            "sampler" => sampler = Some(build_sampler(c)?),
+            "film" => film = Some(build_film(b, c)?),
+            "sampler" => sampler = Some(build_sampler(b, c)?),
             _ => return Err(err(c, format!("a <{}> cannot be nested in a sensor", c.tag))),
         }
     }
     let sampling = sampler.unwrap_or(Sampling::independent(4, 0));
     let film = match film {
         Some(f) => f,
-        None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| err(obj, e))?,
+        None => Film::new(768, 576, None, ReconstructionFilter::Gaussian { stddev: 0.5 }).map_err(|e| p.err(e))?,
     };
     Ok((film, sampling))
 }
@@ -187,46 +194,55 @@ fn film_and_sampler(obj: &SceneObject) -> Result<(Film, Sampling), SceneError> {
 /// A principal point offset (a fraction of the film size). Mitsuba takes any float; a NaN or
 /// one so large that the ray direction overflows f32 would give NaN camera rays, so matte
 /// requires a finite value within ±10⁶ film sizes.
-fn principal_point_offset(obj: &SceneObject, name: &str) -> Result<f32, SceneError> {
-    let v = values::float(obj, name, 0.0)?;
+fn principal_point_offset(p: &mut PluginProps, name: &str) -> Result<f32, SceneError> {
+    let v = p.float(name)?;
     if v.is_nan() || v.abs() > 1e6 {
-        return Err(values::prop_err(
-            obj,
-            name,
-            format!("must be a finite fraction of the film size within ±1e6, got {v}"),
-        ));
+        return Err(p.prop_err(name, format!("must be a finite fraction of the film size within ±1e6, got {v}")));
     }
     Ok(v as f32)
 }
 
-pub(super) fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
+/// `<film type="hdrfilm">` (`src/films/hdrfilm.cpp`, the `Film` base class).
+pub(super) fn build_film(b: &Builder, obj: &SceneObject) -> Result<Film, SceneError> {
     if obj.plugin != "hdrfilm" {
         return Err(err(obj, format!("unsupported film type \"{}\" (matte renders: hdrfilm)", obj.plugin)));
     }
-    let width = values::integer(obj, "width", 768, 1, 1 << 16)? as u32;
-    let height = values::integer(obj, "height", 576, 1, 1 << 16)? as u32;
-    // Mitsuba (src/render/film.cpp): crop_width/height default to the FULL film size, not to
-    // what is left after the offset, so an offset alone is an invalid crop window (§6).
-    let crop =
-        if ["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| obj.properties.contains(n)) {
-            let ox = values::integer(obj, "crop_offset_x", 0, 0, u32::MAX as i64)? as u32;
-            let oy = values::integer(obj, "crop_offset_y", 0, 0, u32::MAX as i64)? as u32;
-            let w = values::integer(obj, "crop_width", width as i64, 1, u32::MAX as i64)? as u32;
-            let h = values::integer(obj, "crop_height", height as i64, 1, u32::MAX as i64)? as u32;
-            Some(CropWindow { offset: [ox, oy], size: [w, h] })
-        } else {
-            None
-        };
+    let p = &mut PluginProps::new(b, obj);
+    // Mitsuba's defaults are `is_m_film ? 1 : 768` and `… : 576`: an hdrfilm is not an m-film.
+    let width = p.integer_or("width", 768, 1..=1 << 16)? as u32;
+    let height = p.integer_or("height", 576, 1..=1 << 16)? as u32;
+    let crop = crop_window(p, width, height)?;
     // Output format properties only affect files Mitsuba writes; matte always writes RGB float.
-    let pf = values::string(obj, "pixel_format", "rgb")?.to_lowercase();
+    let pf = p.string("pixel_format")?.to_lowercase();
     if pf != "rgb" && pf != "rgba" {
-        return Err(values::prop_err(obj, "pixel_format", format!("\"{pf}\" is not supported (rgb or rgba)")));
+        return Err(p.prop_err("pixel_format", format!("\"{pf}\" is not supported (rgb or rgba)")));
     }
-    let _ = values::string(obj, "component_format", "float16")?;
-    let _ = values::string(obj, "file_format", "openexr")?;
-    if values::boolean(obj, "sample_border", false)? {
-        return Err(values::prop_err(obj, "sample_border", "= true is not supported"));
+    let _ = p.string("component_format")?;
+    let _ = p.string("file_format")?;
+    if p.boolean("sample_border")? {
+        return Err(p.prop_err("sample_border", "= true is not supported"));
     }
+    let filter = film_filter(b, obj)?;
+    obj.check_all_used()?;
+    Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
+}
+
+/// The crop window, if any crop property is given. Mitsuba (src/render/film.cpp):
+/// crop_width/height default to the FULL film size, not to what is left after the offset, so
+/// an offset alone is an invalid crop window (docs/renderer-semantics.md §6).
+fn crop_window(p: &mut PluginProps, width: u32, height: u32) -> Result<Option<CropWindow>, SceneError> {
+    if !["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| p.has_property(n)) {
+        return Ok(None);
+    }
+    let ox = p.integer("crop_offset_x", 0..=u32::MAX as i64)? as u32;
+    let oy = p.integer("crop_offset_y", 0..=u32::MAX as i64)? as u32;
+    let w = p.integer_or("crop_width", width as i64, 1..=u32::MAX as i64)? as u32;
+    let h = p.integer_or("crop_height", height as i64, 1..=u32::MAX as i64)? as u32;
+    Ok(Some(CropWindow { offset: [ox, oy], size: [w, h] }))
+}
+
+/// The film's nested reconstruction filter, if any (at most one).
+fn film_filter(b: &Builder, obj: &SceneObject) -> Result<Option<ReconstructionFilter>, SceneError> {
     let mut filter = None;
     for child in obj.children.iter() {
         child.mark_used();
@@ -238,33 +254,31 @@ pub(super) fn build_film(obj: &SceneObject) -> Result<Film, SceneError> {
             // Mitsuba: "A film can only have one reconstruction filter" (src/render/film.cpp).
             return Err(SceneError::at(&child.pos, "a film can only have one reconstruction filter"));
         }
-        filter = Some(build_rfilter(c)?);
+        filter = Some(build_rfilter(b, c)?);
     }
-    obj.check_all_used()?;
-    Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| err(obj, e))
+    Ok(filter)
 }
 
 /// `<rfilter>`: `box`, `tent` (radius), `gaussian` (stddev), `mitchell` (B, C), `catmullrom`,
 /// `lanczos` (lobes), with Mitsuba 3.9.1's defaults (`src/rfilters/*.cpp`).
-pub(super) fn build_rfilter(obj: &SceneObject) -> Result<ReconstructionFilter, SceneError> {
+pub(super) fn build_rfilter(b: &Builder, obj: &SceneObject) -> Result<ReconstructionFilter, SceneError> {
+    const NAMES: [&str; 6] = ["box", "tent", "gaussian", "mitchell", "catmullrom", "lanczos"];
+    if !NAMES.contains(&obj.plugin.as_str()) {
+        let message = format!("unsupported rfilter type \"{}\" ({})", obj.plugin, NAMES.join(", "));
+        return Err(err(obj, message));
+    }
+    let p = &mut PluginProps::new(b, obj);
     let filter = match obj.plugin.as_str() {
-        "box" => ReconstructionFilter::Box,
-        "tent" => ReconstructionFilter::Tent { radius: filter_size(obj, "radius", 1.0, 1.0)? },
-        "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(obj, "stddev", 0.5, 4.0)? },
+        "tent" => ReconstructionFilter::Tent { radius: filter_size(p, "radius", 1.0)? },
+        "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(p, "stddev", 4.0)? },
+        // Mitsuba's defaults are `1.f / 3.f`.
         "mitchell" => ReconstructionFilter::Mitchell {
-            b: values::finite(obj, "B", 1.0 / 3.0)? as f32,
-            c: values::finite(obj, "C", 1.0 / 3.0)? as f32,
+            b: p.finite_or("B", 1.0 / 3.0)? as f32,
+            c: p.finite_or("C", 1.0 / 3.0)? as f32,
         },
         "catmullrom" => ReconstructionFilter::CatmullRom,
-        "lanczos" => ReconstructionFilter::Lanczos {
-            lobes: values::integer(obj, "lobes", 3, 1, MAX_FILTER_RADIUS as i64)? as u32,
-        },
-        other => {
-            return Err(err(
-                obj,
-                format!("unsupported rfilter type \"{other}\" (box, tent, gaussian, mitchell, catmullrom, lanczos)"),
-            ));
-        }
+        "lanczos" => ReconstructionFilter::Lanczos { lobes: p.integer("lobes", 1..=MAX_FILTER_RADIUS as i64)? as u32 },
+        _ => ReconstructionFilter::Box,
     };
     obj.check_all_used()?;
     Ok(filter)
@@ -275,18 +289,14 @@ pub(super) fn build_rfilter(obj: &SceneObject) -> Result<ReconstructionFilter, S
 /// cannot be allocated (and would overflow the block size).
 const MAX_FILTER_RADIUS: f64 = 1024.0;
 
-/// A filter parameter whose support radius is `radius_per_unit` times it.
-fn filter_size(obj: &SceneObject, name: &str, default: f64, radius_per_unit: f64) -> Result<f32, SceneError> {
-    let v = values::positive(obj, name, default)?;
+/// A filter parameter (positive, the harvested default) whose support radius is
+/// `radius_per_unit` times it.
+fn filter_size(p: &mut PluginProps, name: &str, radius_per_unit: f64) -> Result<f32, SceneError> {
+    let v = p.positive(name)?;
     if v * radius_per_unit > MAX_FILTER_RADIUS {
-        return Err(values::prop_err(
-            obj,
-            name,
-            format!(
-                "gives a filter radius of {} pixels; matte allows at most {MAX_FILTER_RADIUS}",
-                v * radius_per_unit
-            ),
-        ));
+        let radius = v * radius_per_unit;
+        let message = format!("gives a filter radius of {radius} pixels; matte allows at most {MAX_FILTER_RADIUS}");
+        return Err(p.prop_err(name, message));
     }
     Ok(v as f32)
 }
@@ -298,43 +308,36 @@ const MAX_STRATIFIED_COUNT: i64 = 1 << 30;
 /// `src/render/sampler.cpp`); `stratified`, `multijitter` and `orthogonal` read `jitter`
 /// (default true), `orthogonal` `strength` (default 2). The sample count is rounded as the
 /// plugin's `set_sample_count` rounds it.
-pub(super) fn build_sampler(obj: &SceneObject) -> Result<Sampling, SceneError> {
+pub(super) fn build_sampler(b: &Builder, obj: &SceneObject) -> Result<Sampling, SceneError> {
+    const NAMES: [&str; 5] = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"];
+    if !NAMES.contains(&obj.plugin.as_str()) {
+        let message = format!("unsupported sampler type \"{}\" (matte renders: {})", obj.plugin, NAMES.join(", "));
+        return Err(err(obj, message));
+    }
+    let p = &mut PluginProps::new(b, obj);
     let max_count = if obj.plugin == "independent" { u32::MAX as i64 } else { MAX_STRATIFIED_COUNT };
     let kind = match obj.plugin.as_str() {
-        "independent" => SamplerKind::Independent,
-        "stratified" => SamplerKind::Stratified { jitter: values::boolean(obj, "jitter", true)? },
-        "multijitter" => SamplerKind::Multijitter { jitter: values::boolean(obj, "jitter", true)? },
+        "stratified" => SamplerKind::Stratified { jitter: p.boolean("jitter")? },
+        "multijitter" => SamplerKind::Multijitter { jitter: p.boolean("jitter")? },
         "orthogonal" => {
-            let jitter = values::boolean(obj, "jitter", true)?;
-            let strength = values::integer(obj, "strength", 2, 1, 32)? as u32;
-            SamplerKind::Orthogonal { jitter, strength }
+            let jitter = p.boolean("jitter")?;
+            SamplerKind::Orthogonal { jitter, strength: p.integer("strength", 1..=32)? as u32 }
         }
         "ldsampler" => SamplerKind::LowDiscrepancy,
-        other => {
-            return Err(err(
-                obj,
-                format!(
-                    "unsupported sampler type \"{other}\" (matte renders: independent, stratified, multijitter, \
-                     orthogonal, ldsampler)"
-                ),
-            ));
-        }
+        _ => SamplerKind::Independent,
     };
-    let spp = values::integer(obj, "sample_count", 4, 1, max_count)? as u32;
-    let seed = values::integer(obj, "seed", 0, 0, i64::MAX)? as u64;
+    let spp = p.integer("sample_count", 1..=max_count)? as u32;
+    let seed = p.integer("seed", 0..=i64::MAX)? as u64;
     obj.check_all_used()?;
     let sampling = Sampling::new(kind, spp, seed);
     if let SamplerKind::Orthogonal { strength, .. } = kind {
         let r = (sampling.spp as f64).sqrt().round() as u32;
         if strength != 2 && r.checked_pow(strength).is_none() {
-            return Err(values::prop_err(
-                obj,
-                "strength",
-                format!(
-                    "{strength} with sample_count {} needs {r}^{strength} array rows, more than 2^32",
-                    sampling.spp
-                ),
-            ));
+            let message = format!(
+                "{strength} with sample_count {} needs {r}^{strength} array rows, more than 2^32",
+                sampling.spp
+            );
+            return Err(p.prop_err("strength", message));
         }
     }
     Ok(sampling)
@@ -343,7 +346,7 @@ pub(super) fn build_sampler(obj: &SceneObject) -> Result<Sampling, SceneError> {
 /// Mitsuba's `Transform::has_scale` (`include/mitsuba/core/transform.h`), used by the
 /// perspective sensor: the rows of the linear part must be orthonormal to 1e-3
 /// (|Σₖ mᵢₖ mⱼₖ − δᵢⱼ| ≤ 1e-3). So a shear is a scale, and a mirror is not.
-fn has_scale(m: &glam::Affine3A) -> bool {
+fn has_scale(m: &Affine3A) -> bool {
     let rows = [m.matrix3.row(0), m.matrix3.row(1), m.matrix3.row(2)];
     (0..3).any(|i| (i..3).any(|j| (rows[i].dot(rows[j]) - if i == j { 1.0 } else { 0.0 }).abs() > 1e-3))
 }
