@@ -349,7 +349,7 @@ impl<'a> PluginProps<'a> {
     /// A texture's `to_uv` as a 2-D affine map: the upper-left 2×2 block and the translation
     /// column of the 4×4 transform (Mitsuba's `Properties::get<AffineTransform3f>`); absent,
     /// the identity.
-    pub fn to_uv(&mut self, name: &str) -> Result<Affine2, SceneError> {
+    pub fn uv_transform(&mut self, name: &str) -> Result<Affine2, SceneError> {
         self.entry(name, Read::Transform);
         let Some(m) = self.obj.properties.transform(name)? else { return Ok(Affine2::IDENTITY) };
         let a = Mat2::from_cols(m.x_axis.truncate().truncate().as_vec2(), m.y_axis.truncate().truncate().as_vec2());

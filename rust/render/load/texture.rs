@@ -205,7 +205,7 @@ fn checkerboard(p: &mut PluginProps) -> Result<Texture, SceneError> {
         }
     };
     let (color0, color1) = (colour("color0")?, colour("color1")?);
-    let to_uv = p.to_uv("to_uv")?;
+    let to_uv = p.uv_transform("to_uv")?;
     Ok(Texture::Checkerboard(Checkerboard { color0, color1, to_uv }))
 }
 
@@ -272,7 +272,7 @@ fn bitmap(p: &mut PluginProps) -> Result<Texture, SceneError> {
     let wrap = WrapMode::parse(&word)
         .ok_or_else(|| p.prop_err("wrap_mode", format!("must be repeat, mirror or clamp, got \"{word}\"")))?;
     let raw = p.boolean("raw")?;
-    let to_uv = p.to_uv("to_uv")?;
+    let to_uv = p.uv_transform("to_uv")?;
     let _ = p.string("format")?;
     p.object().check_all_used()?;
     let tex = BitmapTexture::load(&path, &BitmapOptions { filter, wrap, raw, to_uv })
