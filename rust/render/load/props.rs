@@ -1,7 +1,11 @@
 //! [`PluginProps`]: one XML object as its plugin's constructor reads it (Mitsuba's
-//! `Properties` seen from `Plugin(const Properties &props)`). A type reads `float("alpha")`,
-//! `texture("reflectance")`, `string("distribution")`, …; the default and the value kinds a
-//! name accepts come from the harvested entry for (tag, plugin, name) in
+//! `Properties` seen from `Plugin(const Properties &props)`), the one way every plugin of the
+//! loader (BSDFs, emitters, shapes, sensors, films, filters, samplers, integrators, textures,
+//! volumes) reads its properties. A type reads `float("alpha")`, `integer("lobes", 1..=1024)`,
+//! `transform("to_world")`, `texture("reflectance")`, `emission("intensity")`,
+//! `string("distribution")`, …; every error about a value names the file, line and property.
+//! The default and the value kinds a name accepts come from the harvested entry for (tag,
+//! plugin, name) in
 //! [`super::mitsuba_plugins`] (matte's own plugins, `tabulated_brdf` included: [`MATTE_MODEL`]).
 //! Where Mitsuba's default is an expression rather than a literal (another property, a
 //! constructor argument), the plugin's file supplies it, as its `.cpp` does.
