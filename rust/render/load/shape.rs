@@ -1,15 +1,16 @@
-//! `<shape>`: `obj`, `ply`, `serialized`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
-//! `cylinder`, each with `to_world`, `flip_normals`, a nested or referenced `<bsdf>` and an
-//! optional nested `area` emitter (docs/renderer-semantics.md §8). A shape without a BSDF gets diffuse 0.5,
-//! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
+//! `<shape>`: which type builds each plugin name. `obj`, `ply`, `serialized`, `rectangle` and
+//! `cube` (triangle meshes), `sphere`, `disk` and `cylinder` read their own properties
+//! (`from_props` in their files under `rust/render/shape/`, through [`PluginProps`], after the
+//! `Shape` base class's `to_world` and `flip_normals`, [`Placement`]); the loader attaches a
+//! nested or referenced `<bsdf>` and an optional nested `area` emitter
+//! (docs/renderer-semantics.md §8) and checks the extent. A shape without a BSDF gets diffuse
+//! 0.5, or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
 
-use super::props::{PluginProps, one_line};
+use super::props::PluginProps;
 use super::{Builder, ShapeContext, bsdf, emitter, err};
-use crate::geometry::Frame;
-use crate::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use glam::{Affine3A, Mat3, Mat4, Vec3};
+use crate::shape::{Cylinder, Disk, Geometry, Placement, Shape, Sphere, Triangles};
+use glam::{Affine3A, Vec3};
 use matte_scene_file::SceneError;
-use matte_scene_file::mesh::{self, MeshOptions};
 use matte_scene_file::xml::SceneObject;
 use std::sync::Arc;
 
@@ -29,12 +30,12 @@ pub(super) fn build_placed(
     outer: Affine3A,
     in_group: bool,
 ) -> Result<(), SceneError> {
-    let geometry: fn(&mut PluginProps, Affine3A, bool) -> Result<Geometry, SceneError> = match obj.plugin.as_str() {
-        "obj" | "ply" | "serialized" => mesh_file,
-        "rectangle" | "cube" => mesh_primitive,
-        "sphere" => sphere,
-        "disk" => disk,
-        "cylinder" => cylinder,
+    let geometry: fn(&mut PluginProps, Placement) -> Result<Geometry, SceneError> = match obj.plugin.as_str() {
+        "obj" | "ply" | "serialized" => |p, at| Triangles::from_file(p, at).map(Geometry::Triangles),
+        "rectangle" | "cube" => |p, at| Triangles::from_primitive(p, at).map(Geometry::Triangles),
+        "sphere" => |p, at| Sphere::from_props(p, at).map(Geometry::Sphere),
+        "disk" => |p, at| Disk::from_props(p, at).map(Geometry::Disk),
+        "cylinder" => |p, at| Cylinder::from_props(p, at).map(Geometry::Cylinder),
         "shapegroup" | "instance" => {
             return Err(err(
                 obj,
@@ -51,9 +52,8 @@ pub(super) fn build_placed(
         }
     };
     let mut p = PluginProps::new(b, obj);
-    let to_world = outer * p.transform("to_world")?;
-    let flip_normals = p.boolean("flip_normals")?;
-    let geometry = geometry(&mut p, to_world, flip_normals)?;
+    let at = Placement::from_props(&mut p, outer)?;
+    let geometry = geometry(&mut p, at)?;
     check_extent(&p, &geometry)?;
     let shape_index = b.shapes.len() as u32;
     let mut bsdf_index = None;
@@ -76,79 +76,6 @@ pub(super) fn build_placed(
     obj.check_all_used()?;
     b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
     Ok(())
-}
-
-/// `obj`, `ply` and `serialized` (`src/shapes/{obj,ply,serialized}.cpp`, the `Mesh` base
-/// class): `filename`, `face_normals`, `flip_tex_coords` (not `serialized`), `shape_index`
-/// (`serialized` only).
-fn mesh_file(p: &mut PluginProps, to_world: Affine3A, flip_normals: bool) -> Result<Geometry, SceneError> {
-    let plugin = p.object().plugin.as_str();
-    let path = p.file("filename")?;
-    let opts = MeshOptions {
-        to_world: Mat4::from(to_world),
-        face_normals: p.boolean("face_normals")?,
-        flip_normals,
-        flip_tex_coords: match plugin {
-            "serialized" => None,
-            _ => p.boolean_opt("flip_tex_coords")?,
-        },
-    };
-    let loaded = match plugin {
-        "obj" => mesh::load_obj(&path, &opts),
-        "ply" => mesh::load_ply(&path, &opts),
-        _ => {
-            let index = p.integer("shape_index", 0..=i32::MAX as i64)?;
-            mesh::load_serialized(&path, index, &opts)
-        }
-    };
-    let m = loaded.map_err(|e| p.prop_err("filename", format!("cannot load mesh: {}", one_line(&e.to_string()))))?;
-    Ok(Geometry::Triangles(Triangles::new(m, flip_normals)))
-}
-
-/// `rectangle` and `cube`: Mitsuba's `Mesh` base class reads `face_normals` for these too,
-/// then ignores it (both are flat per face; scene::mesh::primitives).
-fn mesh_primitive(p: &mut PluginProps, to_world: Affine3A, flip_normals: bool) -> Result<Geometry, SceneError> {
-    let _ = p.boolean("face_normals")?;
-    let opts = MeshOptions { to_world: Mat4::from(to_world), flip_normals, ..MeshOptions::default() };
-    Ok(Geometry::Triangles(if p.object().plugin == "rectangle" {
-        Triangles::rectangle(mesh::rectangle(&opts), flip_normals, to_world)
-    } else {
-        Triangles::new(mesh::cube(&opts), flip_normals)
-    }))
-}
-
-/// `sphere` (`src/shapes/sphere.cpp`): `center` (default the origin) and `radius` (default 1).
-fn sphere(p: &mut PluginProps, to_world: Affine3A, flip_normals: bool) -> Result<Geometry, SceneError> {
-    let center = p.point("center")?;
-    let radius = p.float("radius")? as f32;
-    if !(radius.is_finite() && radius > 0.0) {
-        return Err(p.prop_err("radius", format!("must be positive, got {radius}")));
-    }
-    let m = to_world * Affine3A::from_translation(center) * Affine3A::from_scale(Vec3::splat(radius));
-    Ok(Geometry::Sphere(Sphere::new(m, flip_normals)))
-}
-
-/// `disk` (`src/shapes/disk.cpp`): the unit disk in the xy-plane, placed by `to_world`.
-fn disk(_: &mut PluginProps, to_world: Affine3A, flip_normals: bool) -> Result<Geometry, SceneError> {
-    Ok(Geometry::Disk(Disk::new(to_world, flip_normals)))
-}
-
-/// `cylinder` (`src/shapes/cylinder.cpp`): `p0` (default the origin), `p1` (default +z) and
-/// `radius` (default 1), without caps.
-fn cylinder(p: &mut PluginProps, to_world: Affine3A, flip_normals: bool) -> Result<Geometry, SceneError> {
-    let p0 = p.point_or("p0", Vec3::ZERO)?;
-    let p1 = p.point_or("p1", Vec3::Z)?;
-    let radius = p.float("radius")? as f32;
-    let axis = p1 - p0;
-    let length = axis.length();
-    if !(radius.is_finite() && radius > 0.0 && length > 0.0 && length.is_finite()) {
-        return Err(p.err("needs a positive radius and p0 ≠ p1"));
-    }
-    // Mitsuba: to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|).
-    let f = Frame::from_normal(axis / length);
-    let frame = Affine3A::from_mat3(Mat3::from_cols(f.s, f.t, f.n));
-    let m = to_world * Affine3A::from_translation(p0) * frame * Affine3A::from_scale(Vec3::new(radius, radius, length));
-    Ok(Geometry::Cylinder(Cylinder::new(m, flip_normals)))
 }
 
 /// The shape's geometry must be valid and within ±[`MAX_COORDINATE`].
