@@ -8,7 +8,7 @@
 //! the image rectangle's area at unit distance.
 
 use super::{EmitterFlags, EmitterSample, Light, LightRay};
-use crate::camera::x_half_tan;
+use crate::camera::{field_of_view, x_half_tan};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::Shape;
 use crate::texture::Texture;
@@ -38,7 +38,7 @@ impl FromProps for Projector {
             _ => 1.0,
         };
         let (scale, to_world) = scale_and_to_world(p)?;
-        let (fov_deg, axis) = crate::load::sensor::field_of_view(p)?;
+        let (fov_deg, axis) = field_of_view(p)?;
         let tan_half = x_half_tan(fov_deg, axis, aspect) as f32;
         let to_local = to_world.inverse();
         Ok(Projector { to_world, to_local, irradiance, tan_half, aspect: aspect as f32, scale: scale as f32 })

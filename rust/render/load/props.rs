@@ -17,6 +17,7 @@
 use super::mitsuba_plugins::{self, Kind, Plugin, PluginProperty};
 use super::{Builder, err, texture};
 use crate::bsdf::Bsdf;
+use crate::film::ReconstructionFilter;
 use crate::texture::Texture;
 use glam::{Affine2, Affine3A, DMat4, DVec4, Mat2, Mat3, Vec3};
 use matte_brdf::params::{MAX_MAGNITUDE, too_large};
@@ -521,6 +522,11 @@ impl<'a> PluginProps<'a> {
     /// Builds a nested texture object.
     pub fn build_texture(&self, obj: &SceneObject) -> Result<Texture, SceneError> {
         texture::build(self.b, obj)
+    }
+
+    /// Builds a film's nested `<rfilter>`, if any (at most one, and nothing else nested).
+    pub fn nested_rfilter(&self) -> Result<Option<ReconstructionFilter>, SceneError> {
+        super::sensor::film_filter(self.b, self.obj)
     }
 
     /// An asset file name resolved as Mitsuba's file resolver does.
