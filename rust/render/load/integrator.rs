@@ -1,9 +1,10 @@
 //! `<integrator>`: which type builds each plugin name. `path` (also `volpath` and
 //! `volpathmis`, which equal it on surfaces), `direct` and `ptracer` read their own properties
 //! (`from_props` in `rust/render/integrator/`, through [`PluginProps`]); `moment`
-//! (`src/integrators/moment.cpp`) is built here: its image is the first nested integrator's,
-//! sample by sample; the second-moment AOVs it adds are not produced. Every nested integrator
-//! is still built, so an invalid one is reported.
+//! (`src/integrators/moment.cpp`) is built here: it has no type of its own (its image is the
+//! first nested integrator's, sample by sample; the second-moment AOVs it adds are not
+//! produced) and reads nothing but its nested integrators, which this dispatch builds. Every
+//! nested integrator is still built, so an invalid one is reported.
 
 use super::props::{FromProps, PluginProps};
 use super::{Builder, err};

@@ -5,10 +5,12 @@
 //! `transform("to_world")`, `texture("reflectance")`, `emission("intensity")`,
 //! `string("distribution")`, …; every error about a value names the file, line and property.
 //! The default and the value kinds a name accepts come from the harvested entry for (tag,
-//! plugin, name) in
-//! [`super::mitsuba_plugins`] (matte's own plugins, `tabulated_brdf` included: [`MATTE_MODEL`]).
-//! Where Mitsuba's default is an expression rather than a literal (another property, a
-//! constructor argument), the plugin's file supplies it, as its `.cpp` does.
+//! plugin, name) in [`super::mitsuba_plugins`] (matte's own plugins, `tabulated_brdf` included:
+//! [`MATTE_MODEL`]). Where Mitsuba's default is an expression rather than a literal (another
+//! property, a constructor argument), the plugin's file supplies it, as its `.cpp` does. Each
+//! type reads in its own file (`from_props`, most through [`FromProps`]); a type with nested
+//! objects has them built through here too (`build_bsdf`, `build_texture`, `build_volume`,
+//! `nested_rfilter`), by the loader's dispatch.
 //!
 //! Reading a name the entry does not list, or reading it as a kind of value the plugin does not
 //! accept, is a bug in the plugin's file and panics; `tests/scene_file/load.rs` loads every
@@ -18,7 +20,7 @@ use super::mitsuba_plugins::{self, Kind, Plugin, PluginProperty};
 use super::{Builder, err, texture};
 use crate::bsdf::Bsdf;
 use crate::film::ReconstructionFilter;
-use crate::texture::Texture;
+use crate::texture::{Texture, Volume};
 use glam::{Affine2, Affine3A, DMat4, DVec4, Mat2, Mat3, Vec3};
 use matte_brdf::params::{MAX_MAGNITUDE, too_large};
 use matte_scene_file::SceneError;
@@ -522,6 +524,11 @@ impl<'a> PluginProps<'a> {
     /// Builds a nested texture object.
     pub fn build_texture(&self, obj: &SceneObject) -> Result<Texture, SceneError> {
         texture::build(self.b, obj)
+    }
+
+    /// Builds a nested `<volume>` object (`gridvolume`, `constvolume`).
+    pub fn build_volume(&self, obj: &SceneObject) -> Result<Volume, SceneError> {
+        texture::build_volume(self.b, obj)
     }
 
     /// Builds a film's nested `<rfilter>`, if any (at most one, and nothing else nested).

@@ -2,16 +2,16 @@
 //! nested/referenced `<texture>`: `bitmap`, `checkerboard`, `rawconstant`, `mesh_attribute` or
 //! `volume` with its nested `<volume>` (`gridvolume`, `constvolume`) (docs/renderer-semantics.md
 //! §2, §11). Which type builds each plugin name: `bitmap`, `checkerboard`, `mesh_attribute`,
-//! `gridvolume` and `constvolume` read their own properties in their files under
-//! `rust/render/texture/` (through [`PluginProps`]); `rawconstant` (a constant) and the `volume`
-//! texture (a wrapper of its `<volume>`) are read here.
+//! `rawconstant` (a constant, `texture/parameter.rs`), the `volume` texture, `gridvolume` and
+//! `constvolume` (`texture/volume.rs`) read their own properties in their files under
+//! `rust/render/texture/` (through [`PluginProps`]).
 
 use super::props::{FromProps, PluginProps};
 use super::{Builder, err};
 use crate::texture::{BitmapTexture, BoundAttribute, Checkerboard, Texture, Volume, volume};
 use glam::Vec3;
 use matte_scene_file::SceneError;
-use matte_scene_file::xml::{SceneObject, Value};
+use matte_scene_file::xml::SceneObject;
 use std::sync::Arc;
 
 /// The parameter `name` of `obj` given as a nested (or referenced) `<texture>`, built; `None`
@@ -54,12 +54,12 @@ pub fn build(b: &Builder, obj: &SceneObject) -> Result<Texture, SceneError> {
     let build: fn(&mut PluginProps) -> Result<Texture, SceneError> = match obj.plugin.as_str() {
         "bitmap" => |p| BitmapTexture::from_props(p).map(|t| Texture::Bitmap(Arc::new(t))),
         "checkerboard" => |p| Checkerboard::from_props(p).map(Texture::Checkerboard),
-        "rawconstant" => rawconstant,
+        "rawconstant" => |p| Texture::raw_constant_from_props(p).map(Texture::Constant),
         // Outside any shape it is only checked.
         "mesh_attribute" => {
             |p| Ok(BoundAttribute::from_props(p)?.map_or(Texture::Constant(Vec3::ZERO), Texture::MeshAttribute))
         }
-        "volume" => volume_texture,
+        "volume" => |p| volume::texture_from_props(p).map(|v| Texture::Volume(Arc::new(v))),
         other => {
             return Err(err(
                 obj,
@@ -85,37 +85,6 @@ pub fn build_for_emitter(b: &Builder, obj: &SceneObject, what: &str) -> Result<T
     Ok(t)
 }
 
-/// Mitsuba's `volume` texture (`src/textures/volume.cpp`): one property, `volume`, a nested or
-/// referenced `<volume>` (`gridvolume`, `constvolume`), looked up at the world-space hit point.
-/// Mitsuba reads it as an object (a number there is "wrong type (expected object, got float)"),
-/// and without one it loads and crashes when evaluated: matte requires it.
-fn volume_texture(p: &mut PluginProps) -> Result<Texture, SceneError> {
-    if let Some(v) = p.raw("volume") {
-        let found = v.type_name();
-        return Err(p.prop_err(
-            "volume",
-            format!(
-                "has the wrong type (expected a nested <volume>, found {found}); write <volume name=\"volume\" \
-                 type=\"gridvolume\"> or type=\"constvolume\""
-            ),
-        ));
-    }
-    let Some(child) = p.child("volume") else {
-        // Another nested object is reported as such (unused), before the missing one.
-        p.object().check_all_used()?;
-        return Err(p.err(
-            "missing property \"volume\" (a nested <volume name=\"volume\" type=\"gridvolume\"> or \"constvolume\")",
-        ));
-    };
-    if child.tag != "volume" {
-        return Err(err(
-            child,
-            format!("\"volume\" must be a <volume> (gridvolume, constvolume), not a <{}>", child.tag),
-        ));
-    }
-    Ok(Texture::Volume(Arc::new(build_volume(p.builder(), child)?)))
-}
-
 /// A `<volume>` object: `gridvolume` or `constvolume` (`src/volumes/`), with the `to_world` of
 /// their base class (`Volume::Volume`, `src/render/volume.cpp`: points are taken to local space
 /// by its inverse).
@@ -133,22 +102,4 @@ pub fn build_volume(b: &Builder, obj: &SceneObject) -> Result<Volume, SceneError
     let volume = build(&mut PluginProps::new(b, obj))?;
     obj.check_all_used()?;
     Ok(volume)
-}
-
-/// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three
-/// channels) or a `<vector>`, used as is (no colour conversion, no range check).
-fn rawconstant(p: &mut PluginProps) -> Result<Texture, SceneError> {
-    let value = match p.raw("value") {
-        None => return Err(p.err("missing required parameter \"value\" (a float or a 3-D vector)")),
-        Some(Value::Vector(_) | Value::Point(_)) => p.point_opt("value")?.unwrap_or_default(),
-        Some(Value::Float(_) | Value::Integer(_)) => Vec3::splat(p.float_opt("value")?.unwrap_or_default() as f32),
-        Some(other) => {
-            let message = format!("has the wrong type (expected float or vector, found {})", other.type_name());
-            return Err(p.prop_err("value", message));
-        }
-    };
-    if !value.is_finite() {
-        return Err(p.prop_err("value", "must be finite"));
-    }
-    Ok(Texture::Constant(value))
 }

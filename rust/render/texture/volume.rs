@@ -16,6 +16,8 @@
 //! * `mean()` is not implemented by Mitsuba's volume texture (it throws); matte's loader refuses
 //!   a volume texture wherever Mitsuba calls it. Here it is the voxels' mean (luminance for
 //!   RGB), and a `constvolume`'s value's mean.
+//!
+//! The `volume` texture, `gridvolume` and `constvolume` read their properties here.
 
 use super::Texture;
 use super::bitmap::{WrapMode, wrap};
@@ -263,6 +265,37 @@ impl Volume {
             VolumeData::Constant(t) => t.mean(),
         }
     }
+}
+
+/// Mitsuba's `volume` texture (`src/textures/volume.cpp`): one property, `volume`, a nested or
+/// referenced `<volume>` (`gridvolume`, `constvolume`), looked up at the world-space hit point.
+/// Mitsuba reads it as an object (a number there is "wrong type (expected object, got float)"),
+/// and without one it loads and crashes when evaluated: matte requires it.
+pub(crate) fn texture_from_props(p: &mut PluginProps) -> Result<Volume, SceneError> {
+    if let Some(v) = p.raw("volume") {
+        let found = v.type_name();
+        return Err(p.prop_err(
+            "volume",
+            format!(
+                "has the wrong type (expected a nested <volume>, found {found}); write <volume name=\"volume\" \
+                 type=\"gridvolume\"> or type=\"constvolume\""
+            ),
+        ));
+    }
+    let Some(child) = p.child("volume") else {
+        // Another nested object is reported as such (unused), before the missing one.
+        p.object().check_all_used()?;
+        return Err(p.err(
+            "missing property \"volume\" (a nested <volume name=\"volume\" type=\"gridvolume\"> or \"constvolume\")",
+        ));
+    };
+    if child.tag != "volume" {
+        return Err(crate::load::err(
+            child,
+            format!("\"volume\" must be a <volume> (gridvolume, constvolume), not a <{}>", child.tag),
+        ));
+    }
+    p.build_volume(child)
 }
 
 /// Mitsuba's `gridvolume` (`src/volumes/grid.cpp`): `to_world` (invertible: points are looked
