@@ -11,9 +11,13 @@
 //!   ([`Sampler::mitsuba`], checked against live Mitsuba in `tests/render/samplers.rs`); only the
 //!   sequence seed of each pixel differs from Mitsuba's (which counts pixels in its block
 //!   spiral).
+//!
+//! [`Sampling`] reads the sampler plugins' properties ([`FromProps`]).
 
+use crate::load::props::{FromProps, PluginProps};
 use glam::Vec2;
 use matte_brdf::rng::Pcg32;
+use matte_scene_file::SceneError;
 
 /// A sampler plugin with its properties (other than `sample_count` and `seed`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,6 +107,52 @@ pub struct Sampling {
     /// Samples per pixel, as [`SamplerKind::round_sample_count`] rounds them.
     pub spp: u32,
     pub seed: u64,
+}
+
+/// Largest `sample_count` of the stratified samplers (their rounded counts then fit in u32).
+const MAX_STRATIFIED_COUNT: i64 = 1 << 30;
+
+impl FromProps for Sampling {
+    /// Every sampler reads `sample_count` (default 4) and `seed` (default 0) (`Sampler`,
+    /// `src/render/sampler.cpp`); `stratified`, `multijitter` and `orthogonal` read `jitter`
+    /// (default true), `orthogonal` `strength` (default 2). The sample count is rounded as the
+    /// plugin's `set_sample_count` rounds it.
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let plugin = p.object().plugin.as_str();
+        let max_count = if plugin == "independent" { u32::MAX as i64 } else { MAX_STRATIFIED_COUNT };
+        let kind = match plugin {
+            "stratified" => SamplerKind::Stratified { jitter: p.boolean("jitter")? },
+            "multijitter" => SamplerKind::Multijitter { jitter: p.boolean("jitter")? },
+            "orthogonal" => {
+                let jitter = p.boolean("jitter")?;
+                SamplerKind::Orthogonal { jitter, strength: p.integer("strength", 1..=32)? as u32 }
+            }
+            "ldsampler" => SamplerKind::LowDiscrepancy,
+            _ => SamplerKind::Independent,
+        };
+        let spp = p.integer("sample_count", 1..=max_count)? as u32;
+        let seed = p.integer("seed", 0..=i64::MAX)? as u64;
+        // An unused property is reported before a too large orthogonal array.
+        p.object().check_all_used()?;
+        let sampling = Sampling::new(kind, spp, seed);
+        check_orthogonal_rows(p, sampling)?;
+        Ok(sampling)
+    }
+}
+
+/// `orthogonal`'s array has r^strength rows (r = √spp): more than 2³² is refused.
+fn check_orthogonal_rows(p: &PluginProps, sampling: Sampling) -> Result<(), SceneError> {
+    if let SamplerKind::Orthogonal { strength, .. } = sampling.kind {
+        let r = (sampling.spp as f64).sqrt().round() as u32;
+        if strength != 2 && r.checked_pow(strength).is_none() {
+            let message = format!(
+                "{strength} with sample_count {} needs {r}^{strength} array rows, more than 2^32",
+                sampling.spp
+            );
+            return Err(p.prop_err("strength", message));
+        }
+    }
+    Ok(())
 }
 
 impl Sampling {

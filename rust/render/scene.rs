@@ -4,7 +4,7 @@
 
 use crate::accel::{Accel, Hit};
 use crate::bsdf::Bsdf;
-use crate::emitter::{Emitter, EmitterSample};
+use crate::emitter::{Emitter, EmitterSample, Light};
 use crate::geometry::{Ray, ray};
 use crate::shape::{Shape, SurfaceInteraction};
 use glam::{Vec2, Vec3};

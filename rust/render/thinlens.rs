@@ -9,10 +9,12 @@
 //! the focal point, starts where it crosses z = near_clip and ends at z = far_clip. Its
 //! weight is 1.
 
-use crate::camera::{FovAxis, x_half_tan};
+use crate::camera::{FovAxis, clip_range, field_of_view, rigid_to_world, x_half_tan};
 use crate::geometry::Ray;
+use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec2, Vec3};
 use matte_brdf::sampling::square_to_uniform_disk_concentric;
+use matte_scene_file::SceneError;
 
 #[derive(Clone, Debug)]
 pub struct ThinLensCamera {
@@ -28,6 +30,23 @@ pub struct ThinLensCamera {
 }
 
 impl ThinLensCamera {
+    /// Reads `thinlens`: as `perspective` without the principal point, plus `aperture_radius`
+    /// (no default in Mitsuba, `props.get<float>`; matte also rejects a negative or non-finite
+    /// radius) and `focus_distance`. The camera is made for the full film size by the returned
+    /// function (the sensor's film is read after it).
+    pub(crate) fn from_props(p: &mut PluginProps) -> Result<impl FnOnce((u32, u32)) -> Self + use<>, SceneError> {
+        let to_world = rigid_to_world(p)?;
+        let (fov_deg, axis) = field_of_view(p)?;
+        let (near, far, focus) = clip_range(p)?;
+        let radius = p
+            .float_opt("aperture_radius")?
+            .ok_or_else(|| p.err("needs the property \"aperture_radius\" (as in Mitsuba, it has no default)"))?;
+        if !(radius >= 0.0 && radius.is_finite()) {
+            return Err(p.prop_err("aperture_radius", format!("must be a finite radius ≥ 0, got {radius}")));
+        }
+        Ok(move |film| ThinLensCamera::new(to_world, fov_deg, axis, film, radius as f32, focus, near, far))
+    }
+
     /// `fov_deg` along `axis`; `film` is the full film size in pixels. An aperture radius of
     /// 0 becomes 2⁻²⁴ (Mitsuba: "Can't have a zero aperture radius", `dr::Epsilon<float>`).
     #[allow(clippy::too_many_arguments)]

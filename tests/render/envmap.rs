@@ -7,7 +7,7 @@
 
 use crate::common::{SENSOR, assert_err_at, scene, write_exr};
 use glam::{Affine3A, Vec2, Vec3};
-use matte_render::emitter::EnvMap;
+use matte_render::emitter::{EnvMap, Light};
 use matte_render::load::load_file;
 use std::f64::consts::PI;
 use std::path::PathBuf;

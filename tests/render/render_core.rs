@@ -4,7 +4,7 @@
 
 use glam::{Affine3A, Vec2, Vec3};
 use matte_render::bsdf::{Bsdf, Diffuse, Matte};
-use matte_render::emitter::Emitter;
+use matte_render::emitter::{Area, Constant, Emitter, Point};
 use matte_render::geometry::Ray;
 use matte_render::integrator::{DirectIntegrator, Integrator, PathIntegrator};
 use matte_render::sampler::Sampler;
@@ -204,7 +204,7 @@ fn white_furnace_returns_the_environment_radiance() {
         let scene = Scene::new(
             vec![shape(Geometry::Sphere(sphere.clone()), 0, None)],
             vec![bsdf],
-            vec![Emitter::Constant { radiance: Vec3::ONE }],
+            vec![Emitter::Constant(Constant { radiance: Vec3::ONE })],
             vec![1.0],
         );
         for (x, y) in [(0.0, 0.0), (0.6, 0.3), (0.0, 0.97)] {
@@ -228,7 +228,7 @@ fn plane_under_point_light_matches_closed_form() {
     let scene = Scene::new(
         vec![shape(Geometry::Triangles(square(50.0, 0.0)), 0, None)],
         vec![diffuse(rho)],
-        vec![Emitter::Point { position: Vec3::new(0.0, 0.0, h), intensity: Vec3::splat(i) }],
+        vec![Emitter::Point(Point { position: Vec3::new(0.0, 0.0, h), intensity: Vec3::splat(i) })],
         vec![1.0],
     );
     let direct =
@@ -283,7 +283,7 @@ fn max_depth_counts_segments_in_a_closed_emissive_box() {
     let scene = Scene::new(
         vec![shape(Geometry::Triangles(Triangles::new(mesh, false)), 0, Some(0))],
         vec![diffuse(0.5)],
-        vec![Emitter::Area { shape: 0, radiance: Texture::Constant(Vec3::ONE) }],
+        vec![Emitter::Area(Area { shape: 0, radiance: Texture::Constant(Vec3::ONE) })],
         vec![1.0],
     );
     let ray = Ray::new(Vec3::new(0.1, 0.2, 0.0), Vec3::new(0.3, -0.2, 1.0).normalize(), f32::INFINITY);
@@ -315,7 +315,7 @@ fn mask_passes_rays_through_as_a_bounce_but_blocks_shadow_rays() {
     let env = Scene::new(
         vec![shape(Geometry::Triangles(square(50.0, 0.0)), 0, None)],
         vec![mask.clone()],
-        vec![Emitter::Constant { radiance: Vec3::ONE }],
+        vec![Emitter::Constant(Constant { radiance: Vec3::ONE })],
         vec![1.0],
     );
     let down = Ray::new(Vec3::new(0.1, 0.2, 5.0), Vec3::NEG_Z, f32::INFINITY);
@@ -329,7 +329,7 @@ fn mask_passes_rays_through_as_a_bounce_but_blocks_shadow_rays() {
             shape(Geometry::Triangles(square(50.0, -1.0)), 1, None),
         ],
         vec![mask, diffuse(0.5)],
-        vec![Emitter::Point { position: Vec3::new(0.0, 0.0, 2.0), intensity: Vec3::splat(10.0) }],
+        vec![Emitter::Point(Point { position: Vec3::new(0.0, 0.0, 2.0), intensity: Vec3::splat(10.0) })],
         vec![1.0],
     );
     let between = Ray::new(Vec3::new(0.0, 0.0, -0.5), Vec3::NEG_Z, f32::INFINITY);

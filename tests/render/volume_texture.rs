@@ -1,10 +1,10 @@
-//! The `volume` texture on surfaces (`rust/render/texture/volume.rs`, its loader in
-//! `rust/render/load/texture.rs`): `gridvolume` read from `.vol` files and `constvolume`, looked
-//! up at the world-space hit point. Oracles: Mitsuba 3.9.1's `volume` texture, recorded in
-//! `MITSUBA` (checked by tests/render/volume_texture/generate_reference.py) and live on random
-//! grids and points when the venv is there; closed forms (voxel centres, a linear field);
-//! Mitsuba's messages for bad files and properties (`src/render/volumegrid.cpp`,
-//! `src/volumes/grid.cpp`).
+//! The `volume` texture on surfaces (`rust/render/texture/volume.rs`, which also reads its
+//! properties; the loader's dispatch is `rust/render/load/texture.rs`): `gridvolume` read from
+//! `.vol` files and `constvolume`, looked up at the world-space hit point. Oracles: Mitsuba
+//! 3.9.1's `volume` texture, recorded in `MITSUBA` (checked by
+//! tests/render/volume_texture/generate_reference.py) and live on random grids and points when
+//! the venv is there; closed forms (voxel centres, a linear field); Mitsuba's messages for bad
+//! files and properties (`src/render/volumegrid.cpp`, `src/volumes/grid.cpp`).
 
 use crate::common::{self, SENSOR, assert_err_at, scene};
 use glam::{Vec2, Vec3};

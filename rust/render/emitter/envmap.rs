@@ -15,8 +15,17 @@
 //!   differs.
 //! * `mis_compensation` (Karlík et al. 2019) subtracts the mean luminance from the sampling
 //!   values unless the map is nearly constant.
+//! * Properties: `filename` (found through the scene's search folders), `scale` (default 1),
+//!   `to_world` (invertible), `mis_compensation` (default false). Mitsuba's `bitmap` property
+//!   (an in-memory image) has no XML form.
 
+use super::projector::scale_and_to_world;
+use super::{EmitterFlags, EmitterSample, Light};
+use crate::load::props::{FromProps, PluginProps};
+use crate::shape::Shape;
+use crate::texture::{BitmapOptions, BitmapTexture};
 use glam::{Affine3A, Vec2, Vec3};
+use matte_scene_file::SceneError;
 use std::f32::consts::PI;
 
 /// Rec. 709 luminance, as Mitsuba's `luminance()` for RGB.
@@ -188,6 +197,42 @@ impl EnvMap {
         }
         let dir = self.to_world.transform_vector3(local).normalize();
         Some((dir, self.eval_uv(uv), pdf))
+    }
+}
+
+impl FromProps for EnvMap {
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let path = p.file("filename")?;
+        let (scale, to_world) = scale_and_to_world(p)?;
+        let mis_compensation = p.boolean("mis_compensation")?;
+        let tex =
+            BitmapTexture::load(&path, &BitmapOptions::default()).map_err(|e| p.file_err("filename", &path, &e))?;
+        let [w, h] = tex.resolution();
+        EnvMap::new(w as usize, h as usize, tex.texels().to_vec(), scale as f32, to_world, mis_compensation)
+            .map_err(|e| p.file_err("filename", &path, &e))
+    }
+}
+
+impl Light for EnvMap {
+    #[inline]
+    fn flags(&self) -> EmitterFlags {
+        EmitterFlags::INFINITE
+    }
+
+    #[inline]
+    fn sample_direction(&self, ref_p: Vec3, u: Vec2, _shapes: &[Shape]) -> Option<EmitterSample> {
+        let (d, radiance, pdf) = self.sample(u)?;
+        Some(EmitterSample { d, dist: f32::INFINITY, pdf, delta: false, weight: radiance / pdf, p: ref_p + d, n: -d })
+    }
+
+    #[inline]
+    fn eval_environment(&self, d: Vec3) -> Vec3 {
+        self.eval(d)
+    }
+
+    #[inline]
+    fn pdf_environment(&self, d: Vec3) -> f32 {
+        self.pdf(d)
     }
 }
 

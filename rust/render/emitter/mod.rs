@@ -1,273 +1,231 @@
-//! Emitters (Mitsuba `src/emitters/*.cpp`, docs/renderer-semantics.md §9): `area` (one-sided w.r.t. the
-//! shading normal, attached to a shape), `point`, `spot`, `projector`, `directional`, and the
-//! `constant` and `envmap` environments. Radiance values are linear RGB.
+//! Emitters (Mitsuba `src/emitters/*.cpp`, docs/renderer-semantics.md §9), one type per plugin
+//! and file: [`Area`] (one-sided w.r.t. the shading normal, attached to a shape), [`Point`],
+//! [`Spot`], [`Projector`], [`Directional`], and the [`Constant`] and [`EnvMap`] environments.
+//! Radiance values are linear RGB.
+//!
+//! Every type implements [`Light`] (pbrt-v4's name; Mitsuba's `Emitter` interface) and reads
+//! its own properties (`from_props`, through `render::load::props::PluginProps`, as Mitsuba's
+//! plugin constructors do). [`Emitter`] is the closed set of them: an enum whose [`Light`]
+//! impl forwards to the variant's type (static dispatch), generated from one list below, as
+//! [`crate::bsdf::Bsdf`] is.
 
+pub mod area;
+pub mod constant;
+pub mod directional;
 pub mod emitter_sample;
 pub mod envmap;
-pub mod sample_ray;
+pub mod flags;
+pub mod point;
+pub mod projector;
+pub mod spot;
 
-pub use emitter_sample::EmitterSample;
+pub use area::Area;
+pub use constant::Constant;
+pub use directional::Directional;
+pub use emitter_sample::{EmitterPosition, EmitterSample, LightRay};
 pub use envmap::EnvMap;
+pub use flags::EmitterFlags;
+pub use point::Point;
+pub use projector::Projector;
+pub use spot::Spot;
 
-use crate::geometry::warp;
 use crate::shape::{Shape, SurfaceInteraction};
-use crate::texture::Texture;
-use glam::{Affine3A, Vec2, Vec3};
-use std::f32::consts::PI;
+use glam::{Vec2, Vec3};
+use std::sync::Arc;
 
-#[derive(Clone, Debug)]
-pub enum Emitter {
-    /// Emits `radiance` from the side its shape's shading normal points to.
-    /// `radiance`: a colour or a uv texture (not a mesh attribute).
-    Area { shape: u32, radiance: Texture },
-    /// Isotropic point light: `intensity / d²`.
-    Point { position: Vec3, intensity: Vec3 },
-    /// Spot light along local +z of `to_world`; falloff linear in the angle between
-    /// `beam_width` and `cutoff_angle` (radians). An optional `texture` multiplies the
-    /// intensity, looked up at uv = 1/2 + 1/2·(x, y)/(z·tan cutoff) of the local direction
-    /// (`src/emitters/spot.cpp`, `direction_to_uv`).
-    Spot {
-        to_world: Affine3A,
-        to_local: Affine3A,
-        intensity: Vec3,
-        cutoff: f32,
-        beam_width: f32,
-        cos_cutoff: f32,
-        cos_beam: f32,
-        texture: Option<Texture>,
-        uv_factor: f32,
-    },
-    /// Parallel light travelling along `direction` (unit) with irradiance `irradiance`.
-    Directional { direction: Vec3, irradiance: Vec3 },
-    /// Uniform environment of radiance `radiance`, sampled uniformly over the sphere.
-    Constant { radiance: Vec3 },
-    /// `projector` (`src/emitters/projector.cpp`): a pinhole at `to_world`'s origin casting
-    /// the `irradiance` texture along local +z; x half-angle tangent `tan_half` over an image
-    /// of aspect `aspect` (the texture's; 1 for a constant). Irradiance at local depth 1 on a
-    /// plane facing it is π·scale·texture.
-    Projector { to_world: Affine3A, to_local: Affine3A, irradiance: Texture, tan_half: f32, aspect: f32, scale: f32 },
-    /// Image-based environment (`envmap`), importance sampled.
-    EnvMap(std::sync::Arc<EnvMap>),
-}
-
-impl Emitter {
-    /// Point, spot and directional lights: reachable only by light sampling.
-    #[inline]
-    pub fn is_delta(&self) -> bool {
-        matches!(
-            self,
-            Emitter::Point { .. } | Emitter::Spot { .. } | Emitter::Directional { .. } | Emitter::Projector { .. }
-        )
-    }
+/// The method set of every emitter (Mitsuba's `Emitter`: `sample_direction`, `pdf_direction`,
+/// `eval`, `sample_ray`, `sample_position`, `flags`). `shapes` are the scene's (an area light
+/// samples its shape). Methods an emitter has no use for keep the default: nothing emitted,
+/// density 0.
+pub trait Light {
+    /// What kind of emitter this is, as the plugin's constructor sets `m_flags`.
+    fn flags(&self) -> EmitterFlags;
 
     /// Light sample towards the emitter from `ref_p` (the emitter-selection pmf not
     /// included). `None` when nothing can be emitted towards `ref_p`.
-    #[inline]
-    pub fn sample_direction(&self, ref_p: Vec3, u: Vec2, shapes: &[Shape]) -> Option<EmitterSample> {
-        match self {
-            Emitter::Area { shape, radiance } => {
-                let ds = shapes[*shape as usize].geometry.sample_direction(ref_p, u)?;
-                // One-sided: the sampled point must face the reference point.
-                if !(ds.d.dot(ds.n) < 0.0 && ds.pdf > 0.0) {
-                    return None;
-                }
-                Some(EmitterSample {
-                    d: ds.d,
-                    dist: ds.dist,
-                    pdf: ds.pdf,
-                    delta: false,
-                    weight: radiance.eval(ds.uv) / ds.pdf,
-                    p: ds.p,
-                    n: ds.n,
-                })
-            }
-            Emitter::Point { position, intensity } => {
-                let d = *position - ref_p;
-                let dist2 = d.length_squared();
-                let dist = dist2.sqrt();
-                if dist == 0.0 {
-                    return None;
-                }
-                let d = d / dist;
-                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight: *intensity / dist2, p: *position, n: -d })
-            }
-            Emitter::Spot {
-                to_world,
-                to_local,
-                intensity,
-                cutoff,
-                beam_width,
-                cos_cutoff,
-                cos_beam,
-                texture,
-                uv_factor,
-            } => {
-                let pos: Vec3 = to_world.translation.into();
-                let d = pos - ref_p;
-                let dist2 = d.length_squared();
-                let dist = dist2.sqrt();
-                if dist == 0.0 {
-                    return None;
-                }
-                let d = d / dist;
-                let local_raw = to_local.transform_vector3(-d);
-                let local = local_raw.normalize_or_zero();
-                let falloff = spot_falloff(local.z, *cutoff, *beam_width, *cos_cutoff, *cos_beam);
-                if falloff <= 0.0 {
-                    return None;
-                }
-                let mut radiance = *intensity;
-                if let Some(tex) = texture {
-                    let uv = Vec2::new(local_raw.x, local_raw.y) / (local_raw.z * *uv_factor) * 0.5 + 0.5;
-                    radiance *= tex.eval(uv);
-                }
-                Some(EmitterSample {
-                    d,
-                    dist,
-                    pdf: 1.0,
-                    delta: true,
-                    weight: radiance * (falloff / dist2),
-                    p: pos,
-                    n: -d,
-                })
-            }
-            Emitter::Directional { direction, irradiance } => {
-                let d = -*direction;
-                Some(EmitterSample {
-                    d,
-                    dist: f32::INFINITY,
-                    pdf: 1.0,
-                    delta: true,
-                    weight: *irradiance,
-                    p: ref_p + d,
-                    n: *direction,
-                })
-            }
-            Emitter::Projector { to_world, to_local, irradiance, tan_half, aspect, scale } => {
-                let local = to_local.transform_point3(ref_p);
-                if !(local.z > 0.0) {
-                    return None;
-                }
-                // Inverse of the perspective camera's ray: image x grows towards local −x.
-                let uv = Vec2::new(
-                    0.5 * (1.0 - local.x / (local.z * tan_half)),
-                    0.5 * (1.0 - local.y * aspect / (local.z * tan_half)),
-                );
-                if !(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()) {
-                    return None;
-                }
-                let pos: Vec3 = to_world.translation.into();
-                let n = to_world.transform_vector3(Vec3::Z);
-                let d = pos - ref_p;
-                let dist = d.length();
-                let d = d / dist;
-                let cos = -n.dot(d);
-                let weight = irradiance.eval(uv) * (PI * scale / (local.z * local.z * cos));
-                if !(cos > 0.0 && weight.is_finite()) {
-                    return None;
-                }
-                Some(EmitterSample { d, dist, pdf: 1.0, delta: true, weight, p: pos, n })
-            }
-            Emitter::EnvMap(e) => {
-                let (d, radiance, pdf) = e.sample(u)?;
-                Some(EmitterSample {
-                    d,
-                    dist: f32::INFINITY,
-                    pdf,
-                    delta: false,
-                    weight: radiance / pdf,
-                    p: ref_p + d,
-                    n: -d,
-                })
-            }
-            Emitter::Constant { radiance } => {
-                let d = warp::square_to_uniform_sphere(u);
-                Some(EmitterSample {
-                    d,
-                    dist: f32::INFINITY,
-                    pdf: warp::UNIFORM_SPHERE_PDF,
-                    delta: false,
-                    weight: *radiance / warp::UNIFORM_SPHERE_PDF,
-                    p: ref_p + d,
-                    n: -d,
-                })
-            }
-        }
-    }
-
-    /// Whether this is the scene's environment (`constant` or `envmap`).
-    #[inline]
-    pub fn is_environment(&self) -> bool {
-        matches!(self, Emitter::Constant { .. } | Emitter::EnvMap(_))
-    }
-
-    /// Radiance seen at a surface hit of this (area) emitter's shape.
-    #[inline]
-    pub fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
-        match self {
-            Emitter::Area { radiance, .. } if si.wi.z > 0.0 => radiance.eval(si),
-            _ => Vec3::ZERO,
-        }
-    }
-
-    /// Radiance of the environment for a ray escaping along `d`.
-    #[inline]
-    pub fn eval_environment(&self, d: Vec3) -> Vec3 {
-        match self {
-            Emitter::Constant { radiance } => *radiance,
-            Emitter::EnvMap(e) => e.eval(d),
-            _ => Vec3::ZERO,
-        }
-    }
-
-    /// Solid-angle density with which light sampling picks the environment direction `d`.
-    #[inline]
-    pub fn pdf_environment(&self, d: Vec3) -> f32 {
-        match self {
-            Emitter::Constant { .. } => warp::UNIFORM_SPHERE_PDF,
-            Emitter::EnvMap(e) => e.pdf(d),
-            _ => 0.0,
-        }
-    }
+    fn sample_direction(&self, ref_p: Vec3, u: Vec2, shapes: &[Shape]) -> Option<EmitterSample>;
 
     /// Solid-angle density of [`Self::sample_direction`] for an area-light hit `si` seen
     /// from `ref_p`, or for the environment (`si = None`). Zero for delta emitters.
     #[inline]
-    pub fn pdf_direction(&self, ref_p: Vec3, si: Option<&SurfaceInteraction>, shapes: &[Shape]) -> f32 {
-        match (self, si) {
-            (Emitter::Area { shape, .. }, Some(si)) => shapes[*shape as usize].geometry.pdf_direction(ref_p, si),
-            (Emitter::Constant { .. }, None) => warp::UNIFORM_SPHERE_PDF,
-            _ => 0.0,
-        }
-    }
-}
-
-/// Mitsuba's spot falloff: 1 inside the beam, linear in the angle down to 0 at the cutoff,
-/// 0 at and beyond it (strict `cos θ > cos cutoff`).
-#[inline]
-pub fn spot_falloff(cos_theta: f32, cutoff: f32, beam_width: f32, cos_cutoff: f32, cos_beam: f32) -> f32 {
-    if cos_theta <= cos_cutoff {
+    fn pdf_direction(&self, _ref_p: Vec3, _si: Option<&SurfaceInteraction>, _shapes: &[Shape]) -> f32 {
         0.0
-    } else if cos_theta >= cos_beam {
-        1.0
-    } else {
-        ((cutoff - cos_theta.clamp(-1.0, 1.0).acos()) / (cutoff - beam_width)).clamp(0.0, 1.0)
+    }
+
+    /// Radiance seen at a surface hit of this (area) emitter's shape.
+    #[inline]
+    fn eval_surface(&self, _si: &SurfaceInteraction) -> Vec3 {
+        Vec3::ZERO
+    }
+
+    /// Radiance of the environment for a ray escaping along `d`.
+    #[inline]
+    fn eval_environment(&self, _d: Vec3) -> Vec3 {
+        Vec3::ZERO
+    }
+
+    /// Solid-angle density with which light sampling picks the environment direction `d`.
+    #[inline]
+    fn pdf_environment(&self, _d: Vec3) -> f32 {
+        0.0
+    }
+
+    /// Whether [`Self::sample_ray`] supports this emitter (the particle tracer refuses the
+    /// others at load time).
+    #[inline]
+    fn can_sample_ray(&self, _shapes: &[Shape]) -> bool {
+        false
+    }
+
+    /// A point on an area emitter's mesh (Mitsuba `sample_position` + `sample_wavelengths`),
+    /// or `None` for other emitters.
+    #[inline]
+    fn sample_position(&self, _u: Vec2, _shapes: &[Shape]) -> Option<EmitterPosition> {
+        None
+    }
+
+    /// A light ray leaving the emitter, from two pairs of uniform numbers (the first segment
+    /// of a particle tracer's path; weight = power / density, without the selection pmf).
+    #[inline]
+    fn sample_ray(&self, _u_pos: Vec2, _u_dir: Vec2, _shapes: &[Shape]) -> Option<LightRay> {
+        None
     }
 }
 
-/// Spot-light constructor helper: angles in degrees as in the XML.
-pub fn spot(to_world: Affine3A, intensity: Vec3, cutoff_deg: f32, beam_deg: f32, texture: Option<Texture>) -> Emitter {
-    let cutoff = cutoff_deg.to_radians();
-    let beam_width = beam_deg.to_radians();
-    Emitter::Spot {
-        to_world,
-        to_local: to_world.inverse(),
-        intensity,
-        cutoff,
-        beam_width,
-        cos_cutoff: cutoff.cos(),
-        cos_beam: beam_width.cos(),
-        texture,
-        uv_factor: cutoff.tan(),
+/// `T` for `Arc<T>` and for `T` (the type an [`Emitter`] variant stores, shared or not).
+macro_rules! unshared {
+    (Arc<$t:ty>) => {
+        $t
+    };
+    ($t:ty) => {
+        $t
+    };
+}
+
+/// Declares [`Emitter`] with one variant per emitter type, its [`Light`] impl (one forwarding
+/// match arm per variant and method) and `From` every type.
+macro_rules! emitters {
+    ($($(#[$doc:meta])* $variant:ident($($ty:tt)+)),* $(,)?) => {
+        /// One emitter of the scene: the closed set of emitter types.
+        #[derive(Clone, Debug)]
+        pub enum Emitter {
+            $($(#[$doc])* $variant($($ty)+),)*
+        }
+
+        impl Light for Emitter {
+            #[inline]
+            fn flags(&self) -> EmitterFlags {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::flags(e),)*
+                }
+            }
+
+            #[inline]
+            fn sample_direction(&self, ref_p: Vec3, u: Vec2, shapes: &[Shape]) -> Option<EmitterSample> {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::sample_direction(e, ref_p, u, shapes),)*
+                }
+            }
+
+            #[inline]
+            fn pdf_direction(&self, ref_p: Vec3, si: Option<&SurfaceInteraction>, shapes: &[Shape]) -> f32 {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::pdf_direction(e, ref_p, si, shapes),)*
+                }
+            }
+
+            #[inline]
+            fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::eval_surface(e, si),)*
+                }
+            }
+
+            #[inline]
+            fn eval_environment(&self, d: Vec3) -> Vec3 {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::eval_environment(e, d),)*
+                }
+            }
+
+            #[inline]
+            fn pdf_environment(&self, d: Vec3) -> f32 {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::pdf_environment(e, d),)*
+                }
+            }
+
+            #[inline]
+            fn can_sample_ray(&self, shapes: &[Shape]) -> bool {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::can_sample_ray(e, shapes),)*
+                }
+            }
+
+            #[inline]
+            fn sample_position(&self, u: Vec2, shapes: &[Shape]) -> Option<EmitterPosition> {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::sample_position(e, u, shapes),)*
+                }
+            }
+
+            #[inline]
+            fn sample_ray(&self, u_pos: Vec2, u_dir: Vec2, shapes: &[Shape]) -> Option<LightRay> {
+                match self {
+                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::sample_ray(e, u_pos, u_dir, shapes),)*
+                }
+            }
+        }
+
+        $(
+            impl From<unshared!($($ty)+)> for Emitter {
+                #[inline]
+                fn from(e: unshared!($($ty)+)) -> Self {
+                    Emitter::$variant(e.into())
+                }
+            }
+        )*
+    };
+}
+
+emitters! {
+    /// `area`.
+    Area(Area),
+    /// `point`.
+    Point(Point),
+    /// `spot`.
+    Spot(Spot),
+    /// `directional`.
+    Directional(Directional),
+    /// `constant`.
+    Constant(Constant),
+    /// `projector`.
+    Projector(Projector),
+    /// `envmap` (shared: its image and sampling tables are large).
+    EnvMap(Arc<EnvMap>),
+}
+
+impl Emitter {
+    /// Point, spot, projector and directional lights: reachable only by light sampling.
+    #[inline]
+    #[must_use]
+    pub fn is_delta(&self) -> bool {
+        self.flags().is_delta()
+    }
+
+    /// Whether this is the scene's environment (`constant` or `envmap`).
+    #[inline]
+    #[must_use]
+    pub fn is_environment(&self) -> bool {
+        self.flags().is_environment()
+    }
+
+    /// The shape an `area` emitter is attached to.
+    #[must_use]
+    pub fn area_shape(&self) -> Option<u32> {
+        match self {
+            Emitter::Area(a) => Some(a.shape),
+            _ => None,
+        }
     }
 }

@@ -5,6 +5,11 @@
 //! sample. They splat with `eval_discretized`, a piecewise-constant, left-endpoint table:
 //! `table[k] = eval(r·k/31)` for k = 0..30, `table[31] = 0`, looked up at
 //! `min(trunc(|x|·31/r), 31)`.
+//!
+//! [`ReconstructionFilter`] reads the `<rfilter>` plugins' properties ([`FromProps`]).
+
+use crate::load::props::{FromProps, PluginProps};
+use matte_scene_file::SceneError;
 
 /// Number of bins of the discretised kernel (`MI_FILTER_RESOLUTION`).
 pub const FILTER_RESOLUTION: usize = 31;
@@ -70,6 +75,44 @@ impl Default for ReconstructionFilter {
     fn default() -> Self {
         ReconstructionFilter::Gaussian { stddev: 0.5 }
     }
+}
+
+impl FromProps for ReconstructionFilter {
+    /// `box`, `tent` (radius), `gaussian` (stddev), `mitchell` (B, C), `catmullrom`, `lanczos`
+    /// (lobes), with Mitsuba 3.9.1's defaults (`src/rfilters/*.cpp`).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        Ok(match p.object().plugin.as_str() {
+            "tent" => ReconstructionFilter::Tent { radius: filter_size(p, "radius", 1.0)? },
+            "gaussian" => ReconstructionFilter::Gaussian { stddev: filter_size(p, "stddev", 4.0)? },
+            // Mitsuba's defaults are `1.f / 3.f`.
+            "mitchell" => ReconstructionFilter::Mitchell {
+                b: p.finite_or("B", 1.0 / 3.0)? as f32,
+                c: p.finite_or("C", 1.0 / 3.0)? as f32,
+            },
+            "catmullrom" => ReconstructionFilter::CatmullRom,
+            "lanczos" => {
+                ReconstructionFilter::Lanczos { lobes: p.integer("lobes", 1..=MAX_FILTER_RADIUS as i64)? as u32 }
+            }
+            _ => ReconstructionFilter::Box,
+        })
+    }
+}
+
+/// Widest reconstruction filter matte accepts, in pixels. Mitsuba has no limit, but every
+/// image block carries a border of the filter radius on each side, so a radius like 1e30
+/// cannot be allocated (and would overflow the block size).
+const MAX_FILTER_RADIUS: f64 = 1024.0;
+
+/// A filter parameter (positive, the harvested default) whose support radius is
+/// `radius_per_unit` times it.
+fn filter_size(p: &mut PluginProps, name: &str, radius_per_unit: f64) -> Result<f32, SceneError> {
+    let v = p.positive(name)?;
+    if v * radius_per_unit > MAX_FILTER_RADIUS {
+        let radius = v * radius_per_unit;
+        let message = format!("gives a filter radius of {radius} pixels; matte allows at most {MAX_FILTER_RADIUS}");
+        return Err(p.prop_err(name, message));
+    }
+    Ok(v as f32)
 }
 
 impl ReconstructionFilter {

@@ -9,6 +9,9 @@
 //! so splat weight that falls outside the crop is dropped, as in Mitsuba
 //! (`sample_border = false`): every pixel is the weighted average of in-crop samples only,
 //! and a constant image stays exactly constant up to its edges.
+//!
+//! [`Film`] reads `hdrfilm`'s properties ([`FromProps`]); each reconstruction filter reads its
+//! own in `filter.rs`.
 
 mod block;
 mod filter;
@@ -18,7 +21,9 @@ pub use block::ImageBlock;
 pub use filter::{FILTER_RESOLUTION, FilterTable, GAUSSIAN_FIT, ReconstructionFilter, SplatWeights};
 pub use image::Image;
 
+use crate::load::props::{FromProps, PluginProps};
 use glam::Vec3;
+use matte_scene_file::SceneError;
 
 /// The rendered sub-rectangle of the film, in full-film pixels (`crop_offset_x/y`,
 /// `crop_width/height`). The camera projection always uses the full film.
@@ -44,6 +49,45 @@ pub struct Film {
     filter: ReconstructionFilter,
     weights: SplatWeights,
     pixels: Vec<[f32; 4]>,
+}
+
+impl FromProps for Film {
+    /// `<film type="hdrfilm">` (`src/films/hdrfilm.cpp`, the `Film` base class) with its nested
+    /// `<rfilter>` (default: Gaussian, σ = 0.5).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        // Mitsuba's defaults are `is_m_film ? 1 : 768` and `… : 576`: an hdrfilm is not an m-film.
+        let width = p.integer_or("width", 768, 1..=1 << 16)? as u32;
+        let height = p.integer_or("height", 576, 1..=1 << 16)? as u32;
+        let crop = crop_window(p, width, height)?;
+        // Output format properties only affect files Mitsuba writes; matte always writes RGB float.
+        let pf = p.string("pixel_format")?.to_lowercase();
+        if pf != "rgb" && pf != "rgba" {
+            return Err(p.prop_err("pixel_format", format!("\"{pf}\" is not supported (rgb or rgba)")));
+        }
+        let _ = p.string("component_format")?;
+        let _ = p.string("file_format")?;
+        if p.boolean("sample_border")? {
+            return Err(p.prop_err("sample_border", "= true is not supported"));
+        }
+        let filter = p.nested_rfilter()?;
+        // An unused property is reported before an invalid crop window.
+        p.object().check_all_used()?;
+        Film::new(width, height, crop, filter.unwrap_or_default()).map_err(|e| p.err(e))
+    }
+}
+
+/// The crop window, if any crop property is given. Mitsuba (src/render/film.cpp):
+/// crop_width/height default to the FULL film size, not to what is left after the offset, so
+/// an offset alone is an invalid crop window (docs/renderer-semantics.md §6).
+fn crop_window(p: &mut PluginProps, width: u32, height: u32) -> Result<Option<CropWindow>, SceneError> {
+    if !["crop_offset_x", "crop_offset_y", "crop_width", "crop_height"].iter().any(|n| p.has_property(n)) {
+        return Ok(None);
+    }
+    let ox = p.integer("crop_offset_x", 0..=u32::MAX as i64)? as u32;
+    let oy = p.integer("crop_offset_y", 0..=u32::MAX as i64)? as u32;
+    let w = p.integer_or("crop_width", width as i64, 1..=u32::MAX as i64)? as u32;
+    let h = p.integer_or("crop_height", height as i64, 1..=u32::MAX as i64)? as u32;
+    Ok(Some(CropWindow { offset: [ox, oy], size: [w, h] }))
 }
 
 impl Film {

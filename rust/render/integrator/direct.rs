@@ -13,17 +13,45 @@
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
 use crate::bsdf::{BsdfFlags, BsdfSample, Bxdf};
+use crate::emitter::Light;
 use crate::geometry::{Ray, ray};
+use crate::load::props::{FromProps, PluginProps};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::shape::SurfaceInteraction;
 use glam::Vec3;
+use matte_scene_file::SceneError;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct DirectIntegrator {
     pub emitter_samples: u32,
     pub bsdf_samples: u32,
     pub hide_emitters: bool,
+}
+
+impl FromProps for DirectIntegrator {
+    /// `shading_samples`, or `emitter_samples` and `bsdf_samples` (default `shading_samples`,
+    /// 1), not both.
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        const MAX: i64 = 1 << 20;
+        let (ne, nb) = match p.integer_opt("shading_samples")? {
+            Some(n) => {
+                if p.has_property("emitter_samples") || p.has_property("bsdf_samples") {
+                    return Err(p.err("shading_samples cannot be combined with emitter_samples or bsdf_samples"));
+                }
+                (n, n)
+            }
+            None => {
+                let shading = p.integer("shading_samples", 0..=MAX)?;
+                (p.integer_or("emitter_samples", shading, 0..=MAX)?, p.integer_or("bsdf_samples", shading, 0..=MAX)?)
+            }
+        };
+        if ne < 0 || nb < 0 || ne + nb == 0 {
+            return Err(p.err("needs at least one emitter or BSDF sample"));
+        }
+        let (emitter_samples, bsdf_samples) = (ne as u32, nb as u32);
+        Ok(DirectIntegrator { emitter_samples, bsdf_samples, hide_emitters: p.boolean("hide_emitters")? })
+    }
 }
 
 /// One camera sample between two ray queries.

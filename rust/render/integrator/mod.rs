@@ -19,10 +19,12 @@ pub use ptracer::ParticleTracer;
 use crate::camera::Camera;
 use crate::film::ImageBlock;
 use crate::geometry::Ray;
+use crate::load::props::PluginProps;
 use crate::sampler::{Sampler, Sampling};
 use crate::scene::Scene;
 use crate::shape::SurfaceInteraction;
 use glam::Vec3;
+use matte_scene_file::SceneError;
 
 /// How the renderer runs an integrator over a tile. Both give the same estimator
 /// (`tests/render/render_drivers.rs`).
@@ -66,6 +68,24 @@ pub enum Integrator {
     /// Mitsuba's `ptracer`: light paths splatted to the film; rendered by
     /// [`ParticleTracer::render`], not pixel by pixel.
     ParticleTracer(ParticleTracer),
+}
+
+impl From<PathIntegrator> for Integrator {
+    fn from(i: PathIntegrator) -> Self {
+        Integrator::Path(i)
+    }
+}
+
+impl From<DirectIntegrator> for Integrator {
+    fn from(i: DirectIntegrator) -> Self {
+        Integrator::Direct(i)
+    }
+}
+
+impl From<ParticleTracer> for Integrator {
+    fn from(i: ParticleTracer) -> Self {
+        Integrator::ParticleTracer(i)
+    }
 }
 
 impl Integrator {
@@ -154,4 +174,12 @@ pub trait SampleIntegrator {
 pub struct ShadowTest {
     pub ray: Ray,
     pub contribution: Vec3,
+}
+
+/// `max_depth` (−1: unbounded, `u32::MAX`) and `rr_depth` of Mitsuba's `MonteCarloIntegrator`
+/// (`src/render/integrator.cpp`), read by `path` and `ptracer`.
+pub(crate) fn depths(p: &mut PluginProps) -> Result<(u32, u32), SceneError> {
+    let max_depth = p.integer("max_depth", -1..=u32::MAX as i64)?;
+    let rr_depth = p.integer("rr_depth", 1..=u32::MAX as i64)?;
+    Ok((if max_depth < 0 { u32::MAX } else { max_depth as u32 }, rr_depth as u32))
 }

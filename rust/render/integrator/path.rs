@@ -12,11 +12,14 @@
 use super::mis::power_heuristic;
 use super::{SampleIntegrator, ShadowTest};
 use crate::bsdf::{BsdfFlags, Bxdf};
+use crate::emitter::Light;
 use crate::geometry::{Ray, ray};
+use crate::load::props::{FromProps, PluginProps};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::shape::SurfaceInteraction;
 use glam::Vec3;
+use matte_scene_file::SceneError;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathIntegrator {
@@ -24,6 +27,20 @@ pub struct PathIntegrator {
     pub max_depth: u32,
     pub rr_depth: u32,
     pub hide_emitters: bool,
+}
+
+impl FromProps for PathIntegrator {
+    /// Also `volpath` and `volpathmis`: on a scene without media (matte refuses media, see
+    /// `load/scope.rs`) they sample the same surface paths, with the same MIS weights and
+    /// Russian roulette, so their expected image is `path`'s; `use_spectral_mis` only weighs
+    /// wavelengths inside media.
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        if p.object().plugin == "volpathmis" {
+            let _ = p.boolean("use_spectral_mis")?;
+        }
+        let (max_depth, rr_depth) = super::depths(p)?;
+        Ok(PathIntegrator { max_depth, rr_depth, hide_emitters: p.boolean("hide_emitters")? })
+    }
 }
 
 /// One path between two ray queries.

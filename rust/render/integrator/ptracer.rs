@@ -21,11 +21,14 @@
 
 use crate::bsdf::Bxdf;
 use crate::camera::Camera;
+use crate::emitter::Light;
 use crate::film::{Film, Image};
 use crate::geometry::ray;
+use crate::load::props::{FromProps, PluginProps};
 use crate::sampler::{Sampler, Sampling};
 use crate::scene::Scene;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 use rayon::prelude::*;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -34,6 +37,15 @@ pub struct ParticleTracer {
     pub max_depth: u32,
     pub rr_depth: u32,
     pub hide_emitters: bool,
+}
+
+impl FromProps for ParticleTracer {
+    /// `samples_per_pass` (default −1, an expression in Mitsuba) is read and ignored.
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let (max_depth, rr_depth) = super::depths(p)?;
+        let _ = p.integer_or("samples_per_pass", -1, -1..=u32::MAX as i64)?;
+        Ok(ParticleTracer { max_depth, rr_depth, hide_emitters: p.boolean("hide_emitters")? })
+    }
 }
 
 /// Light paths per parallel work item (each has its own sampler stream).

@@ -4,7 +4,8 @@
 //! world-space copies (same images as Mitsuba's two-level BVH; memory grows with the
 //! instance count). As in Mitsuba, groups cannot nest and grouped shapes cannot emit light.
 
-use super::{Builder, err, shape, values};
+use super::props::PluginProps;
+use super::{Builder, err, shape};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
 
@@ -25,7 +26,7 @@ pub fn check_group(obj: &SceneObject) -> Result<(), SceneError> {
 
 /// An `instance`: exactly one referenced or nested `shapegroup`, and `to_world`.
 pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
-    let outer = values::transform(obj, "to_world")?;
+    let outer = PluginProps::new(b, obj).transform("to_world")?;
     let mut group = None;
     for child in &obj.children {
         child.mark_used();

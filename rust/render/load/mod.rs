@@ -13,10 +13,9 @@ pub mod mitsuba_plugins;
 pub mod no_effect;
 pub(crate) mod props;
 pub mod scope;
-mod sensor;
+pub(crate) mod sensor;
 mod shape;
-mod texture;
-pub(crate) mod values;
+pub(crate) mod texture;
 
 use crate::camera::Camera;
 use crate::emitter::Emitter;
@@ -182,13 +181,13 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
                 if integrator.is_some() {
                     return Err(SceneError::at(&obj.pos, "only one integrator can be specified per scene"));
                 }
-                integrator = Some(integrator::build(obj)?);
+                integrator = Some(integrator::build(&b, obj)?);
                 integrator_obj = Some(obj.clone());
             }
             "sensor" => {
                 // Every sensor is built (and so checked); `mi.render(scene)` renders the first
                 // in document order, and so does matte.
-                let built = sensor::build(obj)?;
+                let built = sensor::build(&b, obj)?;
                 if sensor.is_none() {
                     sensor = Some(built);
                 } else {
@@ -220,13 +219,13 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
                 texture::build_volume(&b, obj)?;
             }
             "sampler" => {
-                sensor::build_sampler(obj)?;
+                sensor::build_sampler(&b, obj)?;
             }
             "film" => {
-                sensor::build_film(obj)?;
+                sensor::build_film(&b, obj)?;
             }
             "rfilter" => {
-                sensor::build_rfilter(obj)?;
+                sensor::build_rfilter(&b, obj)?;
             }
             other => {
                 return Err(SceneError::at(&obj.pos, format!("<{other}> is not allowed at the top level of a scene")));
@@ -266,6 +265,7 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
 /// for radiance only; importance transport differs by η² there).
 fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObject) -> Result<(), SceneError> {
     use crate::bsdf::{BsdfFlags, Bxdf};
+    use crate::emitter::Light;
     if !matches!(sensor.camera, Camera::Perspective(_)) {
         return Err(err(obj, "matte's ptracer needs a perspective sensor (not orthographic or thinlens)"));
     }
@@ -301,10 +301,8 @@ fn into_mitsuba_emitter_order(b: &mut Builder) {
     let mut items: Vec<(usize, Emitter, f32)> =
         emitters.into_iter().zip(weights).enumerate().map(|(i, (e, w))| (i, e, w)).collect();
     // Analytic first by declaration (key 0, i); meshes after, reversed (key 1, −i).
-    items.sort_by_key(|(i, e, _)| match e {
-        Emitter::Area { shape, .. } if matches!(b.shapes[*shape as usize].geometry, Geometry::Triangles(_)) => {
-            (1, -(*i as i64))
-        }
+    items.sort_by_key(|(i, e, _)| match e.area_shape() {
+        Some(shape) if matches!(b.shapes[shape as usize].geometry, Geometry::Triangles(_)) => (1, -(*i as i64)),
         _ => (0, *i as i64),
     });
     let mut new_index = vec![0u32; items.len()];

@@ -1,14 +1,16 @@
-//! `<shape>`: `obj`, `ply`, `serialized`, `rectangle`, `cube` (triangle meshes), `sphere`, `disk`,
-//! `cylinder`, each with `to_world`, `flip_normals`, a nested or referenced `<bsdf>` and an
-//! optional nested `area` emitter (docs/renderer-semantics.md §8). A shape without a BSDF gets diffuse 0.5,
-//! or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
+//! `<shape>`: which type builds each plugin name. `obj`, `ply`, `serialized`, `rectangle` and
+//! `cube` (triangle meshes), `sphere`, `disk` and `cylinder` read their own properties
+//! (`from_props` in their files under `rust/render/shape/`, through [`PluginProps`], after the
+//! `Shape` base class's `to_world` and `flip_normals`, [`Placement`]); the loader attaches a
+//! nested or referenced `<bsdf>` and an optional nested `area` emitter
+//! (docs/renderer-semantics.md §8) and checks the extent. A shape without a BSDF gets diffuse
+//! 0.5, or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
 
-use super::{Builder, ShapeContext, bsdf, emitter, err, values};
-use crate::geometry::Frame;
-use crate::shape::{Cylinder, Disk, Geometry, Shape, Sphere, Triangles};
-use glam::{Affine3A, Mat3, Mat4, Vec3};
+use super::props::PluginProps;
+use super::{Builder, ShapeContext, bsdf, emitter, err};
+use crate::shape::{Cylinder, Disk, Geometry, Placement, Shape, Sphere, Triangles};
+use glam::{Affine3A, Vec3};
 use matte_scene_file::SceneError;
-use matte_scene_file::mesh::{self, MeshOptions};
 use matte_scene_file::xml::SceneObject;
 use std::sync::Arc;
 
@@ -28,74 +30,12 @@ pub(super) fn build_placed(
     outer: Affine3A,
     in_group: bool,
 ) -> Result<(), SceneError> {
-    let to_world = outer * values::transform(obj, "to_world")?;
-    let flip_normals = values::boolean(obj, "flip_normals", false)?;
-    let geometry = match obj.plugin.as_str() {
-        "obj" | "ply" | "serialized" => {
-            let filename =
-                obj.properties.string("filename")?.ok_or_else(|| err(obj, "missing property \"filename\""))?;
-            let opts = MeshOptions {
-                to_world: Mat4::from(to_world),
-                face_normals: values::boolean(obj, "face_normals", false)?,
-                flip_normals,
-                flip_tex_coords: match obj.plugin.as_str() {
-                    "serialized" => None,
-                    _ => obj.properties.boolean("flip_tex_coords")?,
-                },
-            };
-            let path = b.resolve(&filename);
-            let loaded = match obj.plugin.as_str() {
-                "obj" => mesh::load_obj(&path, &opts),
-                "ply" => mesh::load_ply(&path, &opts),
-                _ => {
-                    let index = values::integer(obj, "shape_index", 0, 0, i32::MAX as i64)?;
-                    mesh::load_serialized(&path, index, &opts)
-                }
-            };
-            let m = loaded.map_err(|e| {
-                values::prop_err(obj, "filename", format!("cannot load mesh: {}", values::one_line(&e.to_string())))
-            })?;
-            Geometry::Triangles(Triangles::new(m, flip_normals))
-        }
-        "rectangle" | "cube" => {
-            // Mitsuba's Mesh base class reads `face_normals` for these too, then ignores it
-            // (both are flat per face; scene::mesh::primitives).
-            let _ = values::boolean(obj, "face_normals", false)?;
-            let opts = MeshOptions { to_world: Mat4::from(to_world), flip_normals, ..MeshOptions::default() };
-            Geometry::Triangles(if obj.plugin == "rectangle" {
-                Triangles::rectangle(mesh::rectangle(&opts), flip_normals, to_world)
-            } else {
-                Triangles::new(mesh::cube(&opts), flip_normals)
-            })
-        }
-        "sphere" => {
-            let center = obj.properties.point("center")?.unwrap_or_default().as_vec3();
-            let radius = values::float(obj, "radius", 1.0)? as f32;
-            if !(radius.is_finite() && radius > 0.0) {
-                return Err(values::prop_err(obj, "radius", format!("must be positive, got {radius}")));
-            }
-            let m = to_world * Affine3A::from_translation(center) * Affine3A::from_scale(Vec3::splat(radius));
-            Geometry::Sphere(Sphere::new(m, flip_normals))
-        }
-        "disk" => Geometry::Disk(Disk::new(to_world, flip_normals)),
-        "cylinder" => {
-            let p0 = obj.properties.point("p0")?.unwrap_or_default().as_vec3();
-            let p1 = obj.properties.point("p1")?.map(|p| p.as_vec3()).unwrap_or(Vec3::Z);
-            let radius = values::float(obj, "radius", 1.0)? as f32;
-            let axis = p1 - p0;
-            let length = axis.length();
-            if !(radius.is_finite() && radius > 0.0 && length > 0.0 && length.is_finite()) {
-                return Err(err(obj, "needs a positive radius and p0 ≠ p1"));
-            }
-            // Mitsuba: to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|).
-            let f = Frame::from_normal(axis / length);
-            let frame = Affine3A::from_mat3(Mat3::from_cols(f.s, f.t, f.n));
-            let m = to_world
-                * Affine3A::from_translation(p0)
-                * frame
-                * Affine3A::from_scale(Vec3::new(radius, radius, length));
-            Geometry::Cylinder(Cylinder::new(m, flip_normals))
-        }
+    let geometry: fn(&mut PluginProps, Placement) -> Result<Geometry, SceneError> = match obj.plugin.as_str() {
+        "obj" | "ply" | "serialized" => |p, at| Triangles::from_file(p, at).map(Geometry::Triangles),
+        "rectangle" | "cube" => |p, at| Triangles::from_primitive(p, at).map(Geometry::Triangles),
+        "sphere" => |p, at| Sphere::from_props(p, at).map(Geometry::Sphere),
+        "disk" => |p, at| Disk::from_props(p, at).map(Geometry::Disk),
+        "cylinder" => |p, at| Cylinder::from_props(p, at).map(Geometry::Cylinder),
         "shapegroup" | "instance" => {
             return Err(err(
                 obj,
@@ -111,16 +51,10 @@ pub(super) fn build_placed(
             ));
         }
     };
-    if geometry.surface_area().is_nan() {
-        return Err(values::prop_err(obj, "to_world", "produces invalid (NaN) geometry"));
-    }
-    let extent = max_abs_coordinate(&geometry);
-    if extent.is_nan() || extent > MAX_COORDINATE {
-        return Err(err(
-            obj,
-            format!("reaches coordinate {extent:e}; matte accepts shapes within ±{MAX_COORDINATE:e}"),
-        ));
-    }
+    let mut p = PluginProps::new(b, obj);
+    let at = Placement::from_props(&mut p, outer)?;
+    let geometry = geometry(&mut p, at)?;
+    check_extent(&p, &geometry)?;
     let shape_index = b.shapes.len() as u32;
     let mut bsdf_index = None;
     let mut emitter_index = None;
@@ -141,6 +75,18 @@ pub(super) fn build_placed(
     };
     obj.check_all_used()?;
     b.shapes.push(Shape { geometry, bsdf: bsdf_index, emitter: emitter_index, plugin: obj.plugin.clone() });
+    Ok(())
+}
+
+/// The shape's geometry must be valid and within ±[`MAX_COORDINATE`].
+fn check_extent(p: &PluginProps, geometry: &Geometry) -> Result<(), SceneError> {
+    if geometry.surface_area().is_nan() {
+        return Err(p.prop_err("to_world", "produces invalid (NaN) geometry"));
+    }
+    let extent = max_abs_coordinate(geometry);
+    if extent.is_nan() || extent > MAX_COORDINATE {
+        return Err(p.err(format!("reaches coordinate {extent:e}; matte accepts shapes within ±{MAX_COORDINATE:e}")));
+    }
     Ok(())
 }
 

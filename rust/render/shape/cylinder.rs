@@ -4,10 +4,12 @@
 //! radius = |to_world·x̂|, length = |to_world·ẑ| (a negative radius toggles `flip_normals`);
 //! emission sampled uniformly by area.
 
-use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use crate::geometry::Ray;
-use glam::{Affine3A, DVec3, Vec2, Vec3};
+use super::{Placement, area_sampling};
+use crate::geometry::{Frame, Ray};
+use crate::load::props::PluginProps;
+use glam::{Affine3A, DVec3, Mat3, Vec2, Vec3};
+use matte_scene_file::SceneError;
 use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]
@@ -19,6 +21,23 @@ pub struct Cylinder {
 }
 
 impl Cylinder {
+    /// Reads `p0` (default the origin), `p1` (default +z) and `radius` (default 1), placed by
+    /// `at`: Mitsuba's `to_world · T(p0) · to_frame(p1 − p0) · S(r, r, |p1 − p0|)`.
+    pub(crate) fn from_props(p: &mut PluginProps, at: Placement) -> Result<Self, SceneError> {
+        let p0 = p.point_or("p0", Vec3::ZERO)?;
+        let p1 = p.point_or("p1", Vec3::Z)?;
+        let radius = p.float("radius")? as f32;
+        let axis = p1 - p0;
+        let length = axis.length();
+        if !(radius.is_finite() && radius > 0.0 && length > 0.0 && length.is_finite()) {
+            return Err(p.err("needs a positive radius and p0 ≠ p1"));
+        }
+        let f = Frame::from_normal(axis / length);
+        let frame = Affine3A::from_mat3(Mat3::from_cols(f.s, f.t, f.n));
+        let scale = Affine3A::from_scale(Vec3::new(radius, radius, length));
+        Ok(Cylinder::new(at.to_world * Affine3A::from_translation(p0) * frame * scale, at.flip_normals))
+    }
+
     pub fn new(to_world: Affine3A, flip_normals: bool) -> Self {
         let sx = to_world.matrix3.x_axis;
         let radius = sx.length();

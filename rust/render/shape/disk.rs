@@ -2,11 +2,13 @@
 //! normal = to_world applied to +z as a normal; `flip_normals` = `to_world·S(1,1,−1)`;
 //! uv = (r, φ/2π); emission sampled uniformly by area (concentric map).
 
-use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
+use super::{Placement, area_sampling};
 use crate::geometry::Ray;
+use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec2, Vec3};
 use matte_brdf::sampling::square_to_uniform_disk_concentric;
+use matte_scene_file::SceneError;
 use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]
@@ -18,6 +20,11 @@ pub struct Disk {
 }
 
 impl Disk {
+    /// The unit disk placed by `at`: `disk` reads nothing more.
+    pub(crate) fn from_props(_: &mut PluginProps, at: Placement) -> Result<Self, SceneError> {
+        Ok(Disk::new(at.to_world, at.flip_normals))
+    }
+
     pub fn new(to_world: Affine3A, flip_normals: bool) -> Self {
         let to_world = if flip_normals { to_world * Affine3A::from_scale(Vec3::new(1.0, 1.0, -1.0)) } else { to_world };
         let to_object = to_world.inverse();

@@ -5,10 +5,13 @@
 //! conditions (docs/renderer-semantics.md §8: the two branches' densities do not match on the surface, and
 //! copying them keeps the expected image identical).
 
+use super::Placement;
 use super::interaction::{DirectionSample, SurfaceInteraction};
 use crate::geometry::ray::RAY_EPSILON;
 use crate::geometry::{Frame, Ray, warp};
+use crate::load::props::PluginProps;
 use glam::{Affine3A, DVec3, Vec2, Vec3};
+use matte_scene_file::SceneError;
 use std::f32::consts::PI;
 
 #[derive(Clone, Debug)]
@@ -21,6 +24,17 @@ pub struct Sphere {
 }
 
 impl Sphere {
+    /// Reads `center` (default the origin) and `radius` (default 1, positive), placed by `at`.
+    pub(crate) fn from_props(p: &mut PluginProps, at: Placement) -> Result<Self, SceneError> {
+        let center = p.point("center")?;
+        let radius = p.float("radius")? as f32;
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(p.prop_err("radius", format!("must be positive, got {radius}")));
+        }
+        let m = at.to_world * Affine3A::from_translation(center) * Affine3A::from_scale(Vec3::splat(radius));
+        Ok(Sphere::new(m, at.flip_normals))
+    }
+
     /// `to_world` already includes Mitsuba's `T(center)·S(radius)`.
     pub fn new(to_world: Affine3A, flip_normals: bool) -> Self {
         let center: Vec3 = to_world.translation.into();

@@ -3,11 +3,13 @@
 //! counter-clockwise faces the viewer; shading normal = interpolated vertex normals when the
 //! mesh has them; `flip_normals` negates both at query time (docs/renderer-semantics.md §8).
 
-use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
+use super::{Placement, area_sampling};
 use crate::geometry::{Frame, warp};
-use glam::{Affine3A, Vec2, Vec3};
-use matte_scene_file::mesh::TriangleMesh;
+use crate::load::props::{PluginProps, one_line};
+use glam::{Affine3A, Mat4, Vec2, Vec3};
+use matte_scene_file::SceneError;
+use matte_scene_file::mesh::{self, MeshOptions, TriangleMesh};
 
 #[derive(Clone, Debug)]
 pub struct Triangles {
@@ -27,6 +29,47 @@ pub struct Triangles {
 }
 
 impl Triangles {
+    /// `obj`, `ply` and `serialized` (`src/shapes/{obj,ply,serialized}.cpp`, the `Mesh` base
+    /// class): `filename`, `face_normals`, `flip_tex_coords` (not `serialized`), `shape_index`
+    /// (`serialized` only); the mesh is loaded placed by `at`.
+    pub(crate) fn from_file(p: &mut PluginProps, at: Placement) -> Result<Self, SceneError> {
+        let plugin = p.object().plugin.as_str();
+        let path = p.file("filename")?;
+        let opts = MeshOptions {
+            to_world: Mat4::from(at.to_world),
+            face_normals: p.boolean("face_normals")?,
+            flip_normals: at.flip_normals,
+            flip_tex_coords: match plugin {
+                "serialized" => None,
+                _ => p.boolean_opt("flip_tex_coords")?,
+            },
+        };
+        let loaded = match plugin {
+            "obj" => mesh::load_obj(&path, &opts),
+            "ply" => mesh::load_ply(&path, &opts),
+            _ => {
+                let index = p.integer("shape_index", 0..=i32::MAX as i64)?;
+                mesh::load_serialized(&path, index, &opts)
+            }
+        };
+        let m =
+            loaded.map_err(|e| p.prop_err("filename", format!("cannot load mesh: {}", one_line(&e.to_string()))))?;
+        Ok(Triangles::new(m, at.flip_normals))
+    }
+
+    /// `rectangle` and `cube` placed by `at`: Mitsuba's `Mesh` base class reads `face_normals`
+    /// for these too, then ignores it (both are flat per face; `scene_file::mesh::primitives`).
+    pub(crate) fn from_primitive(p: &mut PluginProps, at: Placement) -> Result<Self, SceneError> {
+        let _ = p.boolean("face_normals")?;
+        let opts =
+            MeshOptions { to_world: Mat4::from(at.to_world), flip_normals: at.flip_normals, ..MeshOptions::default() };
+        Ok(if p.object().plugin == "rectangle" {
+            Triangles::rectangle(mesh::rectangle(&opts), at.flip_normals, at.to_world)
+        } else {
+            Triangles::new(mesh::cube(&opts), at.flip_normals)
+        })
+    }
+
     pub fn new(mesh: TriangleMesh, flip_normals: bool) -> Self {
         let mut area_cdf = Vec::with_capacity(mesh.triangles.len());
         let mut face_normals = Vec::with_capacity(mesh.triangles.len());

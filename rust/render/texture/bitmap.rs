@@ -7,7 +7,9 @@
 //! * Interpolation happens on LINEAR values (8-bit texels are decoded before mixing).
 
 use super::bitmap_load::{Texels, load};
+use crate::load::props::{FromProps, PluginProps};
 use glam::{Affine2, Vec2, Vec3};
+use matte_scene_file::SceneError;
 use std::path::Path;
 
 /// `filter_type`: "bilinear" (default) or "nearest".
@@ -199,5 +201,30 @@ pub(crate) fn wrap(pos: i64, res: i64, mode: WrapMode) -> i64 {
             let m = pos.rem_euclid(res);
             if period % 2 == 0 { m } else { res - 1 - m }
         }
+    }
+}
+
+impl FromProps for BitmapTexture {
+    /// `filename`, `filter_type` (bilinear,
+    /// nearest), `wrap_mode`, `raw`, `to_uv`; `format` is read and has no effect (matte keeps
+    /// RGB).
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let path = p.file("filename")?;
+        let filter = match p.string("filter_type")?.as_str() {
+            "bilinear" => BitmapFilter::Bilinear,
+            "nearest" => BitmapFilter::Nearest,
+            other => {
+                return Err(p.prop_err("filter_type", format!("must be bilinear or nearest, got \"{other}\"")));
+            }
+        };
+        let word = p.string("wrap_mode")?;
+        let wrap = WrapMode::parse(&word)
+            .ok_or_else(|| p.prop_err("wrap_mode", format!("must be repeat, mirror or clamp, got \"{word}\"")))?;
+        let raw = p.boolean("raw")?;
+        let to_uv = p.uv_transform("to_uv")?;
+        let _ = p.string("format")?;
+        p.object().check_all_used()?;
+        BitmapTexture::load(&path, &BitmapOptions { filter, wrap, raw, to_uv })
+            .map_err(|e| p.file_err("filename", &path, &e))
     }
 }

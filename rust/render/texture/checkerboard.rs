@@ -9,7 +9,10 @@
 //!
 //! docs/renderer-semantics.md §11 (checkerboard).
 
+use super::Texture;
+use crate::load::props::{FromProps, PluginProps};
 use glam::{Affine2, Vec2, Vec3};
+use matte_scene_file::SceneError;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Checkerboard {
@@ -49,4 +52,20 @@ impl Checkerboard {
 #[inline]
 fn channel_mean(c: Vec3) -> f32 {
     (c.x + c.y + c.z) / 3.0
+}
+
+impl FromProps for Checkerboard {
+    /// `color0` and `color1` (colours, defaults 0.4 and 0.2) and `to_uv`. Textured colours
+    /// are not supported.
+    fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
+        let mut colour = |name: &str| -> Result<Vec3, SceneError> {
+            match p.texture(name)? {
+                Texture::Constant(c) => Ok(c),
+                _ => Err(p.err(format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)"))),
+            }
+        };
+        let (color0, color1) = (colour("color0")?, colour("color1")?);
+        let to_uv = p.uv_transform("to_uv")?;
+        Ok(Checkerboard { color0, color1, to_uv })
+    }
 }

@@ -9,7 +9,9 @@
 //!
 //! docs/renderer-semantics.md §11 (mesh attributes).
 
+use crate::load::props::PluginProps;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
 use matte_scene_file::mesh::MeshAttribute;
 use std::sync::Arc;
 
@@ -52,5 +54,39 @@ impl BoundAttribute {
         let n = a.len().max(1);
         let sum: f32 = (0..a.len()).map(|i| a.value(i)).map(|v| (v.x + v.y + v.z) / 3.0).sum();
         sum / n as f32 * self.scale
+    }
+}
+
+impl BoundAttribute {
+    /// Reads a `mesh_attribute`: `name` (must contain
+    /// `vertex_` or `face_`) and `scale` (default 1), bound to the attribute of that name of the
+    /// shape being built. A definition outside any shape (a top-level `<texture id>`) is only
+    /// checked (`None`); every shape that uses it binds its own copy.
+    pub(crate) fn from_props(p: &mut PluginProps) -> Result<Option<Self>, SceneError> {
+        let name = p.required_string("name")?;
+        if !name.contains("vertex_") && !name.contains("face_") {
+            return Err(
+                p.prop_err("name", format!("must start with either \"vertex_\" or \"face_\" but was \"{name}\""))
+            );
+        }
+        let scale = p.float("scale")? as f32;
+        p.object().check_all_used()?;
+        let b = p.builder();
+        b.shape_dependent.set(true);
+        let Some(shape) = &b.shape else { return Ok(None) };
+        if !shape.is_mesh {
+            return Err(p.err("a mesh attribute needs a mesh shape (obj, ply, rectangle, cube)"));
+        }
+        let Some(attribute) = shape.attributes.iter().find(|a| a.name == name) else {
+            let names: Vec<&str> = shape.attributes.iter().map(|a| a.name.as_str()).collect();
+            let has = if names.is_empty() { "none".to_string() } else { names.join(", ") };
+            return Err(p.prop_err("name", format!("the shape has no attribute \"{name}\" (it has: {has})")));
+        };
+        if attribute.dim != 1 && attribute.dim != 3 {
+            let message = format!("attribute \"{name}\" has {} channels; only 1 or 3 can be evaluated", attribute.dim);
+            return Err(p.prop_err("name", message));
+        }
+        let (attribute, triangles) = (attribute.clone(), shape.triangles.clone());
+        Ok(Some(BoundAttribute { attribute, triangles, scale }))
     }
 }

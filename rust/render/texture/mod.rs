@@ -7,7 +7,7 @@ mod bitmap_load;
 mod checkerboard;
 mod mesh_attribute;
 mod parameter;
-mod volume;
+pub(crate) mod volume;
 
 pub use bitmap::{BitmapFilter, BitmapOptions, BitmapTexture, WrapMode};
 pub use bitmap_load::srgb_to_linear;

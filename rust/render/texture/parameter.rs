@@ -1,10 +1,14 @@
 //! A BSDF parameter that is either a constant RGB, a `bitmap` texture looked up at the
 //! hit's uv, a `checkerboard`, a mesh's attribute (`mesh_attribute`) at the hit, or a
-//! `volume` texture at the hit's world-space position (Mitsuba `get_texture`).
+//! `volume` texture at the hit's world-space position (Mitsuba `get_texture`). A constant is
+//! also what the `rawconstant` plugin reads ([`Texture::raw_constant_from_props`]).
 
 use super::{BitmapTexture, BoundAttribute, Checkerboard, Volume};
+use crate::load::props::PluginProps;
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::Value;
 use std::sync::Arc;
 
 #[derive(Clone, Debug)]
@@ -16,6 +20,27 @@ pub enum Texture {
     MeshAttribute(BoundAttribute),
     /// `volume`: a `gridvolume` or `constvolume` looked up at the world-space hit point.
     Volume(Arc<Volume>),
+}
+
+impl Texture {
+    /// Mitsuba's `rawconstant` (`src/spectra/rawconstant.cpp`): `value`, a `<float>` (all three
+    /// channels) or a `<vector>`, used as is (no colour conversion, no range check): the
+    /// [`Texture::Constant`]'s value.
+    pub(crate) fn raw_constant_from_props(p: &mut PluginProps) -> Result<Vec3, SceneError> {
+        let value = match p.raw("value") {
+            None => return Err(p.err("missing required parameter \"value\" (a float or a 3-D vector)")),
+            Some(Value::Vector(_) | Value::Point(_)) => p.point_opt("value")?.unwrap_or_default(),
+            Some(Value::Float(_) | Value::Integer(_)) => Vec3::splat(p.float_opt("value")?.unwrap_or_default() as f32),
+            Some(other) => {
+                let message = format!("has the wrong type (expected float or vector, found {})", other.type_name());
+                return Err(p.prop_err("value", message));
+            }
+        };
+        if !value.is_finite() {
+            return Err(p.prop_err("value", "must be finite"));
+        }
+        Ok(value)
+    }
 }
 
 /// Where a texture is looked up: the uv, for mesh attributes the hit triangle and its

@@ -16,10 +16,14 @@
 //! * `mean()` is not implemented by Mitsuba's volume texture (it throws); matte's loader refuses
 //!   a volume texture wherever Mitsuba calls it. Here it is the voxels' mean (luminance for
 //!   RGB), and a `constvolume`'s value's mean.
+//!
+//! The `volume` texture, `gridvolume` and `constvolume` read their properties here.
 
 use super::Texture;
 use super::bitmap::{WrapMode, wrap};
+use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec3};
+use matte_scene_file::SceneError;
 use std::path::Path;
 
 /// Rec. 709 luminance, as Mitsuba's `luminance(Color3f)`.
@@ -261,4 +265,96 @@ impl Volume {
             VolumeData::Constant(t) => t.mean(),
         }
     }
+}
+
+/// Mitsuba's `volume` texture (`src/textures/volume.cpp`): one property, `volume`, a nested or
+/// referenced `<volume>` (`gridvolume`, `constvolume`), looked up at the world-space hit point.
+/// Mitsuba reads it as an object (a number there is "wrong type (expected object, got float)"),
+/// and without one it loads and crashes when evaluated: matte requires it.
+pub(crate) fn texture_from_props(p: &mut PluginProps) -> Result<Volume, SceneError> {
+    if let Some(v) = p.raw("volume") {
+        let found = v.type_name();
+        return Err(p.prop_err(
+            "volume",
+            format!(
+                "has the wrong type (expected a nested <volume>, found {found}); write <volume name=\"volume\" \
+                 type=\"gridvolume\"> or type=\"constvolume\""
+            ),
+        ));
+    }
+    let Some(child) = p.child("volume") else {
+        // Another nested object is reported as such (unused), before the missing one.
+        p.object().check_all_used()?;
+        return Err(p.err(
+            "missing property \"volume\" (a nested <volume name=\"volume\" type=\"gridvolume\"> or \"constvolume\")",
+        ));
+    };
+    if child.tag != "volume" {
+        return Err(crate::load::err(
+            child,
+            format!("\"volume\" must be a <volume> (gridvolume, constvolume), not a <{}>", child.tag),
+        ));
+    }
+    p.build_volume(child)
+}
+
+/// Mitsuba's `gridvolume` (`src/volumes/grid.cpp`): `to_world` (invertible: points are looked
+/// up through its inverse), `filename` (a `.vol` file), `filter_type` (trilinear, nearest),
+/// `wrap_mode` (clamp, repeat, mirror) and `use_grid_bbox`, with Mitsuba's messages. `raw`,
+/// `accel` and `max_value` are accepted without effect (`load/no_effect.rs`).
+pub(crate) fn grid_from_props(p: &mut PluginProps) -> Result<Volume, SceneError> {
+    let to_world = p.transform("to_world")?;
+    let to_local = to_world.inverse();
+    if !(to_world.matrix3.determinant() != 0.0 && to_local.is_finite()) {
+        return Err(p.prop_err("to_world", "must be invertible (points are looked up through its inverse)"));
+    }
+    let filter = match p.string("filter_type")?.as_str() {
+        "trilinear" => GridFilter::Trilinear,
+        "nearest" => GridFilter::Nearest,
+        other => {
+            let message = format!("Invalid filter type \"{other}\", must be one of: \"nearest\" or \"trilinear\"!");
+            return Err(p.prop_err("filter_type", message));
+        }
+    };
+    let word = p.string("wrap_mode")?;
+    let wrap = WrapMode::parse(&word).ok_or_else(|| {
+        let message = format!("Invalid wrap mode \"{word}\", must be one of: \"repeat\", \"mirror\", or \"clamp\"!");
+        p.prop_err("wrap_mode", message)
+    })?;
+    let use_grid_bbox = p.boolean("use_grid_bbox")?;
+    let path = p.file("filename")?;
+    p.object().check_all_used()?;
+    let grid = VolumeGrid::read(&path).map_err(|e| p.file_err("filename", &path, &e))?;
+    let to_local = if use_grid_bbox { grid_bbox(p, &path, &grid)? * to_local } else { to_local };
+    let data = GridVolume::new(&grid, filter, wrap).map_err(|e| p.file_err("filename", &path, &e))?;
+    Ok(Volume { to_local, data: VolumeData::Grid(data) })
+}
+
+/// `VolumeGrid::bbox_transform`: scale(1/extents)·translate(−min), applied after to_local.
+fn grid_bbox(p: &PluginProps, path: &Path, grid: &VolumeGrid) -> Result<Affine3A, SceneError> {
+    let extents = grid.bbox_max - grid.bbox_min;
+    if !(extents.min_element() > 0.0) {
+        let message = format!(
+            "use_grid_bbox needs a bounding box with positive extents, the file's is {} to {}",
+            grid.bbox_min, grid.bbox_max
+        );
+        return Err(p.file_err("filename", path, &message));
+    }
+    Ok(Affine3A::from_scale(extents.recip()) * Affine3A::from_translation(-grid.bbox_min))
+}
+
+/// Mitsuba's `constvolume` (`src/volumes/const.cpp`): `value`, an unbounded colour or a texture
+/// (default 1), looked up at uv = (0, 0) whatever the point. Its value does not depend on the
+/// point: `to_world` is read and has no effect.
+pub(crate) fn constant_from_props(p: &mut PluginProps) -> Result<Volume, SceneError> {
+    p.transform("to_world")?;
+    let value = p.texture("value")?;
+    if matches!(value, Texture::MeshAttribute(_) | Texture::Volume(_)) {
+        let c = p.child("value").expect("a nested texture");
+        return Err(crate::load::err(
+            c,
+            "constvolume looks its value up without a surface point: a mesh_attribute or volume texture is not supported",
+        ));
+    }
+    Ok(Volume { to_local: Affine3A::IDENTITY, data: VolumeData::Constant(value) })
 }
