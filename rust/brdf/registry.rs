@@ -358,6 +358,22 @@ impl<K> Copy for Param<K> {}
 impl<K: kind::ValueKind> Param<K> {
     /// The parameter `name` of `spec`, of kind `K`; in a `const` context (as [`param!`]
     /// evaluates it), a name `spec` does not declare, or another kind, is a compile error.
+    ///
+    /// ```
+    /// use matte_brdf::registry::{Param, Registered, kind};
+    /// const SIGMA: Param<kind::Number> = Param::of(&matte_brdf::OrenNayar::SPEC, "sigma");
+    /// ```
+    ///
+    /// ```compile_fail
+    /// use matte_brdf::registry::{Param, Registered, kind};
+    /// // Oren–Nayar's `model` is a choice, not a number.
+    /// const MODEL: Param<kind::Number> = Param::of(&matte_brdf::OrenNayar::SPEC, "model");
+    /// ```
+    ///
+    /// ```compile_fail
+    /// use matte_brdf::registry::{Param, Registered, kind};
+    /// const SIGMA: Param<kind::Number> = Param::of(&matte_brdf::OrenNayar::SPEC, "sigmaa");
+    /// ```
     pub const fn of(spec: &ModelSpec, name: &str) -> Self {
         let index = index_of(spec, name);
         if kind::kind_code(&spec.params[index].kind) != K::CODE {
