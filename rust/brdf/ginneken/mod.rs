@@ -335,8 +335,8 @@ impl Registered for Ginneken {
 
     /// `m − m₀` if gradients are needed, else nothing ([`GinnekenCoefficients`]).
     fn constant_coefficients<T: Real>(&self, p: GinnekenParameters<T>, gradients: Gradients) -> GinnekenCoefficients<T> {
-        let dm = p.roughness - T::c(self.m as f64);
-        GinnekenCoefficients { roughness: (gradients == Gradients::Needed).then_some(dm) }
+        let dm = (gradients == Gradients::Needed).then(|| p.roughness - T::c(self.m as f64));
+        GinnekenCoefficients { roughness: dm }
     }
 
     /// The clamped roughness itself.
