@@ -13,7 +13,9 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first, param};
+use super::registry::{
+    Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Registered, Values, flat_values, param, parameter_values,
+};
 use super::sampler_fits::BURLEY;
 
 /// Burley's diffuse with its roughness in any [`Real`].
@@ -60,6 +62,13 @@ impl<T: Real> Kernel<T> for BurleyKernel<T> {
     #[inline(always)]
     fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
         self.cltc.then_some(move |mu| self.sampler(mu))
+    }
+}
+
+flat_values! {
+    /// Burley's numeric parameter, which is also its kernel's constant.
+    pub struct BurleyParameters {
+        roughness,
     }
 }
 
@@ -112,16 +121,22 @@ impl Registered for Burley {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.kernel.roughness as f64), ParamValue::Text(self.sampling.as_str().into())]
+        parameter_values!(roughness: self.kernel.roughness, sampling: self.sampling.as_str())
     }
 
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
-        let [roughness] = first(numeric)?;
-        Some(vec![roughness])
+    type Parameters<T: Real> = BurleyParameters<T>;
+    type Coefficients<T: Real> = BurleyParameters<T>;
+
+    fn constant_coefficients<T: Real>(&self, p: BurleyParameters<T>, _: Gradients) -> BurleyParameters<T> {
+        p
     }
 
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<BurleyKernel<T>> {
-        let [roughness] = first(c)?;
-        Some(BurleyKernel { roughness, cltc: self.kernel.cltc })
+    fn kernel_from<'t, T: Real + 't>(
+        &self,
+        c: BurleyParameters<T>,
+        _: &[T::Table<'t>],
+        _: Evaluation,
+    ) -> Option<BurleyKernel<T>> {
+        Some(BurleyKernel { roughness: c.roughness, cltc: self.kernel.cltc })
     }
 }

@@ -10,36 +10,72 @@ pub use super::cltc::Sampling;
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first, param};
+use super::registry::{
+    Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Registered, Values, flat_values, param, parameter_values,
+};
 use std::f64::consts::PI;
 
 const C1: f64 = 0.5 - 2.0 / (3.0 * PI);
 const C2: f64 = 2.0 / 3.0 - 28.0 / (15.0 * PI);
 
-/// EON's roughness-derived constants in any [`Real`] (f64 on the CPU, then rounded to f32;
-/// traced, so that the roughness gradient flows through them), and its evaluation. The
-/// differences `1 − A_F` and `1 − Ē_F` are formed as products (`c1 r A_F`, `(c1 − c2) r A_F`):
-/// no cancellation at small r in any precision.
+flat_values! {
+    /// EON's numeric parameter.
+    pub struct EonParameters {
+        roughness,
+    }
+}
+
+flat_values! {
+    /// EON's roughness-derived constants in any [`Real`] (f64 on the CPU, then rounded to f32;
+    /// traced, so that the roughness gradient flows through them). The differences `1 − A_F`
+    /// and `1 − Ē_F` are formed as products (`c1 r A_F`, `(c1 − c2) r A_F`): no cancellation
+    /// at small r in any precision.
+    pub struct EonCoefficients {
+        /// `A_F = 1/(1 + c1 r)`.
+        a_f,
+        /// `B_F = r A_F`.
+        b_f,
+        /// `Ē_F = A_F (1 + c2 r)`: cosine-weighted average of E_F.
+        e_avg,
+        /// `1 − Ē_F`.
+        one_minus_e_avg,
+        /// `1 − A_F`.
+        one_minus_a_f,
+        /// `B_F / π`.
+        b_f_over_pi,
+        /// `1 / max(1 − Ē_F, 10⁻⁷)`: the lobe's normalisation, a multiplication per eval.
+        inv_one_minus_e_avg,
+        /// `r`, for the sampler's fits.
+        r,
+        /// `r^{1/8}`: the uniform component's roughness factor ([`EonKernel::sampler`]).
+        r_eighth,
+    }
+}
+
+impl<T: Real> EonCoefficients<T> {
+    pub fn new(r: T) -> Self {
+        let one = T::c(1.0);
+        let a_f = one / r.fma(T::c(C1), one);
+        let one_minus_e_avg = (r * a_f).scale(C1 - C2);
+        Self {
+            a_f,
+            b_f: r * a_f,
+            e_avg: a_f * r.fma(T::c(C2), one),
+            one_minus_e_avg,
+            one_minus_a_f: (r * a_f).scale(C1),
+            b_f_over_pi: (r * a_f).scale(1.0 / PI),
+            inv_one_minus_e_avg: one / one_minus_e_avg.max(T::c(1e-7)),
+            r,
+            // Three square roots (traceable, no pow); the clamp keeps the derivative finite.
+            r_eighth: T::select(r.gt(T::c(0.0)), r.max(T::c(1e-12)).sqrt().sqrt().sqrt(), T::c(0.0)),
+        }
+    }
+}
+
+/// EON's evaluation with its constants in any [`Real`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EonKernel<T> {
-    /// `A_F = 1/(1 + c1 r)`.
-    a_f: T,
-    /// `B_F = r A_F`.
-    b_f: T,
-    /// `Ē_F = A_F (1 + c2 r)`: cosine-weighted average of E_F.
-    e_avg: T,
-    /// `1 − Ē_F`.
-    one_minus_e_avg: T,
-    /// `1 − A_F`.
-    one_minus_a_f: T,
-    /// `B_F / π`.
-    b_f_over_pi: T,
-    /// `1 / max(1 − Ē_F, 10⁻⁷)`: the lobe's normalisation, a multiplication per eval.
-    inv_one_minus_e_avg: T,
-    /// `r`, for the sampler's fits.
-    r: T,
-    /// `r^{1/8}`: the uniform component's roughness factor ([`EonKernel::sampler`]).
-    r_eighth: T,
+    pub c: EonCoefficients<T>,
     /// Sample the lobe ([`EonKernel::sampler`]) rather than the cosine (the `sampling`
     /// parameter). Not a coefficient: the model sets it ([`EonKernel::with_sampling`]).
     cltc: bool,
@@ -61,22 +97,7 @@ fn fon_g<T: Real>(mu: T) -> T {
 
 impl<T: Real> EonKernel<T> {
     pub fn new(r: T) -> Self {
-        let one = T::c(1.0);
-        let a_f = one / r.fma(T::c(C1), one);
-        let one_minus_e_avg = (r * a_f).scale(C1 - C2);
-        Self {
-            a_f,
-            b_f: r * a_f,
-            e_avg: a_f * r.fma(T::c(C2), one),
-            one_minus_e_avg,
-            one_minus_a_f: (r * a_f).scale(C1),
-            b_f_over_pi: (r * a_f).scale(1.0 / PI),
-            inv_one_minus_e_avg: one / one_minus_e_avg.max(T::c(1e-7)),
-            r,
-            // Three square roots (traceable, no pow); the clamp keeps the derivative finite.
-            r_eighth: T::select(r.gt(T::c(0.0)), r.max(T::c(1e-12)).sqrt().sqrt().sqrt(), T::c(0.0)),
-            cltc: false,
-        }
+        Self::from_coefficients(EonCoefficients::new(r))
     }
 
     /// The same kernel sampling the lobe (`Sampling::Cltc`) or the cosine.
@@ -84,24 +105,8 @@ impl<T: Real> EonKernel<T> {
         Self { cltc: sampling == Sampling::Cltc, ..self }
     }
 
-    pub fn coefficients(&self) -> [T; 9] {
-        [
-            self.a_f,
-            self.b_f,
-            self.e_avg,
-            self.one_minus_e_avg,
-            self.one_minus_a_f,
-            self.b_f_over_pi,
-            self.inv_one_minus_e_avg,
-            self.r,
-            self.r_eighth,
-        ]
-    }
-
-    pub fn from_coefficients(
-        [a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth]: [T; 9],
-    ) -> Self {
-        Self { a_f, b_f, e_avg, one_minus_e_avg, one_minus_a_f, b_f_over_pi, inv_one_minus_e_avg, r, r_eighth, cltc: false }
+    pub fn from_coefficients(c: EonCoefficients<T>) -> Self {
+        Self { c, cltc: false }
     }
 
     /// The importance sampler at `μ = cos θi`: EON's CLTC fit (Portsmouth et al. 2025, §4 and
@@ -112,7 +117,7 @@ impl<T: Real> EonKernel<T> {
     #[inline(always)]
     pub fn sampler(&self, mu: T) -> ClippedLtc<T> {
         let one = T::c(1.0);
-        let r = self.r;
+        let r = self.c.r;
         let poly2 = |c0: f64, c1: f64, c2: f64| T::c(c2).fma(mu, T::c(c1)).fma(mu, T::c(c0));
         let a = r.fma(poly2(0.303392, -0.518982, 0.111709) + r * T::c(0.335918).fma(mu, T::c(-0.276266)), one);
         let b_num = r * (T::c(1.15859).fma(mu, T::c(-1.16407)) + r * T::c(-0.150105).fma(mu, T::c(0.150815)));
@@ -120,26 +125,26 @@ impl<T: Real> EonKernel<T> {
         let c = r.fma(poly2(0.20013, -0.506373, 0.261777), one);
         let d = r * poly2(0.540852, -1.01625, 0.475392) / poly2(-1.0743, 0.0725628, 1.0);
         let cubic = T::c(-0.290822).fma(mu, T::c(0.538233)).fma(mu, T::c(-0.372058)).fma(mu, T::c(0.162925));
-        ClippedLtc::new(a, b, c, d, self.r_eighth * cubic)
+        ClippedLtc::new(a, b, c, d, self.c.r_eighth * cubic)
     }
 
     /// Exact single-scattering (FON) albedo `E_F(μ) = A_F + (B_F/π) G(μ)` for ρ = 1.
     #[inline(always)]
     pub fn fon_albedo(&self, mu: T) -> T {
-        self.b_f_over_pi.fma(fon_g(mu), self.a_f)
+        self.c.b_f_over_pi.fma(fon_g(mu), self.c.a_f)
     }
 
     /// `max(1 − E_F(μ), 10⁻⁷)`: the multiple-scattering lobe's factor per direction.
     #[inline(always)]
     fn fon_deficit(&self, mu: T) -> T {
-        (self.one_minus_a_f - self.b_f_over_pi * fon_g(mu)).max(T::c(1e-7))
+        (self.c.one_minus_a_f - self.c.b_f_over_pi * fon_g(mu)).max(T::c(1e-7))
     }
 
     /// `ρ_ms = ρ² Ē / (1 − ρ(1 − Ē))`: the reference code's form (the OpenPBR text has a
     /// spurious extra 1/π; Portsmouth et al. 2025, listing 1).
     #[inline(always)]
     fn rho_ms(&self, rho: T) -> T {
-        rho * rho * self.e_avg / (T::c(1.0) - rho * self.one_minus_e_avg).max(T::c(1e-7))
+        rho * rho * self.c.e_avg / (T::c(1.0) - rho * self.c.one_minus_e_avg).max(T::c(1e-7))
     }
 }
 
@@ -152,11 +157,11 @@ impl<T: Real> Kernel<T> for EonKernel<T> {
         // while s is, not after it.
         let zero = T::c(0.0);
         let s = azimuthal_dot(wi, wo);
-        let b_over_t = self.b_f / wi.z.max(wo.z).max(T::c(1e-7));
-        let single = s.max(zero).fma(b_over_t, s.min(zero).fma(self.b_f, self.a_f));
+        let b_over_t = self.c.b_f / wi.z.max(wo.z).max(T::c(1e-7));
+        let single = s.max(zero).fma(b_over_t, s.min(zero).fma(self.c.b_f, self.c.a_f));
         // ≥ 0 exactly for r ≤ 1 (s ≥ −1); the clamp removes f32 rounding at Δφ = π, grazing.
         let single = single.max(zero);
-        let lobe = self.fon_deficit(wi.z) * self.fon_deficit(wo.z) * self.inv_one_minus_e_avg;
+        let lobe = self.fon_deficit(wi.z) * self.fon_deficit(wo.z) * self.c.inv_one_minus_e_avg;
         rho.map(|r| r * single + self.rho_ms(r) * lobe)
     }
 
@@ -180,8 +185,8 @@ impl Eon {
 
     pub fn with_sampling(r: f64, sampling: Sampling) -> Result<Self, ParamError> {
         let r = Self::SPEC.params[0].check(r)?;
-        let k = EonKernel::<f64>::new(r);
-        let kernel = EonKernel::from_coefficients(k.coefficients().map(|c| c as f32)).with_sampling(sampling);
+        let c = EonCoefficients::<f64>::new(r).map_values(|c| c as f32);
+        let kernel = EonKernel::from_coefficients(c).with_sampling(sampling);
         Ok(Self { r: r as f32, sampling, kernel })
     }
 
@@ -209,7 +214,7 @@ impl KernelBrdf for Eon {
     fn closed_form_albedo(&self, cos_theta_i: f64, reflectance: f32) -> Option<f64> {
         let e_f = self.fon_albedo(cos_theta_i as f32) as f64;
         let rho = reflectance as f64;
-        let e_avg = self.kernel.e_avg as f64;
+        let e_avg = self.kernel.c.e_avg as f64;
         let rho_ms = rho * rho * e_avg / (1.0 - rho * (1.0 - e_avg));
         Some(rho * e_f + rho_ms * (1.0 - e_f))
     }
@@ -236,15 +241,17 @@ impl Registered for Eon {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Number(self.r as f64), ParamValue::Text(self.sampling.as_str().into())]
+        parameter_values!(roughness: self.r, sampling: self.sampling.as_str())
     }
 
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
-        let [r] = first(numeric)?;
-        Some(EonKernel::new(r).coefficients().to_vec())
+    type Parameters<T: Real> = EonParameters<T>;
+    type Coefficients<T: Real> = EonCoefficients<T>;
+
+    fn constant_coefficients<T: Real>(&self, p: EonParameters<T>, _: Gradients) -> EonCoefficients<T> {
+        EonCoefficients::new(p.roughness)
     }
 
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<EonKernel<T>> {
-        Some(EonKernel::from_coefficients(first(c)?).with_sampling(self.sampling))
+    fn kernel_from<'t, T: Real + 't>(&self, c: EonCoefficients<T>, _: &[T::Table<'t>], _: Evaluation) -> Option<EonKernel<T>> {
+        Some(EonKernel::from_coefficients(c).with_sampling(self.sampling))
     }
 }

@@ -4,7 +4,7 @@
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, Registered, Values};
+use super::registry::{Evaluation, Gradients, KernelBrdf, ModelSpec, NoValues, Registered, Values, parameter_values};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Lambert;
@@ -43,14 +43,17 @@ impl Registered for Lambert {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        Vec::new()
+        parameter_values!()
     }
 
-    fn constant_coefficients<T: Real>(&self, _: &[T], _: bool) -> Option<Vec<T>> {
-        Some(Vec::new())
+    type Parameters<T: Real> = NoValues;
+    type Coefficients<T: Real> = NoValues;
+
+    fn constant_coefficients<T: Real>(&self, _: NoValues, _: Gradients) -> NoValues {
+        NoValues
     }
 
-    fn kernel_from<'t, T: Real + 't>(&self, _: &[T], _: &[T::Table<'t>], _: bool) -> Option<Lambert> {
+    fn kernel_from<'t, T: Real + 't>(&self, _: NoValues, _: &[T::Table<'t>], _: Evaluation) -> Option<Lambert> {
         Some(Lambert)
     }
 }

@@ -13,7 +13,7 @@
 //! [`ParamSpec::lane_clamp`]: super::registry::ParamSpec::lane_clamp
 
 use super::real::{Nodes, Real};
-use super::registry::Registered;
+use super::registry::{Evaluation, Flat, Gradients, Registered};
 use super::{DiffuseModel, LaneKernel, dispatch};
 
 /// The numeric parameters of the model `kind` (a plugin name), in the order per-lane values
@@ -31,37 +31,52 @@ pub fn textured_placeholder(kind: &str, name: &str, mean: f64, number: impl Fn(&
 }
 
 /// The model-generic steps from parameter values to a kernel, for front ends that hold values
-/// of another scalar type (the traced plugin: Dr.Jit variables).
+/// of another scalar type (the traced plugin: Dr.Jit variables). The boundary where a model's
+/// named parameters and constants ([`Registered::Parameters`], [`Registered::Coefficients`])
+/// become flat slices ([`Flat`]), in the order of their declaration.
 impl DiffuseModel {
-    /// The tables the kernel reads: the constant-parameter kernel's ([`Registered::tables`]),
-    /// or with `lane` the per-lane kernel's ([`Registered::lane_tables`]).
-    pub fn kernel_tables(&self, lane: bool) -> Vec<&[f32]> {
-        dispatch!(self, m => if lane { m.lane_tables() } else { m.tables() })
+    /// The tables the kernel reads ([`Registered::tables`]).
+    pub fn kernel_tables(&self, evaluation: Evaluation) -> Vec<&[f32]> {
+        dispatch!(self, m => m.tables(evaluation))
     }
 
     /// The kernel constants for numeric parameter values in `T`:
-    /// [`Registered::constant_coefficients`], or with `lane` [`Registered::lane_coefficients`]
-    /// (each value clamped into its lane clamp first). `None` if `values` is short.
-    pub fn kernel_coefficients<T: Real>(&self, values: &[T], lane: bool, differentiable: bool) -> Option<Vec<T>> {
-        dispatch!(self, m => if lane { m.lane_coefficients(values) } else { m.constant_coefficients(values, differentiable) })
+    /// [`Registered::constant_coefficients`], or for [`Evaluation::Lane`]
+    /// [`Registered::lane_coefficients`] (each value clamped into its lane clamp first).
+    /// `None` if `values` is short.
+    pub fn kernel_coefficients<T: Real>(
+        &self,
+        values: &[T],
+        evaluation: Evaluation,
+        gradients: Gradients,
+    ) -> Option<Vec<T>> {
+        dispatch!(self, m => {
+            let p = Flat::from_flat(values)?;
+            let c = match evaluation {
+                Evaluation::Constant => m.constant_coefficients::<T>(p, gradients),
+                Evaluation::Lane => m.lane_coefficients::<T>(p),
+            };
+            Some(c.to_flat())
+        })
     }
 
     /// The kernel from constants `c` ([`Self::kernel_coefficients`]) and tables in `T`'s table
-    /// type ([`Self::kernel_tables`] of the same `lane`). `None` if either is short.
+    /// type ([`Self::kernel_tables`] of the same `evaluation`). `None` if either is short.
     pub fn kernel_from<'t, T: Real + 't>(
         &'t self,
         c: &[T],
         tables: &[T::Table<'t>],
-        lane: bool,
+        evaluation: Evaluation,
     ) -> Option<LaneKernel<'t, T>> {
-        dispatch!(self, m => m.kernel_from(c, tables, lane), lane)
+        dispatch!(self, m => m.kernel_from::<T>(Flat::from_flat(c)?, tables, evaluation), lane)
     }
 
     /// The f32 kernel for per-lane parameter `values`; `None` if `values` is too short.
     pub fn lane_kernel_f32(&self, values: &[f32]) -> Option<LaneKernel<'_, f32>> {
         dispatch!(self, m => {
-            let tables: Vec<Nodes<'_>> = m.lane_tables().into_iter().filter_map(Nodes::from_slice).collect();
-            m.lane_coefficients(values).and_then(|c| m.kernel_from(&c, &tables, true))
+            let tables: Vec<Nodes<'_>> =
+                m.tables(Evaluation::Lane).into_iter().filter_map(Nodes::from_slice).collect();
+            m.kernel_from::<f32>(m.lane_coefficients::<f32>(Flat::from_flat(values)?), &tables, Evaluation::Lane)
         }, lane)
     }
 }

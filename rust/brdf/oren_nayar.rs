@@ -9,7 +9,10 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first, param};
+use super::registry::{
+    Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
+    parameter_values,
+};
 use super::sampler_fits::{OREN_NAYAR_FULL, OREN_NAYAR_QUALITATIVE};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
@@ -31,18 +34,40 @@ impl OrenNayarForm {
     }
 }
 
-/// Oren–Nayar's parameter-derived constants in any [`Real`] (f64 on the CPU, then rounded to
-/// f32; traced, so that σ's gradient flows through them), and its evaluation.
+flat_values! {
+    /// Oren–Nayar's numeric parameter.
+    pub struct OrenNayarParameters {
+        sigma,
+    }
+}
+
+flat_values! {
+    /// Oren–Nayar's parameter-derived constants in any [`Real`] (f64 on the CPU, then rounded
+    /// to f32; traced, so that σ's gradient flows through them).
+    pub struct OrenNayarCoefficients {
+        /// `A = C1 = 1 − 0.5 σ²/(σ²+0.33)`.
+        a,
+        /// `B = 0.45 σ²/(σ²+0.09)` (also the C2 prefactor).
+        b,
+        /// `0.125 σ²/(σ²+0.09)`: the C3 prefactor.
+        c3,
+        /// `0.17 σ²/(σ²+0.13)`: the interreflection prefactor.
+        l2,
+    }
+}
+
+impl<T: Real> OrenNayarCoefficients<T> {
+    pub fn new(sigma: T) -> Self {
+        let s2 = sigma * sigma;
+        let ratio = |k: f64, d: f64| s2.scale(k) / (s2 + T::c(d));
+        Self { a: T::c(1.0) - ratio(0.5, 0.33), b: ratio(0.45, 0.09), c3: ratio(0.125, 0.09), l2: ratio(0.17, 0.13) }
+    }
+}
+
+/// Oren–Nayar's evaluation with its constants in any [`Real`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OrenNayarKernel<T> {
-    /// `A = C1 = 1 − 0.5 σ²/(σ²+0.33)`.
-    pub a: T,
-    /// `B = 0.45 σ²/(σ²+0.09)` (also the C2 prefactor).
-    pub b: T,
-    /// `0.125 σ²/(σ²+0.09)`: the C3 prefactor.
-    pub c3: T,
-    /// `0.17 σ²/(σ²+0.13)`: the interreflection prefactor.
-    pub l2: T,
+    pub c: OrenNayarCoefficients<T>,
     pub model: OrenNayarForm,
     /// Sample the fitted lobe ([`OrenNayarKernel::sampler`]) rather than the cosine (the
     /// `sampling` parameter). Not a coefficient: the model sets it.
@@ -51,16 +76,7 @@ pub struct OrenNayarKernel<T> {
 
 impl<T: Real> OrenNayarKernel<T> {
     pub fn new(sigma: T, model: OrenNayarForm) -> Self {
-        let s2 = sigma * sigma;
-        let ratio = |k: f64, d: f64| s2.scale(k) / (s2 + T::c(d));
-        Self {
-            a: T::c(1.0) - ratio(0.5, 0.33),
-            b: ratio(0.45, 0.09),
-            c3: ratio(0.125, 0.09),
-            l2: ratio(0.17, 0.13),
-            model,
-            cltc: false,
-        }
+        Self::from_coefficients(OrenNayarCoefficients::new(sigma), model)
     }
 
     /// The same kernel sampling the fitted lobe (`Sampling::Cltc`) or the cosine.
@@ -68,12 +84,8 @@ impl<T: Real> OrenNayarKernel<T> {
         Self { cltc: sampling == Sampling::Cltc, ..self }
     }
 
-    pub fn coefficients(&self) -> [T; 4] {
-        [self.a, self.b, self.c3, self.l2]
-    }
-
-    pub fn from_coefficients([a, b, c3, l2]: [T; 4], model: OrenNayarForm) -> Self {
-        Self { a, b, c3, l2, model, cltc: false }
+    pub fn from_coefficients(c: OrenNayarCoefficients<T>, model: OrenNayarForm) -> Self {
+        Self { c, model, cltc: false }
     }
 
     /// The importance sampler at `μ = cos θi`: the CLTC fitted to the model
@@ -83,7 +95,7 @@ impl<T: Real> OrenNayarKernel<T> {
     /// cosine; at normal incidence too (the lobe is then constant).
     #[inline(always)]
     pub fn sampler(&self, mu: T) -> ClippedLtc<T> {
-        let t = self.b.scale(1.0 / 0.45);
+        let t = self.c.b.scale(1.0 / 0.45);
         match self.model {
             OrenNayarForm::Qualitative => OREN_NAYAR_QUALITATIVE.sampler(mu, t),
             OrenNayarForm::Full => OREN_NAYAR_FULL.sampler(mu, t),
@@ -114,13 +126,13 @@ impl<T: Real> OrenNayarKernel<T> {
         let two_beta_pi = beta.scale(FRAC_2_PI);
         let c2 = T::select(
             cos_phi.ge(T::c(0.0)),
-            self.b * sin_alpha,
-            self.b * (sin_alpha - two_beta_pi * two_beta_pi * two_beta_pi),
+            self.c.b * sin_alpha,
+            self.c.b * (sin_alpha - two_beta_pi * two_beta_pi * two_beta_pi),
         );
         let four_ab = (alpha * beta).scale(4.0 * FRAC_1_PI * FRAC_1_PI);
-        let c3 = self.c3 * four_ab * four_ab;
-        let direct = self.a + cos_phi * c2 * tan_beta + (T::c(1.0) - cos_phi.abs()) * c3 * tan_half_sum;
-        let inter = self.l2 * (T::c(1.0) - cos_phi * two_beta_pi * two_beta_pi);
+        let c3 = self.c.c3 * four_ab * four_ab;
+        let direct = self.c.a + cos_phi * c2 * tan_beta + (T::c(1.0) - cos_phi.abs()) * c3 * tan_half_sum;
+        let inter = self.c.l2 * (T::c(1.0) - cos_phi * two_beta_pi * two_beta_pi);
         // The 1994 fit goes negative in forward-grazing configurations at large σ (σ = 1,
         // θi = 89°, θo ≈ 90°, Δφ = 180°: C2 tan β outweighs C1 and, for ρ < 1, the ρ² term).
         // A BRDF cannot be negative: the total is clamped at 0, which leaves the published
@@ -138,8 +150,8 @@ impl<T: Real> Kernel<T> for OrenNayarKernel<T> {
                 // denominator is cos β; clamped as tan β is in the full model (both grazing).
                 // B / cos β is formed first, so the division overlaps the dot product instead
                 // of following it.
-                let b_over_cos_beta = self.b / wi.z.max(wo.z).max(T::c(1e-7));
-                let g = azimuthal_dot(wi, wo).max(T::c(0.0)).fma(b_over_cos_beta, self.a);
+                let b_over_cos_beta = self.c.b / wi.z.max(wo.z).max(T::c(1e-7));
+                let g = azimuthal_dot(wi, wo).max(T::c(0.0)).fma(b_over_cos_beta, self.c.a);
                 rho.map(|r| r * g)
             }
             OrenNayarForm::Full => self.reduced_full(wi, wo, rho),
@@ -166,13 +178,8 @@ impl OrenNayar {
 
     pub fn with_sampling(sigma: f64, model: OrenNayarForm, sampling: Sampling) -> Result<Self, ParamError> {
         let sigma = Self::SPEC.params[0].check(sigma)?;
-        let k = OrenNayarKernel::<f64>::new(sigma, model);
-        Ok(Self {
-            sigma: sigma as f32,
-            sampling,
-            kernel: OrenNayarKernel::from_coefficients(k.coefficients().map(|c| c as f32), model)
-                .with_sampling(sampling),
-        })
+        let c = OrenNayarCoefficients::<f64>::new(sigma).map_values(|c| c as f32);
+        Ok(Self { sigma: sigma as f32, sampling, kernel: OrenNayarKernel::from_coefficients(c, model).with_sampling(sampling) })
     }
 
     pub fn sampling(&self) -> Sampling {
@@ -231,19 +238,22 @@ impl Registered for OrenNayar {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![
-            ParamValue::Number(self.sigma as f64),
-            ParamValue::Text(self.model().as_str().into()),
-            ParamValue::Text(self.sampling.as_str().into()),
-        ]
+        parameter_values!(sigma: self.sigma, model: self.model().as_str(), sampling: self.sampling.as_str())
     }
 
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
-        let [sigma] = first(numeric)?;
-        Some(OrenNayarKernel::new(sigma, self.model()).coefficients().to_vec())
+    type Parameters<T: Real> = OrenNayarParameters<T>;
+    type Coefficients<T: Real> = OrenNayarCoefficients<T>;
+
+    fn constant_coefficients<T: Real>(&self, p: OrenNayarParameters<T>, _: Gradients) -> OrenNayarCoefficients<T> {
+        OrenNayarCoefficients::new(p.sigma)
     }
 
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<OrenNayarKernel<T>> {
-        Some(OrenNayarKernel::from_coefficients(first(c)?, self.model()).with_sampling(self.sampling))
+    fn kernel_from<'t, T: Real + 't>(
+        &self,
+        c: OrenNayarCoefficients<T>,
+        _: &[T::Table<'t>],
+        _: Evaluation,
+    ) -> Option<OrenNayarKernel<T>> {
+        Some(OrenNayarKernel::from_coefficients(c, self.model()).with_sampling(self.sampling))
     }
 }

@@ -35,6 +35,38 @@ pub enum ParamValue {
     Text(String),
 }
 
+impl From<f64> for ParamValue {
+    fn from(x: f64) -> Self {
+        ParamValue::Number(x)
+    }
+}
+
+/// A number as a model stores it.
+impl From<f32> for ParamValue {
+    fn from(x: f32) -> Self {
+        ParamValue::Number(x as f64)
+    }
+}
+
+/// A flag as text (`true`, `false`).
+impl From<bool> for ParamValue {
+    fn from(b: bool) -> Self {
+        ParamValue::Text(b.to_string())
+    }
+}
+
+impl From<&str> for ParamValue {
+    fn from(s: &str) -> Self {
+        ParamValue::Text(s.into())
+    }
+}
+
+impl From<String> for ParamValue {
+    fn from(s: String) -> Self {
+        ParamValue::Text(s)
+    }
+}
+
 impl ParamValue {
     /// A number if the text parses as one, else the text itself (CLI `--param k=v`).
     pub fn parse(text: &str) -> Self {

@@ -245,7 +245,6 @@ enum Value {
 /// (defaults filled in), numbers range-checked. [`Registered::build`] takes them by name.
 #[derive(Clone, Debug)]
 pub struct Values {
-    spec: &'static ModelSpec,
     values: Vec<Value>,
 }
 
@@ -263,61 +262,174 @@ impl Values {
                 ParamKind::File => Value::File(params.file(p.name)?),
             });
         }
-        Ok(Self { spec, values })
+        Ok(Self { values })
     }
 
-    fn get(&self, p: Param) -> &Value {
-        &self.values[p.0]
+    fn get<K>(&self, p: Param<K>) -> &Value {
+        &self.values[p.index]
     }
 
-    pub fn number(&self, p: Param) -> f64 {
+    pub fn number(&self, p: Param<kind::Number>) -> f64 {
         match self.get(p) {
             Value::Number(x) => *x,
-            other => panic!("parameter \"{}\" is not a number ({other:?})", self.spec.params[p.0].name),
+            _ => unreachable!("Param::of checked the kind"),
         }
     }
 
-    pub fn choice(&self, p: Param) -> &'static str {
+    pub fn choice(&self, p: Param<kind::Choice>) -> &'static str {
         match self.get(p) {
             Value::Choice(c) => c,
-            other => panic!("parameter \"{}\" is not a choice ({other:?})", self.spec.params[p.0].name),
+            _ => unreachable!("Param::of checked the kind"),
         }
     }
 
-    pub fn flag(&self, p: Param) -> bool {
+    pub fn flag(&self, p: Param<kind::Flag>) -> bool {
         match self.get(p) {
             Value::Flag(b) => *b,
-            other => panic!("parameter \"{}\" is not a flag ({other:?})", self.spec.params[p.0].name),
+            _ => unreachable!("Param::of checked the kind"),
         }
     }
 
     /// A file parameter's name (resolved by the front end).
-    pub fn file(&self, p: Param) -> &str {
+    pub fn file(&self, p: Param<kind::File>) -> &str {
         match self.get(p) {
             Value::File(f) => f,
-            other => panic!("parameter \"{}\" is not a file ({other:?})", self.spec.params[p.0].name),
+            _ => unreachable!("Param::of checked the kind"),
         }
     }
 }
 
-/// A parameter of a model's SPEC by position, for reading [`Values`]: made by [`param!`] at
-/// compile time, so a name the SPEC does not declare does not compile.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Param(usize);
+/// The kinds a [`Param`] is read as: one [`Values`] accessor each.
+pub mod kind {
+    use super::ParamKind;
 
-impl Param {
-    /// The parameter `name` of `spec`; in a `const` context (as [`param!`] evaluates it), a
-    /// name `spec` does not declare is a compile error.
-    pub const fn of(spec: &ModelSpec, name: &str) -> Param {
-        let mut i = 0;
-        while i < spec.params.len() {
-            if str_eq(spec.params[i].name, name) {
-                return Param(i);
-            }
-            i += 1;
-        }
-        panic!("a model reads a parameter its SPEC does not declare")
+    /// A kind of parameter value, as a type.
+    pub trait ValueKind {
+        /// What [`kind_code`] gives for a parameter of this kind.
+        const CODE: u8;
     }
+
+    /// The code of a [`ParamKind`]: numbers and indices of refraction are both numbers.
+    pub const fn kind_code(kind: &ParamKind) -> u8 {
+        match kind {
+            ParamKind::Number { .. } | ParamKind::Ior { .. } => Number::CODE,
+            ParamKind::Choice { .. } => Choice::CODE,
+            ParamKind::Flag { .. } => Flag::CODE,
+            ParamKind::File => File::CODE,
+        }
+    }
+
+    macro_rules! kinds {
+        ($($(#[$m:meta])* $name:ident = $code:literal),+) => {
+            $($(#[$m])* #[derive(Clone, Copy, Debug, PartialEq, Eq)] pub struct $name;
+            impl ValueKind for $name {
+                const CODE: u8 = $code;
+            })+
+        };
+    }
+    kinds! {
+        /// A number or an index of refraction ([`super::Values::number`]).
+        Number = 0,
+        /// A word of a choice ([`super::Values::choice`]).
+        Choice = 1,
+        /// A boolean ([`super::Values::flag`]).
+        Flag = 2,
+        /// A file name ([`super::Values::file`]).
+        File = 3
+    }
+}
+
+/// A parameter of a model's SPEC by position and kind, for reading [`Values`]: made by
+/// [`param!`] at compile time, so a name the SPEC does not declare, or a parameter read as
+/// another kind than the SPEC declares (`v.number` of a choice), does not compile.
+#[derive(Debug, PartialEq, Eq)]
+pub struct Param<K> {
+    index: usize,
+    kind: std::marker::PhantomData<K>,
+}
+
+impl<K> Clone for Param<K> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<K> Copy for Param<K> {}
+
+impl<K: kind::ValueKind> Param<K> {
+    /// The parameter `name` of `spec`, of kind `K`; in a `const` context (as [`param!`]
+    /// evaluates it), a name `spec` does not declare, or another kind, is a compile error.
+    ///
+    /// ```
+    /// use matte_brdf::registry::{Param, Registered, kind};
+    /// const SIGMA: Param<kind::Number> = Param::of(&matte_brdf::OrenNayar::SPEC, "sigma");
+    /// ```
+    ///
+    /// ```compile_fail
+    /// use matte_brdf::registry::{Param, Registered, kind};
+    /// // Oren–Nayar's `model` is a choice, not a number.
+    /// const MODEL: Param<kind::Number> = Param::of(&matte_brdf::OrenNayar::SPEC, "model");
+    /// ```
+    ///
+    /// ```compile_fail
+    /// use matte_brdf::registry::{Param, Registered, kind};
+    /// const SIGMA: Param<kind::Number> = Param::of(&matte_brdf::OrenNayar::SPEC, "sigmaa");
+    /// ```
+    pub const fn of(spec: &ModelSpec, name: &str) -> Self {
+        let index = index_of(spec, name);
+        if kind::kind_code(&spec.params[index].kind) != K::CODE {
+            panic!("a model reads a parameter as another kind than its SPEC declares")
+        }
+        Param { index, kind: std::marker::PhantomData }
+    }
+}
+
+/// The position of the parameter `name` in `spec` (a compile error in a `const` context if
+/// there is none).
+pub const fn index_of(spec: &ModelSpec, name: &str) -> usize {
+    let mut i = 0;
+    while i < spec.params.len() {
+        if str_eq(spec.params[i].name, name) {
+            return i;
+        }
+        i += 1;
+    }
+    panic!("a model names a parameter its SPEC does not declare")
+}
+
+/// Whether `names` are the names of `spec`'s parameters, each once, in any order.
+pub const fn names_all_parameters(spec: &ModelSpec, names: &[&str]) -> bool {
+    if names.len() != spec.params.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < spec.params.len() {
+        let mut found = false;
+        let mut j = 0;
+        while j < names.len() {
+            found |= str_eq(spec.params[i].name, names[j]);
+            j += 1;
+        }
+        if !found {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// Whether `names` are the names of `spec`'s numeric parameters, in their order.
+pub const fn names_numeric_parameters(spec: &ModelSpec, names: &[&str]) -> bool {
+    let (mut i, mut k) = (0, 0);
+    while i < spec.params.len() {
+        if spec.params[i].is_numeric() {
+            if k >= names.len() || !str_eq(spec.params[i].name, names[k]) {
+                return false;
+            }
+            k += 1;
+        }
+        i += 1;
+    }
+    k == names.len()
 }
 
 const fn str_eq(a: &str, b: &str) -> bool {
@@ -335,14 +447,135 @@ const fn str_eq(a: &str, b: &str) -> bool {
     true
 }
 
-/// `param!("roughness")` in a [`Registered`] impl: that model's parameter, checked against its
-/// SPEC at compile time ([`Param::of`]).
+/// `param!("roughness")` in a [`Registered`] impl: that model's parameter, its name and kind
+/// (from the [`Values`] accessor it is given to) checked against its SPEC at compile time
+/// ([`Param::of`]).
 macro_rules! param {
-    ($name:literal) => {
+    ($name:expr) => {
         const { $crate::registry::Param::of(&<Self as $crate::registry::Registered>::SPEC, $name) }
     };
 }
 pub(crate) use param;
+
+/// `parameter_values!(sigma: self.sigma, model: self.model().as_str(), ...)` in a
+/// [`Registered`] impl: [`Registered::values`], each parameter's effective value (anything
+/// [`ParamValue`] converts from) given by name, in any order, returned in the SPEC's order. A
+/// name the SPEC does not declare, and a parameter left out or named twice, do not compile.
+macro_rules! parameter_values {
+    ($($name:ident: $value:expr),* $(,)?) => {{
+        use $crate::registry::{Registered, names_all_parameters};
+        const {
+            assert!(
+                names_all_parameters(&<Self as Registered>::SPEC, &[$(stringify!($name)),*]),
+                "parameter_values! names each parameter of the SPEC once"
+            )
+        };
+        #[allow(unused_mut)]
+        let mut values = vec![$crate::ParamValue::Number(0.0); <Self as Registered>::SPEC.params.len()];
+        $(values[const { $crate::registry::index_of(&<Self as Registered>::SPEC, stringify!($name)) }] = $crate::ParamValue::from($value);)*
+        values
+    }};
+}
+pub(crate) use parameter_values;
+
+/// Which kernel the constants are for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Evaluation {
+    /// The model's own parameter values, fixed for the call (van Ginneken: the tables of its
+    /// roughness, [`Registered::tables`]).
+    Constant,
+    /// Parameters that vary per lane (textures, `docs/models.md#spatially-varying-parameters`;
+    /// van Ginneken: the tables stacked over the roughness).
+    Lane,
+}
+
+/// Whether the numeric parameters carry gradients the constants must keep (the traced
+/// plugin's differentiable parameters).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Gradients {
+    Needed,
+    NotNeeded,
+}
+
+/// Named values in any `T` (a model's numeric parameters, its kernel constants) that are flat
+/// data only at the boundary that needs it: the traced plugin's arena indices, a texture's
+/// per-lane values. The slice order is the declaration order. [`flat_values!`] declares one.
+pub trait Flat<T: Copy>: Copy {
+    /// The names, in the slice order.
+    const NAMES: &'static [&'static str];
+
+    /// The values from the first entries of `c`; `None` if it is short.
+    fn from_flat(c: &[T]) -> Option<Self>;
+
+    /// The values in the slice order.
+    fn to_flat(&self) -> Vec<T>;
+
+    /// Each value replaced by `f(k, value)`, `k` its position in the slice order.
+    #[must_use]
+    fn map(self, f: impl FnMut(usize, T) -> T) -> Self;
+}
+
+/// No values: the numeric parameters and constants of a model that has none.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NoValues;
+
+impl<T: Copy> Flat<T> for NoValues {
+    const NAMES: &'static [&'static str] = &[];
+    fn from_flat(_: &[T]) -> Option<Self> {
+        Some(NoValues)
+    }
+    fn to_flat(&self) -> Vec<T> {
+        Vec::new()
+    }
+    fn map(self, _: impl FnMut(usize, T) -> T) -> Self {
+        self
+    }
+}
+
+/// `flat_values! { /// doc\n pub struct Name { /// doc\n a, b } }`: a struct of named values
+/// `pub a: T, pub b: T` with [`Flat`] (slice order: the fields') and `map_values`, the same
+/// values converted to another type.
+macro_rules! flat_values {
+    ($(#[$m:meta])* $vis:vis struct $name:ident { $($(#[$fm:meta])* $field:ident),+ $(,)? }) => {
+        $(#[$m])*
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        $vis struct $name<T> {
+            $($(#[$fm])* pub $field: T,)+
+        }
+
+        impl<T: Copy> $crate::registry::Flat<T> for $name<T> {
+            const NAMES: &'static [&'static str] = &[$(stringify!($field)),+];
+
+            #[inline(always)]
+            fn from_flat(c: &[T]) -> Option<Self> {
+                let mut c = c.iter().copied();
+                Some(Self { $($field: c.next()?,)+ })
+            }
+
+            fn to_flat(&self) -> Vec<T> {
+                vec![$(self.$field),+]
+            }
+
+            #[inline(always)]
+            fn map(self, mut f: impl FnMut(usize, T) -> T) -> Self {
+                let mut k = 0;
+                $(let $field = f(k, self.$field);
+                k += 1;)+
+                let _ = k;
+                Self { $($field),+ }
+            }
+        }
+
+        impl<T: Copy> $name<T> {
+            /// The same values converted by `f` (f64 constants rounded to f32).
+            #[inline(always)]
+            pub fn map_values<U>(self, f: impl Fn(T) -> U) -> $name<U> {
+                $name { $($field: f(self.$field)),+ }
+            }
+        }
+    };
+}
+pub(crate) use flat_values;
 
 /// What a model implements to be registered; everything else about it is derived. `T` in the
 /// kernel methods is any [`Real`]: f32 and f64 on the CPU, `F32x8`, and the plugin's traced
@@ -358,48 +591,44 @@ pub trait Registered: KernelBrdf + Clone + Debug + PartialEq + Sized + 'static {
     fn build(values: &Values) -> Result<Self, ParamError>;
 
     /// The effective value of every parameter, in the SPEC's order (numbers as the model
-    /// stores them, words and flags as text).
+    /// stores them, words and flags as text): [`parameter_values!`].
     fn values(&self) -> Vec<ParamValue>;
 
-    /// The kernel constants for numeric parameter values given as `T` (in the order of
-    /// [`ModelSpec::numeric`]), as the traced plugin computes them once per parameter
-    /// change; `differentiable`: the values carry gradients. `None` if `numeric` is short.
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], differentiable: bool) -> Option<Vec<T>>;
+    /// The numeric parameters by name ([`flat_values!`], or [`NoValues`]), in the order of
+    /// [`ModelSpec::numeric`] (checked at compile time): the values a texture or the traced
+    /// plugin gives.
+    type Parameters<T: Real>: Flat<T>;
+
+    /// The kernel's constants by name ([`flat_values!`], or [`NoValues`]).
+    type Coefficients<T: Real>: Flat<T>;
+
+    /// The kernel constants for numeric parameter values in `T`, as the traced plugin computes
+    /// them once per parameter change (with the parameters' gradients if `gradients` says so).
+    fn constant_coefficients<T: Real>(&self, p: Self::Parameters<T>, gradients: Gradients) -> Self::Coefficients<T>;
 
     /// The kernel constants for per-lane (textured) values, each clamped into its lane clamp
     /// first (`docs/models.md#spatially-varying-parameters`). Default: clamp, then
-    /// [`Self::constant_coefficients`].
-    fn lane_coefficients<T: Real>(&self, numeric: &[T]) -> Option<Vec<T>> {
-        let clamped: Vec<T> = Self::SPEC
-            .numeric()
-            .zip(numeric)
-            .map(|(p, &x)| {
-                let (lo, hi) = p.lane_clamp;
-                let x = if lo > f64::NEG_INFINITY { x.max(T::c(lo)) } else { x };
-                if hi < f64::INFINITY { x.min(T::c(hi)) } else { x }
-            })
-            .collect();
-        self.constant_coefficients(&clamped, true)
+    /// [`Self::constant_coefficients`] with gradients.
+    #[inline(always)]
+    fn lane_coefficients<T: Real>(&self, p: Self::Parameters<T>) -> Self::Coefficients<T> {
+        self.constant_coefficients(clamp_lanes::<Self, T>(p), Gradients::Needed)
     }
 
     /// The kernel from constants `c` (of either coefficient method) and the tables
-    /// ([`Self::tables`] or, when `lane`, [`Self::lane_tables`]) in `T`'s table type.
-    /// `None` if `c` or `tables` is short.
+    /// ([`Self::tables`] of the same `evaluation`) in `T`'s table type. `None` if `tables` is
+    /// short.
     fn kernel_from<'t, T: Real + 't>(
         &'t self,
-        c: &[T],
+        c: Self::Coefficients<T>,
         tables: &[T::Table<'t>],
-        lane: bool,
+        evaluation: Evaluation,
     ) -> Option<Self::Lane<'t, T>>;
 
-    /// Tables the constant-parameter kernel reads (van Ginneken's slope integral and μΛ);
-    /// the plugin registers them as Dr.Jit arrays.
-    fn tables(&self) -> Vec<&[f32]> {
-        Vec::new()
-    }
-
-    /// Tables the per-lane kernel reads (van Ginneken's stacks over the roughness).
-    fn lane_tables(&self) -> Vec<&'static [f32]> {
+    /// Tables the kernel reads (van Ginneken's slope integral and its derivative at its
+    /// roughness, or for [`Evaluation::Lane`] stacked over the roughness; `tabulated_brdf`'s
+    /// values); the plugin registers them as Dr.Jit arrays.
+    fn tables(&self, evaluation: Evaluation) -> Vec<&[f32]> {
+        let _ = evaluation;
         Vec::new()
     }
 
@@ -412,10 +641,16 @@ pub trait Registered: KernelBrdf + Clone + Debug + PartialEq + Sized + 'static {
     }
 }
 
-/// The first `N` values of `c`, or `None`.
+/// The numeric parameters `p` of model `M`, each clamped into its lane clamp (NaN to the
+/// lower bound).
 #[inline(always)]
-pub fn first<T: Copy, const N: usize>(c: &[T]) -> Option<[T; N]> {
-    c.get(..N)?.try_into().ok()
+pub fn clamp_lanes<M: Registered, T: Real>(p: M::Parameters<T>) -> M::Parameters<T> {
+    p.map(|k, x| {
+        let Some(spec) = M::SPEC.numeric().nth(k) else { return x };
+        let (lo, hi) = spec.lane_clamp;
+        let x = if lo > f64::NEG_INFINITY { x.max(T::c(lo)) } else { x };
+        if hi < f64::INFINITY { x.min(T::c(hi)) } else { x }
+    })
 }
 
 /// `models! { Variant: module::Type, ... }`: declares the model modules and generates
@@ -440,6 +675,13 @@ macro_rules! models {
                 $crate::registry::numeric_count(&<$ty as $crate::registry::Registered>::SPEC)
                     <= $crate::registry::MAX_NUMERIC,
                 "a model has more numeric parameters than MAX_NUMERIC"
+            );
+            assert!(
+                $crate::registry::names_numeric_parameters(
+                    &<$ty as $crate::registry::Registered>::SPEC,
+                    <<$ty as $crate::registry::Registered>::Parameters<f32> as $crate::registry::Flat<f32>>::NAMES,
+                ),
+                "a model's Parameters are not its SPEC's numeric parameters, in order"
             );)+
         };
 

@@ -7,11 +7,21 @@
 
 use super::cltc::{self, Sampling};
 use super::kernel::Kernel;
-use super::oren_nayar::{OrenNayar, OrenNayarKernel, OrenNayarForm};
+use super::oren_nayar::{OrenNayar, OrenNayarCoefficients, OrenNayarForm, OrenNayarKernel};
 use super::params::{ParamError, ParamValue};
 use super::real::Real;
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first, param};
+use super::registry::{
+    Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
+    parameter_values,
+};
 use std::f64::consts::FRAC_1_SQRT_2;
+
+flat_values! {
+    /// roughdiffuse's numeric parameter.
+    pub struct RoughDiffuseParameters {
+        alpha,
+    }
+}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughDiffuse {
@@ -81,23 +91,26 @@ impl Registered for RoughDiffuse {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![
-            ParamValue::Number(self.alpha as f64),
-            ParamValue::Text(self.use_fast_approx().to_string()),
-            ParamValue::Text(self.oren_nayar.sampling().as_str().into()),
-        ]
-    }
-
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
-        let [alpha] = first(numeric)?;
-        let sigma = Self::sigma_of_alpha(alpha);
-        Some(OrenNayarKernel::new(sigma, self.oren_nayar.model()).coefficients().to_vec())
-    }
-
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<OrenNayarKernel<T>> {
-        Some(
-            OrenNayarKernel::from_coefficients(first(c)?, self.oren_nayar.model())
-                .with_sampling(self.oren_nayar.sampling()),
+        parameter_values!(
+            alpha: self.alpha,
+            use_fast_approx: self.use_fast_approx(),
+            sampling: self.oren_nayar.sampling().as_str(),
         )
+    }
+
+    type Parameters<T: Real> = RoughDiffuseParameters<T>;
+    type Coefficients<T: Real> = OrenNayarCoefficients<T>;
+
+    fn constant_coefficients<T: Real>(&self, p: RoughDiffuseParameters<T>, _: Gradients) -> OrenNayarCoefficients<T> {
+        OrenNayarCoefficients::new(Self::sigma_of_alpha(p.alpha))
+    }
+
+    fn kernel_from<'t, T: Real + 't>(
+        &self,
+        c: OrenNayarCoefficients<T>,
+        _: &[T::Table<'t>],
+        _: Evaluation,
+    ) -> Option<OrenNayarKernel<T>> {
+        Some(OrenNayarKernel::from_coefficients(c, self.oren_nayar.model()).with_sampling(self.oren_nayar.sampling()))
     }
 }

@@ -22,7 +22,9 @@ use super::approx::{acos_unit, angle};
 use super::kernel::Kernel;
 use super::real::{Nodes, Real, V3};
 use super::params::{ParamError, ParamValue};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, param};
+use super::registry::{
+    Evaluation, Gradients, KernelBrdf, ModelSpec, NoValues, ParamSpec, Registered, Values, param, parameter_values,
+};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -420,18 +422,27 @@ impl Registered for Tabulated {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![ParamValue::Text(self.path.display().to_string())]
+        parameter_values!(filename: self.path.display().to_string())
     }
 
-    fn constant_coefficients<T: Real>(&self, _: &[T], _: bool) -> Option<Vec<T>> {
-        Some(Vec::new())
+    type Parameters<T: Real> = NoValues;
+    type Coefficients<T: Real> = NoValues;
+
+    fn constant_coefficients<T: Real>(&self, _: NoValues, _: Gradients) -> NoValues {
+        NoValues
     }
 
-    fn kernel_from<'t, T: Real + 't>(&'t self, _: &[T], tables: &[T::Table<'t>], _: bool) -> Option<TableKernel<'t, T>> {
+    fn kernel_from<'t, T: Real + 't>(
+        &'t self,
+        _: NoValues,
+        tables: &[T::Table<'t>],
+        _: Evaluation,
+    ) -> Option<TableKernel<'t, T>> {
         Some(self.kernel(*tables.first()?))
     }
 
-    fn tables(&self) -> Vec<&[f32]> {
+    /// The values, for either evaluation (a table has no numeric parameters to vary per lane).
+    fn tables(&self, _: Evaluation) -> Vec<&[f32]> {
         vec![self.table_values()]
     }
 }

@@ -6,7 +6,7 @@
 
 use crate::kernel;
 use crate::real::{Nodes, Real, V3};
-use crate::registry::Registered;
+use crate::registry::{Evaluation, Flat, Gradients, Registered};
 use crate::simd::F32x8;
 use crate::{DiffuseModel, LaneKernel, ParamValue, Params, dispatch};
 use glam::{Vec2, Vec3};
@@ -56,8 +56,11 @@ impl ModelPair {
         });
         let values: Vec<T> = defaults.enumerate().map(|(k, d)| param(k, d)).collect();
         dispatch!(&self.bsdf, m => {
-            let tables: Vec<Nodes<'_>> = m.tables().into_iter().filter_map(Nodes::from_slice).collect();
-            m.constant_coefficients(&values, false).and_then(|c| m.kernel_from(&c, &tables, false))
+            let tables: Vec<Nodes<'_>> =
+                m.tables(Evaluation::Constant).into_iter().filter_map(Nodes::from_slice).collect();
+            Flat::from_flat(&values).and_then(|p| {
+                m.kernel_from::<T>(m.constant_coefficients::<T>(p, Gradients::NotNeeded), &tables, Evaluation::Constant)
+            })
         }, lane)
         .expect("a model's defaults give its kernel")
     }

@@ -21,7 +21,9 @@ use super::fresnel_fit::diffuse_fresnel_external_fit;
 use super::kernel::Kernel;
 use super::params::{ParamError, ParamValue};
 use super::real::{Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Registered, Values, first, param};
+use super::registry::{
+    Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Registered, Values, flat_values, param, parameter_values,
+};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum WolffNormalization {
@@ -37,6 +39,28 @@ impl WolffNormalization {
             WolffNormalization::Normal => "normal",
             WolffNormalization::Raw => "raw",
         }
+    }
+}
+
+flat_values! {
+    /// Wolff's numeric parameters.
+    pub struct WolffParameters {
+        int_ior,
+        ext_ior,
+    }
+}
+
+flat_values! {
+    /// [`WolffKernel`]'s constants, as the traced plugin keeps them.
+    pub struct WolffCoefficients {
+        /// `n²` ([`Transmittance::n2`]).
+        n2,
+        /// `n² − 1` ([`Transmittance::n2_minus_1`]).
+        n2_minus_1,
+        /// [`WolffKernel::k_pi`].
+        k_pi,
+        /// [`WolffKernel::f_dr_int`].
+        f_dr_int,
     }
 }
 
@@ -88,12 +112,14 @@ impl<T: Real> WolffKernel<T> {
         Self { transmittance: Transmittance::new(n), k_pi, f_dr_int, normalization }
     }
 
-    pub fn coefficients(&self) -> [T; 4] {
-        [self.transmittance.n2, self.transmittance.n2_minus_1, self.k_pi, self.f_dr_int]
+    pub fn coefficients(&self) -> WolffCoefficients<T> {
+        let Transmittance { n2, n2_minus_1 } = self.transmittance;
+        WolffCoefficients { n2, n2_minus_1, k_pi: self.k_pi, f_dr_int: self.f_dr_int }
     }
 
-    pub fn from_coefficients([n2, n2_minus_1, k_pi, f_dr_int]: [T; 4], normalization: WolffNormalization) -> Self {
-        Self { transmittance: Transmittance { n2, n2_minus_1 }, k_pi, f_dr_int, normalization }
+    pub fn from_coefficients(c: WolffCoefficients<T>, normalization: WolffNormalization) -> Self {
+        let transmittance = Transmittance { n2: c.n2, n2_minus_1: c.n2_minus_1 };
+        Self { transmittance, k_pi: c.k_pi, f_dr_int: c.f_dr_int, normalization }
     }
 
     /// `π K` for one reflectance channel. ρ is clamped to [0, 1] for `physical`, whose
@@ -143,11 +169,10 @@ impl Wolff {
             ));
         }
         let k = WolffKernel::<f64>::new(eta, normalization);
-        let [_, _, k_pi, f_dr_int] = k.coefficients();
         let kernel = WolffKernel {
             transmittance: k.transmittance.rounded(),
-            k_pi: k_pi as f32,
-            f_dr_int: f_dr_int as f32,
+            k_pi: k.k_pi as f32,
+            f_dr_int: k.f_dr_int as f32,
             normalization,
         };
         Ok(Self {
@@ -216,27 +241,29 @@ impl Registered for Wolff {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![
-            ParamValue::Number(self.int_ior as f64),
-            ParamValue::Number(self.ext_ior as f64),
-            ParamValue::Text(self.normalization().as_str().into()),
-        ]
+        parameter_values!(int_ior: self.int_ior, ext_ior: self.ext_ior, normalization: self.normalization().as_str())
     }
 
+    type Parameters<T: Real> = WolffParameters<T>;
+    type Coefficients<T: Real> = WolffCoefficients<T>;
+
     /// The exact `F_dr` (a 64-node quadrature): once per parameter value.
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], _: bool) -> Option<Vec<T>> {
-        let [int_ior, ext_ior] = first(numeric)?;
-        Some(WolffKernel::new(int_ior / ext_ior, self.normalization()).coefficients().to_vec())
+    fn constant_coefficients<T: Real>(&self, p: WolffParameters<T>, _: Gradients) -> WolffCoefficients<T> {
+        WolffKernel::new(p.int_ior / p.ext_ior, self.normalization()).coefficients()
     }
 
     /// `F_dr` from its fit ([`WolffKernel::per_lane`]); `ext_ior ≥ 1`, and `n ≥ 1` there.
-    fn lane_coefficients<T: Real>(&self, numeric: &[T]) -> Option<Vec<T>> {
-        let [int_ior, ext_ior] = first(numeric)?;
-        Some(WolffKernel::per_lane(int_ior / ext_ior.max(T::c(1.0)), self.normalization()).coefficients().to_vec())
+    fn lane_coefficients<T: Real>(&self, p: WolffParameters<T>) -> WolffCoefficients<T> {
+        WolffKernel::per_lane(p.int_ior / p.ext_ior.max(T::c(1.0)), self.normalization()).coefficients()
     }
 
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], _: &[T::Table<'t>], _: bool) -> Option<WolffKernel<T>> {
-        Some(WolffKernel::from_coefficients(first(c)?, self.normalization()))
+    fn kernel_from<'t, T: Real + 't>(
+        &self,
+        c: WolffCoefficients<T>,
+        _: &[T::Table<'t>],
+        _: Evaluation,
+    ) -> Option<WolffKernel<T>> {
+        Some(WolffKernel::from_coefficients(c, self.normalization()))
     }
 
     /// The indices bound each other: `int_ior ≥ max(ext_ior, 1)`, `1 ≤ ext_ior ≤ int_ior`.

@@ -14,6 +14,12 @@ use super::traced::{Traced, TracedTable};
 use matte_brdf::LaneKernel;
 use matte_brdf::kernel;
 use matte_brdf::real::V3;
+use matte_brdf::registry::{Evaluation, Gradients};
+
+/// The bridge's `lane` flag (the C++ side's: a numeric parameter is textured).
+fn evaluation(lane: bool) -> Evaluation {
+    if lane { Evaluation::Lane } else { Evaluation::Constant }
+}
 
 /// The first `N` indices of `ids` as traced values, or `None` if there are fewer.
 fn nodes<'a, const N: usize>(arena: &'a Arena, ids: &[u32]) -> Option<[Traced<'a>; N]> {
@@ -49,23 +55,27 @@ macro_rules! with_channels {
 }
 
 impl PluginBsdf {
-    /// The number of tables the kernel reads: the constants' ([`Registered::tables`]), or
-    /// with `lane` the per-lane kernel's ([`Registered::lane_tables`]: van Ginneken's four
-    /// roughness-axis stacks, built on first use).
+    /// The number of tables the kernel reads ([`Registered::tables`]: with `lane`, van
+    /// Ginneken's roughness-axis stacks, built on first use).
+    ///
+    /// [`Registered::tables`]: matte_brdf::registry::Registered::tables
     pub(super) fn table_count(&self, lane: bool) -> usize {
-        self.model.kernel_tables(lane).len()
+        self.model.kernel_tables(evaluation(lane)).len()
     }
 
     /// Table `k` in the order the traced kernel gathers them (van Ginneken: `I`, `∂I/∂m`,
     /// `μΛ`, `∂(μΛ)/∂m`; `tabulated_brdf`: its values); empty past the end.
     pub(super) fn table(&self, k: usize, lane: bool) -> &[f32] {
-        self.model.kernel_tables(lane).get(k).copied().unwrap_or(&[])
+        self.model.kernel_tables(evaluation(lane)).get(k).copied().unwrap_or(&[])
     }
 
     /// The kernel constants for the numeric parameters `params` (traced, in the order of
     /// `numeric_parameters`): [`Registered::constant_coefficients`], once per
     /// `parameters_changed`; with `lane`, [`Registered::lane_coefficients`] of the values at
     /// the call's lanes (textures, clamped into range). Empty if `params` is short.
+    ///
+    /// [`Registered::constant_coefficients`]: matte_brdf::registry::Registered::constant_coefficients
+    /// [`Registered::lane_coefficients`]: matte_brdf::registry::Registered::lane_coefficients
     pub(super) fn traced_coefficients(
         &self,
         arena: &Arena,
@@ -74,7 +84,8 @@ impl PluginBsdf {
         differentiable: bool,
     ) -> Vec<u32> {
         let values: Vec<Traced<'_>> = params.iter().map(|&i| Traced::node(arena, i)).collect();
-        let c = self.model.kernel_coefficients(&values, lane, differentiable);
+        let gradients = if differentiable { Gradients::Needed } else { Gradients::NotNeeded };
+        let c = self.model.kernel_coefficients(&values, evaluation(lane), gradients);
         c.map_or(vec![], |c| c.iter().map(|v| v.id(arena)).collect())
     }
 
@@ -89,7 +100,7 @@ impl PluginBsdf {
         let c: Vec<Traced<'a>> = coefficients.iter().map(|&i| Traced::node(arena, i)).collect();
         let tables: Vec<TracedTable<'a>> =
             (0..self.table_count(lane) as u32).map(|id| TracedTable { arena, id }).collect();
-        self.model.kernel_from(&c, &tables, lane)
+        self.model.kernel_from(&c, &tables, evaluation(lane))
     }
 
     #[allow(clippy::too_many_arguments)] // the bridge's shape: arena, constants, inputs, outputs

@@ -10,8 +10,8 @@ use super::realisations::{PooledEstimate, pool};
 use super::v_cavity::VCavities;
 use glam::DVec3;
 use matte_brdf::frame::spherical_direction_f64;
-use matte_brdf::oren_nayar::OrenNayarKernel;
-use matte_brdf::{DiffuseBrdf, DiffuseModel, OrenNayarForm, ParamValue, Params};
+use matte_brdf::oren_nayar::OrenNayarCoefficients;
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use serde::Serialize;
 
 /// Incidence angles of the grid (degrees).
@@ -93,8 +93,8 @@ fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
 /// EON's roughness r at Oren–Nayar's σ by the ratio of the qualitative model's two terms,
 /// r = B/A (FON's B_F/A_F is r): the mapping before any measurement.
 pub fn eon_roughness_by_term_ratio(sigma: f64) -> f64 {
-    let qualitative = OrenNayarKernel::<f64>::new(sigma, OrenNayarForm::Qualitative);
-    (qualitative.b / qualitative.a).min(1.0)
+    let c = OrenNayarCoefficients::<f64>::new(sigma);
+    (c.b / c.a).min(1.0)
 }
 
 /// Every model named in `docs/microgeometry.md#comparison` at one roughness s: Oren–Nayar

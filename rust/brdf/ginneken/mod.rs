@@ -22,7 +22,10 @@ use super::cltc::{self, ClippedLtc, Sampling};
 use super::kernel::{Kernel, azimuthal_dot};
 use super::params::{ParamError, ParamValue};
 use super::real::{Nodes, Real, V3};
-use super::registry::{KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, first, param};
+use super::registry::{
+    Evaluation, Flat, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
+    parameter_values,
+};
 use super::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{
@@ -125,6 +128,39 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     // num/den does not wait for the table lookup (usually a cache miss).
     let g = slope_integral(x_i, x_o, cos_phi) * (num / den);
     rho.map(|r| r * g)
+}
+
+flat_values! {
+    /// van Ginneken's numeric parameter.
+    pub struct GinnekenParameters {
+        roughness,
+    }
+}
+
+/// van Ginneken's kernel constant. For [`Evaluation::Constant`] (the tables of the model's
+/// roughness m₀): `m − m₀` when gradients are needed, zero in value and the roughness's
+/// gradient in derivative; absent otherwise (the tables are exact at m₀). For
+/// [`Evaluation::Lane`] (the tables stacked over m): the lane's roughness, clamped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GinnekenCoefficients<T> {
+    pub roughness: Option<T>,
+}
+
+impl<T: Copy> Flat<T> for GinnekenCoefficients<T> {
+    const NAMES: &'static [&'static str] = &["roughness"];
+
+    /// Empty: no roughness.
+    fn from_flat(c: &[T]) -> Option<Self> {
+        Some(Self { roughness: c.first().copied() })
+    }
+
+    fn to_flat(&self) -> Vec<T> {
+        self.roughness.into_iter().collect()
+    }
+
+    fn map(self, mut f: impl FnMut(usize, T) -> T) -> Self {
+        Self { roughness: self.roughness.map(|m| f(0, m)) }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -291,61 +327,62 @@ impl Registered for Ginneken {
     }
 
     fn values(&self) -> Vec<ParamValue> {
-        vec![
-            ParamValue::Number(self.m as f64),
-            ParamValue::Text(self.shadowing.as_str().into()),
-            ParamValue::Text(self.sampling.as_str().into()),
-        ]
+        parameter_values!(roughness: self.m, shadowing: self.shadowing.as_str(), sampling: self.sampling.as_str())
     }
 
-    /// `m − m₀`, when differentiable: zero in value (the tables were built at the
-    /// parameter's value m₀), the roughness's gradient in derivative. Nothing otherwise.
-    fn constant_coefficients<T: Real>(&self, numeric: &[T], differentiable: bool) -> Option<Vec<T>> {
-        let [m] = first(numeric)?;
-        Some(if differentiable { vec![m - T::c(self.m as f64)] } else { vec![] })
+    type Parameters<T: Real> = GinnekenParameters<T>;
+    type Coefficients<T: Real> = GinnekenCoefficients<T>;
+
+    /// `m − m₀` if gradients are needed, else nothing ([`GinnekenCoefficients`]).
+    fn constant_coefficients<T: Real>(&self, p: GinnekenParameters<T>, gradients: Gradients) -> GinnekenCoefficients<T> {
+        let dm = (gradients == Gradients::Needed).then(|| p.roughness - T::c(self.m as f64));
+        GinnekenCoefficients { roughness: dm }
     }
 
     /// The clamped roughness itself.
-    fn lane_coefficients<T: Real>(&self, numeric: &[T]) -> Option<Vec<T>> {
-        let [m] = first(numeric)?;
-        Some(vec![clamp_roughness(m)])
+    fn lane_coefficients<T: Real>(&self, p: GinnekenParameters<T>) -> GinnekenCoefficients<T> {
+        GinnekenCoefficients { roughness: Some(clamp_roughness(p.roughness)) }
     }
 
-    /// `tables`: `I`, `∂I/∂m` ([`Self::tables`], or the stacks over m of
-    /// [`Self::lane_tables`] when `lane`).
-    fn kernel_from<'t, T: Real + 't>(&self, c: &[T], tables: &[T::Table<'t>], lane: bool) -> Option<GinnekenLane<'t, T>> {
-        let [slope, d_slope]: [T::Table<'t>; 2] = first(tables)?;
-        let cltc = self.sampling == Sampling::Cltc;
-        Some(if lane {
-            let [m] = first(c)?;
-            GinnekenLane::Axis(GinnekenAxisKernel::new([slope, d_slope], m, self.shadowing).with_sampling(self.sampling))
-        } else {
-            // The sampler's roughness is the tables' m₀, a constant: the sampling density is
-            // not differentiated (`docs/sampling.md#gradients`).
-            let m0 = T::c(self.m as f64);
-            let dm: Option<[T; 1]> = first(c);
-            GinnekenLane::Fixed(GinnekenKernel {
-                slope,
-                m: dm.map_or(m0, |[dm]| m0 + dm),
-                roughness_derivative: dm.map(|[dm]| (d_slope, dm)),
-                shadowing: self.shadowing,
-                sampler_t: T::c(self.sampler_t as f64),
-                cltc,
-            })
+    /// `tables`: `I`, `∂I/∂m` ([`Self::tables`] of the same `evaluation`). `None` also for a
+    /// lane kernel without its roughness.
+    fn kernel_from<'t, T: Real + 't>(
+        &self,
+        c: GinnekenCoefficients<T>,
+        tables: &[T::Table<'t>],
+        evaluation: Evaluation,
+    ) -> Option<GinnekenLane<'t, T>> {
+        let [slope, d_slope]: [T::Table<'t>; 2] = tables.get(..2)?.try_into().ok()?;
+        Some(match evaluation {
+            Evaluation::Lane => GinnekenLane::Axis(
+                GinnekenAxisKernel::new([slope, d_slope], c.roughness?, self.shadowing).with_sampling(self.sampling),
+            ),
+            Evaluation::Constant => {
+                // The sampler's roughness is the tables' m₀, a constant: the sampling density
+                // is not differentiated (`docs/sampling.md#gradients`).
+                let m0 = T::c(self.m as f64);
+                GinnekenLane::Fixed(GinnekenKernel {
+                    slope,
+                    m: c.roughness.map_or(m0, |dm| m0 + dm),
+                    roughness_derivative: c.roughness.map(|dm| (d_slope, dm)),
+                    shadowing: self.shadowing,
+                    sampler_t: T::c(self.sampler_t as f64),
+                    cltc: self.sampling == Sampling::Cltc,
+                })
+            }
         })
     }
 
-    fn tables(&self) -> Vec<&[f32]> {
-        let t = &self.table;
-        vec![t.slope_cells(), t.slope_derivative_cells()]
-    }
-
-    fn lane_tables(&self) -> Vec<&'static [f32]> {
-        let t = RoughnessAxisTables::shared();
-        (0..2).map(|k| t.table(k)).collect()
+    fn tables(&self, evaluation: Evaluation) -> Vec<&[f32]> {
+        match evaluation {
+            Evaluation::Constant => vec![self.table.slope_cells(), self.table.slope_derivative_cells()],
+            Evaluation::Lane => {
+                let t = RoughnessAxisTables::shared();
+                (0..2).map(|k| t.table(k)).collect()
+            }
+        }
     }
 }
-
 
 #[cfg(test)]
 mod tests {
