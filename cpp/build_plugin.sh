@@ -87,9 +87,9 @@ flags() {
 pids=()
 for release in "${RELEASES[@]}"; do
     mkdir -p "$OBJ/$release"
-    # shellcheck disable=SC2046
-    (g++ $(flags "$release") -c cpp/plugin.cpp -o "$OBJ/$release/plugin.o" &&
-        g++ $(flags "$release") -c cpp/plugin_stub.cpp -o "$OBJ/$release/plugin_stub.o") &
+    read -r -a release_flags <<<"$(flags "$release")"
+    (g++ "${release_flags[@]}" -c cpp/plugin.cpp -o "$OBJ/$release/plugin.o" &&
+        g++ "${release_flags[@]}" -c cpp/plugin_stub.cpp -o "$OBJ/$release/plugin_stub.o") &
     pids+=($!)
 done
 for pid in "${pids[@]}"; do wait "$pid"; done

@@ -58,9 +58,8 @@ def _release_root(version):
     the supported releases) when this installation has none for it."""
     root = _os.path.join(PACKAGE_ROOT, "releases", version)
     if version not in MITSUBA_RELEASES or not _os.path.isfile(_os.path.join(root, "plugins", _LIBRARY)):
-        supported = ", ".join(MITSUBA_RELEASES[:-1]) + " and " + MITSUBA_RELEASES[-1]
-        if len(MITSUBA_RELEASES) == 1:
-            supported = MITSUBA_RELEASES[0]
+        *older, newest = MITSUBA_RELEASES
+        supported = ", ".join(older) + " and " + newest if older else newest
         raise ImportError(
             "matte_mitsuba: Mitsuba %s is installed, but matte's plugins support Mitsuba %s only; "
             "install one of them (pip install 'mitsuba>=%s,<=%s')"

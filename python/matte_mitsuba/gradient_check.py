@@ -4,7 +4,8 @@
 * `adjoint_gradient`: Mitsuba's automatic differentiation, the adjoint pass of the scene's
   integrator (e.g. `prb`) run with the primal's seed, so that it is the exact derivative of
   the estimate that finite differences measure;
-* `central_difference`: (mean(p + h) − mean(p − h)) / 2h of renders with the same seed.
+* `central_difference`: (mean(p + h) − mean(p − h)) / 2h of renders with the same seed
+  (`shifted` moves a colour or float parameter).
 """
 
 import numpy as np
@@ -27,6 +28,16 @@ def adjoint_gradient(mi, scene, params, key, spp, seed):
     grad_in = mi.TensorXf(dr.full(mi.Float, 1.0 / n, n), img.shape)
     scene.integrator().render_backward(scene, params, grad_in, sensor=0, seed=seed, spp=spp)
     return np.array(dr.grad(params[key]), dtype=np.float64).ravel()
+
+
+def shifted(mi, params, key):
+    """`value(delta)`: the parameter `params[key]` as it is now, moved by delta (every channel of
+    a colour, the value of a float), for `central_difference`; a copy of the current value,
+    since assigning to `params` updates it in place."""
+    base = np.array(params[key]).ravel().copy()
+    if key.endswith("value"):
+        return lambda delta: mi.Color3f(*[float(x) + delta for x in base])
+    return lambda delta: mi.Float(float(base[0]) + delta)
 
 
 def central_difference(mi, scene, params, key, value, h, spp, seed):

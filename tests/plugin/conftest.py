@@ -60,14 +60,19 @@ def config_id(cfg):
 
 def kernel_f(kind, params, reflectance, wi, wo):
     """f (no cosine) from the Rust kernel via `matte brdf --pairs -`, for float32 (n, 3) arrays."""
+    return kernel_f_pdf(kind, params, reflectance, wi, wo)[0]
+
+
+def kernel_f_pdf(kind, params, reflectance, wi, wo):
+    """f (no cosine) and the sampling density from the Rust kernel, as `kernel_f`."""
     lines = "\n".join(
         " ".join(repr(float(x)) for x in (*a, *b)) for a, b in zip(wi.astype(np.float32), wo.astype(np.float32))
     )
     args = [MATTE, "brdf", "--bsdf", kind, "--reflectance", repr(float(reflectance)), "--pairs", "-"]
     for k, v in params.items():
         args += ["--param", f"{k}={v}"]
-    out = subprocess.run(args, input=lines, capture_output=True, text=True, check=True)
-    return np.array(json.loads(out.stdout)["f"], dtype=np.float64)
+    out = json.loads(subprocess.run(args, input=lines, capture_output=True, text=True, check=True).stdout)
+    return np.array(out["f"], dtype=np.float64), np.array(out["pdf"], dtype=np.float64)
 
 
 def random_pairs(n, seed):

@@ -109,7 +109,7 @@ def gradient():
     """Per type, d(image mean)/d(its first numeric parameter, else the reflectance) on the
     Cornell box whose three materials are that type: prb's adjoint and central differences."""
     import matte_mitsuba
-    from matte_mitsuba.gradient_check import adjoint_gradient, central_difference
+    from matte_mitsuba.gradient_check import adjoint_gradient, central_difference, shifted
 
     out = {}
     for kind, fixed in types():
@@ -119,14 +119,7 @@ def gradient():
         scene = cornell([kind] * 3, "prb", fixed)
         params = mi.traverse(scene)
         key = "white." + name
-        base = np.array(params[key]).ravel().copy()
-        is_color = name.endswith("value")
-
-        def with_value(delta, base=base, is_color=is_color):
-            if is_color:
-                return mi.Color3f(*[float(x) + delta for x in base])
-            return mi.Float(float(base[0]) + delta)
-
+        with_value = shifted(mi, params, key)
         params[key] = with_value(0.0)
         ad = float(np.sum(adjoint_gradient(mi, scene, params, key, 8, 3)))
         fd = central_difference(mi, scene, params, key, with_value, 1e-2, 8, 3)

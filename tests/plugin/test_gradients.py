@@ -16,7 +16,7 @@ import drjit as dr
 import numpy as np
 import pytest
 from conftest import MODELS, REPO
-from matte_mitsuba.gradient_check import adjoint_gradient, central_difference
+from matte_mitsuba.gradient_check import adjoint_gradient, central_difference, shifted
 
 RES, SPP, SEED = 24, 8, 3
 
@@ -77,14 +77,7 @@ def test_ad_matches_finite_differences(mi_variant, case):
     for name, h in steps.items():
         key = "white." + name
         assert key in params, sorted(k for k in params.keys() if k.startswith("white"))
-        base = np.array(params[key]).ravel().copy()  # a copy: assigning to params updates in place
-        is_color = name.endswith("value")
-
-        def with_value(delta, base=base, is_color=is_color):
-            if is_color:
-                return mi.Color3f(*[float(x) + delta for x in base])
-            return mi.Float(float(base[0]) + delta)
-
+        with_value = shifted(mi, params, key)
         params[key] = with_value(0.0)
         # Along (1, 1, 1) for a colour: the sum over its channels.
         ad = float(np.sum(adjoint_gradient(mi, scene, params, key, SPP, SEED)))

@@ -22,13 +22,13 @@ import subprocess
 
 import numpy as np
 import pytest
-from conftest import REPO
+from conftest import REPO, kernel_f_pdf
+from release_checks import RGB
 
 TABLE = os.path.join(REPO, "cpp", "mitsuba_releases.txt")
 RELEASES = [line.split()[0] for line in open(TABLE) if line.strip() and not line.startswith("#")]
 NEWEST = RELEASES[-1]
 UNSUPPORTED = "3.6.4"
-RGB = [0.8, 0.5, 0.2]  # release_checks.RGB
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -58,14 +58,8 @@ def kernel(kind, filename, channel):
     """f and pdf of the Rust kernel on release_checks' pairs (for one reflectance channel)."""
     pairs = run_check(NEWEST, "values", "scalar_rgb")
     wi, wo = np.array(pairs["wi"], dtype=np.float32), np.array(pairs["wo"], dtype=np.float32)
-    params = {"filename": filename} if filename else {}
-    lines = "\n".join(" ".join(repr(float(x)) for x in (*a, *b)) for a, b in zip(wi, wo))
-    args = [os.path.join(os.path.dirname(os.path.dirname(python_of(NEWEST))), "bin", "matte")]
-    args += ["brdf", "--bsdf", kind, "--reflectance", repr(RGB[channel]), "--pairs", "-"]
-    for k, v in params.items():
-        args += ["--param", f"{k}={v}"]
-    out = json.loads(subprocess.run(args, input=lines, capture_output=True, text=True, check=True).stdout)
-    return np.array(out["f"]), np.array(out["pdf"]), wo
+    f, pdf = kernel_f_pdf(kind, {"filename": filename} if filename else {}, RGB[channel], wi, wo)
+    return f, pdf, wo
 
 
 def relative_error(a, b):
