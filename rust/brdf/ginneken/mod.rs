@@ -6,7 +6,8 @@
 //!
 //! with the slope integral `I` ([`slope_integral`]) and `P_ill+vis` ([`shadowing`]). There is
 //! no closed form for `I`: [`Ginneken::eval_reference`] integrates it (semi-analytically, f64)
-//! and [`DiffuseBrdf::eval`] interpolates a per-roughness table of it ([`table`]). The seed's
+//! and [`DiffuseBrdf::eval`] assembles it from per-roughness tables of its exact split into 1-D
+//! functions of each direction and the ratio of a wedge term ([`table`]). The seed's
 //! text says the probability "multiplies the results from the Lambertian model using the
 //! angles of eqs. 2–3", i.e. the facet-local cosines: that is the integrand of `I`.
 
@@ -33,7 +34,7 @@ use shadowing::{
 };
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
 use std::sync::Arc;
-use table::{SlopeTable, axis_of_cos, lookup_in};
+use table::{SlopeGeometry, SlopeTable, axis_of_cos, oned_cell, oned_in, ratio_in};
 
 /// Cosines are clamped to this before entering `1/(μi μo)`-type terms: f stays finite (the
 /// model's back-scattering peak grows like 1/μ at grazing) without affecting any angle a
@@ -56,19 +57,22 @@ pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
     GINNEKEN.sampler(mu, t)
 }
 
-/// van Ginneken's table and options in any [`Real`], and its evaluation (the fast path).
-/// The slope table is built for one roughness m₀; the traced kernels may carry its `∂/∂m`
-/// table and `dm = m − m₀` (zero in value, the roughness parameter's gradient in derivative),
-/// so that `I(m) ≈ I(m₀) + dm ∂I/∂m` gives the exact value and the first-order roughness
-/// gradient. `μΛ` is evaluated in closed form at `m` ([`mu_lambda_closed`]).
+/// van Ginneken's tables and options in any [`Real`], and its evaluation (the fast path).
+/// The tables are built for one roughness m₀; the traced kernels may carry their `∂/∂m`
+/// tables and `dm = m − m₀` (zero in value, the roughness parameter's gradient in derivative),
+/// so that `F(m) ≈ F(m₀) + dm ∂F/∂m` for each tabulated `F` gives the exact value and the
+/// first-order roughness gradient. `μΛ` is evaluated in closed form at `m` ([`mu_lambda_closed`]).
 #[derive(Clone, Copy)]
 pub struct GinnekenKernel<'t, T: Real> {
-    /// `I` as cell corners ([`SlopeTable::slope_cells`]).
-    pub slope: T::Table<'t>,
+    /// `[P0/μ², P1/μ³, H/μ]` as 1-D cells ([`SlopeTable::oned_cells`]) and `r = K/I` as cell
+    /// corners ([`SlopeTable::ratio_cells`]).
+    pub slope: [T::Table<'t>; 2],
+    /// The tables' roughness m₀ (a constant: the ratio table's v axis).
+    pub m0: T,
     /// The roughness: `m₀ + dm` when the roughness gradient is wanted, else `m₀`.
     pub m: T,
-    /// `(∂I/∂m cell table, dm = m − m₀)` when the roughness gradient is wanted.
-    pub roughness_derivative: Option<(T::Table<'t>, T)>,
+    /// `(∂/∂m of both tables, dm = m − m₀)` when the roughness gradient is wanted.
+    pub roughness_derivative: Option<([T::Table<'t>; 2], T)>,
     pub shadowing: Shadowing,
     /// The sampler's roughness variable ([`sampler_roughness`] of the tables' m₀).
     pub sampler_t: T,
@@ -77,20 +81,29 @@ pub struct GinnekenKernel<'t, T: Real> {
 }
 
 impl<'t, T: Real> GinnekenKernel<'t, T> {
+    /// `(rest, 1 − r)` of the split `I = rest / (1 − r)` ([`table`]).
     #[inline(always)]
-    fn slope_integral(&self, x_i: T, x_o: T, cos_phi: T) -> T {
-        let v = lookup_in(self.slope, x_i, x_o, cos_phi);
-        match self.roughness_derivative {
-            Some((d_slope, dm)) => dm.fma(lookup_in(d_slope, x_i, x_o, cos_phi), v),
-            None => v,
+    fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T) {
+        let zero = T::c(0.0);
+        let (ci, co) = (oned_cell(g.x[0]), oned_cell(g.x[1]));
+        let [v_i, v_o] = g.v(self.m0);
+        let [oned, ratio] = self.slope;
+        let (mut fi, mut fo) = (oned_in(oned, zero, ci), oned_in(oned, zero, co));
+        let mut r = ratio_in(ratio, v_i, v_o, g.phi);
+        if let Some(([d_oned, d_ratio], dm)) = self.roughness_derivative {
+            let (dfi, dfo) = (oned_in(d_oned, zero, ci), oned_in(d_oned, zero, co));
+            fi = std::array::from_fn(|j| dm.fma(dfi[j], fi[j]));
+            fo = std::array::from_fn(|j| dm.fma(dfo[j], fo[j]));
+            r = dm.fma(ratio_in(d_ratio, v_i, v_o, g.phi), r);
         }
+        (g.rest(fi, fo), T::c(1.0) - r)
     }
 }
 
 impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        reduced_with(self.shadowing, wi, wo, rho, self.m, |x_i, x_o, c| self.slope_integral(x_i, x_o, c))
+        reduced_with(self.shadowing, wi, wo, rho, self.m, |g| self.slope_integral(g))
     }
 
     #[inline(always)]
@@ -99,9 +112,10 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     }
 }
 
-/// `π f` at roughness `m` (for `μΛ`, in closed form) given how the slope integral `I` (at both
-/// axis coordinates and cos Δφ) is looked up: one table ([`GinnekenKernel`]) or a table over
-/// m too ([`roughness_axis::GinnekenAxisKernel`]).
+/// `π f` at roughness `m` (for `μΛ`, in closed form) given how the slope integral's split
+/// `I = rest / (1 − r)` is looked up (returning `(rest, 1 − r)` for a [`SlopeGeometry`]): one
+/// roughness's tables ([`GinnekenKernel`]) or tables over m too
+/// ([`roughness_axis::GinnekenAxisKernel`]).
 #[inline(always)]
 pub(crate) fn reduced_with<T: Real, const N: usize>(
     shadowing: Shadowing,
@@ -109,7 +123,7 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     wo: V3<T>,
     rho: [T; N],
     m: T,
-    slope_integral: impl Fn(T, T, T) -> T,
+    slope_integral: impl Fn(&SlopeGeometry<T>) -> (T, T),
 ) -> [T; N] {
     let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
     // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo, with the sines (which μΛ needs too)
@@ -125,8 +139,9 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     let (x_i, x_o) = (axis_of_cos(mu_i), axis_of_cos(mu_o));
     let (ml_i, ml_o) = (mu_lambda_closed(mu_i, sin_i, m), mu_lambda_closed(mu_o, sin_o, m));
     let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, ml_i, ml_o, phi);
-    // num/den does not wait for the table lookup (usually a cache miss).
-    let g = slope_integral(x_i, x_o, cos_phi) * (num / den);
+    let geometry = SlopeGeometry { mu: [mu_i, mu_o], sin: [sin_i, sin_o], x: [x_i, x_o], cos_phi, phi };
+    let (rest, one_minus_r) = slope_integral(&geometry);
+    let g = (rest * num) / (den * one_minus_r);
     rho.map(|r| r * g)
 }
 
@@ -228,7 +243,8 @@ impl Ginneken {
     #[inline(always)]
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
         GinnekenKernel {
-            slope: Nodes::new(self.table.slope_cells()),
+            slope: [Nodes::new(self.table.oned_cells()), Nodes::new(self.table.ratio_cells())],
+            m0: self.m,
             m: self.m,
             roughness_derivative: None,
             shadowing: self.shadowing,
@@ -344,27 +360,29 @@ impl Registered for Ginneken {
         GinnekenCoefficients { roughness: Some(clamp_roughness(p.roughness)) }
     }
 
-    /// `tables`: `I`, `∂I/∂m` ([`Self::tables`] of the same `evaluation`). `None` also for a
-    /// lane kernel without its roughness.
+    /// `tables`: the 1-D functions, the ratio and the `∂/∂m` of both ([`Self::tables`] of the
+    /// same `evaluation`). `None` also for a lane kernel without its roughness.
     fn kernel_from<'t, T: Real + 't>(
         &self,
         c: GinnekenCoefficients<T>,
         tables: &[T::Table<'t>],
         evaluation: Evaluation,
     ) -> Option<GinnekenLane<'t, T>> {
-        let [slope, d_slope]: [T::Table<'t>; 2] = tables.get(..2)?.try_into().ok()?;
+        let [oned, ratio, d_oned, d_ratio]: [T::Table<'t>; 4] = tables.get(..4)?.try_into().ok()?;
         Some(match evaluation {
             Evaluation::Lane => GinnekenLane::Axis(
-                GinnekenAxisKernel::new([slope, d_slope], c.roughness?, self.shadowing).with_sampling(self.sampling),
+                GinnekenAxisKernel::new([oned, ratio, d_oned, d_ratio], c.roughness?, self.shadowing)
+                    .with_sampling(self.sampling),
             ),
             Evaluation::Constant => {
                 // The sampler's roughness is the tables' m₀, a constant: the sampling density
                 // is not differentiated (`docs/sampling.md#gradients`).
                 let m0 = T::c(self.m as f64);
                 GinnekenLane::Fixed(GinnekenKernel {
-                    slope,
+                    slope: [oned, ratio],
+                    m0,
                     m: c.roughness.map_or(m0, |dm| m0 + dm),
-                    roughness_derivative: c.roughness.map(|dm| (d_slope, dm)),
+                    roughness_derivative: c.roughness.map(|dm| ([d_oned, d_ratio], dm)),
                     shadowing: self.shadowing,
                     sampler_t: T::c(self.sampler_t as f64),
                     cltc: self.sampling == Sampling::Cltc,
@@ -375,10 +393,13 @@ impl Registered for Ginneken {
 
     fn tables(&self, evaluation: Evaluation) -> Vec<&[f32]> {
         match evaluation {
-            Evaluation::Constant => vec![self.table.slope_cells(), self.table.slope_derivative_cells()],
+            Evaluation::Constant => {
+                let t = &self.table;
+                vec![t.oned_cells(), t.ratio_cells(), t.oned_derivative_cells(), t.ratio_derivative_cells()]
+            }
             Evaluation::Lane => {
                 let t = RoughnessAxisTables::shared();
-                (0..2).map(|k| t.table(k)).collect()
+                (0..4).map(|k| t.table(k)).collect()
             }
         }
     }
@@ -390,18 +411,15 @@ mod tests {
     use crate::diffuse_brdf::DiffuseBrdf;
     use crate::frame::spherical_direction_f64;
     use glam::DVec3;
-    use table::{C_NODES, U_NODES};
+    use table::{ONED_NODES, R_NODES};
 
-    /// The fast path written the plain way in f64 on the same table: two-square-root axis,
-    /// `acos` for Δφ, nested linear interpolations, [`visibility_denominator`].
+    /// The fast path written the plain way in f64 on the same tables: two-square-root axis,
+    /// `acos` for Δφ, the split's terms as written in `slope_fit_results.md`, nested linear
+    /// interpolations, [`visibility_denominator`].
     fn fast_path_f64(g: &Ginneken, wi: DVec3, wo: DVec3) -> f64 {
         let (mu_i, mu_o) = (wi.z.clamp(MIN_COS as f64, 1.0), wo.z.clamp(MIN_COS as f64, 1.0));
         let (si, so) = (wi.truncate().length(), wo.truncate().length());
         let cos_phi = if si * so > 1e-12 { ((wi.x * wo.x + wi.y * wo.y) / (si * so)).clamp(-1.0, 1.0) } else { 1.0 };
-        let axis = |mu: f64| {
-            let (a, b) = ((1.0 - mu).sqrt(), mu.sqrt());
-            a / (a + b)
-        };
         let cell = |x: f64, n: usize| {
             let s = x.clamp(0.0, 1.0) * (n - 1) as f64;
             let i = (s.floor() as usize).min(n - 2);
@@ -409,23 +427,34 @@ mod tests {
         };
         let lerp = |a: f64, b: f64, t: f64| a + t * (b - a);
         let t = &g.table;
-        let (xi, xo) = (axis(mu_i), axis(mu_o));
-        let ((i, fi), (o, fo), (c, fc)) = (cell(xi, U_NODES), cell(xo, U_NODES), cell(0.5 * (cos_phi + 1.0), C_NODES));
-        let at = |i: usize, o: usize| lerp(t.node(i, o, c) as f64, t.node(i, o, c + 1) as f64, fc);
-        let integral = lerp(lerp(at(i, o), at(i, o + 1), fo), lerp(at(i + 1, o), at(i + 1, o + 1), fo), fi);
+        let oned = |mu: f64| -> [f64; 3] {
+            let (a, b) = ((1.0 - mu).sqrt(), mu.sqrt());
+            let (k, f) = cell(a / (a + b), ONED_NODES);
+            let (lo, hi) = (t.oned_node(k), t.oned_node(k + 1));
+            std::array::from_fn(|j| lerp(lo[j] as f64, hi[j] as f64, f))
+        };
         let m = g.m as f64;
+        let (p0, p1) = (oned(mu_i), oned(mu_o));
+        let rest = mu_o * mu_i * mu_i * p0[0]
+            + mu_i * mu_o * mu_o * p1[0]
+            + so * mu_i.powi(3) * p0[1]
+            + si * mu_o.powi(3) * p1[1]
+            + (1.0 + cos_phi) * si * so * (mu_i * p0[2] + mu_o * p1[2]);
+        let v = |mu: f64, s: f64| m * s / (m * s + mu);
+        let ((i, fi), (o, fo), (c, fc)) =
+            (cell(v(mu_i, si), R_NODES), cell(v(mu_o, so), R_NODES), cell(cos_phi.acos() / std::f64::consts::PI, R_NODES));
+        let at = |i: usize, o: usize| lerp(t.ratio_node(i, o, c) as f64, t.ratio_node(i, o, c + 1) as f64, fc);
+        let r = lerp(lerp(at(i, o), at(i, o + 1), fo), lerp(at(i + 1, o), at(i + 1, o + 1), fo), fi);
         let (ml_i, ml_o) = (mu_lambda(mu_i, si, m), mu_lambda(mu_o, so, m));
         let den = visibility_denominator(g.shadowing, mu_i, mu_o, ml_i, ml_o, || azimuth_correlation(cos_phi));
-        integral / (std::f64::consts::PI * den)
+        rest / (1.0 - r) / (std::f64::consts::PI * den)
     }
 
     /// The f32 eval (one-root axis, atan2 angle, weighted-sum interpolation, single division)
-    /// is the same function as the plain f64 evaluation of the table to 6e-5 relative, for
-    /// θ up to 89.5°. The largest differences are at grazing, where the table's value changes
-    /// by a large factor from one node to the next, so the f32 rounding of the axis coordinate
-    /// (~2e-7, i.e. 2e-5 of a cell) moves the value by a few 1e-5 (measured 3.3e-5 at m = 1,
-    /// θo = 88.9°); for θ ≤ 80° about 1e-6. The table's own error against the integral is the
-    /// separate 0.5 % bound of `tests/kernels/ginneken_fast_path.rs`.
+    /// is the same function as the plain f64 evaluation of the tables to 6e-5 relative, for
+    /// θ up to 89.5°. The split sums only non-negative terms and `1 − r` stays away from 0, so
+    /// f32 adds rounding, not an amplified error. The tables' own error against the integral
+    /// is the separate bound of `tests/kernels/ginneken_fast_path.rs`.
     #[test]
     fn fast_path_is_its_f64_evaluation_to_rounding() {
         // R3 quasi-random sequence (Roberts 2018), as in `accuracy`.

@@ -1,116 +1,164 @@
-//! The fast path: the slope integral `I(θi, θo, Δφ)` tabulated per roughness and interpolated
-//! trilinearly. Only `I` is tabulated; the visibility term `P_ill+vis/(μi μo)` is evaluated in
-//! closed form at run time, because its `4.41 φ` azimuth factor and its `max/min(θi, θo)` kink
-//! interpolate badly while `I` is smooth: without clamping it is exactly
-//! `μi μo E[1/√(1+t²)] + sin θi sin θo cos Δφ · ½E[t²/√(1+t²)]`.
+//! The fast path: the slope integral `I(θi, θo, Δφ)` per roughness, split as
+//! `I = rest / (1 − r)` (issue 39; derivation and measurements in
+//! `validation/generators/slope_fit_results.md`, cross-checked by
+//! `validation/generators/fit_slope_integral.py`). Only `I` is tabulated; the visibility term
+//! `P_ill+vis/(μi μo)` is evaluated in closed form at run time.
 //!
-//! Axes (chosen so that `I` is close to linear along each of them):
-//! * `x = √(1−μ) / (√(1−μ) + √μ)` for each direction ([`axis_of_cos`]): about uniform in angle
-//!   near the normal, crowding towards grazing where forward scattering makes `I` fall off
-//!   like a power of μ; one square root, no trig. Measured (m = 0.3, 3000 configurations):
-//!   the plain `√(1−μ)` axis needed 128 nodes for the error this one reaches with 80.
-//! * `c = cos Δφ` ∈ [−1, 1]: `I` is linear in `c` wherever no facet is clamped.
+//! * `rest = μo P0(θi) + μi P0(θo) + so P1(θi) + si P1(θo) + (1 + cos Δφ) si so (H(θi) + H(θo))`
+//!   is a sum of non-negative terms (no cancellation) built from three 1-D functions of one
+//!   direction ([`SlopeIntegrator::direction_functions`]). They are tabulated as
+//!   `[P0/μ², P1/μ³, H/μ]` (smooth, finite and non-zero on μ ∈ [0, 1]) on [`ONED_NODES`] nodes of
+//!   the axis `x = √(1−μ) / (√(1−μ) + √μ)` ([`axis_of_cos`]: about uniform in angle near the
+//!   normal, crowding towards grazing), linearly interpolated.
+//! * `r = K/I ∈ [0, 1)` is the share of the wedge K of slopes whose facet faces away from both
+//!   directions ([`SlopeIntegrator::wedge_integral_and_derivative`]), the only 3-D part: zero
+//!   unless both directions are grazing and close in azimuth. Tabulated on [`R_NODES`]³ nodes
+//!   over `v = m sin θ / (m sin θ + μ) = 1/(1 + cot θ/m)` per direction ([`v_axis`], Smith's
+//!   variable mapped to [0, 1]) and Δφ uniform in [0, π], trilinear. As a ratio, its error is
+//!   relative to `I`.
 //!
-//! `I(θi, θo, Δφ) = I(θo, θi, Δφ)`, so only `x_i ≤ x_o` is integrated and the rest mirrored.
+//! Per roughness 33 KB of nodes (1.5 KB of 1-D functions, 31 KB of r), read through cell
+//! layouts of 4 KB and 219 KB (one packet gather each), instead of the 6.2 MB cell table of a
+//! trilinear table of `I` itself, and more accurate: at m = 0.3, 0.08 % / 0.16 % for θ ≤ 80° / 85°
+//! against 0.30 % / 0.47 % (`docs/models.md`). 20³ rather than 16³ nodes for r (17.5 KB, half
+//! the error of the old table at m = 0.3) keeps m = 1 within the 0.5 % of
+//! `tests/kernels/ginneken_fast_path.rs` (16³: 0.55 %).
 
 use super::slope_integral::SlopeIntegrator;
 use crate::real::Real;
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::f64::consts::PI;
 use std::sync::{Arc, Mutex, OnceLock, Weak};
 
-/// Nodes along each direction axis.
-pub const U_NODES: usize = 80;
-/// Nodes along the `cos Δφ` axis.
-pub const C_NODES: usize = 32;
-/// Gauss–Legendre nodes per radial piece when building (converged to ~1e-7, see tests).
+/// Nodes of the 1-D functions along [`axis_of_cos`].
+pub const ONED_NODES: usize = 128;
+/// Values of the 1-D cell table: per cell `[P0/μ², P1/μ³, H/μ]` at its lower node, the same at
+/// its upper node, two pads ([`oned_in`] loads them as one packet of eight).
+pub const ONED_VALUES: usize = 8 * (ONED_NODES - 1);
+/// Nodes of the ratio table along each of its three axes `(v_i, v_o, Δφ)`.
+pub const R_NODES: usize = 20;
+/// Nodes of the ratio table, flat in the order `[iv_i][iv_o][iφ]`.
+pub const RATIO_NODES: usize = R_NODES * R_NODES * R_NODES;
+/// Values of the ratio table as cell corners (eight per cell, [`SlopeTable::ratio_cells`]).
+pub const RATIO_CELL_VALUES: usize = 8 * (R_NODES - 1) * (R_NODES - 1) * (R_NODES - 1);
+/// Gauss–Legendre nodes per piece when building (the split's pieces agree with the reference
+/// integral to ~1e-7 at this order).
 const BUILD_NODES: usize = 24;
+/// Smallest cosine at which the tables are built (the normalised 1-D functions have finite
+/// limits at μ = 0 that the quadrature cannot divide out).
+const MIN_BUILD_COS: f64 = 1e-9;
 
-/// Nodes of the slope table: `I` at `[iu_i][iu_o][ic]`, flat in that order.
-pub const SLOPE_NODES: usize = U_NODES * U_NODES * C_NODES;
-
-/// Cells of the slope table (node `(i, o, c)` is the low corner of cell `(i, o, c)`).
-pub const SLOPE_CELLS: usize = (U_NODES - 1) * (U_NODES - 1) * (C_NODES - 1);
-/// Values of the cell-corner table: eight per cell ([`SlopeTable::slope_cells`]).
-pub const SLOPE_CELL_VALUES: usize = 8 * SLOPE_CELLS;
-
-/// `I` (or `∂I/∂m`) at the nodes. A fixed size, so that lookups know the length at compile time.
-type Grid = [f32; SLOPE_NODES];
-/// The same, as each cell's eight corners side by side.
-type CellGrid = [f32; SLOPE_CELL_VALUES];
-
-/// Flat index of node `(iu_i, iu_o, ic)`.
-const fn node_index(iu_i: usize, iu_o: usize, ic: usize) -> usize {
-    (iu_i * U_NODES + iu_o) * C_NODES + ic
+/// Flat index of ratio node `(i, o, p)`.
+const fn ratio_index(i: usize, o: usize, p: usize) -> usize {
+    (i * R_NODES + o) * R_NODES + p
 }
 
 #[derive(Debug)]
 pub struct SlopeTable {
-    data: Box<Grid>,
-    /// `∂I/∂m` at the same nodes (the traced kernels' roughness gradient).
-    d_data: Box<Grid>,
-    /// `data` and `d_data` as cell corners ([`Self::slope_cells`]), made on first use.
-    cells: OnceLock<Box<CellGrid>>,
-    d_cells: OnceLock<Box<CellGrid>>,
+    /// `[P0/μ², P1/μ³, H/μ]` as cells ([`ONED_VALUES`]).
+    oned: Box<[f32; ONED_VALUES]>,
+    /// Their `∂/∂m` at fixed μ, laid out alike (the traced kernels' roughness gradient).
+    d_oned: Box<[f32; ONED_VALUES]>,
+    /// `r = K/I` at the nodes.
+    ratio: Box<[f32; RATIO_NODES]>,
+    /// `∂r/∂m` at each node's fixed directions, `(∂K − r ∂I)/I`.
+    d_ratio: Box<[f32; RATIO_NODES]>,
+    /// `ratio` and `d_ratio` as cell corners.
+    ratio_cells: Box<[f32; RATIO_CELL_VALUES]>,
+    d_ratio_cells: Box<[f32; RATIO_CELL_VALUES]>,
 }
 
 impl SlopeTable {
-    /// Tabulates `I` and `∂I/∂m` for roughness `m` (parallel over rows; ~66k integrals).
+    /// Tabulates the 1-D functions (128 × 3 integrals), `r` and their `∂/∂m` for roughness `m`
+    /// (4,200 pairs of `K`, `I`, by symmetry in the two directions).
     pub fn build(m: f64) -> Self {
-        let (n_u, n_c) = (U_NODES, C_NODES);
         let integrator = SlopeIntegrator::new(BUILD_NODES);
-        let mu_at = |k: usize| cos_of_axis(k as f64 / (n_u - 1) as f64);
-        let rows: Vec<Vec<(f32, f32)>> = (0..n_u)
+        let oned_nodes: Vec<([f64; 3], [f64; 3])> = (0..ONED_NODES)
             .into_par_iter()
-            .map(|iu_i| {
-                let mut row = vec![(0.0f32, 0.0f32); n_u * n_c];
-                for iu_o in iu_i..n_u {
-                    for ic in 0..n_c {
-                        let c = -1.0 + 2.0 * ic as f64 / (n_c - 1) as f64;
-                        let (v, d) =
-                            integrator.integral_and_derivative(m, mu_at(iu_i), mu_at(iu_o), c.clamp(-1.0, 1.0).acos());
-                        row[iu_o * n_c + ic] = (v as f32, d as f32);
+            .map(|k| {
+                let mu = cos_of_axis(k as f64 / (ONED_NODES - 1) as f64).clamp(MIN_BUILD_COS, 1.0);
+                let (f, d) = integrator.direction_functions(m, mu);
+                let scale = [1.0 / (mu * mu), 1.0 / (mu * mu * mu), 1.0 / mu];
+                (std::array::from_fn(|j| f[j] * scale[j]), std::array::from_fn(|j| d[j] * scale[j]))
+            })
+            .collect();
+        let cells = |pick: fn(&([f64; 3], [f64; 3])) -> [f64; 3]| -> Box<[f32; ONED_VALUES]> {
+            let mut out = vec![0.0f32; ONED_VALUES];
+            for k in 0..ONED_NODES - 1 {
+                let (lo, hi) = (pick(&oned_nodes[k]), pick(&oned_nodes[k + 1]));
+                for j in 0..3 {
+                    (out[8 * k + j], out[8 * k + 3 + j]) = (lo[j] as f32, hi[j] as f32);
+                }
+            }
+            out.into_boxed_slice().try_into().expect("ONED_VALUES values")
+        };
+        let (oned, d_oned) = (cells(|n| n.0), cells(|n| n.1));
+
+        let mu_at = |k: usize| cos_of_v(k as f64 / (R_NODES - 1) as f64, m).max(MIN_BUILD_COS);
+        let rows: Vec<Vec<(f32, f32)>> = (0..R_NODES)
+            .into_par_iter()
+            .map(|i| {
+                let mut row = vec![(0.0f32, 0.0f32); R_NODES * R_NODES];
+                for o in i..R_NODES {
+                    for p in 0..R_NODES {
+                        let phi = PI * p as f64 / (R_NODES - 1) as f64;
+                        let (mi, mo) = (mu_at(i), mu_at(o));
+                        let (k, dk) = integrator.wedge_integral_and_derivative(m, mi, mo, phi);
+                        let (v, dv) = integrator.integral_and_derivative(m, mi, mo, phi);
+                        let r = k / v;
+                        row[o * R_NODES + p] = (r as f32, ((dk - r * dv) / v) as f32);
                     }
                 }
                 row
             })
             .collect();
-        let zeros =
-            || -> Box<Grid> { vec![0.0f32; SLOPE_NODES].into_boxed_slice().try_into().expect("SLOPE_NODES nodes") };
-        let (mut data, mut d_data) = (zeros(), zeros());
-        for iu_i in 0..n_u {
-            for iu_o in iu_i..n_u {
-                for ic in 0..n_c {
-                    let (v, d) = rows[iu_i][iu_o * n_c + ic];
-                    (data[node_index(iu_i, iu_o, ic)], d_data[node_index(iu_i, iu_o, ic)]) = (v, d);
-                    (data[node_index(iu_o, iu_i, ic)], d_data[node_index(iu_o, iu_i, ic)]) = (v, d);
+        let zeros = || -> Box<[f32; RATIO_NODES]> { Box::new([0.0f32; RATIO_NODES]) };
+        let (mut ratio, mut d_ratio) = (zeros(), zeros());
+        for i in 0..R_NODES {
+            for o in i..R_NODES {
+                for p in 0..R_NODES {
+                    let (r, d) = rows[i][o * R_NODES + p];
+                    (ratio[ratio_index(i, o, p)], d_ratio[ratio_index(i, o, p)]) = (r, d);
+                    (ratio[ratio_index(o, i, p)], d_ratio[ratio_index(o, i, p)]) = (r, d);
                 }
             }
         }
-        Self { data, d_data, cells: OnceLock::new(), d_cells: OnceLock::new() }
+        let (ratio_cells, d_ratio_cells) = (corners_of(&ratio), corners_of(&d_ratio));
+        Self { oned, d_oned, ratio, d_ratio, ratio_cells, d_ratio_cells }
     }
 
-    /// `I` at the nodes, flat in the order `[iu_i][iu_o][ic]` (what [`lookup_layer_in`]
-    /// gathers from, in the stacks over m).
-    pub fn slope_nodes(&self) -> &[f32; SLOPE_NODES] {
-        &self.data
+    /// `[P0/μ², P1/μ³, H/μ]` as cells (what [`oned_in`] gathers from).
+    pub fn oned_cells(&self) -> &[f32; ONED_VALUES] {
+        &self.oned
     }
 
-    /// `∂I/∂m` at the nodes, flat as [`Self::slope_nodes`].
-    pub fn slope_derivative_nodes(&self) -> &[f32; SLOPE_NODES] {
-        &self.d_data
+    /// Their `∂/∂m`, laid out as [`Self::oned_cells`].
+    pub fn oned_derivative_cells(&self) -> &[f32; ONED_VALUES] {
+        &self.d_oned
     }
 
-    /// `I` as cell corners (what [`lookup_in`] gathers from): cell `(i, o, c)`, flat in that
-    /// order, holds the eight nodes `(i + a, o + b, c + d)` at `8·cell + 4a + 2b + d`. Eight
-    /// times the nodes (6.2 MB), for one packet load per lookup instead of eight scattered ones.
-    pub fn slope_cells(&self) -> &[f32; SLOPE_CELL_VALUES] {
-        self.cells.get_or_init(|| corners_of(&self.data))
+    /// `r = K/I` at the nodes, flat in the order `[iv_i][iv_o][iφ]` (what
+    /// [`ratio_layer_in`] gathers from, in the stacks over m).
+    pub fn ratio_nodes(&self) -> &[f32; RATIO_NODES] {
+        &self.ratio
     }
 
-    /// `∂I/∂m` as cell corners, laid out as [`Self::slope_cells`].
-    pub fn slope_derivative_cells(&self) -> &[f32; SLOPE_CELL_VALUES] {
-        self.d_cells.get_or_init(|| corners_of(&self.d_data))
+    /// `∂r/∂m` at the nodes, flat as [`Self::ratio_nodes`].
+    pub fn ratio_derivative_nodes(&self) -> &[f32; RATIO_NODES] {
+        &self.d_ratio
+    }
+
+    /// `r` as cell corners (what [`ratio_in`] gathers from): cell `(i, o, p)`, flat in that
+    /// order, holds the eight nodes `(i + a, o + b, p + d)` at `8·cell + 4a + 2b + d`, for one
+    /// packet load per lookup instead of eight scattered ones (219 KB).
+    pub fn ratio_cells(&self) -> &[f32; RATIO_CELL_VALUES] {
+        &self.ratio_cells
+    }
+
+    /// `∂r/∂m` as cell corners, laid out as [`Self::ratio_cells`].
+    pub fn ratio_derivative_cells(&self) -> &[f32; RATIO_CELL_VALUES] {
+        &self.d_ratio_cells
     }
 
     /// The table for `m`, shared by every model instance with the same roughness for as
@@ -132,61 +180,141 @@ impl SlopeTable {
     }
 }
 
-/// A node table rearranged as cell corners ([`SlopeTable::slope_cells`]).
-fn corners_of(nodes: &Grid) -> Box<CellGrid> {
-    let mut cells = vec![0.0f32; SLOPE_CELL_VALUES];
-    for i in 0..U_NODES - 1 {
-        for o in 0..U_NODES - 1 {
-            for c in 0..C_NODES - 1 {
-                let cell = (i * (U_NODES - 1) + o) * (C_NODES - 1) + c;
+#[cfg(test)]
+impl SlopeTable {
+    /// `[P0/μ², P1/μ³, H/μ]` at 1-D node `k`, for tests that re-interpolate independently.
+    pub(crate) fn oned_node(&self, k: usize) -> [f32; 3] {
+        let (cell, offset) = if k < ONED_NODES - 1 { (k, 0) } else { (k - 1, 3) };
+        std::array::from_fn(|j| self.oned[8 * cell + offset + j])
+    }
+
+    /// `r` at node `(i, o, p)`.
+    pub(crate) fn ratio_node(&self, i: usize, o: usize, p: usize) -> f32 {
+        self.ratio[ratio_index(i, o, p)]
+    }
+}
+
+/// A node table rearranged as cell corners ([`SlopeTable::ratio_cells`]).
+fn corners_of(nodes: &[f32; RATIO_NODES]) -> Box<[f32; RATIO_CELL_VALUES]> {
+    let n = R_NODES - 1;
+    let mut cells = vec![0.0f32; RATIO_CELL_VALUES];
+    for i in 0..n {
+        for o in 0..n {
+            for p in 0..n {
+                let cell = (i * n + o) * n + p;
                 for k in 0..8 {
-                    cells[8 * cell + k] = nodes[node_index(i + (k >> 2), o + ((k >> 1) & 1), c + (k & 1))];
+                    cells[8 * cell + k] = nodes[ratio_index(i + (k >> 2), o + ((k >> 1) & 1), p + (k & 1))];
                 }
             }
         }
     }
-    cells.into_boxed_slice().try_into().expect("SLOPE_CELL_VALUES values")
+    cells.into_boxed_slice().try_into().expect("RATIO_CELL_VALUES values")
 }
 
-/// Trilinear interpolation of a [`SlopeTable::slope_cells`]-shaped table at axis coordinates
-/// `u_i`, `u_o` ([`axis_of_cos`]) and `c = cos Δφ`, in any [`Real`]: one packet gather of the
-/// cell's eight corners.
+/// What the split needs of one configuration, all of it already computed by the kernel:
+/// cosines (clamped), sines, [`axis_of_cos`] coordinates, `cos Δφ` and `Δφ`.
+#[derive(Clone, Copy)]
+pub struct SlopeGeometry<T> {
+    pub mu: [T; 2],
+    pub sin: [T; 2],
+    pub x: [T; 2],
+    pub cos_phi: T,
+    pub phi: T,
+}
+
+impl<T: Real> SlopeGeometry<T> {
+    /// `rest` from the normalised 1-D functions `[P0/μ², P1/μ³, H/μ]` of each direction:
+    /// `μi μo (μi F0i + μo F0o) + so μi³ F1i + si μo³ F1o + (1 + cos Δφ) si so (μi Hi + μo Ho)`.
+    #[inline(always)]
+    pub fn rest(&self, fi: [T; 3], fo: [T; 3]) -> T {
+        let ([mi, mo], [si, so]) = (self.mu, self.sin);
+        let (mi2, mo2) = (mi * mi, mo * mo);
+        let p0 = (mi * mo) * mi.fma(fi[0], mo * fo[0]);
+        let p1 = (so * mi2 * mi).fma(fi[1], (si * mo2 * mo) * fo[1]);
+        let h = ((T::c(1.0) + self.cos_phi) * (si * so)) * mi.fma(fi[2], mo * fo[2]);
+        p0 + p1 + h
+    }
+
+    /// Both directions' coordinates on the ratio table's v axis for roughness `m`
+    /// ([`v_axis`]).
+    #[inline(always)]
+    pub fn v(&self, m: T) -> [T; 2] {
+        [v_axis(self.mu[0], self.sin[0], m), v_axis(self.mu[1], self.sin[1], m)]
+    }
+}
+
+/// The ratio table's direction axis `v = m s / (m s + μ) = 1/(1 + cot θ/m)` ∈ [0, 1]: 0 at the
+/// normal, 1 at grazing; `μ > 0`.
 #[inline(always)]
-pub fn lookup_in<T: Real>(cells: T::Table<'_>, u_i: T, u_o: T, c: T) -> T {
-    let (cell, fractions) = locate(u_i, u_o, c);
-    let index = (cell[0].scale((U_NODES - 1) as f64) + cell[1]).fma(T::c((C_NODES - 1) as f64), cell[2]);
+pub fn v_axis<T: Real>(mu: T, sin: T, m: T) -> T {
+    let ms = m * sin;
+    ms / (ms + mu)
+}
+
+/// Inverse of [`v_axis`]: `μ = c/√(1 + c²)`, `c = cot θ = m (1 − v)/v`.
+pub fn cos_of_v(v: f64, m: f64) -> f64 {
+    if v <= 0.0 {
+        return 1.0;
+    }
+    let c = m * (1.0 - v) / v;
+    c / (1.0 + c * c).sqrt()
+}
+
+/// The 1-D cell holding axis coordinate `x` ([`axis_of_cos`]): its index (an integer-valued
+/// float, in packets of eight) and the fraction in it.
+#[inline(always)]
+pub fn oned_cell<T: Real>(x: T) -> (T, T) {
+    cell(x.scale((ONED_NODES - 1) as f64), ONED_NODES)
+}
+
+/// `[P0/μ², P1/μ³, H/μ]` (or their `∂/∂m`) in the cell `(index, fraction)` ([`oned_cell`]) of a
+/// [`SlopeTable::oned_cells`]-shaped table, whose first packet is `base` (an integer-valued
+/// float; zero but in the stacks over m): one packet gather, three linear interpolations.
+#[inline(always)]
+pub fn oned_in<T: Real>(table: T::Table<'_>, base: T, (index, f): (T, T)) -> [T; 3] {
+    let p = T::gather8(table, index + base);
+    std::array::from_fn(|j| (p[j + 3] - p[j]).fma(f, p[j]))
+}
+
+/// Trilinear interpolation of a [`SlopeTable::ratio_cells`]-shaped table at `v_i`, `v_o`
+/// ([`v_axis`]) and `Δφ` ∈ [0, π]: one packet gather of the cell's eight corners.
+#[inline(always)]
+pub fn ratio_in<T: Real>(cells: T::Table<'_>, v_i: T, v_o: T, phi: T) -> T {
+    let (cell, fractions) = locate(v_i, v_o, phi);
+    let n = (R_NODES - 1) as f64;
+    let index = (cell[0].scale(n) + cell[1]).fma(T::c(n), cell[2]);
     blend(T::gather8(cells, index), fractions)
 }
 
-/// [`lookup_in`] on one layer of a stack of node tables ([`SlopeTable::slope_nodes`]-shaped,
+/// [`ratio_in`] on one layer of a stack of node tables ([`SlopeTable::ratio_nodes`]-shaped,
 /// eight gathers): `layer_base` is the index of the layer's first node (an integer-valued
 /// float).
 #[inline(always)]
-pub fn lookup_layer_in<T: Real>(table: T::Table<'_>, layer_base: T, u_i: T, u_o: T, c: T) -> T {
-    let (cell, fractions) = locate(u_i, u_o, c);
-    let base = (cell[0].scale(U_NODES as f64) + cell[1]).fma(T::c(C_NODES as f64), cell[2]) + layer_base;
+pub fn ratio_layer_in<T: Real>(table: T::Table<'_>, layer_base: T, v_i: T, v_o: T, phi: T) -> T {
+    let (cell, fractions) = locate(v_i, v_o, phi);
+    let n = R_NODES as f64;
+    let base = (cell[0].scale(n) + cell[1]).fma(T::c(n), cell[2]) + layer_base;
     let at = |k: usize| {
-        let offset = (k >> 2) * U_NODES * C_NODES + ((k >> 1) & 1) * C_NODES + (k & 1);
+        let offset = (k >> 2) * R_NODES * R_NODES + ((k >> 1) & 1) * R_NODES + (k & 1);
         T::gather(table, base, offset as u32)
     };
     blend(std::array::from_fn(at), fractions)
 }
 
-/// The cell `[i, o, c]` (lower node indices, integer-valued floats) holding the point and the
-/// point's fractions `[fi, fo, fc]` in it.
+/// The ratio cell `[i, o, p]` (lower node indices, integer-valued floats) holding the point
+/// and the point's fractions in it.
 #[inline(always)]
-fn locate<T: Real>(u_i: T, u_o: T, c: T) -> ([T; 3], [T; 3]) {
-    let (i0, fi) = cell(u_i.scale((U_NODES - 1) as f64), U_NODES);
-    let (o0, fo) = cell(u_o.scale((U_NODES - 1) as f64), U_NODES);
-    let half = T::c(0.5 * (C_NODES - 1) as f64);
-    let (c0, fc) = cell(c.fma(half, half), C_NODES);
-    ([i0, o0, c0], [fi, fo, fc])
+fn locate<T: Real>(v_i: T, v_o: T, phi: T) -> ([T; 3], [T; 3]) {
+    let n = (R_NODES - 1) as f64;
+    let (i0, fi) = cell(v_i.scale(n), R_NODES);
+    let (o0, fo) = cell(v_o.scale(n), R_NODES);
+    let (p0, fp) = cell(phi.scale(n / PI), R_NODES);
+    ([i0, o0, p0], [fi, fo, fp])
 }
 
 /// The trilinear interpolant of a cell's corners (`corners[4a + 2b + d]` at node
-/// `(i + a, o + b, c + d)`), written as their weighted sum: the weights are ready before the
-/// (usually cache-missing) loads return, after which only a product and a sum remain (nested
-/// lerps would leave three dependent levels).
+/// `(i + a, o + b, p + d)`), written as their weighted sum: the weights are ready before the
+/// loads return, after which only a product and a sum remain.
 #[inline(always)]
 fn blend<T: Real>(corners: [T; 8], [fi, fo, fc]: [T; 3]) -> T {
     let one = T::c(1.0);
@@ -200,9 +328,9 @@ fn blend<T: Real>(corners: [T; 8], [fi, fo, fc]: [T; 3]) -> T {
 
 /// Table coordinate of a direction with cosine `mu`: `x = a/(a+b)`, `a = √(1−μ)`, `b = √μ`.
 /// Near the normal `x ≈ a ≈ θ/√2` (uniform in angle); near grazing `μ ≈ (1−x)²`, so the
-/// nodes crowd towards the horizon where forward scattering makes `I` fall off like a power
-/// of μ. Evaluated as `x = (1 − μ + q)/(1 + 2q)`, `q = ab = √(μ(1−μ))` (multiply `a/(a+b)`
-/// above and below by `a+b`): one square root instead of two, all terms ≥ 0 (no cancellation).
+/// nodes crowd towards the horizon. Evaluated as `x = (1 − μ + q)/(1 + 2q)`, `q = ab = √(μ(1−μ))`
+/// (multiply `a/(a+b)` above and below by `a+b`): one square root instead of two, all terms
+/// ≥ 0 (no cancellation).
 #[inline(always)]
 pub fn axis_of_cos<T: Real>(mu: T) -> T {
     let mu = mu.clamp_to(0.0, 1.0);
@@ -215,14 +343,6 @@ pub fn axis_of_cos<T: Real>(mu: T) -> T {
 pub fn cos_of_axis(x: f64) -> f64 {
     let y = 1.0 - x;
     y * y / (y * y + x * x)
-}
-
-#[cfg(test)]
-impl SlopeTable {
-    /// `I` at node `(iu_i, iu_o, ic)`, for tests that re-interpolate the table independently.
-    pub(crate) fn node(&self, iu_i: usize, iu_o: usize, ic: usize) -> f32 {
-        self.data[node_index(iu_i, iu_o, ic)]
-    }
 }
 
 /// Lower node index (as an integer-valued float) and fraction for the position
