@@ -80,8 +80,16 @@ pub struct GinnekenKernel<'t, T: Real> {
     pub cltc: bool,
 }
 
-impl<'t, T: Real> GinnekenKernel<'t, T> {
-    /// `(rest, 1 − r)` of the split `I = rest / (1 − r)` ([`table`]).
+/// How a kernel looks up the slope integral's split `I = rest / (1 − r)` ([`table`]): one
+/// roughness's tables ([`GinnekenKernel`]) or tables over m too
+/// ([`roughness_axis::GinnekenAxisKernel`]). A trait rather than a closure so that the lookup
+/// is inlined into the kernel (a closure this size was called out of line).
+pub(crate) trait SlopeSplit<T: Real> {
+    /// `(rest, 1 − r)` at a configuration.
+    fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T);
+}
+
+impl<'t, T: Real> SlopeSplit<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T) {
         let zero = T::c(0.0);
@@ -103,7 +111,7 @@ impl<'t, T: Real> GinnekenKernel<'t, T> {
 impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        reduced_with(self.shadowing, wi, wo, rho, self.m, |g| self.slope_integral(g))
+        reduced_with(self.shadowing, wi, wo, rho, self.m, self)
     }
 
     #[inline(always)]
@@ -113,9 +121,7 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
 }
 
 /// `π f` at roughness `m` (for `μΛ`, in closed form) given how the slope integral's split
-/// `I = rest / (1 − r)` is looked up (returning `(rest, 1 − r)` for a [`SlopeGeometry`]): one
-/// roughness's tables ([`GinnekenKernel`]) or tables over m too
-/// ([`roughness_axis::GinnekenAxisKernel`]).
+/// `I = rest / (1 − r)` is looked up ([`SlopeSplit`]).
 #[inline(always)]
 pub(crate) fn reduced_with<T: Real, const N: usize>(
     shadowing: Shadowing,
@@ -123,7 +129,7 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     wo: V3<T>,
     rho: [T; N],
     m: T,
-    slope_integral: impl Fn(&SlopeGeometry<T>) -> (T, T),
+    split: &impl SlopeSplit<T>,
 ) -> [T; N] {
     let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
     // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo, with the sines (which μΛ needs too)
@@ -140,7 +146,7 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     let (ml_i, ml_o) = (mu_lambda_closed(mu_i, sin_i, m), mu_lambda_closed(mu_o, sin_o, m));
     let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, ml_i, ml_o, phi);
     let geometry = SlopeGeometry { mu: [mu_i, mu_o], sin: [sin_i, sin_o], x: [x_i, x_o], cos_phi, phi };
-    let (rest, one_minus_r) = slope_integral(&geometry);
+    let (rest, one_minus_r) = split.slope_integral(&geometry);
     let g = (rest * num) / (den * one_minus_r);
     rho.map(|r| r * g)
 }

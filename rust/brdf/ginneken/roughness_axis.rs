@@ -22,7 +22,7 @@ use super::shadowing::Shadowing;
 use super::table::{
     ONED_NODES, ONED_VALUES, RATIO_NODES, SlopeGeometry, SlopeTable, oned_cell, oned_in, ratio_layer_in,
 };
-use super::{Ginneken, reduced_with, sampler};
+use super::{Ginneken, SlopeSplit, reduced_with, sampler};
 use crate::cltc::{ClippedLtc, Sampling};
 use crate::frame::spherical_direction_f64;
 use crate::kernel::Kernel;
@@ -177,8 +177,11 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
         Self { cltc: sampling == Sampling::Cltc, ..self }
     }
 
-    /// `(rest, 1 − r)` of the split `I = rest / (1 − r)`, each tabulated function the Hermite
-    /// combination of the lower and upper layers' values and slopes.
+}
+
+/// `(rest, 1 − r)` of the split `I = rest / (1 − r)`, each tabulated function the Hermite
+/// combination of the lower and upper layers' values and slopes.
+impl<'t, T: Real> SlopeSplit<T> for GinnekenAxisKernel<'t, T> {
     #[inline(always)]
     fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T) {
         let [h00, h10, h01, h11] = self.weights;
@@ -214,7 +217,7 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
 impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        reduced_with(self.shadowing, wi, wo, rho, self.m, |g| self.slope_integral(g))
+        reduced_with(self.shadowing, wi, wo, rho, self.m, self)
     }
 
     #[inline(always)]

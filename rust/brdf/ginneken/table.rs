@@ -74,26 +74,27 @@ impl SlopeTable {
     /// (4,200 pairs of `K`, `I`, by symmetry in the two directions).
     pub fn build(m: f64) -> Self {
         let integrator = SlopeIntegrator::new(BUILD_NODES);
-        let oned_nodes: Vec<([f64; 3], [f64; 3])> = (0..ONED_NODES)
+        // Per node: the normalised functions and their ∂/∂m.
+        let oned_nodes: Vec<[[f64; 3]; 2]> = (0..ONED_NODES)
             .into_par_iter()
             .map(|k| {
                 let mu = cos_of_axis(k as f64 / (ONED_NODES - 1) as f64).clamp(MIN_BUILD_COS, 1.0);
                 let (f, d) = integrator.direction_functions(m, mu);
                 let scale = [1.0 / (mu * mu), 1.0 / (mu * mu * mu), 1.0 / mu];
-                (std::array::from_fn(|j| f[j] * scale[j]), std::array::from_fn(|j| d[j] * scale[j]))
+                [std::array::from_fn(|j| f[j] * scale[j]), std::array::from_fn(|j| d[j] * scale[j])]
             })
             .collect();
-        let cells = |pick: fn(&([f64; 3], [f64; 3])) -> [f64; 3]| -> Box<[f32; ONED_VALUES]> {
+        let cells = |which: usize| -> Box<[f32; ONED_VALUES]> {
             let mut out = vec![0.0f32; ONED_VALUES];
             for k in 0..ONED_NODES - 1 {
-                let (lo, hi) = (pick(&oned_nodes[k]), pick(&oned_nodes[k + 1]));
+                let (lo, hi) = (oned_nodes[k][which], oned_nodes[k + 1][which]);
                 for j in 0..3 {
                     (out[8 * k + j], out[8 * k + 3 + j]) = (lo[j] as f32, hi[j] as f32);
                 }
             }
             out.into_boxed_slice().try_into().expect("ONED_VALUES values")
         };
-        let (oned, d_oned) = (cells(|n| n.0), cells(|n| n.1));
+        let (oned, d_oned) = (cells(0), cells(1));
 
         let mu_at = |k: usize| cos_of_v(k as f64 / (R_NODES - 1) as f64, m).max(MIN_BUILD_COS);
         let rows: Vec<Vec<(f32, f32)>> = (0..R_NODES)
