@@ -71,7 +71,6 @@ pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples
     let kernel = GinnekenKernel::<Dual> {
         slope: [Nodes::new(t.oned_cells()), Nodes::new(t.ratio_cells())],
         m0: Dual::c(m),
-        m: Dual::c(m) + Dual::variable(0.0),
         roughness_derivative: Some((
             [Nodes::new(t.oned_derivative_cells()), Nodes::new(t.ratio_derivative_cells())],
             Dual::variable(0.0),

@@ -30,7 +30,7 @@ use super::registry::{
 use super::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{
-    Shadowing, azimuth_correlation, mu_lambda, mu_lambda_closed, visibility_denominator, visibility_fraction,
+    Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction,
 };
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
 use std::sync::Arc;
@@ -61,16 +61,14 @@ pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
 /// The tables are built for one roughness m₀; the traced kernels may carry their `∂/∂m`
 /// tables and `dm = m − m₀` (zero in value, the roughness parameter's gradient in derivative),
 /// so that `F(m) ≈ F(m₀) + dm ∂F/∂m` for each tabulated `F` gives the exact value and the
-/// first-order roughness gradient. `μΛ` is evaluated in closed form at `m` ([`mu_lambda_closed`]).
+/// first-order roughness gradient; μΛ is one of the tabulated functions.
 #[derive(Clone, Copy)]
 pub struct GinnekenKernel<'t, T: Real> {
-    /// `[P0/μ², P1/μ³, H/μ]` as 1-D cells ([`SlopeTable::oned_cells`]) and `r = K/I` as cell
-    /// corners ([`SlopeTable::ratio_cells`]).
+    /// `[P0/μ², P1/μ³, H/μ, μΛ]` as 1-D cells ([`SlopeTable::oned_cells`]) and `r = K/I` as
+    /// cell corners ([`SlopeTable::ratio_cells`]).
     pub slope: [T::Table<'t>; 2],
     /// The tables' roughness m₀ (a constant: the ratio table's v axis).
     pub m0: T,
-    /// The roughness: `m₀ + dm` when the roughness gradient is wanted, else `m₀`.
-    pub m: T,
     /// `(∂/∂m of both tables, dm = m − m₀)` when the roughness gradient is wanted.
     pub roughness_derivative: Option<([T::Table<'t>; 2], T)>,
     pub shadowing: Shadowing,
@@ -80,38 +78,56 @@ pub struct GinnekenKernel<'t, T: Real> {
     pub cltc: bool,
 }
 
-/// How a kernel looks up the slope integral's split `I = rest / (1 − r)` ([`table`]): one
-/// roughness's tables ([`GinnekenKernel`]) or tables over m too
+/// How a kernel looks up the slope integral's split `I = rest / (1 − r)` ([`table`]) and μΛ:
+/// one roughness's tables ([`GinnekenKernel`]) or tables over m too
 /// ([`roughness_axis::GinnekenAxisKernel`]). A trait rather than a closure so that the lookup
 /// is inlined into the kernel (a closure this size was called out of line).
 pub(crate) trait SlopeSplit<T: Real> {
-    /// `(rest, 1 − r)` at a configuration.
-    fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T);
+    /// Per direction, `([P0/μ², P1/μ³, H/μ], μΛ)`.
+    fn directions(&self, g: &SlopeGeometry<T>) -> [([T; 3], T); 2];
+    /// The wedge ratio `r = K/I`.
+    fn ratio(&self, g: &SlopeGeometry<T>) -> T;
 }
 
 impl<'t, T: Real> SlopeSplit<T> for GinnekenKernel<'t, T> {
+    /// One packet per direction: the three functions and μΛ at the tables' m₀, plus
+    /// `dm · ∂/∂m` of each when the roughness gradient is wanted.
     #[inline(always)]
-    fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T) {
-        let zero = T::c(0.0);
-        let (ci, co) = (oned_cell(g.x[0]), oned_cell(g.x[1]));
+    fn directions(&self, g: &SlopeGeometry<T>) -> [([T; 3], T); 2] {
+        [self.direction(g.x[0]), self.direction(g.x[1])]
+    }
+
+    #[inline(always)]
+    fn ratio(&self, g: &SlopeGeometry<T>) -> T {
         let [v_i, v_o] = g.v(self.m0);
-        let [oned, ratio] = self.slope;
-        let (mut fi, mut fo) = (oned_in(oned, zero, ci), oned_in(oned, zero, co));
-        let mut r = ratio_in(ratio, v_i, v_o, g.phi);
-        if let Some(([d_oned, d_ratio], dm)) = self.roughness_derivative {
-            let (dfi, dfo) = (oned_in(d_oned, zero, ci), oned_in(d_oned, zero, co));
-            fi = std::array::from_fn(|j| dm.fma(dfi[j], fi[j]));
-            fo = std::array::from_fn(|j| dm.fma(dfo[j], fo[j]));
-            r = dm.fma(ratio_in(d_ratio, v_i, v_o, g.phi), r);
+        let r = ratio_in(self.slope[1], v_i, v_o, g.phi);
+        match self.roughness_derivative {
+            Some(([_, d_ratio], dm)) => dm.fma(ratio_in(d_ratio, v_i, v_o, g.phi), r),
+            None => r,
         }
-        (g.rest(fi, fo), T::c(1.0) - r)
+    }
+}
+
+impl<'t, T: Real> GinnekenKernel<'t, T> {
+    /// `([P0/μ², P1/μ³, H/μ], μΛ)` of one direction at axis coordinate `x`. (Called once per
+    /// direction rather than through `array::map`, whose closure was not inlined.)
+    #[inline(always)]
+    fn direction(&self, x: T) -> ([T; 3], T) {
+        let zero = T::c(0.0);
+        let cell = oned_cell(x);
+        let mut f: [T; 4] = oned_in(self.slope[0], zero, cell);
+        if let Some(([d_oned, _], dm)) = self.roughness_derivative {
+            let df: [T; 4] = oned_in(d_oned, zero, cell);
+            f = std::array::from_fn(|j| dm.fma(df[j], f[j]));
+        }
+        ([f[0], f[1], f[2]], f[3])
     }
 }
 
 impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        reduced_with(self.shadowing, wi, wo, rho, self.m, self)
+        reduced_with(self.shadowing, wi, wo, rho, self)
     }
 
     #[inline(always)]
@@ -120,34 +136,34 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     }
 }
 
-/// `π f` at roughness `m` (for `μΛ`, in closed form) given how the slope integral's split
-/// `I = rest / (1 − r)` is looked up ([`SlopeSplit`]).
+/// `π f` given how the slope integral's split `I = rest / (1 − r)` and μΛ are looked up
+/// ([`SlopeSplit`]).
 #[inline(always)]
 pub(crate) fn reduced_with<T: Real, const N: usize>(
     shadowing: Shadowing,
     wi: V3<T>,
     wo: V3<T>,
     rho: [T; N],
-    m: T,
     split: &impl SlopeSplit<T>,
 ) -> [T; N] {
     let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
-    // cos Δφ = s / (sin θi sin θo), s = wi·wo − μi μo, with the sines (which μΛ needs too)
-    // from the directions' xy. Δφ itself (for the visibility) is the angle of (s, c) with
-    // c = (wi × wo)·z, since s² + c² = sin²θi sin²θo: no acos after the division, which
-    // would make the chain longer.
+    // s = wi·wo − μi μo = sin θi sin θo cos Δφ, with the sines from the directions' xy. Δφ
+    // (for the ratio table and the visibility) is the angle of (s, c) with c = (wi × wo)·z,
+    // since s² + c² = sin²θi sin²θo: no division by the sines and no acos; (0, 0) gives 0.
     let s = azimuthal_dot(wi, wo);
     let (sin_i, sin_o) = ((wi.x * wi.x + wi.y * wi.y).sqrt(), (wo.x * wo.x + wo.y * wo.y).sqrt());
-    let sin_prod = sin_i * sin_o;
-    let defined = sin_prod.gt(T::c(1e-12));
-    let cos_phi = T::select(defined, (s / sin_prod.max(T::c(1e-12))).clamp_to(-1.0, 1.0), T::c(1.0));
-    let phi = T::select(defined, approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s), T::c(0.0));
-    let (x_i, x_o) = (axis_of_cos(mu_i), axis_of_cos(mu_o));
-    let (ml_i, ml_o) = (mu_lambda_closed(mu_i, sin_i, m), mu_lambda_closed(mu_o, sin_o, m));
+    let phi = approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s);
+    let geometry = SlopeGeometry {
+        mu: [mu_i, mu_o],
+        sin: [sin_i, sin_o],
+        x: [axis_of_cos(mu_i), axis_of_cos(mu_o)],
+        sin_sum: sin_i.fma(sin_o, s),
+        phi,
+    };
+    let [(fi, ml_i), (fo, ml_o)] = split.directions(&geometry);
     let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, ml_i, ml_o, phi);
-    let geometry = SlopeGeometry { mu: [mu_i, mu_o], sin: [sin_i, sin_o], x: [x_i, x_o], cos_phi, phi };
-    let (rest, one_minus_r) = split.slope_integral(&geometry);
-    let g = (rest * num) / (den * one_minus_r);
+    let rest = geometry.rest(fi, fo);
+    let g = (rest * num) / (den * (T::c(1.0) - split.ratio(&geometry)));
     rho.map(|r| r * g)
 }
 
@@ -251,7 +267,6 @@ impl Ginneken {
         GinnekenKernel {
             slope: [Nodes::new(self.table.oned_cells()), Nodes::new(self.table.ratio_cells())],
             m0: self.m,
-            m: self.m,
             roughness_derivative: None,
             shadowing: self.shadowing,
             sampler_t: self.sampler_t,
@@ -387,7 +402,6 @@ impl Registered for Ginneken {
                 GinnekenLane::Fixed(GinnekenKernel {
                     slope: [oned, ratio],
                     m0,
-                    m: c.roughness.map_or(m0, |dm| m0 + dm),
                     roughness_derivative: c.roughness.map(|dm| ([d_oned, d_ratio], dm)),
                     shadowing: self.shadowing,
                     sampler_t: T::c(self.sampler_t as f64),
@@ -421,7 +435,7 @@ mod tests {
 
     /// The fast path written the plain way in f64 on the same tables: two-square-root axis,
     /// `acos` for Δφ, the split's terms as written in `slope_fit_results.md`, nested linear
-    /// interpolations, [`visibility_denominator`].
+    /// interpolations (μΛ from the 1-D cells too), [`visibility_denominator`].
     fn fast_path_f64(g: &Ginneken, wi: DVec3, wo: DVec3) -> f64 {
         let (mu_i, mu_o) = (wi.z.clamp(MIN_COS as f64, 1.0), wo.z.clamp(MIN_COS as f64, 1.0));
         let (si, so) = (wi.truncate().length(), wo.truncate().length());
@@ -433,7 +447,7 @@ mod tests {
         };
         let lerp = |a: f64, b: f64, t: f64| a + t * (b - a);
         let t = &g.table;
-        let oned = |mu: f64| -> [f64; 3] {
+        let oned = |mu: f64| -> [f64; 4] {
             let (a, b) = ((1.0 - mu).sqrt(), mu.sqrt());
             let (k, f) = cell(a / (a + b), ONED_NODES);
             let (lo, hi) = (t.oned_node(k), t.oned_node(k + 1));
@@ -451,7 +465,7 @@ mod tests {
             (cell(v(mu_i, si), R_NODES), cell(v(mu_o, so), R_NODES), cell(cos_phi.acos() / std::f64::consts::PI, R_NODES));
         let at = |i: usize, o: usize| lerp(t.ratio_node(i, o, c) as f64, t.ratio_node(i, o, c + 1) as f64, fc);
         let r = lerp(lerp(at(i, o), at(i, o + 1), fo), lerp(at(i + 1, o), at(i + 1, o + 1), fo), fi);
-        let (ml_i, ml_o) = (mu_lambda(mu_i, si, m), mu_lambda(mu_o, so, m));
+        let (ml_i, ml_o) = (p0[3], p1[3]);
         let den = visibility_denominator(g.shadowing, mu_i, mu_o, ml_i, ml_o, || azimuth_correlation(cos_phi));
         rest / (1.0 - r) / (std::f64::consts::PI * den)
     }

@@ -18,7 +18,7 @@
 //! A texture value outside [M_MIN, M_MAX] is clamped into it (NaN gives M_MIN). The stack is
 //! built once per process, on first use (M_NODES single-roughness builds, well under a second).
 
-use super::shadowing::Shadowing;
+use super::shadowing::{Shadowing, mu_lambda_closed};
 use super::table::{
     ONED_NODES, ONED_VALUES, RATIO_NODES, SlopeGeometry, SlopeTable, oned_cell, oned_in, ratio_layer_in,
 };
@@ -130,7 +130,7 @@ pub struct GinnekenAxisKernel<'t, T: Real> {
     layer: T,
     /// `u` of the lower and upper layers' roughness (their ratio tables' v axes).
     u_nodes: [T; 2],
-    /// The clamped roughness.
+    /// The clamped roughness (for μΛ).
     m: T,
     /// Hermite basis `h00, h10, h01, h11` at the lane's position in its cell.
     weights: [T; 4],
@@ -179,25 +179,28 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
 
 }
 
-/// `(rest, 1 − r)` of the split `I = rest / (1 − r)`, each tabulated function the Hermite
-/// combination of the lower and upper layers' values and slopes.
+/// The split `I = rest / (1 − r)`, each tabulated function the Hermite combination of the
+/// lower and upper layers' values and slopes; μΛ in closed form at the lane's m.
 impl<'t, T: Real> SlopeSplit<T> for GinnekenAxisKernel<'t, T> {
     #[inline(always)]
-    fn slope_integral(&self, g: &SlopeGeometry<T>) -> (T, T) {
-        let [h00, h10, h01, h11] = self.weights;
-        let [oned, ratio, d_oned, d_ratio] = self.tables;
-        let hermite = |a: T, da: T, b: T, db: T| h00.fma(a, h10 * da) + h01.fma(b, h11 * db);
+    fn directions(&self, g: &SlopeGeometry<T>) -> [([T; 3], T); 2] {
+        let [oned, _, d_oned, _] = self.tables;
         // The 1-D functions: the same cell in every layer.
         let oned_base = self.layer.scale(ONED_PACKETS as f64);
         let upper_oned = oned_base + T::c(ONED_PACKETS as f64);
-        let f = |x: T| {
-            let c = oned_cell(x);
-            let (a, da) = (oned_in(oned, oned_base, c), oned_in(d_oned, oned_base, c));
-            let (b, db) = (oned_in(oned, upper_oned, c), oned_in(d_oned, upper_oned, c));
-            std::array::from_fn(|j| hermite(a[j], da[j], b[j], db[j]))
-        };
-        let (fi, fo) = (f(g.x[0]), f(g.x[1]));
-        // The ratio: each layer on its own v axis, v = u s/(u s + (1 − u) μ) with u = m_j/(1 + m_j).
+        std::array::from_fn(|k| {
+            let c = oned_cell(g.x[k]);
+            let (a, da): ([T; 3], [T; 3]) = (oned_in(oned, oned_base, c), oned_in(d_oned, oned_base, c));
+            let (b, db): ([T; 3], [T; 3]) = (oned_in(oned, upper_oned, c), oned_in(d_oned, upper_oned, c));
+            let f = std::array::from_fn(|j| self.hermite(a[j], da[j], b[j], db[j]));
+            (f, mu_lambda_closed(g.mu[k], g.sin[k], self.m))
+        })
+    }
+
+    #[inline(always)]
+    fn ratio(&self, g: &SlopeGeometry<T>) -> T {
+        let [_, ratio, _, d_ratio] = self.tables;
+        // Each layer on its own v axis, v = u s/(u s + (1 − u) μ) with u = m_j/(1 + m_j).
         let ratio_base = self.layer.scale(RATIO_NODES as f64);
         let layer = |u: T, base: T| {
             let one_minus = T::c(1.0) - u;
@@ -210,14 +213,24 @@ impl<'t, T: Real> SlopeSplit<T> for GinnekenAxisKernel<'t, T> {
         };
         let (a, da) = layer(self.u_nodes[0], ratio_base);
         let (b, db) = layer(self.u_nodes[1], ratio_base + T::c(RATIO_NODES as f64));
-        (g.rest(fi, fo), T::c(1.0) - hermite(a, da, b, db))
+        self.hermite(a, da, b, db)
+    }
+}
+
+impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
+    /// The cubic Hermite combination of a function's values `a`, `b` and scaled slopes `da`,
+    /// `db` at the lower and upper layers.
+    #[inline(always)]
+    fn hermite(&self, a: T, da: T, b: T, db: T) -> T {
+        let [h00, h10, h01, h11] = self.weights;
+        h00.fma(a, h10 * da) + h01.fma(b, h11 * db)
     }
 }
 
 impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
     #[inline(always)]
     fn reduced_f<const N: usize>(&self, wi: V3<T>, wo: V3<T>, rho: [T; N]) -> [T; N] {
-        reduced_with(self.shadowing, wi, wo, rho, self.m, self)
+        reduced_with(self.shadowing, wi, wo, rho, self)
     }
 
     #[inline(always)]

@@ -24,6 +24,7 @@
 //! the error of the old table at m = 0.3) keeps m = 1 within the 0.5 % of
 //! `tests/kernels/ginneken_fast_path.rs` (16³: 0.55 %).
 
+use super::shadowing::{d_mu_lambda_dm, mu_lambda};
 use super::slope_integral::SlopeIntegrator;
 use crate::real::Real;
 use rayon::prelude::*;
@@ -33,8 +34,8 @@ use std::sync::{Arc, Mutex, OnceLock, Weak};
 
 /// Nodes of the 1-D functions along [`axis_of_cos`].
 pub const ONED_NODES: usize = 128;
-/// Values of the 1-D cell table: per cell `[P0/μ², P1/μ³, H/μ]` at its lower node, the same at
-/// its upper node, two pads ([`oned_in`] loads them as one packet of eight).
+/// Values of the 1-D cell table: per cell `[P0/μ², P1/μ³, H/μ, μΛ]` at its lower node, then the
+/// same at its upper node ([`oned_in`] loads them as one packet of eight).
 pub const ONED_VALUES: usize = 8 * (ONED_NODES - 1);
 /// Nodes of the ratio table along each of its three axes `(v_i, v_o, Δφ)`.
 pub const R_NODES: usize = 20;
@@ -56,7 +57,7 @@ const fn ratio_index(i: usize, o: usize, p: usize) -> usize {
 
 #[derive(Debug)]
 pub struct SlopeTable {
-    /// `[P0/μ², P1/μ³, H/μ]` as cells ([`ONED_VALUES`]).
+    /// `[P0/μ², P1/μ³, H/μ, μΛ]` as cells ([`ONED_VALUES`]).
     oned: Box<[f32; ONED_VALUES]>,
     /// Their `∂/∂m` at fixed μ, laid out alike (the traced kernels' roughness gradient).
     d_oned: Box<[f32; ONED_VALUES]>,
@@ -74,22 +75,26 @@ impl SlopeTable {
     /// (4,200 pairs of `K`, `I`, by symmetry in the two directions).
     pub fn build(m: f64) -> Self {
         let integrator = SlopeIntegrator::new(BUILD_NODES);
-        // Per node: the normalised functions and their ∂/∂m.
-        let oned_nodes: Vec<[[f64; 3]; 2]> = (0..ONED_NODES)
+        // Per node: the normalised functions and μΛ, and their ∂/∂m.
+        let oned_nodes: Vec<[[f64; 4]; 2]> = (0..ONED_NODES)
             .into_par_iter()
             .map(|k| {
                 let mu = cos_of_axis(k as f64 / (ONED_NODES - 1) as f64).clamp(MIN_BUILD_COS, 1.0);
                 let (f, d) = integrator.direction_functions(m, mu);
                 let scale = [1.0 / (mu * mu), 1.0 / (mu * mu * mu), 1.0 / mu];
-                [std::array::from_fn(|j| f[j] * scale[j]), std::array::from_fn(|j| d[j] * scale[j])]
+                let sin = (1.0 - mu * mu).sqrt();
+                let (ml, d_ml) = (mu_lambda(mu, sin, m), d_mu_lambda_dm(mu, sin, m));
+                let value = |j: usize| if j < 3 { f[j] * scale[j] } else { ml };
+                let derivative = |j: usize| if j < 3 { d[j] * scale[j] } else { d_ml };
+                [std::array::from_fn(value), std::array::from_fn(derivative)]
             })
             .collect();
         let cells = |which: usize| -> Box<[f32; ONED_VALUES]> {
             let mut out = vec![0.0f32; ONED_VALUES];
             for k in 0..ONED_NODES - 1 {
                 let (lo, hi) = (oned_nodes[k][which], oned_nodes[k + 1][which]);
-                for j in 0..3 {
-                    (out[8 * k + j], out[8 * k + 3 + j]) = (lo[j] as f32, hi[j] as f32);
+                for j in 0..4 {
+                    (out[8 * k + j], out[8 * k + 4 + j]) = (lo[j] as f32, hi[j] as f32);
                 }
             }
             out.into_boxed_slice().try_into().expect("ONED_VALUES values")
@@ -129,7 +134,7 @@ impl SlopeTable {
         Self { oned, d_oned, ratio, d_ratio, ratio_cells, d_ratio_cells }
     }
 
-    /// `[P0/μ², P1/μ³, H/μ]` as cells (what [`oned_in`] gathers from).
+    /// `[P0/μ², P1/μ³, H/μ, μΛ]` as cells (what [`oned_in`] gathers from).
     pub fn oned_cells(&self) -> &[f32; ONED_VALUES] {
         &self.oned
     }
@@ -183,9 +188,9 @@ impl SlopeTable {
 
 #[cfg(test)]
 impl SlopeTable {
-    /// `[P0/μ², P1/μ³, H/μ]` at 1-D node `k`, for tests that re-interpolate independently.
-    pub(crate) fn oned_node(&self, k: usize) -> [f32; 3] {
-        let (cell, offset) = if k < ONED_NODES - 1 { (k, 0) } else { (k - 1, 3) };
+    /// `[P0/μ², P1/μ³, H/μ, μΛ]` at 1-D node `k`, for tests that re-interpolate independently.
+    pub(crate) fn oned_node(&self, k: usize) -> [f32; 4] {
+        let (cell, offset) = if k < ONED_NODES - 1 { (k, 0) } else { (k - 1, 4) };
         std::array::from_fn(|j| self.oned[8 * cell + offset + j])
     }
 
@@ -213,27 +218,28 @@ fn corners_of(nodes: &[f32; RATIO_NODES]) -> Box<[f32; RATIO_CELL_VALUES]> {
 }
 
 /// What the split needs of one configuration, all of it already computed by the kernel:
-/// cosines (clamped), sines, [`axis_of_cos`] coordinates, `cos Δφ` and `Δφ`.
+/// cosines (clamped), sines, [`axis_of_cos`] coordinates, `si so (1 + cos Δφ)` and `Δφ`.
 #[derive(Clone, Copy)]
 pub struct SlopeGeometry<T> {
     pub mu: [T; 2],
     pub sin: [T; 2],
     pub x: [T; 2],
-    pub cos_phi: T,
+    /// `si so (1 + cos Δφ) = si so + s` with `s = wi·wo − μi μo` (no division by the sines).
+    pub sin_sum: T,
     pub phi: T,
 }
 
 impl<T: Real> SlopeGeometry<T> {
     /// `rest` from the normalised 1-D functions `[P0/μ², P1/μ³, H/μ]` of each direction:
-    /// `μi μo (μi F0i + μo F0o) + so μi³ F1i + si μo³ F1o + (1 + cos Δφ) si so (μi Hi + μo Ho)`.
+    /// `μi μo (μi F0i + μo F0o) + so μi³ F1i + si μo³ F1o + si so (1 + cos Δφ) (μi Hi + μo Ho)`.
     #[inline(always)]
     pub fn rest(&self, fi: [T; 3], fo: [T; 3]) -> T {
+        // Grouped per direction: μi (μi (μo F0i + so μi F1i) + Σ Hi) + μo (μo (μi F0o + si μo F1o) + Σ Ho),
+        // Σ = si so (1 + cos Δφ).
         let ([mi, mo], [si, so]) = (self.mu, self.sin);
-        let (mi2, mo2) = (mi * mi, mo * mo);
-        let p0 = (mi * mo) * mi.fma(fi[0], mo * fo[0]);
-        let p1 = (so * mi2 * mi).fma(fi[1], (si * mo2 * mo) * fo[1]);
-        let h = ((T::c(1.0) + self.cos_phi) * (si * so)) * mi.fma(fi[2], mo * fo[2]);
-        p0 + p1 + h
+        let part_i = mi.fma((so * mi).fma(fi[1], mo * fi[0]), self.sin_sum * fi[2]);
+        let part_o = mo.fma((si * mo).fma(fo[1], mi * fo[0]), self.sin_sum * fo[2]);
+        mi.fma(part_i, mo * part_o)
     }
 
     /// Both directions' coordinates on the ratio table's v axis for roughness `m`
@@ -261,20 +267,23 @@ pub fn cos_of_v(v: f64, m: f64) -> f64 {
     c / (1.0 + c * c).sqrt()
 }
 
-/// The 1-D cell holding axis coordinate `x` ([`axis_of_cos`]): its index (an integer-valued
-/// float, in packets of eight) and the fraction in it.
+/// The 1-D cell holding axis coordinate `x` ∈ [0, 1] ([`axis_of_cos`] of a clamped cosine,
+/// never NaN): its index (an integer-valued float, in packets of eight) and the fraction in it.
 #[inline(always)]
 pub fn oned_cell<T: Real>(x: T) -> (T, T) {
-    cell(x.scale((ONED_NODES - 1) as f64), ONED_NODES)
+    let s = x.scale((ONED_NODES - 1) as f64);
+    let lower = s.floor().min(T::c((ONED_NODES - 2) as f64));
+    (lower, s - lower)
 }
 
-/// `[P0/μ², P1/μ³, H/μ]` (or their `∂/∂m`) in the cell `(index, fraction)` ([`oned_cell`]) of a
-/// [`SlopeTable::oned_cells`]-shaped table, whose first packet is `base` (an integer-valued
-/// float; zero but in the stacks over m): one packet gather, three linear interpolations.
+/// `[P0/μ², P1/μ³, H/μ, μΛ]` (or their `∂/∂m`) in the cell `(index, fraction)` ([`oned_cell`])
+/// of a [`SlopeTable::oned_cells`]-shaped table, whose first packet is `base` (an
+/// integer-valued float; zero but in the stacks over m): one packet gather, `K` (3 or 4)
+/// linear interpolations.
 #[inline(always)]
-pub fn oned_in<T: Real>(table: T::Table<'_>, base: T, (index, f): (T, T)) -> [T; 3] {
+pub fn oned_in<T: Real, const K: usize>(table: T::Table<'_>, base: T, (index, f): (T, T)) -> [T; K] {
     let p = T::gather8(table, index + base);
-    std::array::from_fn(|j| (p[j + 3] - p[j]).fma(f, p[j]))
+    std::array::from_fn(|j| (p[j + 4] - p[j]).fma(f, p[j]))
 }
 
 /// Trilinear interpolation of a [`SlopeTable::ratio_cells`]-shaped table at `v_i`, `v_o`
@@ -314,29 +323,26 @@ fn locate<T: Real>(v_i: T, v_o: T, phi: T) -> ([T; 3], [T; 3]) {
 }
 
 /// The trilinear interpolant of a cell's corners (`corners[4a + 2b + d]` at node
-/// `(i + a, o + b, p + d)`), written as their weighted sum: the weights are ready before the
-/// loads return, after which only a product and a sum remain.
+/// `(i + a, o + b, p + d)`): seven linear interpolations, Δφ first.
 #[inline(always)]
 fn blend<T: Real>(corners: [T; 8], [fi, fo, fc]: [T; 3]) -> T {
-    let one = T::c(1.0);
-    let (gi, go, gc) = (one - fi, one - fo, one - fc);
+    let lerp = |a: T, b: T, t: T| (b - a).fma(t, a);
     let [v000, v001, v010, v011, v100, v101, v110, v111] = corners;
-    let pair = |w: T, a: T, b: T| (w * gc).fma(a, (w * fc) * b);
-    let v0 = pair(gi * go, v000, v001) + pair(gi * fo, v010, v011);
-    let v1 = pair(fi * go, v100, v101) + pair(fi * fo, v110, v111);
-    v0 + v1
+    let (v00, v01) = (lerp(v000, v001, fc), lerp(v010, v011, fc));
+    let (v10, v11) = (lerp(v100, v101, fc), lerp(v110, v111, fc));
+    lerp(lerp(v00, v01, fo), lerp(v10, v11, fo), fi)
 }
 
 /// Table coordinate of a direction with cosine `mu`: `x = a/(a+b)`, `a = √(1−μ)`, `b = √μ`.
 /// Near the normal `x ≈ a ≈ θ/√2` (uniform in angle); near grazing `μ ≈ (1−x)²`, so the
 /// nodes crowd towards the horizon. Evaluated as `x = (1 − μ + q)/(1 + 2q)`, `q = ab = √(μ(1−μ))`
 /// (multiply `a/(a+b)` above and below by `a+b`): one square root instead of two, all terms
-/// ≥ 0 (no cancellation).
+/// ≥ 0 (no cancellation). `mu` must lie in [0, 1] (the kernel's clamped cosines do), so that
+/// `μ(1−μ) ≥ 0` needs no clamp.
 #[inline(always)]
 pub fn axis_of_cos<T: Real>(mu: T) -> T {
-    let mu = mu.clamp_to(0.0, 1.0);
     let one_minus = T::c(1.0) - mu;
-    let q = (mu * one_minus).safe_sqrt();
+    let q = (mu * one_minus).sqrt();
     (one_minus + q) / (T::c(1.0) + q.scale(2.0))
 }
 
@@ -347,12 +353,13 @@ pub fn cos_of_axis(x: f64) -> f64 {
 }
 
 /// Lower node index (as an integer-valued float) and fraction for the position
-/// `s ∈ [0, n−1]` (in node units) on a grid of `n` nodes, clamped so that `index + 1` is valid;
-/// NaN maps to 0. The fraction comes from `floor` (no float → int → float round trip).
+/// `s ≥ 0` (in node units) on a grid of `n` nodes, clamped so that `index + 1` is valid;
+/// NaN maps to 0. The fraction comes from `floor` (no float → int → float round trip). The
+/// callers' positions lie in `[0, n−1]` up to rounding, so no upper clamp of `s` is needed:
+/// at most the fraction exceeds 1 by a rounding error.
 #[inline(always)]
 fn cell<T: Real>(s: T, n: usize) -> (T, T) {
-    let last = (n - 2) as f64;
-    let s = s.clamp_to(0.0, last + 1.0);
-    let lower = s.floor().min(T::c(last));
+    let s = s.max(T::c(0.0));
+    let lower = s.floor().min(T::c((n - 2) as f64));
     (lower, s - lower)
 }
