@@ -156,7 +156,7 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     let geometry = SlopeGeometry {
         mu: [mu_i, mu_o],
         sin: [sin_i, sin_o],
-        x: [axis_of_cos(mu_i), axis_of_cos(mu_o)],
+        x: [axis_of_cos(mu_i, sin_i), axis_of_cos(mu_o, sin_o)],
         sin_sum: sin_i.fma(sin_o, s),
         phi,
     };
@@ -447,14 +447,13 @@ mod tests {
         };
         let lerp = |a: f64, b: f64, t: f64| a + t * (b - a);
         let t = &g.table;
-        let oned = |mu: f64| -> [f64; 4] {
-            let (a, b) = ((1.0 - mu).sqrt(), mu.sqrt());
-            let (k, f) = cell(a / (a + b), ONED_NODES);
+        let oned = |mu: f64, sin: f64| -> [f64; 4] {
+            let (k, f) = cell(1.0 / (1.0 + mu / sin.max(1e-300)), ONED_NODES);
             let (lo, hi) = (t.oned_node(k), t.oned_node(k + 1));
             std::array::from_fn(|j| lerp(lo[j] as f64, hi[j] as f64, f))
         };
         let m = g.m as f64;
-        let (p0, p1) = (oned(mu_i), oned(mu_o));
+        let (p0, p1) = (oned(mu_i, si), oned(mu_o, so));
         let rest = mu_o * mu_i * mu_i * p0[0]
             + mu_i * mu_o * mu_o * p1[0]
             + so * mu_i.powi(3) * p0[1]

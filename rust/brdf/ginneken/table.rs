@@ -33,7 +33,7 @@ use std::f64::consts::PI;
 use std::sync::{Arc, Mutex, OnceLock, Weak};
 
 /// Nodes of the 1-D functions along [`axis_of_cos`].
-pub const ONED_NODES: usize = 128;
+pub const ONED_NODES: usize = 256;
 /// Values of the 1-D cell table: per cell `[P0/μ², P1/μ³, H/μ, μΛ]` at its lower node, then the
 /// same at its upper node ([`oned_in`] loads them as one packet of eight).
 pub const ONED_VALUES: usize = 8 * (ONED_NODES - 1);
@@ -333,23 +333,18 @@ fn blend<T: Real>(corners: [T; 8], [fi, fo, fc]: [T; 3]) -> T {
     lerp(lerp(v00, v01, fo), lerp(v10, v11, fo), fi)
 }
 
-/// Table coordinate of a direction with cosine `mu`: `x = a/(a+b)`, `a = √(1−μ)`, `b = √μ`.
-/// Near the normal `x ≈ a ≈ θ/√2` (uniform in angle); near grazing `μ ≈ (1−x)²`, so the
-/// nodes crowd towards the horizon. Evaluated as `x = (1 − μ + q)/(1 + 2q)`, `q = ab = √(μ(1−μ))`
-/// (multiply `a/(a+b)` above and below by `a+b`): one square root instead of two, all terms
-/// ≥ 0 (no cancellation). `mu` must lie in [0, 1] (the kernel's clamped cosines do), so that
-/// `μ(1−μ) ≥ 0` needs no clamp.
+/// Table coordinate of a direction with cosine `mu` and sine `sin`: `x = sin θ/(sin θ + μ)`
+/// ∈ [0, 1] (`x = 1/(1 + cot θ)`, [`v_axis`] at m = 1). Near the normal `x ≈ θ` (uniform in
+/// angle); near grazing `1 − x ≈ μ`. Two operations; `μ > 0` (the kernel's clamped cosines).
 #[inline(always)]
-pub fn axis_of_cos<T: Real>(mu: T) -> T {
-    let one_minus = T::c(1.0) - mu;
-    let q = (mu * one_minus).sqrt();
-    (one_minus + q) / (T::c(1.0) + q.scale(2.0))
+pub fn axis_of_cos<T: Real>(mu: T, sin: T) -> T {
+    sin / (sin + mu)
 }
 
-/// Inverse of [`axis_of_cos`]: `μ = (1−x)² / ((1−x)² + x²)`.
+/// Inverse of [`axis_of_cos`]: `cot θ = (1−x)/x`, `μ = (1−x)/√((1−x)² + x²)`.
 pub fn cos_of_axis(x: f64) -> f64 {
     let y = 1.0 - x;
-    y * y / (y * y + x * x)
+    y / (y * y + x * x).sqrt()
 }
 
 /// Lower node index (as an integer-valued float) and fraction for the position
