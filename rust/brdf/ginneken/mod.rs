@@ -65,7 +65,7 @@ pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
 #[derive(Clone, Copy)]
 pub struct GinnekenKernel<'t, T: Real> {
     /// `[P0/μ², P1/μ³, H/μ, μΛ]` as 1-D cells ([`SlopeTable::oned_cells`]) and `r = K/I` as
-    /// cell corners ([`SlopeTable::ratio_cells`]).
+    /// cells of trilinear coefficients ([`SlopeTable::ratio_cells`]).
     pub slope: [T::Table<'t>; 2],
     /// The tables' roughness m₀ (a constant: the ratio table's v axis).
     pub m0: T,

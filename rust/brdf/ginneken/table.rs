@@ -34,14 +34,16 @@ use std::sync::{Arc, Mutex, OnceLock, Weak};
 
 /// Nodes of the 1-D functions along [`axis_of_cos`].
 pub const ONED_NODES: usize = 256;
-/// Values of the 1-D cell table: per cell `[P0/μ², P1/μ³, H/μ, μΛ]` at its lower node, then the
-/// same at its upper node ([`oned_in`] loads them as one packet of eight).
+/// Values of the 1-D cell table: per cell `[P0/μ², P1/μ³, H/μ, μΛ]` at its lower node, then
+/// their differences to the upper node ([`oned_in`] loads them as one packet of eight and
+/// interpolates with one FMA each).
 pub const ONED_VALUES: usize = 8 * (ONED_NODES - 1);
 /// Nodes of the ratio table along each of its three axes `(v_i, v_o, Δφ)`.
 pub const R_NODES: usize = 20;
 /// Nodes of the ratio table, flat in the order `[iv_i][iv_o][iφ]`.
 pub const RATIO_NODES: usize = R_NODES * R_NODES * R_NODES;
-/// Values of the ratio table as cell corners (eight per cell, [`SlopeTable::ratio_cells`]).
+/// Values of the ratio table as cells (eight trilinear coefficients per cell,
+/// [`SlopeTable::ratio_cells`]).
 pub const RATIO_CELL_VALUES: usize = 8 * (R_NODES - 1) * (R_NODES - 1) * (R_NODES - 1);
 /// Gauss–Legendre nodes per piece when building (the tables' errors are those of the numpy
 /// prototype, which integrates with 32 to 160 nodes, to the digits `matte tables` prints).
@@ -65,7 +67,7 @@ pub struct SlopeTable {
     ratio: Box<[f32; RATIO_NODES]>,
     /// `∂r/∂m` at each node's fixed directions, `(∂K − r ∂I)/I`.
     d_ratio: Box<[f32; RATIO_NODES]>,
-    /// `ratio` and `d_ratio` as cell corners.
+    /// `ratio` and `d_ratio` as cells of trilinear coefficients.
     ratio_cells: Box<[f32; RATIO_CELL_VALUES]>,
     d_ratio_cells: Box<[f32; RATIO_CELL_VALUES]>,
 }
@@ -94,7 +96,7 @@ impl SlopeTable {
             for k in 0..ONED_NODES - 1 {
                 let (lo, hi) = (oned_nodes[k][which], oned_nodes[k + 1][which]);
                 for j in 0..4 {
-                    (out[8 * k + j], out[8 * k + 4 + j]) = (lo[j] as f32, hi[j] as f32);
+                    (out[8 * k + j], out[8 * k + 4 + j]) = (lo[j] as f32, (hi[j] - lo[j]) as f32);
                 }
             }
             out.into_boxed_slice().try_into().expect("ONED_VALUES values")
@@ -155,14 +157,15 @@ impl SlopeTable {
         &self.d_ratio
     }
 
-    /// `r` as cell corners (what [`ratio_in`] gathers from): cell `(i, o, p)`, flat in that
-    /// order, holds the eight nodes `(i + a, o + b, p + d)` at `8·cell + 4a + 2b + d`, for one
-    /// packet load per lookup instead of eight scattered ones (219 KB).
+    /// `r` as cells (what [`ratio_in`] gathers from): cell `(i, o, p)`, flat in that order,
+    /// holds at `8·cell + 4a + 2b + d` the coefficient of `fi^a fo^b fc^d` of its trilinear
+    /// interpolant (the fractions in the cell), for one packet load per lookup instead of eight
+    /// scattered ones, and seven FMAs (219 KB).
     pub fn ratio_cells(&self) -> &[f32; RATIO_CELL_VALUES] {
         &self.ratio_cells
     }
 
-    /// `∂r/∂m` as cell corners, laid out as [`Self::ratio_cells`].
+    /// `∂r/∂m` as cells, laid out as [`Self::ratio_cells`].
     pub fn ratio_derivative_cells(&self) -> &[f32; RATIO_CELL_VALUES] {
         &self.d_ratio_cells
     }
@@ -190,8 +193,9 @@ impl SlopeTable {
 impl SlopeTable {
     /// `[P0/μ², P1/μ³, H/μ, μΛ]` at 1-D node `k`, for tests that re-interpolate independently.
     pub(crate) fn oned_node(&self, k: usize) -> [f32; 4] {
-        let (cell, offset) = if k < ONED_NODES - 1 { (k, 0) } else { (k - 1, 4) };
-        std::array::from_fn(|j| self.oned[8 * cell + offset + j])
+        let cell = k.min(ONED_NODES - 2);
+        let upper: f32 = if k < ONED_NODES - 1 { 0.0 } else { 1.0 };
+        std::array::from_fn(|j| upper.mul_add(self.oned[8 * cell + 4 + j], self.oned[8 * cell + j]))
     }
 
     /// `r` at node `(i, o, p)`.
@@ -200,7 +204,9 @@ impl SlopeTable {
     }
 }
 
-/// A node table rearranged as cell corners ([`SlopeTable::ratio_cells`]).
+/// A node table rearranged as cells of trilinear coefficients ([`SlopeTable::ratio_cells`]):
+/// cell `(i, o, p)` holds at `8·cell + 4a + 2b + d` the coefficient of `fi^a fo^b fc^d`, the
+/// mixed finite difference `Δi^a Δo^b Δφ^d` of its corners (computed in f64).
 fn corners_of(nodes: &[f32; RATIO_NODES]) -> Box<[f32; RATIO_CELL_VALUES]> {
     let n = R_NODES - 1;
     let mut cells = vec![0.0f32; RATIO_CELL_VALUES];
@@ -208,8 +214,21 @@ fn corners_of(nodes: &[f32; RATIO_NODES]) -> Box<[f32; RATIO_CELL_VALUES]> {
         for o in 0..n {
             for p in 0..n {
                 let cell = (i * n + o) * n + p;
+                let corner = |a: usize, b: usize, d: usize| nodes[ratio_index(i + a, o + b, p + d)] as f64;
                 for k in 0..8 {
-                    cells[8 * cell + k] = nodes[ratio_index(i + (k >> 2), o + ((k >> 1) & 1), p + (k & 1))];
+                    let (a, b, d) = (k >> 2, (k >> 1) & 1, k & 1);
+                    // Σ over the corners (a', b', d') ≤ (a, b, d) of ± corner, the sign (−1)^(number of
+                    // axes where the corner is at 0 but the coefficient's power is 1).
+                    let mut c = 0.0;
+                    for a2 in 0..=a {
+                        for b2 in 0..=b {
+                            for d2 in 0..=d {
+                                let sign = if (a - a2 + b - b2 + d - d2) % 2 == 0 { 1.0 } else { -1.0 };
+                                c += sign * corner(a2, b2, d2);
+                            }
+                        }
+                    }
+                    cells[8 * cell + k] = c as f32;
                 }
             }
         }
@@ -279,21 +298,25 @@ pub fn oned_cell<T: Real>(x: T) -> (T, T) {
 /// `[P0/μ², P1/μ³, H/μ, μΛ]` (or their `∂/∂m`) in the cell `(index, fraction)` ([`oned_cell`])
 /// of a [`SlopeTable::oned_cells`]-shaped table, whose first packet is `base` (an
 /// integer-valued float; zero but in the stacks over m): one packet gather, `K` (3 or 4)
-/// linear interpolations.
+/// linear interpolations of one FMA each (lower node plus fraction times difference).
 #[inline(always)]
 pub fn oned_in<T: Real, const K: usize>(table: T::Table<'_>, base: T, (index, f): (T, T)) -> [T; K] {
     let p = T::gather8(table, index + base);
-    std::array::from_fn(|j| (p[j + 4] - p[j]).fma(f, p[j]))
+    std::array::from_fn(|j| p[j + 4].fma(f, p[j]))
 }
 
 /// Trilinear interpolation of a [`SlopeTable::ratio_cells`]-shaped table at `v_i`, `v_o`
-/// ([`v_axis`]) and `Δφ` ∈ [0, π]: one packet gather of the cell's eight corners.
+/// ([`v_axis`]) and `Δφ` ∈ [0, π]: one packet gather of the cell's eight trilinear
+/// coefficients, evaluated by seven FMAs (Horner's scheme, Δφ first).
 #[inline(always)]
 pub fn ratio_in<T: Real>(cells: T::Table<'_>, v_i: T, v_o: T, phi: T) -> T {
-    let (cell, fractions) = locate(v_i, v_o, phi);
+    let (cell, [fi, fo, fc]) = locate(v_i, v_o, phi);
     let n = (R_NODES - 1) as f64;
     let index = (cell[0].scale(n) + cell[1]).fma(T::c(n), cell[2]);
-    blend(T::gather8(cells, index), fractions)
+    let c = T::gather8(cells, index);
+    let along_phi = |k: usize| c[k + 1].fma(fc, c[k]);
+    let (c0, c1) = (along_phi(2).fma(fo, along_phi(0)), along_phi(6).fma(fo, along_phi(4)));
+    c1.fma(fi, c0)
 }
 
 /// [`ratio_in`] on one layer of a stack of node tables ([`SlopeTable::ratio_nodes`]-shaped,
