@@ -67,8 +67,9 @@ pub struct GinnekenKernel<'t, T: Real> {
     /// `[P0/μ², P1/μ³, H/μ, μΛ]` as 1-D cells ([`SlopeTable::oned_cells`]) and `r = K/I` as
     /// cells of trilinear coefficients ([`SlopeTable::ratio_cells`]).
     pub slope: [T::Table<'t>; 2],
-    /// The tables' roughness m₀ (a constant: the ratio table's v axis).
-    pub m0: T,
+    /// The roughness of the ratio table's v axis, [`table::ratio_axis_roughness`] of the
+    /// tables' m₀ (a constant).
+    pub ratio_axis_m: T,
     /// `(∂/∂m of both tables, dm = m − m₀)` when the roughness gradient is wanted.
     pub roughness_derivative: Option<([T::Table<'t>; 2], T)>,
     pub shadowing: Shadowing,
@@ -99,7 +100,7 @@ impl<'t, T: Real> SlopeSplit<T> for GinnekenKernel<'t, T> {
 
     #[inline(always)]
     fn ratio(&self, g: &SlopeGeometry<T>) -> T {
-        let [v_i, v_o] = g.v(self.m0);
+        let [v_i, v_o] = g.v(self.ratio_axis_m);
         let r = ratio_in(self.slope[1], v_i, v_o, g.phi);
         match self.roughness_derivative {
             Some(([_, d_ratio], dm)) => dm.fma(ratio_in(d_ratio, v_i, v_o, g.phi), r),
@@ -152,12 +153,13 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     // since s² + c² = sin²θi sin²θo: no division by the sines and no acos; (0, 0) gives 0.
     let s = azimuthal_dot(wi, wo);
     let (sin_i, sin_o) = ((wi.x * wi.x + wi.y * wi.y).sqrt(), (wo.x * wo.x + wo.y * wo.y).sqrt());
-    let phi = approx::angle((wi.x * wo.y - wi.y * wo.x).abs(), s);
+    let phi = approx::angle_coarse((wi.x * wo.y - wi.y * wo.x).abs(), s);
     let geometry = SlopeGeometry {
         mu: [mu_i, mu_o],
         sin: [sin_i, sin_o],
         x: [axis_of_cos(mu_i, sin_i), axis_of_cos(mu_o, sin_o)],
-        sin_sum: sin_i.fma(sin_o, s),
+        // ≥ 0 exactly; the clamp removes the rounding of s ≈ −si so at Δφ ≈ π.
+        sin_sum: sin_i.fma(sin_o, s).max(T::c(0.0)),
         phi,
     };
     let [(fi, ml_i), (fo, ml_o)] = split.directions(&geometry);
@@ -266,7 +268,7 @@ impl Ginneken {
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
         GinnekenKernel {
             slope: [Nodes::new(self.table.oned_cells()), Nodes::new(self.table.ratio_cells())],
-            m0: self.m,
+            ratio_axis_m: table::ratio_axis_roughness(self.m as f64) as f32,
             roughness_derivative: None,
             shadowing: self.shadowing,
             sampler_t: self.sampler_t,
@@ -398,10 +400,9 @@ impl Registered for Ginneken {
             Evaluation::Constant => {
                 // The sampler's roughness is the tables' m₀, a constant: the sampling density
                 // is not differentiated (`docs/sampling.md#gradients`).
-                let m0 = T::c(self.m as f64);
                 GinnekenLane::Fixed(GinnekenKernel {
                     slope: [oned, ratio],
-                    m0,
+                    ratio_axis_m: T::c(table::ratio_axis_roughness(self.m as f64)),
                     roughness_derivative: c.roughness.map(|dm| ([d_oned, d_ratio], dm)),
                     shadowing: self.shadowing,
                     sampler_t: T::c(self.sampler_t as f64),
@@ -459,7 +460,8 @@ mod tests {
             + so * mu_i.powi(3) * p0[1]
             + si * mu_o.powi(3) * p1[1]
             + (1.0 + cos_phi) * si * so * (mu_i * p0[2] + mu_o * p1[2]);
-        let v = |mu: f64, s: f64| m * s / (m * s + mu);
+        let axis_m = table::ratio_axis_roughness(m);
+        let v = |mu: f64, s: f64| axis_m * s / (axis_m * s + mu);
         let ((i, fi), (o, fo), (c, fc)) =
             (cell(v(mu_i, si), R_NODES), cell(v(mu_o, so), R_NODES), cell(cos_phi.acos() / std::f64::consts::PI, R_NODES));
         let at = |i: usize, o: usize| lerp(t.ratio_node(i, o, c) as f64, t.ratio_node(i, o, c + 1) as f64, fc);

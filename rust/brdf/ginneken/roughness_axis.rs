@@ -20,7 +20,7 @@
 
 use super::shadowing::{Shadowing, mu_lambda_closed};
 use super::table::{
-    ONED_NODES, ONED_VALUES, RATIO_NODES, SlopeGeometry, SlopeTable, oned_cell, oned_in, ratio_layer_in,
+    ONED_NODES, ONED_VALUES, RATIO_AXIS_MAX_M, RATIO_NODES, SlopeGeometry, SlopeTable, oned_cell, oned_in, ratio_layer_in,
 };
 use super::{Ginneken, SlopeSplit, reduced_with, sampler};
 use crate::cltc::{ClippedLtc, Sampling};
@@ -39,6 +39,9 @@ pub const M_NODES: usize = 13;
 pub const AXIS_ONED_VALUES: usize = M_NODES * ONED_VALUES;
 /// Nodes of the stacked ratio tables.
 pub const AXIS_RATIO_NODES: usize = M_NODES * RATIO_NODES;
+/// `u` of [`RATIO_AXIS_MAX_M`]: layers above it use its v axis, as their tables do
+/// ([`super::table::ratio_axis_roughness`]).
+const U_RATIO_AXIS_MAX: f64 = RATIO_AXIS_MAX_M / (1.0 + RATIO_AXIS_MAX_M);
 /// Packets of eight per layer of the 1-D stacks.
 const ONED_PACKETS: usize = ONED_NODES - 1;
 
@@ -128,7 +131,8 @@ pub struct GinnekenAxisKernel<'t, T: Real> {
     tables: [T::Table<'t>; 4],
     /// Index of the lower layer (an integer-valued float).
     layer: T,
-    /// `u` of the lower and upper layers' roughness (their ratio tables' v axes).
+    /// `u` of the lower and upper layers' ratio-table v axes (their roughness, at most
+    /// [`RATIO_AXIS_MAX_M`]).
     u_nodes: [T; 2],
     /// The clamped roughness (for μΛ).
     m: T,
@@ -163,7 +167,7 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
         Self {
             tables,
             layer: j,
-            u_nodes: [u_lower, u_lower + T::c(du())],
+            u_nodes: [u_lower.min(T::c(U_RATIO_AXIS_MAX)), (u_lower + T::c(du())).min(T::c(U_RATIO_AXIS_MAX))],
             m,
             weights,
             shadowing,

@@ -1,15 +1,15 @@
 //! The fast path: the slope integral `I(θi, θo, Δφ)` per roughness, split as
 //! `I = rest / (1 − r)` (issue 39; derivation and measurements in
 //! `validation/generators/slope_fit_results.md`, cross-checked by
-//! `validation/generators/fit_slope_integral.py`). Only `I` is tabulated; the visibility term
-//! `P_ill+vis/(μi μo)` is evaluated in closed form at run time.
+//! `validation/generators/fit_slope_integral.py`), and Smith's `μΛ` of each direction for the
+//! visibility term `P_ill+vis/(μi μo)`, whose azimuth factor is evaluated at run time.
 //!
 //! * `rest = μo P0(θi) + μi P0(θo) + so P1(θi) + si P1(θo) + (1 + cos Δφ) si so (H(θi) + H(θo))`
 //!   is a sum of non-negative terms (no cancellation) built from three 1-D functions of one
 //!   direction ([`SlopeIntegrator::direction_functions`]). They are tabulated as
-//!   `[P0/μ², P1/μ³, H/μ]` (smooth, finite and non-zero on μ ∈ [0, 1]) on [`ONED_NODES`] nodes of
-//!   the axis `x = √(1−μ) / (√(1−μ) + √μ)` ([`axis_of_cos`]: about uniform in angle near the
-//!   normal, crowding towards grazing), linearly interpolated.
+//!   `[P0/μ², P1/μ³, H/μ]` (smooth, finite and non-zero on μ ∈ [0, 1]), with μΛ, on
+//!   [`ONED_NODES`] nodes of the axis `x = sin θ/(sin θ + μ)` ([`axis_of_cos`]: about uniform
+//!   in angle near the normal, `1 − x ≈ μ` near grazing), linearly interpolated.
 //! * `r = K/I ∈ [0, 1)` is the share of the wedge K of slopes whose facet faces away from both
 //!   directions ([`SlopeIntegrator::wedge_integral_and_derivative`]), the only 3-D part: zero
 //!   unless both directions are grazing and close in azimuth. Tabulated on [`R_NODES`]³ nodes
@@ -17,11 +17,13 @@
 //!   variable mapped to [0, 1]) and Δφ uniform in [0, π], trilinear. As a ratio, its error is
 //!   relative to `I`.
 //!
-//! Per roughness 33 KB of nodes (1.5 KB of 1-D functions, 31 KB of r), read through cell
-//! layouts of 4 KB and 219 KB (one packet gather each), instead of the 6.2 MB cell table of a
-//! trilinear table of `I` itself, and more accurate: at m = 0.3, 0.08 % / 0.16 % for θ ≤ 80° / 85°
-//! against 0.30 % / 0.47 % (`docs/models.md`). 20³ rather than 16³ nodes for r (17.5 KB, half
-//! the error of the old table at m = 0.3) keeps m = 1 within the 0.5 % of
+//! Per roughness 40 KB of nodes (4 KB of 1-D functions, 31 KB of r), read through cell
+//! layouts of 8 KB and 219 KB (one packet gather each) that hold what the interpolation needs:
+//! per 1-D cell the lower node and the differences to the upper one, per ratio cell the eight
+//! coefficients of its trilinear interpolant. The 6.2 MB trilinear table of `I` that preceded
+//! them was less accurate: at m = 0.3, 0.07 % / 0.16 % for θ ≤ 80° / 85° against
+//! 0.30 % / 0.44 % (`docs/models.md`). 20³ rather than 16³ nodes for r (17.5 KB, half the
+//! error of the old table at m = 0.3) keeps m = 1 within the 0.5 % of
 //! `tests/kernels/ginneken_fast_path.rs` (16³: 0.55 %).
 
 use super::shadowing::{d_mu_lambda_dm, mu_lambda};
@@ -103,7 +105,8 @@ impl SlopeTable {
         };
         let (oned, d_oned) = (cells(0), cells(1));
 
-        let mu_at = |k: usize| cos_of_v(k as f64 / (R_NODES - 1) as f64, m).max(MIN_BUILD_COS);
+        let axis_m = ratio_axis_roughness(m);
+        let mu_at = |k: usize| cos_of_v(k as f64 / (R_NODES - 1) as f64, axis_m).max(MIN_BUILD_COS);
         let rows: Vec<Vec<(f32, f32)>> = (0..R_NODES)
             .into_par_iter()
             .map(|i| {
@@ -275,6 +278,17 @@ impl<T: Real> SlopeGeometry<T> {
 pub fn v_axis<T: Real>(mu: T, sin: T, m: T) -> T {
     let ms = m * sin;
     ms / (ms + mu)
+}
+
+/// Largest roughness of the ratio table's v axis ([`ratio_axis_roughness`]).
+pub const RATIO_AXIS_MAX_M: f64 = 0.5;
+
+/// The roughness whose [`v_axis`] the ratio table of roughness `m` uses: m itself up to
+/// [`RATIO_AXIS_MAX_M`], then that. On the axis of m itself, a rougher surface would push the
+/// grazing directions, where r changes fastest, into the last cells (at m = 4, θ ≥ 80° is
+/// v ≥ 0.96, the last of 19 cells).
+pub fn ratio_axis_roughness(m: f64) -> f64 {
+    m.min(RATIO_AXIS_MAX_M)
 }
 
 /// Inverse of [`v_axis`]: `μ = c/√(1 + c²)`, `c = cot θ = m (1 − v)/v`.
