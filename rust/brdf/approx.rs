@@ -112,7 +112,7 @@ fn atan_unit_coarse<T: Real>(t: T) -> T {
     t * p24.fma(z2, p01)
 }
 
-/// The angle in `[0, π]` between the x axis and `(x, y)`, `y ≥ 0`: `atan2(y, x)` by
+/// The angle in `[0, π]` between the x axis and `(x, |y|)`: `atan2(|y|, x)` by
 /// [`atan_unit`] of `min/max(|x|, y)` and the octant reflections. One division and no square
 /// root: an angle from a dot and a cross product without forming the cosine first, whose
 /// square root and division would precede an `acos` on the same dependency chain. Max absolute

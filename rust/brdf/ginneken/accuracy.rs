@@ -70,7 +70,7 @@ pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples
     let t = model.table();
     let kernel = GinnekenKernel::<Dual> {
         slope: [Nodes::new(t.oned_cells()), Nodes::new(t.ratio_cells())],
-        ratio_axis_m: Dual::c(super::table::ratio_axis_roughness(m)),
+        ratio_axis: super::table::ratio_axis_constants(m).map(Dual::c),
         roughness_derivative: Some((
             [Nodes::new(t.oned_derivative_cells()), Nodes::new(t.ratio_derivative_cells())],
             Dual::variable(0.0),

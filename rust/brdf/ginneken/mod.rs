@@ -67,9 +67,9 @@ pub struct GinnekenKernel<'t, T: Real> {
     /// `[P0/μ², P1/μ³, H/μ, μΛ]` as 1-D cells ([`SlopeTable::oned_cells`]) and `r = K/I` as
     /// cells of trilinear coefficients ([`SlopeTable::ratio_cells`]).
     pub slope: [T::Table<'t>; 2],
-    /// The roughness of the ratio table's v axis, [`table::ratio_axis_roughness`] of the
-    /// tables' m₀ (a constant).
-    pub ratio_axis_m: T,
+    /// The ratio table's v axis: `[1/m, 1 − 1/m]` of its roughness m
+    /// ([`table::ratio_axis_constants`] of the tables' m₀; constants).
+    pub ratio_axis: [T; 2],
     /// `(∂/∂m of both tables, dm = m − m₀)` when the roughness gradient is wanted.
     pub roughness_derivative: Option<([T::Table<'t>; 2], T)>,
     pub shadowing: Shadowing,
@@ -100,7 +100,7 @@ impl<'t, T: Real> SlopeSplit<T> for GinnekenKernel<'t, T> {
 
     #[inline(always)]
     fn ratio(&self, g: &SlopeGeometry<T>) -> T {
-        let [v_i, v_o] = g.v(self.ratio_axis_m);
+        let [v_i, v_o] = g.v(self.ratio_axis);
         let r = ratio_in(self.slope[1], v_i, v_o, g.phi);
         match self.roughness_derivative {
             Some(([_, d_ratio], dm)) => dm.fma(ratio_in(d_ratio, v_i, v_o, g.phi), r),
@@ -147,13 +147,14 @@ pub(crate) fn reduced_with<T: Real, const N: usize>(
     rho: [T; N],
     split: &impl SlopeSplit<T>,
 ) -> [T; N] {
-    let (mu_i, mu_o) = (wi.z.clamp_to(MIN_COS as f64, 1.0), wo.z.clamp_to(MIN_COS as f64, 1.0));
+    // Only the lower clamp matters (a cosine a rounding above 1 changes nothing); NaN gives MIN_COS.
+    let (mu_i, mu_o) = (wi.z.max(T::c(MIN_COS as f64)), wo.z.max(T::c(MIN_COS as f64)));
     // s = wi·wo − μi μo = sin θi sin θo cos Δφ, with the sines from the directions' xy. Δφ
     // (for the ratio table and the visibility) is the angle of (s, c) with c = (wi × wo)·z,
     // since s² + c² = sin²θi sin²θo: no division by the sines and no acos; (0, 0) gives 0.
     let s = azimuthal_dot(wi, wo);
     let (sin_i, sin_o) = ((wi.x * wi.x + wi.y * wi.y).sqrt(), (wo.x * wo.x + wo.y * wo.y).sqrt());
-    let phi = approx::angle_coarse((wi.x * wo.y - wi.y * wo.x).abs(), s);
+    let phi = approx::angle_coarse(wi.x * wo.y - wi.y * wo.x, s);
     let geometry = SlopeGeometry {
         mu: [mu_i, mu_o],
         sin: [sin_i, sin_o],
@@ -268,7 +269,7 @@ impl Ginneken {
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
         GinnekenKernel {
             slope: [Nodes::new(self.table.oned_cells()), Nodes::new(self.table.ratio_cells())],
-            ratio_axis_m: table::ratio_axis_roughness(self.m as f64) as f32,
+            ratio_axis: table::ratio_axis_constants(self.m as f64).map(|c| c as f32),
             roughness_derivative: None,
             shadowing: self.shadowing,
             sampler_t: self.sampler_t,
@@ -402,7 +403,7 @@ impl Registered for Ginneken {
                 // is not differentiated (`docs/sampling.md#gradients`).
                 GinnekenLane::Fixed(GinnekenKernel {
                     slope: [oned, ratio],
-                    ratio_axis_m: T::c(table::ratio_axis_roughness(self.m as f64)),
+                    ratio_axis: table::ratio_axis_constants(self.m as f64).map(T::c),
                     roughness_derivative: c.roughness.map(|dm| ([d_oned, d_ratio], dm)),
                     shadowing: self.shadowing,
                     sampler_t: T::c(self.sampler_t as f64),

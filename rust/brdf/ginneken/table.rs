@@ -264,11 +264,12 @@ impl<T: Real> SlopeGeometry<T> {
         mi.fma(part_i, mo * part_o)
     }
 
-    /// Both directions' coordinates on the ratio table's v axis for roughness `m`
-    /// ([`v_axis`]).
+    /// Both directions' coordinates on the ratio table's v axis ([`v_axis`]) from their 1-D
+    /// axis coordinates `x = sin θ/(sin θ + μ)`: `v = m x/(1 + (m − 1) x) = x/(x (1 − 1/m) + 1/m)`,
+    /// an FMA and a division with `axis = [1/m, 1 − 1/m]` ([`ratio_axis_constants`]).
     #[inline(always)]
-    pub fn v(&self, m: T) -> [T; 2] {
-        [v_axis(self.mu[0], self.sin[0], m), v_axis(self.mu[1], self.sin[1], m)]
+    pub fn v(&self, axis: [T; 2]) -> [T; 2] {
+        self.x.map(|x| x / x.fma(axis[1], axis[0]))
     }
 }
 
@@ -289,6 +290,13 @@ pub const RATIO_AXIS_MAX_M: f64 = 0.5;
 /// v ≥ 0.96, the last of 19 cells).
 pub fn ratio_axis_roughness(m: f64) -> f64 {
     m.min(RATIO_AXIS_MAX_M)
+}
+
+/// `[1/m, 1 − 1/m]` for the ratio table's v-axis roughness m of a table of roughness `m0`
+/// ([`ratio_axis_roughness`]; what [`SlopeGeometry::v`] takes).
+pub fn ratio_axis_constants(m0: f64) -> [f64; 2] {
+    let k = 1.0 / ratio_axis_roughness(m0);
+    [k, 1.0 - k]
 }
 
 /// Inverse of [`v_axis`]: `μ = c/√(1 + c²)`, `c = cot θ = m (1 − v)/v`.
