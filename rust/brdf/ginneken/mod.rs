@@ -210,6 +210,8 @@ pub struct Ginneken {
     sampling: Sampling,
     /// [`sampler_roughness`] of m.
     sampler_t: f32,
+    /// [`table::ratio_axis_constants`] of m.
+    ratio_axis: [f32; 2],
     table: Arc<SlopeTable>,
 }
 
@@ -227,7 +229,8 @@ impl Ginneken {
     pub fn with_sampling(m: f64, shadowing: Shadowing, sampling: Sampling) -> Result<Self, ParamError> {
         let m = Self::SPEC.params[0].check(m)?;
         let sampler_t = sampler_roughness(m) as f32;
-        Ok(Self { m: m as f32, shadowing, sampling, sampler_t, table: SlopeTable::shared(m) })
+        let ratio_axis = table::ratio_axis_constants(m).map(|c| c as f32);
+        Ok(Self { m: m as f32, shadowing, sampling, sampler_t, ratio_axis, table: SlopeTable::shared(m) })
     }
 
     pub fn sampling(&self) -> Sampling {
@@ -269,7 +272,7 @@ impl Ginneken {
     pub fn kernel(&self) -> GinnekenKernel<'_, f32> {
         GinnekenKernel {
             slope: [Nodes::new(self.table.oned_cells()), Nodes::new(self.table.ratio_cells())],
-            ratio_axis: table::ratio_axis_constants(self.m as f64).map(|c| c as f32),
+            ratio_axis: self.ratio_axis,
             roughness_derivative: None,
             shadowing: self.shadowing,
             sampler_t: self.sampler_t,
@@ -403,7 +406,7 @@ impl Registered for Ginneken {
                 // is not differentiated (`docs/sampling.md#gradients`).
                 GinnekenLane::Fixed(GinnekenKernel {
                     slope: [oned, ratio],
-                    ratio_axis: table::ratio_axis_constants(self.m as f64).map(T::c),
+                    ratio_axis: [T::c(self.ratio_axis[0] as f64), T::c(self.ratio_axis[1] as f64)],
                     roughness_derivative: c.roughness.map(|dm| ([d_oned, d_ratio], dm)),
                     shadowing: self.shadowing,
                     sampler_t: T::c(self.sampler_t as f64),

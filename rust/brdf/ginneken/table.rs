@@ -269,7 +269,9 @@ impl<T: Real> SlopeGeometry<T> {
     /// an FMA and a division with `axis = [1/m, 1 − 1/m]` ([`ratio_axis_constants`]).
     #[inline(always)]
     pub fn v(&self, axis: [T; 2]) -> [T; 2] {
-        self.x.map(|x| x / x.fma(axis[1], axis[0]))
+        // Not `array::map`: its closure is not always inlined.
+        let [xi, xo] = self.x;
+        [xi / xi.fma(axis[1], axis[0]), xo / xo.fma(axis[1], axis[0])]
     }
 }
 
