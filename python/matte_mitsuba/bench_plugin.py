@@ -5,7 +5,7 @@ type is timed, `tabulated_brdf` on the packaged V-cavity table (σ = 0.3). Each 
 own process (a symbolic call traces every BSDF type loaded in the process), and each time is
 the best of `--repeats` after a warm-up render (JIT compilation, table building).
 
-    python -m matte_mitsuba.bench_plugin [--variant llvm_ad_rgb] [--repeats 3]
+    python -m matte_mitsuba.bench_plugin [--variant llvm_ad_rgb] [--repeats 3] [--rounds 1] [--lanes 8]
     python -m matte_mitsuba.bench_plugin --one wolff      # one type: JSON on stdout
     python -m matte_mitsuba.bench_plugin --one wolff --bitmap   # its int_ior as a bitmap
     python -m matte_mitsuba.bench_plugin --float-fast-path OLD [--rounds 2]
@@ -19,7 +19,11 @@ revision's ``python`` folder after its ``cpp/build_plugin.sh``) first on ``PYTHO
 parameter with the plugin build in OLD (a revision before textured parameters) and with this
 one, and the bitmap with this one; every configuration in its own process, `--rounds` rounds
 interleaved (machine load drifts), best over all, as wall time and as the process's CPU time
-(less sensitive to other work on a shared machine).
+(less sensitive to other work on a shared machine). Without it, `--rounds` rounds of every
+type are interleaved the same way and each type's ratio to `diffuse` is given per round.
+``--lanes 8`` runs Dr.Jit's LLVM backend at 8 lanes (AVX2's width, target CPU `haswell`) on a
+machine whose own width is 16 (AVX-512), so that one machine measures both CPU classes' lane
+widths.
 """
 
 import argparse
@@ -89,11 +93,38 @@ def timed(s, spp):
     return timed_wall_cpu(s, spp)[0]
 
 
-def best_time(kind, variant, res, spp, repeats, bitmap=False):
+def set_llvm_lanes(lanes=None):
+    """Dr.Jit's LLVM backend at `lanes` lanes from now on (before any kernel is compiled): the
+    CPU's own width keeps its target, 8 targets `haswell` (AVX2, FMA) without AVX-512. Dr.Jit
+    has no Python binding for this, so libdrjit-core's `jit_llvm_set_target` is called
+    directly. Returns the width Dr.Jit then reports (without `lanes`, only that)."""
+    import ctypes
+
+    import drjit as dr
+
+    lib = ctypes.CDLL(os.path.join(os.path.dirname(dr.__file__), "libdrjit-core.so"))
+    try:
+        set_target = lib._Z19jit_llvm_set_targetPKcS0_j
+        features, width = lib._Z24jit_llvm_target_featuresv, lib._Z21jit_llvm_vector_widthv
+    except AttributeError:
+        raise SystemExit(f"--lanes: Dr.Jit {dr.__version__} has no jit_llvm_set_target") from None
+    set_target.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_uint32]
+    features.restype, width.restype = ctypes.c_char_p, ctypes.c_uint32
+    if lanes and lanes != width():
+        if lanes != 8:
+            raise SystemExit(f"--lanes {lanes}: this CPU runs {width()} lanes; only 8 can be chosen instead")
+        kept = ",".join(f for f in features().decode().split(",") if "avx512" not in f)
+        set_target(b"haswell", kept.encode(), 8)
+    return width()
+
+
+def best_time(kind, variant, res, spp, repeats, bitmap=False, lanes=None):
     """Best-of wall and CPU times of one type in this process (after a warm-up render)."""
     import mitsuba as mi
 
     mi.set_variant(variant)
+    if lanes:
+        set_llvm_lanes(lanes)
     import matte_mitsuba  # noqa: F401  (registers the plugins)
 
     with tempfile.TemporaryDirectory() as folder:
@@ -103,7 +134,7 @@ def best_time(kind, variant, res, spp, repeats, bitmap=False):
         return min(t[0] for t in times), min(t[1] for t in times)
 
 
-def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None, both=False):
+def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_root=None, both=False, lanes=None):
     """Best wall seconds of one configuration in its own process; (wall, CPU) with `both`."""
     env = dict(os.environ)
     if plugin_root:
@@ -125,7 +156,8 @@ def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_ro
             "--repeats",
             str(repeats),
         ]
-        + (["--bitmap"] if bitmap else []),
+        + (["--bitmap"] if bitmap else [])
+        + (["--lanes", str(lanes)] if lanes else []),
         capture_output=True,
         text=True,
         check=True,
@@ -137,11 +169,15 @@ def time_in_subprocess(kind, variant, res, spp, repeats, bitmap=False, plugin_ro
     return (result["seconds"], result["cpu_seconds"]) if both else result["seconds"]
 
 
-def time_all(variant, res, spp, repeats, types=TYPES, plugin_root=None):
-    """{type: best seconds} for `diffuse` and every type, each in its own process."""
-    return {
-        k: time_in_subprocess(k, variant, res, spp, repeats, plugin_root=plugin_root) for k in ["diffuse"] + list(types)
-    }
+def time_all(variant, res, spp, repeats, types=TYPES, plugin_root=None, rounds=1, lanes=None):
+    """{type: [best seconds of each round]} for `diffuse` and every type, each in its own
+    process, the types taking turns round by round."""
+    times = {}
+    for _ in range(rounds):
+        for k in ["diffuse"] + list(types):
+            t = time_in_subprocess(k, variant, res, spp, repeats, plugin_root=plugin_root, lanes=lanes)
+            times.setdefault(k, []).append(t)
+    return times
 
 
 def float_fast_path(old_root, variant, res, spp, repeats, rounds, types):
@@ -182,19 +218,21 @@ def main():
         metavar="OLD_ROOT",
         help="compare float parameters with the build in OLD_ROOT (the folder holding its matte_mitsuba)",
     )
-    ap.add_argument("--rounds", type=int, default=2, help="with --float-fast-path: interleaved rounds")
+    ap.add_argument("--rounds", type=int, help="interleaved rounds (default 1; 2 with --float-fast-path)")
+    ap.add_argument("--lanes", type=int, choices=[8, 16], help="Dr.Jit's LLVM vector width (default: the CPU's)")
     ap.add_argument("--json", metavar="FILE", help="with --float-fast-path: write the times here")
     a = ap.parse_args()
     if a.one:
         if a.bitmap and a.one not in SHAPE_PARAMETER:
             ap.error(f"--bitmap: {a.one} has no numeric parameter")
-        wall, cpu = best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap)
+        wall, cpu = best_time(a.one, a.variant, a.res, a.spp, a.repeats, a.bitmap, a.lanes)
         print(
             json.dumps(
                 {
                     "type": a.one,
                     "bitmap": a.bitmap,
                     "plugins": matte_mitsuba.PLUGIN_ROOT,
+                    "lanes": set_llvm_lanes() if a.variant.startswith("llvm") else None,
                     "seconds": wall,
                     "cpu_seconds": cpu,
                 }
@@ -206,7 +244,7 @@ def main():
             f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats} per process, "
             f"{a.rounds} rounds, one process per configuration; old build: {a.float_fast_path}"
         )
-        times = float_fast_path(a.float_fast_path, a.variant, a.res, a.spp, a.repeats, a.rounds, a.types)
+        times = float_fast_path(a.float_fast_path, a.variant, a.res, a.spp, a.repeats, a.rounds or 2, a.types)
         for clock, best in times.items():
             print(f"{clock} time (s): diffuse {best['diffuse this float']:.3f}")
             print(f"  {'type':<13} {'old float':>9} {'float':>9} {'float/old':>9} {'bitmap':>9} {'bitmap/float':>12}")
@@ -223,7 +261,7 @@ def main():
                         "spp": a.spp,
                         "variant": a.variant,
                         "repeats": a.repeats,
-                        "rounds": a.rounds,
+                        "rounds": a.rounds or 2,
                         "old_root": os.path.abspath(a.float_fast_path),
                         "seconds": times,
                     },
@@ -231,11 +269,20 @@ def main():
                     indent=1,
                 )
         return
-    print(f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}, best of {a.repeats}, one process per type")
-    best = time_all(a.variant, a.res, a.spp, a.repeats, a.types, a.plugin_root)
-    print(f"  diffuse     {best['diffuse']:.3f} s")
+    rounds = a.rounds or 1
+    lanes = f", {a.lanes} lanes" if a.lanes else ""
+    print(
+        f"Cornell box {a.res}x{a.res}, {a.spp} spp, {a.variant}{lanes}, best of {a.repeats}, "
+        f"one process per type, {rounds} round(s)"
+    )
+    times = time_all(a.variant, a.res, a.spp, a.repeats, a.types, a.plugin_root, rounds, a.lanes)
+    diffuse = times["diffuse"]
+    print(f"  diffuse        {min(diffuse):.3f} s")
     for k in a.types:
-        print(f"  {k:<11} {best[k]:.3f} s  {best[k] / best['diffuse']:.3f}x diffuse")
+        ratios = [t / d for t, d in zip(times[k], diffuse)]
+        per_round = " ".join(f"{r:.3f}" for r in ratios)
+        rounds_text = f" (mean of the rounds {sum(ratios) / len(ratios):.3f}x: {per_round})" if rounds > 1 else ""
+        print(f"  {k:<14} {min(times[k]):.3f} s  {min(times[k]) / min(diffuse):.3f}x diffuse{rounds_text}")
 
 
 if __name__ == "__main__":

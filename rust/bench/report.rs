@@ -71,7 +71,6 @@ fn plugin_limit(kind: &str) -> f64 {
     match kind {
         "lambert" => 1.02,
         "oren_nayar" => 1.05,
-        "ginneken" => 1.30,
         _ => 1.10,
     }
 }

@@ -50,7 +50,7 @@ pub trait Real:
     /// `e^x`: the standard library's on the CPU, Dr.Jit's `exp` when traced (they differ by
     /// an ulp or so).
     fn exp(self) -> Self;
-    /// `table[idx + offset]` for a non-negative integer-valued `idx` (exact below 2²⁴); out of
+    /// `table[idx + offset]` for a non-negative integer-valued `idx` (below 2²³); out of
     /// range gives the last node on the CPU (callers clamp, so this never happens). The constant `offset`
     /// is separate so that the CPU converts `idx` to an integer once for all of a cell's corners.
     fn gather(table: Self::Table<'_>, idx: Self, offset: u32) -> Self;
@@ -95,7 +95,7 @@ pub trait Real:
 /// The CPU implementations: `bool` masks, branchy selects (the compiler turns them into
 /// blends where that pays), one `minss`/`maxss` per clamp.
 macro_rules! cpu_real {
-    ($t:ty, $table:ty) => {
+    ($t:ty, $table:ty, $bits:ty, $mantissa:expr) => {
         impl Real for $t {
             type Mask = bool;
             type Table<'t> = $table;
@@ -167,18 +167,29 @@ macro_rules! cpu_real {
             }
             #[inline(always)]
             fn gather(table: Nodes<'_>, idx: Self, offset: u32) -> Self {
-                table.at(idx as usize + offset as usize) as $t
+                table.at(index_bits!($t, $bits, $mantissa, idx) + offset as usize) as $t
             }
             #[inline(always)]
             fn gather8(table: Nodes<'_>, idx: Self) -> [Self; 8] {
-                table.packet8(idx as usize).map(|v| v as $t)
+                table.packet8(index_bits!($t, $bits, $mantissa, idx)).map(|v| v as $t)
             }
         }
     };
 }
 
-cpu_real!(f32, Nodes<'t>);
-cpu_real!(f64, Nodes<'t>);
+/// A non-negative integer-valued float below 2^mantissa as an integer, by adding
+/// 2^mantissa (which puts the integer into the mantissa's bits) and masking: an add and an
+/// `and`, where `as usize` is a saturating conversion of a dozen instructions with branches.
+/// Anything else (NaN, negative, too large) gives some index that [`Nodes`] clamps into the
+/// table, so memory safety never depends on the caller.
+macro_rules! index_bits {
+    ($t:ty, $bits:ty, $mantissa:expr, $x:expr) => {
+        (($x + (1u64 << $mantissa) as $t).to_bits() & (((1 as $bits) << $mantissa) - 1)) as usize
+    };
+}
+
+cpu_real!(f32, Nodes<'t>, u32, 23);
+cpu_real!(f64, Nodes<'t>, u64, 52);
 
 /// A non-empty table of f32 node values for the CPU's [`Real::gather`]: a lookup clamps its
 /// index to the last node (one `cmov`) instead of a bounds check and a panic path, which in van
@@ -249,5 +260,32 @@ impl From<V3<f32>> for glam::Vec3 {
     #[inline(always)]
     fn from(v: V3<f32>) -> Self {
         glam::Vec3::new(v.x, v.y, v.z)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The CPU gathers read integer-valued indices exactly and map every other float (NaN,
+    /// negative, past the end, infinite) to a node of the table, never past it.
+    #[test]
+    fn cpu_gathers_read_integer_indices_and_stay_inside_the_table() {
+        let data: [f32; 64] = std::array::from_fn(|k| k as f32);
+        let t = Nodes::new(&data);
+        for k in 0..64 {
+            assert_eq!(<f32 as Real>::gather(t, k as f32, 0), k as f32);
+            assert_eq!(<f64 as Real>::gather(t, k as f64, 0), k as f64);
+        }
+        for k in 0..8 {
+            assert_eq!(<f32 as Real>::gather8(t, k as f32), std::array::from_fn(|j| (8 * k + j) as f32));
+            assert_eq!(<f64 as Real>::gather8(t, k as f64), std::array::from_fn(|j| (8 * k + j) as f64));
+        }
+        assert_eq!(<f32 as Real>::gather(t, 8_388_607.0, 0), 63.0);
+        for x in [f32::NAN, -1.0, -0.5, -1e30, 64.0, 1e7, 8_388_608.0, 1e30, f32::INFINITY, f32::NEG_INFINITY] {
+            assert!(data.contains(&<f32 as Real>::gather(t, x, 3)), "{x}");
+            assert!(<f32 as Real>::gather8(t, x).iter().all(|v| data.contains(v)), "{x}");
+            assert!(data.contains(&(<f64 as Real>::gather(t, x as f64, 3) as f32)), "{x}");
+        }
     }
 }

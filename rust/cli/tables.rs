@@ -4,7 +4,12 @@
 //! measured error against the reference integral.
 
 use clap::Args;
+use matte_brdf::ginneken::Ginneken;
 use matte_brdf::ginneken::accuracy::fast_path_accuracy;
+use matte_brdf::ginneken::shadowing::Shadowing;
+
+/// Roughnesses whose van Ginneken fast-path error is printed besides the tables' own (0.3, 0.5).
+const FAST_PATH_ROUGHNESS: [f64; 5] = [0.02, 0.1, 1.0, 2.0, 4.0];
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
 
 #[derive(Args, Debug)]
@@ -101,8 +106,14 @@ pub fn run(args: &TablesArgs) -> Result<(), String> {
             "\nvan Ginneken fast path vs reference integral ({} quasi-random configurations each)",
             args.error_samples
         );
-        for (label, bsdf) in &models {
-            if let DiffuseModel::Ginneken(g) = bsdf {
+        // The tables' models, then the rest of the roughness range.
+        let others = FAST_PATH_ROUGHNESS.iter().map(|&m| {
+            let g = Ginneken::new(m, Shadowing::VanGinneken).expect("a valid roughness");
+            (format!("vG m={m}"), DiffuseModel::Ginneken(g))
+        });
+        let table_models = models.iter().map(|(label, bsdf)| (label.to_string(), bsdf.clone()));
+        for (label, bsdf) in table_models.chain(others) {
+            if let DiffuseModel::Ginneken(g) = &bsdf {
                 for max_theta in [80.0, 85.0, 89.0] {
                     let e = fast_path_accuracy(g, max_theta, args.error_samples);
                     println!(

@@ -1,4 +1,4 @@
-//! Measures the fast path (table) against the reference integral over the whole domain of
+//! Measures the fast path (tables) against the reference integral over the whole domain of
 //! directions up to a maximum polar angle, at quasi-random configurations (R3 sequence:
 //! deterministic, evenly spread, no RNG dependency).
 
@@ -44,7 +44,7 @@ pub fn fast_path_accuracy(model: &Ginneken, max_theta_deg: f64, samples: usize) 
     FastPathAccuracy { max_relative: max_rel, mean_relative: sum_rel / samples as f64, worst, samples }
 }
 
-/// How well the traced kernels' roughness gradient (the slope table's `∂/∂m` table, first
+/// How well the traced kernels' roughness gradient (the slope tables' `∂/∂m` tables, first
 /// order around the table's m₀, and μΛ's closed form) matches the true derivative.
 #[derive(Clone, Copy, Debug)]
 pub struct RoughnessGradientAccuracy {
@@ -58,7 +58,7 @@ pub struct RoughnessGradientAccuracy {
     pub samples: usize,
 }
 
-/// The kernel's `∂f/∂m` (the slope table's derivative table, μΛ's closed form), evaluated
+/// The kernel's `∂f/∂m` (the slope tables' derivative tables, μΛ's closed form), evaluated
 /// with dual numbers ([`Dual`]: the same code the plugin traces, `m − m₀` as the variable), against
 /// central differences (`m (1 ± 10⁻³)`) of [`Ginneken::eval_reference`], at `samples`
 /// quasi-random configurations with θi, θo ≤ `max_theta_deg`.
@@ -69,9 +69,12 @@ pub fn roughness_gradient_accuracy(model: &Ginneken, max_theta_deg: f64, samples
     let minus = Ginneken::new(m - h, model.shadowing()).expect("valid roughness");
     let t = model.table();
     let kernel = GinnekenKernel::<Dual> {
-        slope: Nodes::new(t.slope_cells()),
-        m: Dual::c(m) + Dual::variable(0.0),
-        roughness_derivative: Some((Nodes::new(t.slope_derivative_cells()), Dual::variable(0.0))),
+        slope: [Nodes::new(t.oned_cells()), Nodes::new(t.ratio_cells())],
+        ratio_axis: super::table::ratio_axis_constants(m).map(Dual::c),
+        roughness_derivative: Some((
+            [Nodes::new(t.oned_derivative_cells()), Nodes::new(t.ratio_derivative_cells())],
+            Dual::variable(0.0),
+        )),
         shadowing: model.shadowing(),
         sampler_t: Dual::c(super::sampler_roughness(m)),
         cltc: false,

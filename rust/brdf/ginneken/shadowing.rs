@@ -43,6 +43,16 @@ pub fn mu_lambda(mu: f64, sin: f64, m: f64) -> f64 {
     v.max(0.0)
 }
 
+/// `∂(μΛ)/∂m = ½ √(2/π) sin θ e^{−a²/2}`, `a = μ/(m sin θ)` (f64; the terms in `∂a/∂m`
+/// cancel): the single-roughness table's `∂/∂m` of μΛ.
+pub fn d_mu_lambda_dm(mu: f64, sin: f64, m: f64) -> f64 {
+    if sin <= 0.0 {
+        return 0.0;
+    }
+    let a = mu / (m * sin);
+    0.5 * (2.0 / PI).sqrt() * sin * (-0.5 * a * a).exp()
+}
+
 /// `μ Λ(θ)` in any [`Real`], the kernels' form: with `a = μ / (m sin θ)`,
 /// `μΛ = m sin θ · g(a)`, `g(a) = ½ [√(2/π) e^{−a²/2} − a erfc(a/√2)]`, and g by a rational
 /// fit of degrees 5 and 6 (`mu_lambda_fit.rs`, `validation/generators/fit_mu_lambda.py`) whose error is

@@ -91,6 +91,111 @@ impl SlopeIntegrator {
         }
         (sum, dsum)
     }
+
+    /// `(K, ∂K/∂m)`: the wedge of slopes whose facet faces away from both directions,
+    /// `K = E[w (p·wi − μi)⁺ (p·wo − μo)⁺]`, `w = 1/√(1+p²+q²)` (the split
+    /// `I = rest + K`, [`Self::direction_functions`]). The same t-quadrature as
+    /// [`Self::integral_and_derivative`]; the angular integral of the same product runs over the
+    /// intersection of the two arcs where both factors are negative, which exists only beyond
+    /// both clamping onsets: one piece from `max(cot θi, cot θo)` to the truncation.
+    pub fn wedge_integral_and_derivative(&self, m: f64, mu_i: f64, mu_o: f64, phi: f64) -> (f64, f64) {
+        let (di, do_) = (Dir::new(mu_i), Dir::new(mu_o));
+        let t_max = TRUNCATION * m;
+        let onset = |d: Dir| if d.sin > 0.0 { (d.mu / d.sin).min(t_max) } else { t_max };
+        let t0 = onset(di).max(onset(do_));
+        if t0 >= t_max {
+            return (0.0, 0.0);
+        }
+        let inv_m2 = 1.0 / (m * m);
+        let len = t_max - t0;
+        let (mut sum, mut dsum) = (0.0, 0.0);
+        for (w, wt) in self.rule.mapped(0.0, 1.0) {
+            let t = t0 + len * w * w;
+            let v = t * inv_m2 * (-0.5 * t * t * inv_m2).exp() / (1.0 + t * t).sqrt()
+                * wedge_angular(di, do_, phi, t)
+                * (wt * 2.0 * len * w);
+            sum += v;
+            dsum += v * (t * t * inv_m2 - 2.0) / m;
+        }
+        (sum, dsum)
+    }
+
+    /// `([P0, P1, H], [∂/∂m of each])` for a direction with cosine `mu`: the 1-D functions of
+    /// the split `I = rest + K` (`validation/generators/slope_fit_results.md`),
+    ///
+    /// `rest = μo P0(θi) + μi P0(θo) + so P1(θi) + si P1(θo) + (1 + cos Δφ) si so (H(θi) + H(θo))`
+    ///
+    /// with X, Z ~ N(0, m²) the slope components along and across the direction's azimuth,
+    /// `h(X) = E_Z[1/√(1+X²+Z²)]` and `c = cot θ`: `P0 = E[h (μ − sX); 0 < X < c]`,
+    /// `P1 = E[h X (μ − sX); 0 < X < c]`, `H = E[h X min(X, c); X > 0]`. Gauss–Legendre in X on
+    /// `[0, c]` and `[c, √80 m]`, and in Z on `[0, √80 m]` (h is even in Z). `∂/∂m` weights
+    /// the same nodes by `∂ ln(density)/∂m = (X² + Z²)/m³ − 2/m`.
+    pub fn direction_functions(&self, m: f64, mu: f64) -> ([f64; 3], [f64; 3]) {
+        let d = Dir::new(mu);
+        let t_max = TRUNCATION * m;
+        let c = if d.sin > 0.0 { (d.mu / d.sin).min(t_max) } else { t_max };
+        let (inv_m2, norm) = (1.0 / (m * m), 1.0 / ((2.0 * PI).sqrt() * m));
+        let gauss = |x: f64| norm * (-0.5 * x * x * inv_m2).exp();
+        // h(X) and E_Z[(Z²/m³ − 1/m)/√(1+X²+Z²)] (Z's share of the density derivative).
+        let h = |x: f64| {
+            let (mut v, mut dv) = (0.0, 0.0);
+            for (z, wz) in self.rule.mapped(0.0, t_max) {
+                let e = 2.0 * wz * gauss(z) / (1.0 + x * x + z * z).sqrt();
+                v += e;
+                dv += e * (z * z * inv_m2 - 1.0) / m;
+            }
+            (v, dv)
+        };
+        // The density-weighted h at X and its m-derivative.
+        let weight = |x: f64, wx: f64| {
+            let (hv, hd) = h(x);
+            let g = wx * gauss(x);
+            (g * hv, g * (hv * (x * x * inv_m2 - 1.0) / m + hd))
+        };
+        let (mut f, mut df) = ([0.0; 3], [0.0; 3]);
+        for (x, wx) in self.rule.mapped(0.0, c) {
+            let (b, db) = weight(x, wx);
+            let facing = d.mu - d.sin * x;
+            for (k, factor) in [facing, x * facing, x * x].into_iter().enumerate() {
+                f[k] += b * factor;
+                df[k] += db * factor;
+            }
+        }
+        if c < t_max {
+            for (x, wx) in self.rule.mapped(c, t_max) {
+                let (b, db) = weight(x, wx);
+                f[2] += b * x * c;
+                df[2] += db * x * c;
+            }
+        }
+        (f, df)
+    }
+}
+
+impl Dir {
+    fn new(mu: f64) -> Self {
+        Dir { mu, sin: (1.0 - mu * mu).max(0.0).sqrt() }
+    }
+}
+
+/// `(1/2π) ∫ (a1 − b1 cos ψ)⁻ (a2 − b2 cos(ψ − φ))⁻ dψ` with `a = μ`, `b = t sin θ`: the
+/// product over the arcs `[off − δ, off + δ]`, `δ = acos(a/b)`, where both factors are negative.
+fn wedge_angular(di: Dir, do_: Dir, phi: f64, t: f64) -> f64 {
+    let (a1, b1, a2, b2) = (di.mu, t * di.sin, do_.mu, t * do_.sin);
+    if b1 <= a1 || b2 <= a2 {
+        return 0.0;
+    }
+    let k0 = a1 * a2 + 0.5 * b1 * b2 * phi.cos();
+    let prim = |x: f64| k0 * x - a1 * b2 * (x - phi).sin() - a2 * b1 * x.sin() + 0.25 * b1 * b2 * (2.0 * x - phi).sin();
+    let (d1, d2) = ((a1 / b1).acos(), (a2 / b2).acos());
+    let total: f64 = (-1..=1)
+        .map(|k| {
+            let shift = k as f64 * TAU;
+            let (lo, hi) = ((-d1).max(phi - d2 + shift), d1.min(phi + d2 + shift));
+            if hi > lo { prim(hi) - prim(lo) } else { 0.0 }
+        })
+        .sum();
+    total / TAU
 }
 
 /// `(1/2π) ∫_0^{2π} (a1 − b1 cos ψ)⁺ (a2 − b2 cos(ψ − φ))⁺ dψ` with `a = μ`, `b = t sin θ`.
@@ -204,6 +309,39 @@ mod tests {
                 assert!((d - fd).abs() <= 1e-5 * (d.abs() + v / m), "m={m} ({ti},{to},{ph}): {d} vs {fd} (I = {v})");
             }
         }
+    }
+
+    /// `I = rest + K` ([`SlopeIntegrator::direction_functions`],
+    /// [`SlopeIntegrator::wedge_integral_and_derivative`]), for the values and the m-derivatives.
+    #[test]
+    fn integral_splits_into_direction_functions_and_wedge() {
+        let r = SlopeIntegrator::new(REFERENCE_NODES);
+        let mut worst = (0.0f64, 0.0f64);
+        for &m in &[0.05, 0.3, 1.0, 3.0] {
+            for &(ti, to, ph) in &[
+                (0.0, 0.0, 0.0),
+                (30.0, 60.0, 45.0),
+                (75.0, 75.0, 180.0),
+                (80.0, 10.0, 0.0),
+                (85.0, 85.0, 0.0),
+                (88.0, 70.0, 20.0),
+                (60.0, 89.0, 150.0),
+            ] {
+                let (mi, mo, p) = (f64::to_radians(ti).cos(), f64::to_radians(to).cos(), f64::to_radians(ph));
+                let (si, so) = (f64::to_radians(ti).sin(), f64::to_radians(to).sin());
+                let ((fi, dfi), (fo, dfo)) = (r.direction_functions(m, mi), r.direction_functions(m, mo));
+                let rest = |a: [f64; 3], b: [f64; 3]| {
+                    mo * a[0] + mi * b[0] + so * a[1] + si * b[1] + (1.0 + p.cos()) * si * so * (a[2] + b[2])
+                };
+                let (k, dk) = r.wedge_integral_and_derivative(m, mi, mo, p);
+                let (i, di) = r.integral_and_derivative(m, mi, mo, p);
+                let err = ((rest(fi, fo) + k - i) / i).abs();
+                let d_err = (rest(dfi, dfo) + dk - di).abs() * m / i;
+                worst = (worst.0.max(err), worst.1.max(d_err));
+                assert!(err < 1e-9 && d_err < 1e-8, "m={m} ({ti},{to},{ph}): {err:e} {d_err:e}");
+            }
+        }
+        println!("worst relative difference {:e}, of the derivative {:e}", worst.0, worst.1);
     }
 
     #[test]
