@@ -191,59 +191,50 @@ mod tests {
         assert!(worst <= 2e-8, "max |err| = {worst:e}");
     }
 
-    #[test]
-    fn atan_matches_f64_over_the_unit_interval() {
-        let mut worst = 0.0f64;
-        for t in unit_grid(97) {
-            worst = worst.max((atan_unit(t) as f64 - (t as f64).atan()).abs());
-        }
-        assert!(worst <= 1.5e-7, "max |err| = {worst:e}");
+    /// Largest |atan_fn(t) − atan t| over the unit interval (f64 reference).
+    fn worst_atan_error(atan_fn: impl Fn(f32) -> f32) -> f64 {
+        unit_grid(97).map(|t| (atan_fn(t) as f64 - (t as f64).atan()).abs()).fold(0.0, f64::max)
     }
 
-    #[test]
-    fn angle_matches_f64_atan2_in_the_upper_half_plane() {
-        // Directions on a fine circle plus radii from 1e-20 to 1e20 (the ratio is what counts).
+    /// `angle_fn` against f64 `atan2` on a fine half circle at radii from 1e-20 to 1e20 (the
+    /// ratio is what counts), within `bound`, and exact where both operands are on an axis.
+    fn assert_angle_matches_atan2(angle_fn: impl Fn(f32, f32) -> f32, bound: f64) {
         let mut worst = 0.0f64;
         for k in 0..=100_000 {
             let phi = std::f64::consts::PI * k as f64 / 100_000.0;
             for r in [1e-20f64, 1e-3, 1.0, 7.5, 1e20] {
                 let (x, y) = ((r * phi.cos()) as f32, (r * phi.sin()).max(0.0) as f32);
-                let want = (y as f64).atan2(x as f64);
-                worst = worst.max((angle(y, x) as f64 - want).abs());
+                worst = worst.max((angle_fn(y, x) as f64 - (y as f64).atan2(x as f64)).abs());
             }
         }
-        assert!(worst <= 4e-7, "max |err| = {worst:e}");
-        assert_eq!(angle(0.0, 0.0), 0.0);
-        assert_eq!(angle(0.0, 1.0), 0.0);
-        assert!((angle(0.0, -1.0) - PI).abs() <= 2.4e-7);
-        assert!((angle(1.0, 0.0) - FRAC_PI_2).abs() <= 1.2e-7);
+        assert!(worst <= bound, "max |err| = {worst:e}");
+        assert_eq!(angle_fn(0.0, 0.0), 0.0);
+        assert_eq!(angle_fn(0.0, 1.0), 0.0);
+        assert!((angle_fn(0.0, -1.0) - PI).abs() <= 2.4e-7);
+        assert!((angle_fn(1.0, 0.0) - FRAC_PI_2).abs() <= 1.2e-7);
+    }
+
+    #[test]
+    fn atan_matches_f64_over_the_unit_interval() {
+        let worst = worst_atan_error(atan_unit);
+        assert!(worst <= 1.5e-7, "max |err| = {worst:e}");
+    }
+
+    #[test]
+    fn angle_matches_f64_atan2_in_the_upper_half_plane() {
+        assert_angle_matches_atan2(angle, 4e-7);
     }
 
     #[test]
     fn coarse_atan_matches_f64_over_the_unit_interval() {
-        let mut worst = 0.0f64;
-        for t in unit_grid(97) {
-            worst = worst.max((atan_unit_coarse(t) as f64 - (t as f64).atan()).abs());
-        }
+        let worst = worst_atan_error(atan_unit_coarse);
         // A&S state 1e-5; their printed seven-digit coefficients reach 1.15e-5.
         assert!(worst <= 1.2e-5, "max |err| = {worst:e}");
     }
 
     #[test]
     fn coarse_angle_matches_f64_atan2_in_the_upper_half_plane() {
-        let mut worst = 0.0f64;
-        for k in 0..=100_000 {
-            let phi = std::f64::consts::PI * k as f64 / 100_000.0;
-            for r in [1e-20f64, 1e-3, 1.0, 7.5, 1e20] {
-                let (x, y) = ((r * phi.cos()) as f32, (r * phi.sin()).max(0.0) as f32);
-                worst = worst.max((angle_coarse(y, x) as f64 - (y as f64).atan2(x as f64)).abs());
-            }
-        }
-        assert!(worst <= 1.2e-5, "max |err| = {worst:e}");
-        assert_eq!(angle_coarse(0.0, 0.0), 0.0);
-        assert_eq!(angle_coarse(0.0, 1.0), 0.0);
-        assert!((angle_coarse(0.0, -1.0) - PI).abs() <= 2.4e-7);
-        assert!((angle_coarse(1.0, 0.0) - FRAC_PI_2).abs() <= 1.2e-7);
+        assert_angle_matches_atan2(angle_coarse, 1.2e-5);
     }
 
     #[test]

@@ -23,28 +23,39 @@ def _gl01(n):
     return 0.5 * (x + 1), 0.5 * w
 
 
-def angular(mu_i, s_i, mu_o, s_o, phi, t):
-    """(1/2π) ∫ (a1 − b1 cos ψ)⁺ (a2 − b2 cos(ψ − φ))⁺ dψ, broadcast over all arguments."""
-    a1, b1, a2, b2 = mu_i, t * s_i, mu_o, t * s_o
+def _product_primitive(a1, b1, a2, b2, phi):
+    """An antiderivative in ψ of (a1 − b1 cos ψ)(a2 − b2 cos(ψ − φ)), expanded with
+    cos ψ cos(ψ−φ) = ½[cos φ + cos(2ψ − φ)]."""
     k0 = a1 * a2 + 0.5 * b1 * b2 * np.cos(phi)
 
     def prim(x):
         return k0 * x - a1 * b2 * np.sin(x - phi) - a2 * b1 * np.sin(x) + 0.25 * b1 * b2 * np.sin(2 * x - phi)
 
-    def arc(a, b, off):
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.where(b > a, a / np.where(b > 0, b, 1.0), 1.0)
-        d = np.arccos(np.clip(r, -1.0, 1.0))
-        return off + d, TAU - 2 * d
+    return prim
 
-    s1, l1 = arc(a1, b1, 0.0)
-    s2, l2 = arc(a2, b2, phi)
+
+def _half_width(a, b):
+    """acos(a/b) where b > a (the half-width of the arc where a − b cos ψ changes sign), else 0."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = np.where(b > a, a / np.where(b > 0, b, 1.0), 1.0)
+    return np.arccos(np.clip(r, -1.0, 1.0))
+
+
+def _arcs_overlap(prim, s1, l1, s2, l2):
+    """The integral (by its antiderivative) over the intersection of the arcs (start, length),
+    the second shifted by −2π, 0 and 2π."""
     total = 0.0
     for k in (-1, 0, 1):
-        lo = np.maximum(s1, s2 + k * TAU)
-        hi = np.minimum(s1 + l1, s2 + l2 + k * TAU)
+        lo, hi = np.maximum(s1, s2 + k * TAU), np.minimum(s1 + l1, s2 + l2 + k * TAU)
         total = total + np.where(hi > lo, prim(hi) - prim(lo), 0.0)
-    return total / TAU
+    return total
+
+
+def angular(mu_i, s_i, mu_o, s_o, phi, t):
+    """(1/2π) ∫ (a1 − b1 cos ψ)⁺ (a2 − b2 cos(ψ − φ))⁺ dψ, broadcast over all arguments."""
+    a1, b1, a2, b2 = mu_i, t * s_i, mu_o, t * s_o
+    d1, d2 = _half_width(a1, b1), _half_width(a2, b2)
+    return _arcs_overlap(_product_primitive(a1, b1, a2, b2, phi), d1, TAU - 2 * d1, phi + d2, TAU - 2 * d2) / TAU
 
 
 def slope_integral(m, mu_i, mu_o, phi, nodes=48, derivative=False):
@@ -216,23 +227,9 @@ def wedge_integral(m, mu_i, mu_o, phi, nodes=48):
     t, wt = t0[None] + L * x * x, 2 * L * x * w
     a1, b1, a2, b2 = mu_i[None], t * s_i[None], mu_o[None], t * s_o[None]
     ph = phi[None]
-    k0 = a1 * a2 + 0.5 * b1 * b2 * np.cos(ph)
-
-    def prim(v):
-        return k0 * v - a1 * b2 * np.sin(v - ph) - a2 * b1 * np.sin(v) + 0.25 * b1 * b2 * np.sin(2 * v - ph)
-
-    def neg_arc(a, b, off):
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = np.where(b > a, a / np.where(b > 0, b, 1.0), 1.0)
-        d = np.arccos(np.clip(r, -1, 1))
-        return off - d, 2 * d
-
-    s1, l1 = neg_arc(a1, b1, 0.0)
-    s2, l2 = neg_arc(a2, b2, ph)
-    ang = 0.0
-    for k in (-1, 0, 1):
-        lo, hi = np.maximum(s1, s2 + k * TAU), np.minimum(s1 + l1, s2 + l2 + k * TAU)
-        ang = ang + np.where(hi > lo, prim(hi) - prim(lo), 0.0)
+    # The arcs [off − δ, off + δ] where both factors are negative (δ = 0: no arc).
+    d1, d2 = _half_width(a1, b1), _half_width(a2, b2)
+    ang = _arcs_overlap(_product_primitive(a1, b1, a2, b2, ph), -d1, 2 * d1, ph - d2, 2 * d2)
     inv_m2 = 1 / m[None] ** 2
     dens = t * inv_m2 * np.exp(-0.5 * t * t * inv_m2) / np.sqrt(1 + t * t)
     return (dens * ang / TAU * wt).sum(0)

@@ -131,9 +131,9 @@ pub struct GinnekenAxisKernel<'t, T: Real> {
     tables: [T::Table<'t>; 4],
     /// Index of the lower layer (an integer-valued float).
     layer: T,
-    /// `u` of the lower and upper layers' ratio-table v axes (their roughness, at most
-    /// [`RATIO_AXIS_MAX_M`]).
-    u_nodes: [T; 2],
+    /// The lower and upper layers' ratio-table v axes, `[1/m, 1 − 1/m]` of their roughness
+    /// (at most [`RATIO_AXIS_MAX_M`]; [`super::table::v_axis`]).
+    ratio_axes: [[T; 2]; 2],
     /// The clamped roughness (for μΛ).
     m: T,
     /// Hermite basis `h00, h10, h01, h11` at the lane's position in its cell.
@@ -164,10 +164,16 @@ impl<'t, T: Real> GinnekenAxisKernel<'t, T> {
             s2 * (s - one),
         ];
         let u_lower = j.fma(T::c(du()), T::c(u_min()));
+        // 1/m = (1 − u)/u of a layer's capped u.
+        let axis = |u: T| {
+            let u = u.min(T::c(U_RATIO_AXIS_MAX));
+            let inverse = (one - u) / u;
+            [inverse, one - inverse]
+        };
         Self {
             tables,
             layer: j,
-            u_nodes: [u_lower.min(T::c(U_RATIO_AXIS_MAX)), (u_lower + T::c(du())).min(T::c(U_RATIO_AXIS_MAX))],
+            ratio_axes: [axis(u_lower), axis(u_lower + T::c(du()))],
             m,
             weights,
             shadowing,
@@ -204,19 +210,14 @@ impl<'t, T: Real> SlopeSplit<T> for GinnekenAxisKernel<'t, T> {
     #[inline(always)]
     fn ratio(&self, g: &SlopeGeometry<T>) -> T {
         let [_, ratio, _, d_ratio] = self.tables;
-        // Each layer on its own v axis, v = u s/(u s + (1 − u) μ) with u = m_j/(1 + m_j).
+        // Each layer on its own v axis.
         let ratio_base = self.layer.scale(RATIO_NODES as f64);
-        let layer = |u: T, base: T| {
-            let one_minus = T::c(1.0) - u;
-            let v = |k: usize| {
-                let us = u * g.sin[k];
-                us / (us + one_minus * g.mu[k])
-            };
-            let (v_i, v_o) = (v(0), v(1));
+        let layer = |axis: [T; 2], base: T| {
+            let [v_i, v_o] = g.v(axis);
             (ratio_layer_in(ratio, base, v_i, v_o, g.phi), ratio_layer_in(d_ratio, base, v_i, v_o, g.phi))
         };
-        let (a, da) = layer(self.u_nodes[0], ratio_base);
-        let (b, db) = layer(self.u_nodes[1], ratio_base + T::c(RATIO_NODES as f64));
+        let (a, da) = layer(self.ratio_axes[0], ratio_base);
+        let (b, db) = layer(self.ratio_axes[1], ratio_base + T::c(RATIO_NODES as f64));
         self.hermite(a, da, b, db)
     }
 }

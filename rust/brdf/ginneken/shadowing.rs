@@ -175,7 +175,8 @@ mod tests {
         use crate::dual::Dual;
         let d = mu_lambda_closed(Dual::c(1.0), Dual::c(0.0), Dual::variable(0.3));
         assert_eq!((d.v, d.d), (0.0, 0.0));
-        // ∂(μΛ)/∂m = ½ √(2/π) sin θ e^{−a²/2} (the a-terms cancel), against the dual numbers.
+        // ∂(μΛ)/∂m = ½ √(2/π) sin θ e^{−a²/2} (the a-terms cancel; `d_mu_lambda_dm`), against the
+        // dual numbers, and that closed form against central differences.
         // The fit moves it by less than 1e-5 of (μ + μΛ)/m: the elasticity of μ + μΛ in m,
         // which is what the roughness gradient of f sees, is right to 1e-5.
         for &m in &[0.1, 0.5, 2.0] {
@@ -183,10 +184,13 @@ mod tests {
                 let t = (k as f64).to_radians();
                 let (mu, sin) = (t.cos(), t.sin());
                 let d = mu_lambda_closed(Dual::c(mu), Dual::c(sin), Dual::variable(m)).d;
-                let a = mu / (m * sin);
-                let want = 0.5 * (2.0 / PI).sqrt() * sin * (-0.5 * a * a).exp();
+                let want = d_mu_lambda_dm(mu, sin, m);
                 let tol = 1e-5 * (mu + mu_lambda(mu, sin, m)) / m;
                 assert!((d - want).abs() <= tol, "m={m} θ={k}: {d} vs {want}");
+                // The closed form itself against central differences of the f64 reference.
+                let h = 1e-5 * m;
+                let fd = (mu_lambda(mu, sin, m + h) - mu_lambda(mu, sin, m - h)) / (2.0 * h);
+                assert!((fd - want).abs() <= 1e-7 * (mu + mu_lambda(mu, sin, m)) / m, "m={m} θ={k}: {fd} vs {want}");
             }
         }
     }

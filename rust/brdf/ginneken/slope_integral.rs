@@ -185,37 +185,39 @@ fn wedge_angular(di: Dir, do_: Dir, phi: f64, t: f64) -> f64 {
     if b1 <= a1 || b2 <= a2 {
         return 0.0;
     }
-    let k0 = a1 * a2 + 0.5 * b1 * b2 * phi.cos();
-    let prim = |x: f64| k0 * x - a1 * b2 * (x - phi).sin() - a2 * b1 * x.sin() + 0.25 * b1 * b2 * (2.0 * x - phi).sin();
     let (d1, d2) = ((a1 / b1).acos(), (a2 / b2).acos());
-    let total: f64 = (-1..=1)
-        .map(|k| {
-            let shift = k as f64 * TAU;
-            let (lo, hi) = ((-d1).max(phi - d2 + shift), d1.min(phi + d2 + shift));
-            if hi > lo { prim(hi) - prim(lo) } else { 0.0 }
-        })
-        .sum();
-    total / TAU
+    arcs_overlap(product_primitive(a1, b1, a2, b2, phi), (-d1, 2.0 * d1), (phi - d2, 2.0 * d2)) / TAU
 }
 
 /// `(1/2π) ∫_0^{2π} (a1 − b1 cos ψ)⁺ (a2 − b2 cos(ψ − φ))⁺ dψ` with `a = μ`, `b = t sin θ`.
 fn angular(di: Dir, do_: Dir, phi: f64, t: f64) -> f64 {
     let (a1, b1, a2, b2) = (di.mu, t * di.sin, do_.mu, t * do_.sin);
-    let k0 = a1 * a2 + 0.5 * b1 * b2 * phi.cos();
-    // Antiderivative of the expanded product (cos ψ cos(ψ−φ) = ½[cos φ + cos(2ψ − φ)]).
-    let prim = |x: f64| k0 * x - a1 * b2 * (x - phi).sin() - a2 * b1 * x.sin() + 0.25 * b1 * b2 * (2.0 * x - phi).sin();
-    let over = |lo: f64, hi: f64| if hi > lo { prim(hi) - prim(lo) } else { 0.0 };
+    let prim = product_primitive(a1, b1, a2, b2, phi);
     let total = match (positive_arc(a1, b1, 0.0), positive_arc(a2, b2, phi)) {
-        (None, None) => over(0.0, TAU),
-        (Some((s, l)), None) | (None, Some((s, l))) => over(s, s + l),
-        (Some((s1, l1)), Some((s2, l2))) => (-1..=1)
-            .map(|k| {
-                let shift = k as f64 * TAU;
-                over(s1.max(s2 + shift), (s1 + l1).min(s2 + l2 + shift))
-            })
-            .sum(),
+        (None, None) => prim(TAU) - prim(0.0),
+        (Some((s, l)), None) | (None, Some((s, l))) => prim(s + l) - prim(s),
+        (Some(arc1), Some(arc2)) => arcs_overlap(prim, arc1, arc2),
     };
     total / TAU
+}
+
+/// An antiderivative in ψ of `(a1 − b1 cos ψ)(a2 − b2 cos(ψ − φ))`, expanded with
+/// `cos ψ cos(ψ−φ) = ½[cos φ + cos(2ψ − φ)]`.
+fn product_primitive(a1: f64, b1: f64, a2: f64, b2: f64, phi: f64) -> impl Fn(f64) -> f64 {
+    let k0 = a1 * a2 + 0.5 * b1 * b2 * phi.cos();
+    move |x| k0 * x - a1 * b2 * (x - phi).sin() - a2 * b1 * x.sin() + 0.25 * b1 * b2 * (2.0 * x - phi).sin()
+}
+
+/// The integral (by its antiderivative `prim`) over the intersection of two arcs
+/// `(start, length)`, the second shifted by −2π, 0 and 2π so that every overlap is found.
+fn arcs_overlap(prim: impl Fn(f64) -> f64, (s1, l1): (f64, f64), (s2, l2): (f64, f64)) -> f64 {
+    (-1..=1)
+        .map(|k| {
+            let shift = k as f64 * TAU;
+            let (lo, hi) = (s1.max(s2 + shift), (s1 + l1).min(s2 + l2 + shift));
+            if hi > lo { prim(hi) - prim(lo) } else { 0.0 }
+        })
+        .sum()
 }
 
 /// The arc `(start, length)` on which `a − b cos(ψ − center_offset) > 0`, or `None` if that

@@ -135,7 +135,7 @@ impl SlopeTable {
                 }
             }
         }
-        let (ratio_cells, d_ratio_cells) = (corners_of(&ratio), corners_of(&d_ratio));
+        let (ratio_cells, d_ratio_cells) = (coefficient_cells(&ratio), coefficient_cells(&d_ratio));
         Self { oned, d_oned, ratio, d_ratio, ratio_cells, d_ratio_cells }
     }
 
@@ -210,7 +210,7 @@ impl SlopeTable {
 /// A node table rearranged as cells of trilinear coefficients ([`SlopeTable::ratio_cells`]):
 /// cell `(i, o, p)` holds at `8·cell + 4a + 2b + d` the coefficient of `fi^a fo^b fc^d`, the
 /// mixed finite difference `Δi^a Δo^b Δφ^d` of its corners (computed in f64).
-fn corners_of(nodes: &[f32; RATIO_NODES]) -> Box<[f32; RATIO_CELL_VALUES]> {
+fn coefficient_cells(nodes: &[f32; RATIO_NODES]) -> Box<[f32; RATIO_CELL_VALUES]> {
     let n = R_NODES - 1;
     let mut cells = vec![0.0f32; RATIO_CELL_VALUES];
     for i in 0..n {
@@ -264,23 +264,22 @@ impl<T: Real> SlopeGeometry<T> {
         mi.fma(part_i, mo * part_o)
     }
 
-    /// Both directions' coordinates on the ratio table's v axis ([`v_axis`]) from their 1-D
-    /// axis coordinates `x = sin θ/(sin θ + μ)`: `v = m x/(1 + (m − 1) x) = x/(x (1 − 1/m) + 1/m)`,
-    /// an FMA and a division with `axis = [1/m, 1 − 1/m]` ([`ratio_axis_constants`]).
+    /// Both directions' coordinates on the ratio table's v axis of roughness m ([`v_axis`]),
+    /// `axis = [1/m, 1 − 1/m]`.
     #[inline(always)]
     pub fn v(&self, axis: [T; 2]) -> [T; 2] {
         // Not `array::map`: its closure is not always inlined.
-        let [xi, xo] = self.x;
-        [xi / xi.fma(axis[1], axis[0]), xo / xo.fma(axis[1], axis[0])]
+        [v_axis(self.x[0], axis), v_axis(self.x[1], axis)]
     }
 }
 
-/// The ratio table's direction axis `v = m s / (m s + μ) = 1/(1 + cot θ/m)` ∈ [0, 1]: 0 at the
-/// normal, 1 at grazing; `μ > 0`.
+/// The ratio table's direction axis `v = m sin θ/(m sin θ + μ) = 1/(1 + cot θ/m)` ∈ [0, 1]
+/// for roughness m: 0 at the normal, 1 at grazing. Computed from the 1-D axis coordinate
+/// `x = sin θ/(sin θ + μ)` ([`axis_of_cos`]) as `v = m x/(1 + (m − 1) x) = x/(x (1 − 1/m) + 1/m)`,
+/// an FMA and a division with `axis = [1/m, 1 − 1/m]` ([`ratio_axis_constants`]).
 #[inline(always)]
-pub fn v_axis<T: Real>(mu: T, sin: T, m: T) -> T {
-    let ms = m * sin;
-    ms / (ms + mu)
+pub fn v_axis<T: Real>(x: T, axis: [T; 2]) -> T {
+    x / x.fma(axis[1], axis[0])
 }
 
 /// Largest roughness of the ratio table's v axis ([`ratio_axis_roughness`]).
@@ -295,7 +294,7 @@ pub fn ratio_axis_roughness(m: f64) -> f64 {
 }
 
 /// `[1/m, 1 − 1/m]` for the ratio table's v-axis roughness m of a table of roughness `m0`
-/// ([`ratio_axis_roughness`]; what [`SlopeGeometry::v`] takes).
+/// ([`ratio_axis_roughness`]; what [`v_axis`] takes).
 pub fn ratio_axis_constants(m0: f64) -> [f64; 2] {
     let k = 1.0 / ratio_axis_roughness(m0);
     [k, 1.0 - k]
