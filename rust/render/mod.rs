@@ -6,6 +6,20 @@
 //! sampler and integrator → [`renderer`] runs the integrator per pixel sample in parallel
 //! tiles and splats into the film.
 
+/// `T` for `Box<T>`, `Arc<T>` and `T`: the type an enum variant stores, boxed, shared or
+/// neither (for the forwarding macros that declare [`bsdf::Bsdf`] and [`emitter::Emitter`]).
+macro_rules! stored_type {
+    (Box<$t:ty>) => {
+        $t
+    };
+    (Arc<$t:ty>) => {
+        $t
+    };
+    ($t:ty) => {
+        $t
+    };
+}
+
 pub mod accel;
 pub mod bsdf;
 pub mod camera;

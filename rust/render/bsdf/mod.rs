@@ -81,16 +81,6 @@ pub trait Bxdf {
     fn flags(&self) -> BsdfFlags;
 }
 
-/// `T` for `Box<T>` and for `T` (the type a [`Bsdf`] variant stores, boxed or not).
-macro_rules! unboxed {
-    (Box<$t:ty>) => {
-        $t
-    };
-    ($t:ty) => {
-        $t
-    };
-}
-
 /// Declares [`Bsdf`] with one variant per BSDF type, its [`Bxdf`] impl (one forwarding
 /// match arm per variant and method) and `From` every type.
 macro_rules! bsdfs {
@@ -105,29 +95,29 @@ macro_rules! bsdfs {
             #[inline]
             fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
                 match self {
-                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as Bxdf>::eval_pdf(b, si, wi, wo),)*
+                    $(Bsdf::$variant(b) => <stored_type!($($ty)+) as Bxdf>::eval_pdf(b, si, wi, wo),)*
                 }
             }
 
             #[inline]
             fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
                 match self {
-                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as Bxdf>::sample(b, si, wi, u_lobe, u),)*
+                    $(Bsdf::$variant(b) => <stored_type!($($ty)+) as Bxdf>::sample(b, si, wi, u_lobe, u),)*
                 }
             }
 
             #[inline]
             fn flags(&self) -> BsdfFlags {
                 match self {
-                    $(Bsdf::$variant(b) => <unboxed!($($ty)+) as Bxdf>::flags(b),)*
+                    $(Bsdf::$variant(b) => <stored_type!($($ty)+) as Bxdf>::flags(b),)*
                 }
             }
         }
 
         $(
-            impl From<unboxed!($($ty)+)> for Bsdf {
+            impl From<stored_type!($($ty)+)> for Bsdf {
                 #[inline]
-                fn from(b: unboxed!($($ty)+)) -> Self {
+                fn from(b: stored_type!($($ty)+)) -> Self {
                     Bsdf::$variant(b.into())
                 }
             }

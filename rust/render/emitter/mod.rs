@@ -92,16 +92,6 @@ pub trait Light {
     }
 }
 
-/// `T` for `Arc<T>` and for `T` (the type an [`Emitter`] variant stores, shared or not).
-macro_rules! unshared {
-    (Arc<$t:ty>) => {
-        $t
-    };
-    ($t:ty) => {
-        $t
-    };
-}
-
 /// Declares [`Emitter`] with one variant per emitter type, its [`Light`] impl (one forwarding
 /// match arm per variant and method) and `From` every type.
 macro_rules! emitters {
@@ -116,71 +106,71 @@ macro_rules! emitters {
             #[inline]
             fn flags(&self) -> EmitterFlags {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::flags(e),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::flags(e),)*
                 }
             }
 
             #[inline]
             fn sample_direction(&self, ref_p: Vec3, u: Vec2, shapes: &[Shape]) -> Option<EmitterSample> {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::sample_direction(e, ref_p, u, shapes),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::sample_direction(e, ref_p, u, shapes),)*
                 }
             }
 
             #[inline]
             fn pdf_direction(&self, ref_p: Vec3, si: Option<&SurfaceInteraction>, shapes: &[Shape]) -> f32 {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::pdf_direction(e, ref_p, si, shapes),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::pdf_direction(e, ref_p, si, shapes),)*
                 }
             }
 
             #[inline]
             fn eval_surface(&self, si: &SurfaceInteraction) -> Vec3 {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::eval_surface(e, si),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::eval_surface(e, si),)*
                 }
             }
 
             #[inline]
             fn eval_environment(&self, d: Vec3) -> Vec3 {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::eval_environment(e, d),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::eval_environment(e, d),)*
                 }
             }
 
             #[inline]
             fn pdf_environment(&self, d: Vec3) -> f32 {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::pdf_environment(e, d),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::pdf_environment(e, d),)*
                 }
             }
 
             #[inline]
             fn can_sample_ray(&self, shapes: &[Shape]) -> bool {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::can_sample_ray(e, shapes),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::can_sample_ray(e, shapes),)*
                 }
             }
 
             #[inline]
             fn sample_position(&self, u: Vec2, shapes: &[Shape]) -> Option<EmitterPosition> {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::sample_position(e, u, shapes),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::sample_position(e, u, shapes),)*
                 }
             }
 
             #[inline]
             fn sample_ray(&self, u_pos: Vec2, u_dir: Vec2, shapes: &[Shape]) -> Option<LightRay> {
                 match self {
-                    $(Emitter::$variant(e) => <unshared!($($ty)+) as Light>::sample_ray(e, u_pos, u_dir, shapes),)*
+                    $(Emitter::$variant(e) => <stored_type!($($ty)+) as Light>::sample_ray(e, u_pos, u_dir, shapes),)*
                 }
             }
         }
 
         $(
-            impl From<unshared!($($ty)+)> for Emitter {
+            impl From<stored_type!($($ty)+)> for Emitter {
                 #[inline]
-                fn from(e: unshared!($($ty)+)) -> Self {
+                fn from(e: stored_type!($($ty)+)) -> Self {
                     Emitter::$variant(e.into())
                 }
             }
