@@ -4,14 +4,17 @@
 #               then the Mitsuba plugin's pytest suite); .ci/run calls it
 # and two more (not set-up commands; they need the same things as main):
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
-#   make dist   the release files in dist/: the sdist and the manylinux wheel (auditwheel)
+#   make dist   the release files in dist/: the sdist and the manylinux wheels for Linux x86_64
+#               and aarch64 (cross-built), each repaired by auditwheel
 # and one that recomputes data the repository holds:
 #   make ground-truth  the simulated microsurfaces' BRDF tables in python/matte_mitsuba/ground_truth/
 .PHONY: main test bench venv plugin dist ground-truth
 
 PY     := .venv/bin/python
-# The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv.
+# The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv, and
+# the Linux aarch64 one, cross-built (cpp/build_plugin.py, MATTE_PLATFORM=linux-aarch64).
 WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
+WHEEL_AARCH64 := dist/matte_mitsuba-0.1.0-py3-none-linux_aarch64.whl
 # The wheel's inputs: sources, the package with its tables, and the package data setup.py copies
 # in (the bundled scenes, the study report's slices); not the copies themselves.
 SOURCES := $(shell find rust cpp python/matte_mitsuba mitsuba_scenes -type f -not -path '*/plugins/*' -not -path '*/bin/*' -not -path 'python/matte_mitsuba/lib/*' \
@@ -56,19 +59,25 @@ plugin: venv $(WHEEL)
 # The libraries the plugin loads from the mitsuba and drjit wheels it requires: not copied in.
 PROVIDED := libmitsuba.so libdrjit-core.so libdrjit-extra.so libnanothread.so
 
-# The sdist (python -m build, the PEP 517 front end; MANIFEST.in says what goes in) and the
-# wheel repaired by auditwheel to the lowest manylinux tag its symbols allow; twine checks both.
-dist: plugin
+# The sdist (python -m build, the PEP 517 front end; MANIFEST.in says what goes in) and both
+# wheels repaired by auditwheel to the lowest manylinux tag their symbols allow; twine checks all.
+dist: plugin $(WHEEL_AARCH64)
 	@rm -f dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
 	@mkdir -p target
 	@$(PY) -m build --sdist --no-isolation --outdir dist . > target/sdist.log 2>&1 || (cat target/sdist.log; false)
-	@PATH="$(CURDIR)/.venv/bin:$$PATH" auditwheel repair $(WHEEL) -w dist $(addprefix --exclude ,$(PROVIDED)) \
-		> target/auditwheel.log 2>&1 || (cat target/auditwheel.log; false)
+	@for w in $(WHEEL) $(WHEEL_AARCH64); do \
+		PATH="$(CURDIR)/.venv/bin:$$PATH" auditwheel repair $$w -w dist $(addprefix --exclude ,$(PROVIDED)) \
+			> target/auditwheel.log 2>&1 || { cat target/auditwheel.log; exit 1; }; done
 	.venv/bin/twine check --strict dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
 
-# `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.sh); here
+# `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.py); here
 # against the venv's own Mitsuba (no build isolation), then installed into the venv.
 $(WHEEL): $(SOURCES) validation/setup/requirements.txt
-	@rm -f dist/matte_mitsuba-*.whl
+	@rm -f dist/matte_mitsuba-*linux_x86_64.whl
 	$(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
 	$(PY) -m pip install --force-reinstall --no-deps -q --disable-pip-version-check $(WHEEL)
+
+# The same build for Linux aarch64, with the cross toolchain setup_venv.sh installs.
+$(WHEEL_AARCH64): $(SOURCES) validation/setup/requirements.txt | venv
+	@rm -f dist/matte_mitsuba-*linux_aarch64.whl
+	MATTE_PLATFORM=linux-aarch64 $(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check

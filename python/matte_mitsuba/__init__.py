@@ -17,9 +17,11 @@ Every variant of the Mitsuba wheel is supported, scalar, llvm and cuda, in Dr.Ji
 (symbolic) mode: the JIT variants trace the Rust kernels into Dr.Jit, so they run in symbolic
 loops and calls, and ``reflectance`` and the numeric parameters are differentiable.
 
-Supported Mitsuba releases: :data:`MITSUBA_RELEASES` (3.7.0 to 3.9.1; each layer is compiled
-against that release's headers, libraries, instruction set and C++ ABI). Another release is
-refused at import with one line naming the supported ones.
+Supported Mitsuba releases: :data:`MITSUBA_RELEASES` (3.7.0 to 3.9.1 on Linux x86_64, 3.8.0 to
+3.9.1 on Linux aarch64, whose first Mitsuba wheels are 3.8.0's; each layer is compiled against
+that release's headers, libraries, instruction set and C++ ABI). Another release is refused at
+import with one line naming the supported ones and how to build matte for it: the source
+distribution builds a layer for the installed Mitsuba when it is none of these.
 
 The package also holds what the ``matte`` command-line tool needs at run time: the Mitsuba
 side of its commands (``python -m matte_mitsuba.passes`` for ``matte validate`` and ``matte
@@ -53,6 +55,15 @@ def _releases():
 MITSUBA_RELEASES = _releases()
 
 
+def _own_version():
+    try:
+        from importlib.metadata import version
+
+        return version("matte-mitsuba")
+    except Exception:
+        return "<version>"
+
+
 def _release_root(version):
     """The folder holding ``plugins/`` for Mitsuba ``version``; ImportError (one line naming
     the supported releases) when this installation has none for it."""
@@ -62,8 +73,9 @@ def _release_root(version):
         supported = ", ".join(older) + " and " + newest if older else newest
         raise ImportError(
             "matte_mitsuba: Mitsuba %s is installed, but matte's plugins support Mitsuba %s only; "
-            "install one of them (pip install 'mitsuba>=%s,<=%s')"
-            % (version, supported, MITSUBA_RELEASES[0], MITSUBA_RELEASES[-1])
+            "install one of them (pip install 'mitsuba>=%s,<=%s'), or build matte for Mitsuba %s "
+            "from its source distribution (pip install matte_mitsuba-%s.tar.gz, with cargo and g++)"
+            % (version, supported, MITSUBA_RELEASES[0], MITSUBA_RELEASES[-1], version, _own_version())
         )
     return root
 

@@ -134,7 +134,8 @@ impl Real for F32x8 {
     }
     #[inline(always)]
     fn fma(self, b: Self, c: Self) -> Self {
-        if cfg!(target_feature = "fma") {
+        // NEON's vfmaq is fused on every aarch64 CPU; x86 needs the FMA extension.
+        if cfg!(any(target_feature = "fma", target_arch = "aarch64")) {
             F32x8(self.0.mul_add(b.0, c.0))
         } else {
             // Without FMA, `wide` would round the product first; f32::mul_add does not.

@@ -6,7 +6,7 @@ its last line of stdout:
 
     python release_checks.py values VARIANT   # f·cos and pdf of every type on fixed direction pairs
     python release_checks.py render VARIANT   # the Cornell box in wolff, ginneken and eon
-    python release_checks.py gradient         # d(image mean)/d(parameter): AD and central differences
+    python release_checks.py gradient [TYPE]  # d(image mean)/d(parameter): AD and central differences
     python release_checks.py chi2             # mitsuba.chi2 for ginneken at 45°
 
 VARIANT is scalar_rgb or llvm_ad_rgb; llvm runs in Dr.Jit's default (symbolic) mode, `values`
@@ -105,14 +105,17 @@ def render():
     return {"image": img.ravel().tolist()}
 
 
-def gradient():
-    """Per type, d(image mean)/d(its first numeric parameter, else the reflectance) on the
-    Cornell box whose three materials are that type: prb's adjoint and central differences."""
+def gradient(only=None):
+    """Per type (or the one named), d(image mean)/d(its first numeric parameter, else the
+    reflectance) on the Cornell box whose three materials are that type: prb's adjoint and
+    central differences."""
     import matte_mitsuba
     from matte_mitsuba.gradient_check import adjoint_gradient, central_difference, shifted
 
     out = {}
     for kind, fixed in types():
+        if only and kind != only:
+            continue
         model = next(m for m in matte_mitsuba.MODELS if m["name"] == kind)
         numeric = [p["name"] for p in model["params"] if p["kind"]["type"] in ("number", "ior")]
         name = numeric[0] if numeric else "reflectance.value"
@@ -137,11 +140,17 @@ def chi2():
 
 
 def main():
-    check, variant = sys.argv[1], (sys.argv[2] if len(sys.argv) > 2 else "llvm_ad_rgb")
+    check, arg = sys.argv[1], (sys.argv[2] if len(sys.argv) > 2 else None)
+    variant = arg if arg and check != "gradient" else "llvm_ad_rgb"
     mi.set_variant(variant)
     import matte_mitsuba  # noqa: F401  (registers the plugins of the running release)
 
-    run = {"values": lambda: values(variant), "render": render, "gradient": lambda: {"types": gradient()}, "chi2": chi2}
+    run = {
+        "values": lambda: values(variant),
+        "render": render,
+        "gradient": lambda: {"types": gradient(arg)},
+        "chi2": chi2,
+    }
     result = {"check": check, "variant": variant, "mitsuba": mi.__version__, **run[check]()}
     print("\n" + json.dumps(result))  # the last line (Mitsuba's chi2 prints to stdout)
 

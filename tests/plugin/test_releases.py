@@ -41,16 +41,19 @@ def python_of(release):
     return os.path.join(REPO, ".venvs", f"mitsuba-{release}", "bin", "python")
 
 
-@functools.lru_cache(maxsize=None)
-def run_check(release, check, variant="llvm_ad_rgb"):
+def release_check(python, release, check, *args):
+    """release_checks.py's `check` (with its arguments) run by `python`, under Mitsuba `release`."""
     script = os.path.join(REPO, "tests", "plugin", "release_checks.py")
-    r = subprocess.run(
-        [python_of(release), script, check, variant], capture_output=True, text=True, cwd=os.path.dirname(script)
-    )
-    assert r.returncode == 0, f"Mitsuba {release}, {check} {variant}:\n{r.stderr[-3000:]}"
+    r = subprocess.run([python, script, check, *args], capture_output=True, text=True, cwd=os.path.dirname(script))
+    assert r.returncode == 0, f"Mitsuba {release}, {check} {' '.join(args)}:\n{r.stderr[-3000:]}"
     result = json.loads(r.stdout.strip().splitlines()[-1])
     assert result["mitsuba"] == release, result["mitsuba"]
     return result
+
+
+@functools.lru_cache(maxsize=None)
+def run_check(release, check, *args):
+    return release_check(python_of(release), release, check, *args)
 
 
 @functools.lru_cache(maxsize=None)

@@ -5,6 +5,9 @@
 #      libembree3-3 (Embree 3.13; matte's renderer loads libembree3.so.3 at run
 #      time for its ray queries, rust/render/accel/embree_api.rs, and falls back
 #      to its own BVH without it), and clang-format (`make test` checks cpp/'s style);
+#      for the Linux aarch64 wheel (`make dist`), the cross compiler g++-aarch64-linux-gnu, Rust's
+#      aarch64-unknown-linux-gnu target, and qemu-user-static, which runs it under emulation
+#      (tests/plugin/test_aarch64.py);
 #   2. <repo>/.venv with validation/setup/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
@@ -16,6 +19,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 LIBLLVM=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1   # provided by libllvm19
 LIBEMBREE=/usr/lib/x86_64-linux-gnu/libembree3.so.3 # provided by libembree3-3
 CLANG_FORMAT=/usr/bin/clang-format                  # provided by clang-format (`make test` checks cpp/)
+CROSS_CXX=/usr/bin/aarch64-linux-gnu-g++            # provided by g++-aarch64-linux-gnu
+QEMU=/usr/bin/qemu-aarch64-static                   # provided by qemu-user-static
+RUST_AARCH64=aarch64-unknown-linux-gnu
 VENV=.venv
 REQ=validation/setup/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
@@ -36,6 +42,8 @@ packages=()
 [ -e "$LIBLLVM" ] || packages+=(libllvm19)
 [ -e "$LIBEMBREE" ] || packages+=(libembree3-3)
 [ -e "$CLANG_FORMAT" ] || packages+=(clang-format)
+[ -e "$CROSS_CXX" ] || packages+=(g++-aarch64-linux-gnu)
+[ -e "$QEMU" ] || packages+=(qemu-user-static)
 if [ ${#packages[@]} -gt 0 ]; then
     SUDO=()
     if [ "$(id -u)" -ne 0 ]; then SUDO=(sudo); fi
@@ -51,7 +59,15 @@ if [ ${#packages[@]} -gt 0 ]; then
     [ -e "$LIBLLVM" ] || { echo "setup_venv: libllvm19 installed but $LIBLLVM is missing" >&2; exit 1; }
     [ -e "$LIBEMBREE" ] || { echo "setup_venv: libembree3-3 installed but $LIBEMBREE is missing" >&2; exit 1; }
     [ -e "$CLANG_FORMAT" ] || { echo "setup_venv: clang-format installed but $CLANG_FORMAT is missing" >&2; exit 1; }
+    [ -e "$CROSS_CXX" ] || { echo "setup_venv: g++-aarch64-linux-gnu installed but $CROSS_CXX is missing" >&2; exit 1; }
+    [ -e "$QEMU" ] || { echo "setup_venv: qemu-user-static installed but $QEMU is missing" >&2; exit 1; }
     did+=("installed ${packages[*]}")
+fi
+
+if ! rustup target list --installed 2>/dev/null | grep -qx "$RUST_AARCH64"; then
+    quiet rustup target add "$RUST_AARCH64" ||
+        { echo "setup_venv: rustup could not add Rust's $RUST_AARCH64 target, which the aarch64 wheel needs (rustup target add $RUST_AARCH64)" >&2; exit 1; }
+    did+=("added Rust's $RUST_AARCH64 target")
 fi
 
 # --- 2. virtualenv -----------------------------------------------------------
@@ -78,7 +94,7 @@ if [ -e "$PTH" ]; then
 fi
 
 if [ ${#did[@]} -eq 0 ]; then
-    echo "setup_venv: up to date (libllvm19, libembree3-3 and clang-format present, $VENV matches $REQ)"
+    echo "setup_venv: up to date (libllvm19, libembree3-3, clang-format, the aarch64 cross toolchain and qemu present, $VENV matches $REQ)"
 else
     msg=$(IFS=';'; echo "${did[*]}")
     echo "setup_venv: ${msg//;/, }"
