@@ -36,7 +36,9 @@ class BuildPlugins(build_py):
         package = os.path.join(self.build_lib, "matte_mitsuba")
         shutil.rmtree(package, ignore_errors=True)
         super().run()
-        subprocess.check_call([sys.executable, os.path.join(ROOT, "cpp", "build_plugin.py"), "--platform", TARGET.name, "--out", package])
+        subprocess.check_call(
+            [sys.executable, os.path.join(ROOT, "cpp", "build_plugin.py"), "--platform", TARGET.name, "--out", package]
+        )
         scenes = os.path.join(package, "scenes")
         shutil.copytree(
             os.path.join(ROOT, "mitsuba_scenes"),

@@ -181,7 +181,14 @@ def plan(target):
         out.append((version, drjit, isa, None))
     found = None if is_cross(target) else installed_mitsuba()
     if found and found[0] not in [row[0] for row in rows]:
-        out.append((found[0], found[1], None, found))
+        if release_key(found[0]) < release_key(rows[0][0]):
+            print(
+                f"build_plugin: the installed Mitsuba {found[0]} predates the plugin API of {rows[0][0]}, "
+                "the oldest release matte supports: no layer for it",
+                file=sys.stderr,
+            )
+        else:
+            out.append((found[0], found[1], None, found))
     if not out:
         raise BuildError(f"no Mitsuba release to build for {target.name}")
     return sorted(out, key=lambda r: release_key(r[0]))
@@ -303,7 +310,9 @@ class Build:
             if installed:
                 _, _, mitsuba_dir, drjit_dir = installed
                 if not os.path.isdir(os.path.join(mitsuba_dir, "include")):
-                    raise BuildError(f"the installed Mitsuba {version} ({mitsuba_dir}) has no include/ to build against")
+                    raise BuildError(
+                        f"the installed Mitsuba {version} ({mitsuba_dir}) has no include/ to build against"
+                    )
                 out.append(Release(version, mitsuba_dir, drjit_dir, detect_isa(self.target, mitsuba_dir), "installed"))
             else:
                 out.append(self.fetch(version, drjit, isa))

@@ -87,7 +87,9 @@ def test_llvm_render_equals_the_x86_64_render_within_noise(release):
     assert np.isfinite(got).all()
     d = got - ref
     se = d.std(ddof=1) / np.sqrt(d.size)
-    print(f"aarch64, Mitsuba {release}: mean {got.mean():.5f}, x86-64 {ref.mean():.5f}, difference {d.mean():.2e} ± {se:.1e}")
+    print(
+        f"aarch64, Mitsuba {release}: mean {got.mean():.5f}, x86-64 {ref.mean():.5f}, difference {d.mean():.2e} ± {se:.1e}"
+    )
     assert ref.mean() > 0.05 and abs(d.mean()) <= 4 * se + 1e-6, (d.mean(), se)
 
 

@@ -40,10 +40,25 @@ def test_import_before_set_variant_registers_every_variant(tmp_path):
     assert r.stdout.strip() == "ok", r.stderr
 
 
-def release_wheel():
-    wheels = glob.glob(os.path.join(REPO, "dist", "matte_mitsuba-*manylinux*.whl"))
-    assert len(wheels) == 1, f"make dist makes one manylinux wheel: {wheels}"
+# The platforms `make dist` builds a wheel for: this machine's (x86_64) and Linux aarch64
+# (cross-built; run under emulation in test_aarch64.py), with the column of
+# cpp/mitsuba_releases.txt that says which releases have a layer there.
+ARCHES = {"x86_64": "linux-x86_64", "aarch64": "linux-aarch64"}
+
+
+def release_wheel(arch="x86_64"):
+    wheels = glob.glob(os.path.join(REPO, "dist", f"matte_mitsuba-*manylinux*_{arch}.whl"))
+    assert len(wheels) == 1, f"make dist makes one manylinux wheel for {arch}: {wheels}"
     return wheels[0]
+
+
+def releases_of(arch):
+    """The releases of cpp/mitsuba_releases.txt with a layer for `arch` (Mitsuba publishes a
+    wheel there)."""
+    lines = [line.split() for line in open(os.path.join(REPO, "cpp", "mitsuba_releases.txt"))]
+    header = next(cols for cols in lines if cols[:2] == ["#", "release"])
+    column = header.index(ARCHES[arch]) - 1
+    return [cols[0] for cols in lines if cols and cols[0][0].isdigit() and cols[column] != "-"]
 
 
 def test_sdist_holds_what_builds_and_nothing_else():
@@ -95,6 +110,7 @@ def test_sdist_holds_what_builds_and_nothing_else():
             "README.md",
             "LICENSE",
             "MANIFEST.in",
+            ".cargo",
             "PKG-INFO",
             "rust",
             "cpp",
@@ -110,10 +126,11 @@ def test_sdist_holds_what_builds_and_nothing_else():
         assert not n.startswith(("python/matte_mitsuba/scenes/", "python/matte_mitsuba/bin/")), n
 
 
-def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
-    wheel = release_wheel()
+@pytest.mark.parametrize("arch", sorted(ARCHES))
+def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside(arch):
+    wheel = release_wheel(arch)
     tag = os.path.basename(wheel)[:-4].split("-")[-1]
-    assert tag.startswith("manylinux_2_") and tag.endswith("_x86_64"), tag
+    assert tag.startswith("manylinux_2_") and tag.endswith("_" + arch), tag
     with zipfile.ZipFile(wheel) as z:
         meta = z.read(next(n for n in z.namelist() if n.endswith(".dist-info/WHEEL"))).decode()
         assert "Root-Is-Purelib: false" in meta, meta
@@ -145,7 +162,7 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
         "libgcc_s.so.1",
         "libpthread.so.0",
         "libdl.so.2",
-        "ld-linux-x86-64.so.2",
+        {"x86_64": "ld-linux-x86-64.so.2", "aarch64": "ld-linux-aarch64.so.1"}[arch],
         "librt.so.1",
     }
     provided = {
@@ -164,6 +181,7 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
                 continue
             elves += 1
             elf = ELFFile(io.BytesIO(data))
+            assert elf["e_machine"] == {"x86_64": "EM_X86_64", "aarch64": "EM_AARCH64"}[arch], (n, elf["e_machine"])
             needed = {
                 t.needed
                 for sec in elf.iter_sections()
@@ -173,9 +191,7 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside():
             }
             assert needed <= system | provided, (n, needed - system - provided)
     # The kernels once; per supported release, its layer and one stub per registered type.
-    releases = [
-        line.split()[0] for line in open(os.path.join(REPO, "cpp", "mitsuba_releases.txt")) if line[0].isdigit()
-    ]
+    releases = releases_of(arch)
     types = subprocess.run([os.path.join(REPO, ".venv", "bin", "matte"), "types"], capture_output=True, text=True)
     expected = {"matte_mitsuba/lib/libmatte_kernels.so"} | {
         f"matte_mitsuba/releases/{r}/plugins/{name}.so"
