@@ -1,6 +1,6 @@
 //! Builds what C++ needs: the `cxx` bridge glue (`rust/ffi/bridge.rs`) that the Mitsuba
 //! plugin in `cpp/` calls. It is bundled into this package's staticlib (`libmatte_plugin.a`, the kernels of `matte-brdf` and the bridge), which
-//! `cpp/build_plugin.sh` links with the plugin object into the Mitsuba plugin. The plugin's
+//! `cpp/build_plugin.py` links with the plugin object into the Mitsuba plugin. The plugin's
 //! own C++ needs Mitsuba's headers from the virtual environment, so it is compiled there,
 //! not here: `cargo build` and `cargo test` work without Mitsuba installed.
 

@@ -14,7 +14,7 @@ the best of `--repeats` after a warm-up render (JIT compilation, table building)
 texture holding the default value everywhere, so the image is the float's and only the
 textured code path differs. ``--plugin-root DIR`` runs the timed processes with the
 ``matte_mitsuba`` in DIR (a folder holding a ``matte_mitsuba`` package, e.g. another
-revision's ``python`` folder after its ``cpp/build_plugin.sh``) first on ``PYTHONPATH``;
+revision's ``python`` folder after its ``cpp/build_plugin.py``) first on ``PYTHONPATH``;
 ``--one`` prints the folder it loaded. ``--float-fast-path OLD`` times, per type, the float
 parameter with the plugin build in OLD (a revision before textured parameters) and with this
 one, and the bitmap with this one; every configuration in its own process, `--rounds` rounds

@@ -127,3 +127,4 @@ def test_an_unsupported_release_is_refused_in_one_line():
     last = r.stderr.strip().splitlines()[-1]
     assert last.startswith("ImportError: matte_mitsuba: Mitsuba 3.6.4 is installed"), r.stderr
     assert all(release in last for release in RELEASES), last
+    assert "build matte for Mitsuba 3.6.4 from its source distribution" in last, last
