@@ -55,6 +55,10 @@ def _releases():
 MITSUBA_RELEASES = _releases()
 
 
+def _release_key(version):
+    return tuple(int(x) if x.isdigit() else 0 for x in version.split("."))
+
+
 def _own_version():
     try:
         from importlib.metadata import version
@@ -71,12 +75,17 @@ def _release_root(version):
     if version not in MITSUBA_RELEASES or not _os.path.isfile(_os.path.join(root, "plugins", _LIBRARY)):
         *older, newest = MITSUBA_RELEASES
         supported = ", ".join(older) + " and " + newest if older else newest
-        raise ImportError(
-            "matte_mitsuba: Mitsuba %s is installed, but matte's plugins support Mitsuba %s only; "
-            "install one of them (pip install 'mitsuba>=%s,<=%s'), or build matte for Mitsuba %s "
-            "from its source distribution (pip install matte_mitsuba-%s.tar.gz, with cargo and g++)"
-            % (version, supported, MITSUBA_RELEASES[0], MITSUBA_RELEASES[-1], version, _own_version())
+        message = (
+            f"matte_mitsuba: Mitsuba {version} is installed, but matte's plugins support Mitsuba {supported} "
+            f"only; install one of them (pip install 'mitsuba>={MITSUBA_RELEASES[0]},<={MITSUBA_RELEASES[-1]}')"
         )
+        if _release_key(version) > _release_key(MITSUBA_RELEASES[-1]):
+            # A newer release: the sdist builds a layer for it from its own headers.
+            message += (
+                f", or build matte for Mitsuba {version} from its source distribution "
+                f"(pip install matte_mitsuba-{_own_version()}.tar.gz, with cargo and g++)"
+            )
+        raise ImportError(message)
     return root
 
 

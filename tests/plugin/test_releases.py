@@ -127,4 +127,16 @@ def test_an_unsupported_release_is_refused_in_one_line():
     last = r.stderr.strip().splitlines()[-1]
     assert last.startswith("ImportError: matte_mitsuba: Mitsuba 3.6.4 is installed"), r.stderr
     assert all(release in last for release in RELEASES), last
-    assert "build matte for Mitsuba 3.6.4 from its source distribution" in last, last
+    assert "source distribution" not in last, "the sdist builds no layer for a release before the plugin API"
+
+
+def test_a_newer_release_is_refused_naming_the_sdist():
+    import matte_mitsuba
+
+    with pytest.raises(ImportError) as e:
+        matte_mitsuba._release_root("3.10.0")
+    message = str(e.value)
+    assert message.startswith("matte_mitsuba: Mitsuba 3.10.0 is installed") and "\n" not in message, message
+    assert (
+        "build matte for Mitsuba 3.10.0 from its source distribution (pip install matte_mitsuba-0.1.0.tar.gz" in message
+    )
