@@ -24,7 +24,7 @@ sys.path.insert(0, os.path.join(ROOT, "cpp"))
 import build_plugin  # noqa: E402  (cpp/build_plugin.py)
 
 TARGET = build_plugin.target_platform()
-# The study report's BRDF slices (rust/study/report/truth_section.rs: SLICES): each model's
+# The study report's BRDF slices (rust/matte/src/study/report/truth_section.rs: SLICES): each model's
 # slice of largest error against its surface, and both surfaces at the study's roughness.
 SLICES = ["truth_slice_*.png", "slices_*_r0.3_rho0.8.png"]
 

@@ -1,4 +1,4 @@
-// The arena a traced kernel records into (rust/ffi/traced.rs): an abstract class, so that the
+// The arena a traced kernel records into (rust/plugin/src/traced.rs): an abstract class, so that the
 // cxx glue compiled by build.rs needs no Mitsuba or Dr.Jit headers and one Rust build serves
 // every Dr.Jit backend. Each method performs one Dr.Jit operation on the values stored at the
 // given indices and returns the index of the result; comparisons return indices into a

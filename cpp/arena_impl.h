@@ -35,7 +35,7 @@ public:
     uint32_t sub(uint32_t a, uint32_t b) const override { return push(f(a) - f(b)); }
     uint32_t mul(uint32_t a, uint32_t b) const override { return push(f(a) * f(b)); }
     uint32_t div(uint32_t a, uint32_t b) const override { return push(f(a) / f(b)); }
-    // A NaN operand gives the other one, as the kernels' clamps need (rust/brdf/real.rs:
+    // A NaN operand gives the other one, as the kernels' clamps need (rust/brdf/src/real.rs:
     // `Real::min`): IEEE 754 minNum/maxNum, see min_num below.
     uint32_t minimum(uint32_t a, uint32_t b) const override { return push(min_num(f(a), f(b))); }
     uint32_t maximum(uint32_t a, uint32_t b) const override { return push(max_num(f(a), f(b))); }

@@ -1,6 +1,6 @@
 /*
  * matte's Mitsuba 3 BSDF: one class for every matte model, whose math is the Rust kernels
- * (rust/brdf/) called through the cxx bridge (rust/ffi/). Mitsuba loads the plugin under the
+ * (rust/brdf/) called through the cxx bridge (rust/plugin/src/). Mitsuba loads the plugin under the
  * name of the `<bsdf type="...">` (one per registered model, `matte types`); that name selects
  * the model.
  *
@@ -11,7 +11,7 @@
  *
  * Every numeric parameter may also be a texture (`<texture type="bitmap" name="sigma">`):
  * evaluated with `eval_1` at the interaction, its kernel constants computed per lane inside
- * eval/sample/pdf (rust/brdf/lane.rs; docs/models.md#spatially-varying-parameters), traversed
+ * eval/sample/pdf (rust/brdf/src/lane.rs; docs/models.md#spatially-varying-parameters), traversed
  * as the texture (gradients reach its data). Constant parameters keep the per-value constants.
  *
  * `tabulated_brdf` is a registered type like the others: its parameter is a file (`filename`,
@@ -25,7 +25,7 @@
  * Variants: every variant of the wheel. Scalar variants call the f32 kernels per call. JIT
  * variants (llvm_ad_*, cuda_ad_*, rgb, mono, spectral and polarized) *trace* the same Rust
  * kernels: each operation becomes one Dr.Jit operation on the variant's `Float`, recorded
- * through the arena (cpp/arena_impl.h, rust/ffi/traced.rs). So the plugin works in symbolic
+ * through the arena (cpp/arena_impl.h, rust/plugin/src/traced.rs). So the plugin works in symbolic
  * loops and calls (Dr.Jit's default mode, the `mitsuba` tool's default), on the CPU and the
  * GPU, and autodiff sees every operation: `reflectance` and the numeric parameters (sigma,
  * roughness, int_ior, ext_ior) are differentiable. The numeric parameters are opaque Dr.Jit
@@ -42,7 +42,7 @@
 #include <mitsuba/render/texture.h>
 
 #include "rust/cxx.h"  // rust::Error (the generated header declares only what it uses)
-#include "matte/rust/ffi/bridge.rs.h"
+#include "matte/rust/plugin/src/bridge.rs.h"
 #include "arena_impl.h"
 
 #include <array>

@@ -11,7 +11,7 @@ emitters and BSDFs, and 1×1 to 8×2 renders compared with closed forms. It neve
     .venv/bin/python validation/verify_semantics.py --list     # names only
 
 Exit status 1 if any check fails. The numeric items come first in each section: they are the
-test oracles (tests/scene_file/load.rs, xml.rs, mesh.rs, tests/render/film.rs, bitmap.rs,
+test oracles (tests/render/load.rs, xml.rs, mesh.rs, tests/render/film.rs, bitmap.rs,
 render_core.rs, specular_bsdfs.rs cite them as "§N [verified]"). The per-test generators next to
 those tests (tests/*/*/generate_reference.py) check the tests' own inline copies of the same
 numbers. Renders use fixed seeds; a rendered value passes when it is within 4 standard errors

@@ -1,7 +1,7 @@
 """Mitsuba side of `matte validate`: renders a scene K times with independent seeds in one
 variant (matte's plugins loaded) and writes each pass image. It only renders: the spp per
 pass comes from the Rust harness, and every statistic (moments, region means, tests) is
-computed in Rust (`rust/validate/passes.rs`), once for both renderers.
+computed in Rust (`rust/matte/src/validate/passes.rs`), once for both renderers.
 
     python -m matte_mitsuba.passes SCENE.xml --out DIR --spp N
         [--variant scalar_rgb] [--passes K] [--seed S] [-D name=value ...]

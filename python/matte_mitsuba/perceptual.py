@@ -1,7 +1,7 @@
 """Perceptual side of `matte study`: HDR-FLIP (Andersson et al. 2020, 2021; NVIDIA's
 `flip-evaluator` package, the reference implementation) between pairs of rendered images, with
 jackknife replicates over the passes. It only measures: which pairs, the intervals and the
-verdicts are the Rust study's (`rust/study/perceptual.rs`).
+verdicts are the Rust study's (`rust/matte/src/study/perceptual.rs`).
 
     python -m matte_mitsuba.perceptual JOB.json --out RESULT.json
 

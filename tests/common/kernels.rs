@@ -12,9 +12,12 @@ use matte_brdf::tabulated::{BrdfTable, TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
 
+#[path = "paths.rs"]
+mod paths;
 pub use matte_brdf::rng::Pcg32;
+#[allow(unused_imports)] // the kernels' tests need neither; the crates above them do
+pub use paths::*;
 
 /// Test draws beyond the generator's own.
 pub trait PcgExt {
@@ -201,13 +204,6 @@ pub fn chi2_test(
 /// Šidák-corrected significance level for `test_count` tests at overall level 0.01.
 pub fn sidak(test_count: usize) -> f64 {
     1.0 - (1.0 - 0.01f64).powf(1.0 / test_count as f64)
-}
-
-/// The repository's top folder (the workspace root, which holds `Cargo.lock`), whichever
-/// crate's test this is.
-pub fn repo() -> PathBuf {
-    let crate_dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    crate_dir.ancestors().find(|d| d.join("Cargo.lock").exists()).unwrap_or(crate_dir).to_path_buf()
 }
 
 /// The direction at zenith `theta` and azimuth `phi` (radians).

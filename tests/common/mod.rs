@@ -41,18 +41,6 @@ pub fn chi2_render_bsdf<B: Bxdf>(
     chi2_test(sample, |wo| bsdf.eval_pdf(si, wi, to_shading(wo)).1, seed, ires)
 }
 
-/// The project's `.venv` Python (Mitsuba 3.9.1, as `make venv` installs it), if this checkout
-/// has one; checks against Mitsuba itself are skipped (with a note) where it does not. `make
-/// test` builds the venv first, so the suite always runs them.
-pub fn mitsuba_python() -> Option<std::path::PathBuf> {
-    let python = repo().join(".venv/bin/python");
-    if python.exists() {
-        Some(python)
-    } else {
-        println!("note: {} not found; skipping a check against Mitsuba itself", python.display());
-        None
-    }
-}
 
 // ------------------------------------------------------------------------------------------
 // Scene files

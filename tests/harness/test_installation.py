@@ -1,4 +1,4 @@
-"""How the `matte` binary finds its Python side and package data (rust/installation.rs; the
+"""How the `matte` binary finds its Python side and package data (rust/matte/src/installation.rs; the
 README's "Which Python runs Mitsuba's side"): `--python`, then `MATTE_PYTHON`, then the Python
 of the environment matte belongs to, then `python3` on `PATH`, the first that can import
 matte_mitsuba; when none can, one line saying what was tried and how to fix it.

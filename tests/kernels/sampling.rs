@@ -1,4 +1,4 @@
-//! The models' own importance samplers (`rust/brdf/cltc.rs`, `docs/sampling.md`): EON's
+//! The models' own importance samplers (`rust/brdf/src/cltc.rs`, `docs/sampling.md`): EON's
 //! density against a second implementation in float64 (`sampling/eon_cltc.py`); for every
 //! model with its own sampler (`DiffuseModel::own_sampler`), the density's integral over the
 //! hemisphere, Mitsuba's chi-square test of the samples against it at several roughnesses and

@@ -1,7 +1,7 @@
 //! The 8-wide `Real` (`matte_brdf::simd::F32x8`) against the f32 one, lane by lane: every
 //! model's eval, eval_pdf and sample, and each primitive operation, must give the same bits in
 //! lane i as f32 gives for lane i's inputs (tolerance 0 ulp: the operations are the same IEEE
-//! operations, rust/brdf/simd.rs), except that +0 and −0 count as equal: where every lane is
+//! operations, rust/brdf/src/simd.rs), except that +0 and −0 count as equal: where every lane is
 //! below the horizon the f32 path returns early with +0, while the branch-free wide path (like
 //! the traced one) computes `0 · cos θo` = −0 for a negative cosine. The oracle is the f32 instantiation of the same generic
 //! code, which the other kernel tests check against closed forms and references.

@@ -254,7 +254,7 @@ NAN_CASES = sorted({(kind, name) for kind, name, _, _, _ in CASES})
 @pytest.mark.parametrize("kind, name", NAN_CASES, ids=[f"{k}-{n}" for k, n in NAN_CASES])
 @pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
 def test_nan_texels_clamp_to_the_lower_bound_as_in_scalar(mi_variant, kind, name):
-    """A NaN texel is clamped to the parameter's lower bound (rust/brdf/lane.rs): the traced
+    """A NaN texel is clamped to the parameter's lower bound (rust/brdf/src/lane.rs): the traced
     kernel's `min`/`max` must drop a NaN operand (Dr.Jit's `fmin`/`fmax`; its `minimum` and
     `maximum` propagate NaN since 1.5.0), as the CPU kernels do. The same texture in
     llvm_ad_rgb and in scalar_rgb (a separate process) gives the same, finite values."""

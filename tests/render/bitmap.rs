@@ -1,4 +1,4 @@
-//! The `bitmap` texture (`rust/render/texture`). Oracles: the §11 verified values of
+//! The `bitmap` texture (`rust/render/src/texture`). Oracles: the §11 verified values of
 //! `docs/renderer-semantics.md` (§N below is its section N) (128/255 → 0.215861, mid-point 0.303965), values read
 //! back from Mitsuba 3.9.1 for RGBA / gray-alpha PNGs, the exact sRGB EOTF, and hand-derived
 //! texel indices for orientation and wrapping. The inline Mitsuba values (and the hand-derived

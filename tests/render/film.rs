@@ -1,4 +1,4 @@
-//! Film, reconstruction filters and image I/O (`rust/render/film`, `rust/render/image_io.rs`).
+//! Film, reconstruction filters and image I/O (`rust/render/src/film`, `rust/render/src/image_io.rs`).
 //! Oracles: the verified numbers of `docs/renderer-semantics.md` §6 (Gaussian table,
 //! half-bright/half-dark edge test), closed forms (tent table, constant images, plain means),
 //! and EXR files written by Mitsuba 3.9.1 itself when its venv is present.

@@ -1,5 +1,6 @@
-//! The renderer (`rust/render` beside its loader): shapes and ray queries, emitters, textures,
-//! BSDFs, film and image files, samplers, integrators and tile drivers.
+//! The renderer (`rust/render`): its scene loader (the Mitsuba object tree to a renderable
+//! scene, `load`, `mesh_attributes`), shapes and ray queries, emitters, textures, BSDFs, film
+//! and image files, samplers, integrators and tile drivers.
 
 #[path = "../common/mod.rs"]
 mod common;
@@ -9,7 +10,9 @@ mod axis_aligned_rays;
 mod bitmap;
 mod envmap;
 mod film;
+mod load;
 mod matte_bsdf;
+mod mesh_attributes;
 mod mitsuba_bsdfs;
 mod particle_tracer;
 mod render_core;

@@ -1,10 +1,10 @@
-//! The renderer's Matte BSDF (`rust/render/bsdf/matte.rs`) as the loader builds it from
-//! scene files (`rust/render/load/bsdf.rs`): textured parameters (a constant texture renders
+//! The renderer's Matte BSDF (`rust/render/src/bsdf/matte.rs`) as the loader builds it from
+//! scene files (`rust/render/src/load/bsdf.rs`): textured parameters (a constant texture renders
 //! as the number, refused forms name file:line; `docs/models.md#spatially-varying-parameters`),
 //! a table file as `tabulated_brdf` (each RGB channel its own ρ, a missing file a one-line
 //! error), and Mitsuba 0.6's `roughdiffuse` XML through the version upgrade. (Which colour of a
 //! checkerboard a parameter reads, Mitsuba's `eval_1`, is checked with the other checkerboard
-//! tests in `tests/scene_file/load.rs`.)
+//! tests in `tests/render/load.rs`.)
 
 use crate::common::{direction, model, table_of};
 use glam::{Vec2, Vec3};

@@ -1,5 +1,5 @@
-//! The `volume` texture on surfaces (`rust/render/texture/volume.rs`, which also reads its
-//! properties; the loader's dispatch is `rust/render/load/texture.rs`): `gridvolume` read from
+//! The `volume` texture on surfaces (`rust/render/src/texture/volume.rs`, which also reads its
+//! properties; the loader's dispatch is `rust/render/src/load/texture.rs`): `gridvolume` read from
 //! `.vol` files and `constvolume`, looked up at the world-space hit point. Oracles: Mitsuba
 //! 3.9.1's `volume` texture, recorded in `MITSUBA` (checked by
 //! tests/render/volume_texture/generate_reference.py) and live on random grids and points when

@@ -1,10 +1,9 @@
-//! Scene files: the Mitsuba XML layer and the mesh formats (`rust/scene_file`), and the loader
-//! that turns the object tree into a renderable scene (`rust/render/load`).
+//! The Mitsuba XML layer and the mesh formats (`rust/scene_file`): the tests of
+//! `matte-scene-file`, which link nothing above it. The loader's tests, which turn the object
+//! tree into a renderable scene, are the renderer's (`tests/render/load.rs`).
 
-#[path = "../common/mod.rs"]
+#[path = "../common/paths.rs"]
 mod common;
 
-mod load;
 mod mesh;
-mod mesh_attributes;
 mod xml;

@@ -1,4 +1,4 @@
-//! Mesh loading (`rust/scene_file/mesh`): OBJ, PLY (ascii, binary LE/BE), `serialized`,
+//! Mesh loading (`rust/scene_file/src/mesh`): OBJ, PLY (ascii, binary LE/BE), `serialized`,
 //! rectangle, cube.
 //! Oracles: hand-written files with hand-derived expectations, closed forms (symmetry,
 //! inverse-transpose normals), the verified smooth-normal value of `docs/renderer-semantics.md` §8, and the vertex buffers /

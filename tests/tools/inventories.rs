@@ -52,7 +52,7 @@ fn docs_testing_lists_each_test_crates_modules() {
 
 #[test]
 fn package_descriptions_name_every_registered_model() {
-    for file in ["rust/Cargo.toml", "rust/brdf/Cargo.toml", "pyproject.toml"] {
+    for file in ["rust/matte/Cargo.toml", "rust/brdf/Cargo.toml", "pyproject.toml"] {
         let text = read(file);
         let line =
             text.lines().find(|l| l.starts_with("description")).unwrap_or_else(|| panic!("{file}: no description"));

@@ -1,5 +1,5 @@
 //! `matte validate`'s statistics without rendering: the region → pixel rounding (one
-//! implementation, `rust/validate/crop.rs`), the multi-scale tests and the power calibration
+//! implementation, `rust/matte/src/validate/crop.rs`), the multi-scale tests and the power calibration
 //! (`docs/validation.md`).
 
 use matte::validate::crop::{PixelBox, pixel_box};

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes rust/render/bsdf/conductor_ior_data.rs: the RGB complex index (eta, k) of every named conductor
+"""Writes rust/render/src/bsdf/conductor_ior_data.rs: the RGB complex index (eta, k) of every named conductor
 `material` that Mitsuba 3.9.1 knows, exactly as its RGB variants compute them.
 
 A `material` name resolves to the spectral tables `data/ior/<name>.eta.spd` and

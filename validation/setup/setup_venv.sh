@@ -3,7 +3,7 @@
 #   1. the Debian packages libllvm19 (Dr.Jit's llvm_* variants load it at run
 #      time; LLVM 15, which Debian 12 also ships, makes Dr.Jit 1.5.0 abort) and
 #      libembree3-3 (Embree 3.13; matte's renderer loads libembree3.so.3 at run
-#      time for its ray queries, rust/render/accel/embree_api.rs, and falls back
+#      time for its ray queries, rust/render/src/accel/embree_api.rs, and falls back
 #      to its own BVH without it), and clang-format (`make test` checks cpp/'s style);
 #      for the Linux aarch64 wheel (`make dist`), the cross compiler g++-aarch64-linux-gnu, Rust's
 #      aarch64-unknown-linux-gnu target, and qemu-user-static, which runs it under emulation

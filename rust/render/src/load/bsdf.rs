@@ -1,0 +1,105 @@
+//! `<bsdf>`: which type builds each plugin name. Every type reads its own properties
+//! (`from_props` in its file under `rust/render/src/bsdf/`, through [`PluginProps`]): Mitsuba's
+//! `diffuse`, `twosided`, `dielectric`, `thindielectric`, `roughdielectric`, `conductor`,
+//! `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `null`, `bumpmap`, `mask`,
+//! `blendbsdf`, `principled`, `principledthin`, and matte's registered types
+//! (`matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`, built as [`Matte`] by the
+//! kernels' own construction, the one the Mitsuba plugin uses).
+
+use super::Builder;
+use super::props::{FromProps, PluginProps};
+use crate::bsdf::{
+    Blend, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, Mask, Matte, NormalMap, Null, Plastic, Principled,
+    PrincipledThin, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
+};
+use crate::texture::Texture;
+use glam::Vec3;
+use matte_brdf::BSDF_TYPES;
+use matte_scene_file::SceneError;
+use matte_scene_file::xml::SceneObject;
+
+/// The BSDF index for this XML object, building it the first time it is seen.
+/// A BSDF that depends on its shape (a `mesh_attribute` texture, a `bumpmap`) is built again
+/// for every shape.
+pub fn get_or_build(b: &mut Builder, obj: &SceneObject) -> Result<u32, SceneError> {
+    let key = obj as *const SceneObject;
+    if let Some(&i) = b.bsdf_index.get(&key) {
+        return Ok(i);
+    }
+    let outer = b.shape_dependent.replace(false);
+    let bsdf = build(b, obj);
+    let dependent = b.shape_dependent.replace(outer);
+    let bsdf = bsdf?;
+    b.bsdfs.push(bsdf);
+    let i = (b.bsdfs.len() - 1) as u32;
+    if dependent {
+        b.shape_dependent_bsdfs.insert(key);
+    } else {
+        b.bsdf_index.insert(key, i);
+    }
+    Ok(i)
+}
+
+/// A constant-colour diffuse BSDF (Mitsuba's default for shapes without one).
+pub fn default_diffuse(b: &mut Builder, reflectance: f32) -> u32 {
+    b.bsdfs.push(Bsdf::Diffuse(Diffuse { reflectance: Texture::Constant(Vec3::splat(reflectance)) }));
+    (b.bsdfs.len() - 1) as u32
+}
+
+type Constructor = fn(&mut PluginProps) -> Result<Bsdf, SceneError>;
+
+/// `T::from_props` as a [`Bsdf`].
+fn make<T: FromProps + Into<Bsdf>>(p: &mut PluginProps) -> Result<Bsdf, SceneError> {
+    T::from_props(p).map(Into::into)
+}
+
+/// Mitsuba 3.9.1's BSDF plugins matte builds, each with its type.
+const MITSUBA: [(&str, Constructor); 16] = [
+    ("diffuse", make::<Diffuse>),
+    ("twosided", make::<TwoSided>),
+    ("dielectric", make::<Dielectric>),
+    ("thindielectric", make::<ThinDielectric>),
+    ("roughdielectric", make::<RoughDielectric>),
+    ("conductor", make::<Conductor>),
+    ("roughconductor", make::<RoughConductor>),
+    ("plastic", make::<Plastic>),
+    ("roughplastic", make::<RoughPlastic>),
+    ("normalmap", make::<NormalMap>),
+    ("null", make::<Null>),
+    ("bumpmap", make::<BumpMap>),
+    ("mask", make::<Mask>),
+    ("blendbsdf", make::<Blend>),
+    ("principled", make::<Principled>),
+    ("principledthin", make::<PrincipledThin>),
+];
+
+/// The names of [`MITSUBA`]: the bsdf entry of [`super::MITSUBA_PLUGINS`].
+pub(super) const MITSUBA_NAMES: [&str; MITSUBA.len()] = {
+    let mut names = [""; MITSUBA.len()];
+    let mut i = 0;
+    while i < MITSUBA.len() {
+        names[i] = MITSUBA[i].0;
+        i += 1;
+    }
+    names
+};
+
+/// Builds the BSDF of `obj` (nested BSDFs are built by their wrapper's `from_props`).
+pub(crate) fn build(b: &Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
+    let name = obj.plugin.as_str();
+    let plugins = || MITSUBA.iter();
+    let constructor = match plugins().find(|(n, _)| *n == name) {
+        Some(&(_, c)) => c,
+        None if BSDF_TYPES.contains(&name) => make::<Matte>,
+        None => {
+            let names: Vec<&str> = plugins().map(|(n, _)| *n).chain(BSDF_TYPES.iter().copied()).collect();
+            return Err(super::err(
+                obj,
+                format!("unsupported bsdf type \"{name}\" (matte renders: {})", names.join(", ")),
+            ));
+        }
+    };
+    let bsdf = constructor(&mut PluginProps::new(b, obj))?;
+    obj.check_all_used()?;
+    Ok(bsdf)
+}
