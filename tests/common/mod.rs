@@ -41,7 +41,6 @@ pub fn chi2_render_bsdf<B: Bxdf>(
     chi2_test(sample, |wo| bsdf.eval_pdf(si, wi, to_shading(wo)).1, seed, ires)
 }
 
-
 // ------------------------------------------------------------------------------------------
 // Scene files
 
