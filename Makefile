@@ -52,7 +52,7 @@ ground-truth:
 
 # Debian's libllvm19, .venv with the pinned wheels (fast when already done).
 venv:
-	@validation/setup/setup_venv.sh
+	@setup/setup_venv.sh
 
 plugin: venv $(WHEEL)
 
@@ -72,12 +72,12 @@ dist: plugin $(WHEEL_AARCH64)
 
 # `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.py); here
 # against the venv's own Mitsuba (no build isolation), then installed into the venv.
-$(WHEEL): $(SOURCES) validation/setup/requirements.txt
+$(WHEEL): $(SOURCES) setup/requirements.txt
 	@rm -f dist/matte_mitsuba-*linux_x86_64.whl
 	$(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
 	$(PY) -m pip install --force-reinstall --no-deps -q --disable-pip-version-check $(WHEEL)
 
 # The same build for Linux aarch64, with the cross toolchain setup_venv.sh installs.
-$(WHEEL_AARCH64): $(SOURCES) validation/setup/requirements.txt | venv
+$(WHEEL_AARCH64): $(SOURCES) setup/requirements.txt | venv
 	@rm -f dist/matte_mitsuba-*linux_aarch64.whl
 	MATTE_PLATFORM=linux-aarch64 $(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check

@@ -18,14 +18,15 @@ numbers. Renders use fixed seeds; a rendered value passes when it is within 4 st
 (over 4–8 seeds) plus the stated tolerance of the doc's number.
 
 Not covered here (each has its own oracle): the sampler sequences of §5
-(validation/mitsuba_sampler_reference.py → tests/render/samplers/mitsuba_reference.json),
+(tests/render/samplers/generate_reference.py → tests/render/samplers/mitsuba_reference.json),
 `roughconductor` at random directions (tests/render/specular_bsdfs/generate_reference.py), the
 other BSDFs of §10 (tests/render/mitsuba_bsdfs/generate_reference.py), `bumpmap`
-(generate_bumpmap_reference.py there), the `serialized` format (tests/scene_file/serialized/
-make_reference.py), and the PLY attribute naming of §8 (Mitsuba's own test scenes).
+(tests/render/mitsuba_bsdfs/bumpmap/generate_reference.py), the `serialized` format (tests/scene_file/serialized/
+generate_reference.py), and the PLY attribute naming of §8 (Mitsuba's own test scenes).
 """
 
 import argparse
+import json
 import math
 import re
 import sys
@@ -36,6 +37,8 @@ from pathlib import Path
 
 import mitsuba as mi
 import numpy as np
+
+REPO_ROOT = Path(__file__).resolve().parents[1]
 
 mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
@@ -460,39 +463,8 @@ def _():
 # ---------------------------------------------------------------------------------------------
 # §6 Film and filters
 
-GAUSSIAN_TABLE = [
-    0.99925,
-    0.99099,
-    0.96664,
-    0.92735,
-    0.87498,
-    0.81193,
-    0.74095,
-    0.66496,
-    0.58685,
-    0.50931,
-    0.43468,
-    0.36484,
-    0.30115,
-    0.24447,
-    0.19518,
-    0.15326,
-    0.11835,
-    0.08986,
-    0.06707,
-    0.04920,
-    0.03546,
-    0.02510,
-    0.01743,
-    0.01188,
-    0.00792,
-    0.00516,
-    0.00325,
-    0.00197,
-    0.00112,
-    0.00057,
-    0.00022,
-]
+# The table the renderer's tests hold (one copy, tests/render/film/gaussian_table.json).
+GAUSSIAN_TABLE = json.loads((REPO_ROOT / "tests" / "render" / "film" / "gaussian_table.json").read_text())["values"]
 
 
 @check("§6: hdrfilm defaults 768×576, gaussian stddev 0.5, pixel_format rgb, no sample_border, no crop")

@@ -1,6 +1,6 @@
 """The plugin's core checks under one Mitsuba release, run by `tests/plugin/test_releases.py`
 with the Python of that release's environment (`.venvs/mitsuba-<release>`, the wheel installed;
-validation/setup/release_venvs.sh). One check per process (Mitsuba 3.8.0 cannot switch from a
+setup/release_venvs.sh). One check per process (Mitsuba 3.8.0 cannot switch from a
 scalar render to loading JIT plugins in one process, its own `roughplastic` included), JSON on
 its last line of stdout:
 

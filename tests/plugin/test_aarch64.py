@@ -1,7 +1,7 @@
 """The Linux aarch64 wheel of `make dist` (cross-built on this x86-64 machine), run under
 emulation: qemu-user with Debian's arm64 Python 3.11 and libLLVM 19, beside Mitsuba's aarch64
 wheels of the oldest release that has them (3.8.0) and the newest
-(validation/setup/aarch64_env.sh makes the environments once and installs the wheel anew).
+(setup/aarch64_env.sh makes the environments once and installs the wheel anew).
 
 * values: f·cos and pdf of every type in scalar_rgb and llvm_ad_rgb (symbolic loop) equal the
   x86-64 build's under 3.9.1 (this environment's) to 1e-5 relative;
@@ -35,7 +35,7 @@ def environment():
     wheels = glob.glob(os.path.join(REPO, "dist", "matte_mitsuba-*manylinux*_aarch64.whl"))
     assert len(wheels) == 1, f"expected one aarch64 wheel of `make dist` in dist/, found {wheels}"
     r = subprocess.run(
-        [os.path.join(REPO, "validation", "setup", "aarch64_env.sh"), wheels[0], *RELEASES],
+        [os.path.join(REPO, "setup", "aarch64_env.sh"), wheels[0], *RELEASES],
         capture_output=True,
         text=True,
     )

@@ -1,6 +1,6 @@
 """The Mitsuba release matrix: the wheel of `make dist` installed beside each release of
 cpp/mitsuba_releases.txt, each in its own environment (`.venvs/mitsuba-<release>`, made once and
-reused by validation/setup/release_venvs.sh, which installs the current wheel into each), where
+reused by setup/release_venvs.sh, which installs the current wheel into each), where
 tests/plugin/release_checks.py runs the plugin's core checks, one process per check:
 
 * values: f·cos and pdf of every registered type on 256 fixed direction pairs, in scalar_rgb
@@ -34,7 +34,7 @@ UNSUPPORTED = "3.6.4"
 @pytest.fixture(scope="module", autouse=True)
 def environments():
     """Every release's environment, with the wheel `make dist` built installed."""
-    subprocess.run([os.path.join(REPO, "validation", "setup", "release_venvs.sh")], check=True)
+    subprocess.run([os.path.join(REPO, "setup", "release_venvs.sh")], check=True)
 
 
 def python_of(release):

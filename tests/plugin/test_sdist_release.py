@@ -24,7 +24,7 @@ HIDDEN = "3.8.0"
 
 
 def test_a_hidden_release_builds_from_the_sdist_and_agrees_with_the_wheel(tmp_path):
-    subprocess.run([os.path.join(REPO, "validation", "setup", "release_venvs.sh")], check=True)
+    subprocess.run([os.path.join(REPO, "setup", "release_venvs.sh")], check=True)
     (sdist,) = glob.glob(os.path.join(REPO, "dist", "matte_mitsuba-*.tar.gz"))
     with tarfile.open(sdist) as t:
         t.extractall(tmp_path, filter="data")

@@ -6,6 +6,7 @@
 //! pdf, and the Dirac lobes' probabilities.
 
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
+#[path = "mitsuba_bsdfs/bumpmap/reference.rs"]
 mod bumpmap_reference;
 #[rustfmt::skip] // generated data, one configuration per line
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
@@ -377,7 +378,7 @@ fn odd_values_never_panic_and_render_finite() {
 
 /// `bumpmap` at the BSDF level: a generated 5×4 height
 /// map, hits with explicit ∂p/∂u, ∂p/∂v, normals and shading frame, against Mitsuba 3.9.1
-/// (`generate_bumpmap_reference.py`).
+/// (`mitsuba_bsdfs/bumpmap/generate_reference.py`).
 #[test]
 fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
     use bumpmap_reference::{HEIGHT, NESTED, ROWS, TEXELS, WIDTH};

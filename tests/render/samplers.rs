@@ -1,6 +1,6 @@
 //! The samplers (`matte_render::sampler`) and the `thinlens` sensor against live Mitsuba
 //! 3.9.1: `tests/render/samplers/mitsuba_reference.json` was written by
-//! `validation/mitsuba_sampler_reference.py` (scalar_rgb) and holds each sampler's rounded
+//! `tests/render/samplers/generate_reference.py` (scalar_rgb) and holds each sampler's rounded
 //! `sample_count`, the numbers it draws after `sampler.seed(s)` and `thinlens` rays. A second
 //! check is a closed form: every sampler's per-pixel streams integrate a smooth function of
 //! several dimensions to its known value.

@@ -658,7 +658,7 @@ json.dump(out, open(out_path, 'w'))
 }
 
 // ---------------------------------------------------------------------------------------------
-// serialized, checked against Mitsuba 3.9.1 scalar_rgb (tests/scene_file/serialized/make_reference.py)
+// serialized, checked against Mitsuba 3.9.1 scalar_rgb (tests/scene_file/serialized/generate_reference.py)
 
 fn serialized_dir() -> PathBuf {
     crate::common::repo().join("tests/scene_file/serialized")

@@ -7,7 +7,7 @@ repository root (5–10 s, the edge renders):
 
 Covered (test constant or function → what Mitsuba is asked):
 
-* `MITSUBA_GAUSSIAN_TABLE` / `gaussian_table_matches_mitsuba`: the default `gaussian` filter's
+* `gaussian_table.json` / `gaussian_table_matches_mitsuba`: the default `gaussian` filter's
   table, `rfilter.eval_discretized(r·(k + ½)/31)` for k = 0..30 (the middle of bin k), printed
   in the test's layout (5 decimals) and compared at those decimals; its radius.
 * `mitchell_catmullrom_lanczos_match_mitsuba`: `rfilter.eval(x)` and `eval_discretized(x)` of
@@ -26,6 +26,7 @@ Covered (test constant or function → what Mitsuba is asked):
 Prints one line per check and exits 1 if any differs.
 """
 
+import json
 import sys
 from pathlib import Path
 
@@ -39,40 +40,8 @@ mi.set_variant("scalar_rgb")
 mi.set_log_level(mi.LogLevel.Error)
 
 
-# MITSUBA_GAUSSIAN_TABLE (tests/render/film.rs), 5 decimals.
-TEST_GAUSSIAN_TABLE = [
-    0.99925,
-    0.99099,
-    0.96664,
-    0.92735,
-    0.87498,
-    0.81193,
-    0.74095,
-    0.66496,
-    0.58685,
-    0.50931,
-    0.43468,
-    0.36484,
-    0.30115,
-    0.24447,
-    0.19518,
-    0.15326,
-    0.11835,
-    0.08986,
-    0.06707,
-    0.04920,
-    0.03546,
-    0.02510,
-    0.01743,
-    0.01188,
-    0.00792,
-    0.00516,
-    0.00325,
-    0.00197,
-    0.00112,
-    0.00057,
-    0.00022,
-]
+# The gaussian table the tests hold (gaussian_table.json beside this script), 5 decimals.
+TEST_GAUSSIAN_TABLE = json.loads((Path(__file__).parent / "gaussian_table.json").read_text())["values"]
 
 
 def table(f):
@@ -82,10 +51,7 @@ def table(f):
 
 gauss = mi.load_dict({"type": "gaussian"})
 values = table(gauss)
-print("const MITSUBA_GAUSSIAN_TABLE: [f32; 31] = [")
-for row in range(0, 31, 12):
-    print("    " + " ".join(f"{v:.5f}," for v in values[row : row + 12]))
-print("];")
+print("gaussian table (gaussian_table.json's values):", json.dumps([round(v, 5) for v in values]))
 check("gaussian table, 5 decimals", np.round(values, 5), TEST_GAUSSIAN_TABLE)
 check("gaussian radius", gauss.radius(), 2.0)
 check("gaussian beyond the radius", gauss.eval_discretized(2.0), 0.0)

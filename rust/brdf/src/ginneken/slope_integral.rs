@@ -121,7 +121,7 @@ impl SlopeIntegrator {
     }
 
     /// `([P0, P1, H], [∂/∂m of each])` for a direction with cosine `mu`: the 1-D functions of
-    /// the split `I = rest + K` (`validation/generators/slope_fit_results.md`),
+    /// the split `I = rest + K` (`validation/experiments/slope_fit_results.md`),
     ///
     /// `rest = μo P0(θi) + μi P0(θo) + so P1(θi) + si P1(θo) + (1 + cos Δφ) si so (H(θi) + H(θo))`
     ///

@@ -1,7 +1,7 @@
 //! The fast path: the slope integral `I(θi, θo, Δφ)` per roughness, split as
-//! `I = rest / (1 − r)` (issue 39; derivation and measurements in
-//! `validation/generators/slope_fit_results.md`, cross-checked by
-//! `validation/generators/fit_slope_integral.py`), and Smith's `μΛ` of each direction for the
+//! `I = rest / (1 − r)` (derivation and measurements in
+//! `validation/experiments/slope_fit_results.md`, cross-checked by
+//! `validation/experiments/fit_slope_integral.py`), and Smith's `μΛ` of each direction for the
 //! visibility term `P_ill+vis/(μi μo)`, whose azimuth factor is evaluated at run time.
 //!
 //! * `rest = μo P0(θi) + μi P0(θo) + so P1(θi) + si P1(θo) + (1 + cos Δφ) si so (H(θi) + H(θo))`

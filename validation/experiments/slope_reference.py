@@ -1,6 +1,6 @@
 """van Ginneken's slope integral in numpy, vectorised over configurations: the same
 semi-analytic scheme as `rust/brdf/src/ginneken/slope_integral.rs` (`SlopeIntegrator`), for the
-prototype fits of issue 39 (`fit_slope_integral.py`).
+prototype fits of `fit_slope_integral.py`.
 
     I(μi, μo, Δφ) = ∬ P22(p, q) (μi − p·wi)⁺ (μo − p·wo)⁺ / √(1 + p² + q²) dp dq
 
@@ -150,7 +150,7 @@ def eval_reference(m, ti_deg, to_deg, ph_deg, shadowing="vginneken"):
 
 
 # ---------------------------------------------------------------------------------------------
-# The split I = rest + K (issue 39). With X = p·ŵi the slope component along wi's azimuth,
+# The split I = rest + K. With X = p·ŵi the slope component along wi's azimuth,
 # (μ − p·w)⁺ = (μ − p·w) + s (X − cot θ)⁺ for each direction; expanding the product leaves
 #   * terms with one clamp, whose expectations are 1-D functions of one direction, and
 #   * K = E[w (p·wi − μi)⁺ (p·wo − μo)⁺] (both facets facing away: a wedge in slope space).

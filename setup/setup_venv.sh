@@ -8,13 +8,13 @@
 #      for the Linux aarch64 wheel (`make dist`), the cross compiler g++-aarch64-linux-gnu, Rust's
 #      aarch64-unknown-linux-gnu target, and qemu-user-static, which runs it under emulation
 #      (tests/plugin/test_aarch64.py);
-#   2. <repo>/.venv with validation/setup/requirements.txt installed, re-installed
+#   2. <repo>/.venv with setup/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
 # Prints one line saying what it did. Safe to run from anywhere, any number of times.
 set -euo pipefail
 
-cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 LIBLLVM=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1   # provided by libllvm19
 LIBEMBREE=/usr/lib/x86_64-linux-gnu/libembree3.so.3 # provided by libembree3-3
@@ -23,7 +23,7 @@ CROSS_CXX=/usr/bin/aarch64-linux-gnu-g++            # provided by g++-aarch64-li
 QEMU=/usr/bin/qemu-aarch64-static                   # provided by qemu-user-static
 RUST_AARCH64=aarch64-unknown-linux-gnu
 VENV=.venv
-REQ=validation/setup/requirements.txt
+REQ=setup/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
 did=()
 

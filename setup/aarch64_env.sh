@@ -14,16 +14,16 @@
 #      folder, and bin/qemu: qemu with the sysroot, for the aarch64 `matte` binary.
 # Made once in $MATTE_MITSUBA_CACHE/linux-aarch64-env (default ~/.cache/matte-mitsuba/…) and
 # reused; the wheel is installed anew each call. Prints the environment's folder.
-#     validation/setup/aarch64_env.sh WHEEL RELEASE...
+#     setup/aarch64_env.sh WHEEL RELEASE...
 set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 WHEEL=$(realpath "$1")
 shift
 CACHE=${MATTE_MITSUBA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/matte-mitsuba}
 ENV=$CACHE/linux-aarch64-env
 SYSROOT=$ENV/sysroot
-NUMPY=$(grep '^numpy==' validation/setup/requirements.txt)
+NUMPY=$(grep '^numpy==' setup/requirements.txt)
 # What Python and libLLVM need of Debian's arm64 packages, resolved by apt (see below).
 ROOTS="python3.11-minimal libpython3.11-stdlib libllvm19 libstdc++6 libgcc-s1 libatomic1"
 QEMU=/usr/bin/qemu-aarch64-static

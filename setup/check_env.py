@@ -47,8 +47,7 @@ def main():
     mi.set_variant("llvm_ad_rgb")
     if not dr.has_backend(dr.JitBackend.LLVM):
         raise RuntimeError(
-            "Dr.Jit's LLVM backend is inactive: install libllvm19 "
-            "(validation/setup/setup_venv.sh) or set DRJIT_LIBLLVM_PATH"
+            "Dr.Jit's LLVM backend is inactive: install libllvm19 (setup/setup_venv.sh) or set DRJIT_LIBLLVM_PATH"
         )
     llvm = dr.detail.llvm_version()
     src = os.environ.get("DRJIT_LIBLLVM_PATH") or "auto-detected"

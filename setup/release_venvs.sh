@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
 # The environments of the Mitsuba release matrix (tests/plugin/test_releases.py): for each
 # release of cpp/mitsuba_releases.txt, <repo>/.venvs/mitsuba-<release> with that Mitsuba (and
-# the Dr.Jit it pins) and the numpy of validation/setup/requirements.txt, created once and
+# the Dr.Jit it pins) and the numpy of setup/requirements.txt, created once and
 # reused; then the wheel given (default: this machine's manylinux wheel of `make dist`) installed into each
 # without its dependencies, as a user adds matte to an environment that has Mitsuba. Also
 # .venvs/mitsuba-3.6.4, the release before the oldest supported one, where the import must fail.
-#     validation/setup/release_venvs.sh [WHEEL]
+#     setup/release_venvs.sh [WHEEL]
 # Prints one line saying what it did. Safe to run any number of times.
 set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 WHEEL=${1:-$(ls dist/matte_mitsuba-*manylinux*_"$(uname -m)".whl 2>/dev/null | head -1)}
 [ -f "$WHEEL" ] || { echo "release_venvs: no wheel (run make dist, or name one)" >&2; exit 1; }
-NUMPY=$(grep '^numpy==' validation/setup/requirements.txt)
+NUMPY=$(grep '^numpy==' setup/requirements.txt)
 created=()
 for release in $(grep -v '^#' cpp/mitsuba_releases.txt | awk 'NF {print $1}') 3.6.4; do
     venv=.venvs/mitsuba-$release

@@ -2,7 +2,7 @@
 """Writes tests/render/samplers/mitsuba_reference.json from live Mitsuba 3.9.1 (scalar_rgb), the
 oracle of tests/render/samplers.rs. Run by hand with the venv's Python:
 
-    .venv/bin/python validation/mitsuba_sampler_reference.py tests/render/samplers/mitsuba_reference.json
+    .venv/bin/python tests/render/samplers/generate_reference.py tests/render/samplers/mitsuba_reference.json
 
 * "samplers": for each sampler plugin and properties, the rounded sample_count and, after
   `sampler.seed(seed)`, every sample's dimensions next_1d, next_2d, next_1d, next_2d, next_1d,

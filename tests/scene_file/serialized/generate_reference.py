@@ -2,7 +2,7 @@
 """Writes the `.serialized` files of tests/scene_file/mesh.rs and what Mitsuba 3.9.1 (scalar_rgb) loads
 from them, the oracle. Run by hand with the venv's Python from the repository root:
 
-    .venv/bin/python tests/scene_file/serialized/make_reference.py
+    .venv/bin/python tests/scene_file/serialized/generate_reference.py
 
 * v4.serialized: version 4, f32, two meshes with normals and uvs (the bundled torus and a
   tilted quad pair), then the bundled twisted box (no normals, vertex colours).
