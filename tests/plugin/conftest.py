@@ -20,6 +20,22 @@ MATTE = os.path.join(os.path.dirname(sys.executable), "matte")
 SCENES = os.path.join(REPO, "mitsuba_scenes")
 
 
+def releases(platform="linux-x86_64"):
+    """The Mitsuba releases of cpp/mitsuba_releases.txt with a layer for `platform` (a column
+    of the table; `-`: Mitsuba publishes no wheel there), oldest first."""
+    rows = [line.split() for line in open(os.path.join(REPO, "cpp", "mitsuba_releases.txt"))]
+    column = next(cols for cols in rows if cols[:2] == ["#", "release"]).index(platform) - 1
+    return [cols[0] for cols in rows if cols and cols[0][0].isdigit() and cols[column] != "-"]
+
+
+#: The Mitsuba release of the checkout's environment (setup/requirements.txt), the newest.
+CHECKOUT_MITSUBA = next(
+    line.split("==")[1].strip()
+    for line in open(os.path.join(REPO, "setup", "requirements.txt"))
+    if line.startswith("mitsuba==")
+)
+
+
 def _registry():
     """The model registry as the installed `matte types --json` prints it."""
     out = subprocess.run([MATTE, "types", "--json"], capture_output=True, text=True, check=True)

@@ -1,10 +1,10 @@
 """The Linux aarch64 wheel of `make dist` (cross-built on this x86-64 machine), run under
 emulation: qemu-user with Debian's arm64 Python 3.11 and libLLVM 19, beside Mitsuba's aarch64
-wheels of the oldest release that has them (3.8.0) and the newest
-(setup/aarch64_env.sh makes the environments once and installs the wheel anew).
+wheels of the oldest release that has them and the newest (the table's linux-aarch64 column;
+setup/aarch64_env.sh makes the environments once and installs the wheel anew).
 
 * values: f·cos and pdf of every type in scalar_rgb and llvm_ad_rgb (symbolic loop) equal the
-  x86-64 build's under 3.9.1 (this environment's) to 1e-5 relative;
+  x86-64 build's under this environment's Mitsuba to 1e-5 relative;
 * render: the Cornell box (wolff, ginneken, eon) in llvm_ad_rgb equals the x86-64 build's
   render within noise;
 * gradient: ginneken's roughness, prb's adjoint equal to central differences within 1 %;
@@ -24,10 +24,10 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import REPO
+from conftest import REPO, releases
 from test_releases import release_check
 
-RELEASES = ["3.8.0", "3.9.1"]
+RELEASES = [releases("linux-aarch64")[0], releases("linux-aarch64")[-1]]
 
 
 @functools.lru_cache(maxsize=None)

@@ -22,7 +22,7 @@ import tarfile
 import zipfile
 
 import pytest
-from conftest import REPO
+from conftest import CHECKOUT_MITSUBA, REPO, releases
 
 
 def run_python(code, env=None, cwd=None):
@@ -50,15 +50,6 @@ def release_wheel(arch="x86_64"):
     wheels = glob.glob(os.path.join(REPO, "dist", f"matte_mitsuba-*manylinux*_{arch}.whl"))
     assert len(wheels) == 1, f"make dist makes one manylinux wheel for {arch}: {wheels}"
     return wheels[0]
-
-
-def releases_of(arch):
-    """The releases of cpp/mitsuba_releases.txt with a layer for `arch` (Mitsuba publishes a
-    wheel there)."""
-    lines = [line.split() for line in open(os.path.join(REPO, "cpp", "mitsuba_releases.txt"))]
-    header = next(cols for cols in lines if cols[:2] == ["#", "release"])
-    column = header.index(ARCHES[arch]) - 1
-    return [cols[0] for cols in lines if cols and cols[0][0].isdigit() and cols[column] != "-"]
 
 
 def test_sdist_holds_what_builds_and_nothing_else():
@@ -191,11 +182,11 @@ def test_wheel_is_platlib_and_manylinux_with_only_mitsubas_libraries_outside(arc
             }
             assert needed <= system | provided, (n, needed - system - provided)
     # The kernels once; per supported release, its layer and one stub per registered type.
-    releases = releases_of(arch)
+    published = releases(ARCHES[arch])
     types = subprocess.run([os.path.join(REPO, ".venv", "bin", "matte"), "types"], capture_output=True, text=True)
     expected = {"matte_mitsuba/lib/libmatte_kernels.so"} | {
         f"matte_mitsuba/releases/{r}/plugins/{name}.so"
-        for r in releases
+        for r in published
         for name in ["libmatte_bsdfs", *types.stdout.split()]
     }
     assert {n for n in names if n.endswith(".so")} == expected, sorted(
@@ -254,7 +245,9 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     pip = [py, "-m", "pip", "install", "-q", "--disable-pip-version-check"]
     # The pinned Mitsuba (and numpy, flip-evaluator) from the registry, then matte only from
     # the release files.
-    r = subprocess.run(pip + ["mitsuba==3.9.1", "numpy", "flip-evaluator"], capture_output=True, text=True)
+    r = subprocess.run(
+        pip + [f"mitsuba=={CHECKOUT_MITSUBA}", "numpy", "flip-evaluator"], capture_output=True, text=True
+    )
     assert r.returncode == 0, r.stderr
     r = subprocess.run(
         pip + ["--no-index", "--find-links", os.path.dirname(wheel), "matte-mitsuba"],
@@ -294,10 +287,10 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     assert (work / "one" / "report.html").is_file()
     summary = json.loads((work / "one" / "summary.json").read_text())
     provenance = summary["provenance"]
-    assert summary["passed"] and provenance["mitsuba"] == "3.9.1", provenance
+    assert summary["passed"] and provenance["mitsuba"] == CHECKOUT_MITSUBA, provenance
     assert provenance["python"].startswith(py) and "1 given on the command line" == provenance["scenes"], provenance
     report = (work / "one" / "report.html").read_text()
-    assert "Mitsuba" in report and "3.9.1" in report and "mitsuba llvm_ad_rgb" in report
+    assert "Mitsuba" in report and CHECKOUT_MITSUBA in report and "mitsuba llvm_ad_rgb" in report
 
     # Every bundled scene: the installation's self-test.
     r = run(matte, "validate", "--all", "--quick", "-o", "all")

@@ -22,11 +22,10 @@ import subprocess
 
 import numpy as np
 import pytest
-from conftest import REPO, kernel_f_pdf
+from conftest import REPO, kernel_f_pdf, releases
 from release_checks import RGB
 
-TABLE = os.path.join(REPO, "cpp", "mitsuba_releases.txt")
-RELEASES = [line.split()[0] for line in open(TABLE) if line.strip() and not line.startswith("#")]
+RELEASES = releases()
 NEWEST = RELEASES[-1]
 UNSUPPORTED = "3.6.4"
 
