@@ -114,7 +114,7 @@ impl<'a, 'b> JsonObject<'a, 'b> {
 
 /// One part of the study.
 pub trait Section: Sync {
-    /// Its name in progress messages and errors ("variants", "true surfaces").
+    /// Its name in errors ("variants", "true surfaces").
     fn name(&self) -> &'static str;
 
     /// When it runs.
