@@ -245,6 +245,10 @@ def test_matte_study_reports_flip_evaluators_values_with_noise_floor_and_interva
     )
     assert any("Perceptual question" in a for a in study["answers"])
     html = (out / "report.html").read_text()
+    # The report opens with the answer table, with its perceptual columns.
+    table = html[html.index("<table") : html.index("</table>")]
+    assert table.startswith('<table id="answers">') and "mean FLIP, global" in table and "ΔFLIP" in table
+    assert html.index("<table") < html.index("<img")
     assert (
         "HDR-FLIP" in html and "cornell/flip_lambert_global.png" in html and "cornell/flip_surface_direct.png" in html
     )

@@ -33,7 +33,7 @@ fn study_run_writes_strips_report_and_sane_numbers() {
         .output()
         .expect("run matte");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+    let j = study_json(&out);
     let models = j["scenes"][0]["models"].as_array().expect("models");
     // The paper's five, then every other registered model the study renders.
     let main_run = matte::study::configuration::main_run();
@@ -59,6 +59,112 @@ fn study_run_writes_strips_report_and_sane_numbers() {
     // The scene's $bsdf is in an included file: no true surfaces, and the report says why.
     assert!(j["scenes"][0]["notes"][0].as_str().is_some_and(|n| n.contains("$bsdf")), "{}", j["scenes"][0]["notes"]);
     assert!(j["truths"]["scenes"].as_array().is_some_and(Vec::is_empty));
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+/// study.json of a finished run in `out`.
+fn study_json(out: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(out.join("study.json")).expect("study.json");
+    serde_json::from_str(&text).expect("study.json is JSON")
+}
+
+/// `matte study` on the sphere scene at a tiny budget, main run only, with `extra` arguments:
+/// its output folder and what it printed.
+fn tiny_study(tag: &str, extra: &[&str]) -> (PathBuf, std::process::Output) {
+    let out = temp_dir(tag);
+    let scene = &crate::common::repo().join("mitsuba_scenes/sphere_lambert.xml").display().to_string();
+    let o = Command::new(env!("CARGO_BIN_EXE_matte"))
+        .envs(crate::common::source_package_env())
+        .args(["study", scene, "--spp", "2", "--passes", "2", "--res", "8", "--no-variants", "--no-convergence"])
+        .args(["--no-perceptual", "-q", "-o"])
+        .arg(&out)
+        .args(extra)
+        .output()
+        .expect("run matte");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    (out, o)
+}
+
+#[test]
+fn study_prints_the_answer_sentences_and_the_report_path_but_not_the_json() {
+    let (out, o) = tiny_study("stdout_answers", &[]);
+    let stdout = String::from_utf8(o.stdout).unwrap();
+    assert!(serde_json::from_str::<serde_json::Value>(&stdout).is_err(), "{stdout}");
+    assert!(!stdout.contains("\"scenes\""), "{stdout}");
+    let lines: Vec<&str> = stdout.lines().collect();
+    let answers = study_json(&out)["answers"].as_array().unwrap().clone();
+    assert!(!answers.is_empty());
+    assert_eq!(lines.len(), answers.len() + 1, "one line per answer, then the report's path: {stdout}");
+    for (line, answer) in lines.iter().zip(&answers) {
+        assert_eq!(Some(*line), answer.as_str());
+    }
+    let report = out.join("report.html").display().to_string();
+    assert!(lines.last().unwrap().starts_with(&format!("report: {report}")), "{stdout}");
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn study_with_json_prints_study_json_and_nothing_else() {
+    let (out, o) = tiny_study("stdout_json", &["--json"]);
+    let printed: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON on stdout");
+    assert_eq!(printed, study_json(&out));
+    assert!(printed["scenes"][0]["models"].as_array().is_some_and(|m| !m.is_empty()));
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn report_opens_with_one_table_of_the_answers_per_scene_and_model() {
+    let (out, _) = tiny_study("answer_table", &[]);
+    let j = study_json(&out);
+    let html = std::fs::read_to_string(out.join("report.html")).expect("report.html");
+    let body = &html[html.find("<body>").unwrap()..];
+    let table_at = body.find("<table").expect("a table");
+    assert!(body[table_at..].starts_with("<table id=\"answers\">"), "the first table is the answers'");
+    for later in ["<img", "<ul>", "<li>"] {
+        assert!(body.find(later).is_none_or(|i| i > table_at), "{later} before the answer table");
+    }
+    let table = &body[table_at..table_at + body[table_at..].find("</table>").unwrap()];
+    assert!(table.contains("<th>Δ</th>") && table.contains("difference under GI"));
+    assert!(!table.contains("FLIP"), "no perceptual columns without the perceptual step");
+    // One row per model against Lambert, in the main run's order, its ratios those of study.json.
+    let models = j["scenes"][0]["models"].as_array().unwrap();
+    let rows: Vec<Vec<&str>> = table
+        .split("<tr>")
+        .skip(2)
+        .map(|row| row.split("<td").skip(1).map(|c| c.split('>').nth(1).unwrap().split('<').next().unwrap()).collect())
+        .collect();
+    let main_run = matte::study::configuration::main_run();
+    assert_eq!(rows.len(), main_run.len() - 1);
+    for (row, m) in rows.iter().zip(&main_run[1..]) {
+        assert_eq!(row[0], "sphere_lambert");
+        assert_eq!(row[1], m.label());
+        let json = models.iter().find(|x| x["key"] == m.key()).unwrap();
+        for (cell, key) in [(row[2], "ratio_global"), (row[3], "ratio_direct")] {
+            let shown: f64 = cell.split(" ± ").next().unwrap().parse().unwrap();
+            let decimals = cell.split(" ± ").next().unwrap().split('.').nth(1).map_or(0, str::len);
+            let value = json[key].as_f64().unwrap();
+            assert!((shown - value).abs() <= 0.5 * 10f64.powi(-(decimals as i32)) + 1e-12, "{cell} vs {value}");
+        }
+        assert!(row[4].ends_with('%'), "Δ in percent: {}", row[4]);
+        assert!(["grows", "shrinks", "undecided", "direct only"].contains(&row[5]), "{}", row[5]);
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn study_error_names_the_scene_and_the_section() {
+    let out = temp_dir("error_names");
+    let missing = out.join("missing.xml");
+    let o = Command::new(env!("CARGO_BIN_EXE_matte"))
+        .envs(crate::common::source_package_env())
+        .args(["study", "--spp", "2", "--passes", "2", "--no-perceptual", "-q", "-o"])
+        .arg(&out)
+        .arg(&missing)
+        .output()
+        .expect("run matte");
+    assert!(!o.status.success());
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains(&format!("{}: main run: ", missing.display())), "{stderr}");
     let _ = std::fs::remove_dir_all(&out);
 }
 
@@ -386,7 +492,7 @@ fn study_with_variants_and_convergence_says_when_mitsuba_is_missing() {
         .output()
         .expect("run matte");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+    let j = study_json(&out);
     let v = &j["variants"][0];
     let rows = v["variants"].as_array().expect("variant rows");
     assert_eq!(rows.len(), 5);
@@ -478,7 +584,7 @@ fn derived_true_surface_scene_names_its_table_by_an_absolute_existing_path() {
 fn truth_ratio_and_growth_match_hand_computed_values() {
     use glam::DVec3;
     use matte::study::metrics::{growth, mean_ci99, pass_ratios};
-    use matte::study::truth::Verdict;
+    use matte::study::ratio::Verdict;
     // Per-pass model / surface: global 0.90, 0.92, 0.94, 0.96 (mean 0.93, s² = 0.002/3);
     // direct 0.95, 0.96, 0.97, 0.96 (mean 0.96). Luminance of a grey (x, x, x) is x.
     let truth: Vec<DVec3> = [2.0, 3.0, 4.0, 5.0].iter().map(|&x| DVec3::splat(x)).collect();
@@ -515,7 +621,7 @@ fn study_compares_each_rough_model_with_its_own_surface() {
         .output()
         .expect("run matte");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+    let j = study_json(&out);
     let models = j["scenes"][0]["models"].as_array().expect("models");
     let by_key = |k: &str| models.iter().find(|m| m["key"] == k).unwrap_or_else(|| panic!("no {k} in {models:?}"));
     for k in ["truth_v_cavities", "truth_height_field"] {
@@ -583,7 +689,7 @@ fn jackknife_interval_is_the_t_quantile_times_the_jackknife_standard_error() {
 #[test]
 fn perceptual_and_energy_verdicts_agree_only_in_the_same_direction() {
     use matte::study::perceptual::{Agreement, Visibility};
-    use matte::study::truth::Verdict;
+    use matte::study::ratio::Verdict;
     let cases = [
         (Verdict::Grows, Visibility::MoreVisible, Agreement::Agree),
         (Verdict::Shrinks, Visibility::LessVisible, Agreement::Agree),
@@ -631,7 +737,7 @@ fn study_without_flip_evaluator_says_why_and_keeps_the_rest() {
         }
         let o = cmd.output().expect("run matte");
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let j: serde_json::Value = serde_json::from_slice(&o.stdout).expect("json on stdout");
+        let j = study_json(&out);
         let p = &j["perceptual"];
         assert!(p["scenes"].as_array().is_some_and(Vec::is_empty), "{p}");
         let notes = p["notes"].as_array().unwrap();

@@ -1,9 +1,9 @@
-//! `matte study`: the seed paper's scenes × models, strips, heatmaps and the measured answer
-//! to its question (report.html + study.json); then the model variants and the convergence
-//! series of the regions that ask for one.
+//! `matte study`: parses the arguments, runs the study ([`crate::study::run`]), writes
+//! report.html and study.json, and prints the answer sentences and where the report is (with
+//! `--json`, study.json instead).
 
 use super::render_cmd::parse_defines;
-use crate::study::{self, Study, StudyOptions, convergence, perceptual, truth, variants};
+use crate::study::{self, StudyOptions};
 use crate::validate::passes::Renderer;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -30,6 +30,7 @@ pub struct StudyArgs {
     /// Film width (the scenes' `res` parameter).
     #[arg(long)]
     pub res: Option<u32>,
+    /// Seed of the first pass (pass k uses seed + k).
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Scene parameter (repeatable).
@@ -53,12 +54,34 @@ pub struct StudyArgs {
     /// `flip-evaluator` package in the Python side).
     #[arg(long)]
     pub no_perceptual: bool,
+    /// Output folder: report.html, study.json, truth.json and the pictures.
     #[arg(short, long, default_value = "study_out")]
     pub out: PathBuf,
+    /// Hide the progress bar.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Print study.json on stdout instead of the answers (it is always written to the output
+    /// folder).
+    #[arg(long)]
+    pub json: bool,
 }
 
+/// The progress bar on stderr.
+impl study::Progress for ProgressBar {
+    fn start(&self, total: u64) {
+        self.set_length(total);
+    }
+    fn pass(&self, what: &str) {
+        self.set_message(what.to_string());
+        self.inc(1);
+    }
+    fn step(&self, what: &str) {
+        self.set_message(what.to_string());
+    }
+}
+
+/// Runs the study, writes study.json and report.html, and prints the answers and where the
+/// report is (or, with `--json`, study.json).
 pub fn run(a: &StudyArgs) -> Result<(), String> {
     let renderer = match a.renderer.as_str() {
         "matte" => Renderer::Matte,
@@ -68,6 +91,9 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     if a.passes < 2 || a.spp < a.passes {
         return Err("need --passes ≥ 2 and --spp ≥ --passes".into());
     }
+    if !a.no_convergence && a.convergence_spp.iter().any(|&s| s < a.passes) {
+        return Err(format!("every --convergence-spp level must be ≥ --passes ({})", a.passes));
+    }
     let scenes = if a.scenes.is_empty() {
         study::study_scenes()?
     } else {
@@ -75,10 +101,6 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
     };
     if scenes.is_empty() {
         return Err("no study scenes found".into());
-    }
-    std::fs::create_dir_all(&a.out).map_err(|e| format!("{}: {e}", a.out.display()))?;
-    if !a.no_convergence && a.convergence_spp.iter().any(|&s| s < a.passes) {
-        return Err(format!("every --convergence-spp level must be ≥ --passes ({})", a.passes));
     }
     let opts = StudyOptions {
         out: a.out.clone(),
@@ -95,90 +117,27 @@ pub fn run(a: &StudyArgs) -> Result<(), String> {
         truth_slices: crate::installation::package_data("truth_slices").ok(),
         perceptual: !a.no_perceptual,
     };
-    // Progress total: main run (models and true surfaces), variants, true-surface comparison,
-    // convergence series, the perceptual step's noise floor.
-    let per_scene = study::configuration::main_run().len() + study::configuration::TRUTHS.len();
-    let mut total = (scenes.len() * per_scene * 2) as u64 * a.passes as u64;
-    total += scenes.len() as u64 * perceptual::pass_count(&opts);
-    let mut series_regions = Vec::new();
-    for scene in &scenes {
-        let name = scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-        if opts.variants_for(&name) {
-            total += variants::pass_count(a.passes);
-        }
-        total += truth::pass_count(&opts, &name);
-        if !opts.convergence_spp.is_empty() {
-            for r in study::load_regions(scene)
-                .map_err(|e| format!("{}: {e}", scene.display()))?
-                .into_iter()
-                .filter(|r| r.convergence)
-            {
-                total += convergence::pass_count(&opts);
-                series_regions.push((scene.clone(), name.clone(), r));
-            }
-        }
-    }
-    let bar = if !a.quiet && std::io::stderr().is_terminal() { ProgressBar::new(total) } else { ProgressBar::hidden() };
+    let bar = if !a.quiet && std::io::stderr().is_terminal() { ProgressBar::new(0) } else { ProgressBar::hidden() };
     bar.set_style(
         ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} passes {elapsed} (eta {eta})")
             .expect("template")
             .progress_chars("=> "),
     );
-    let progress = |what: &str, _k: u32| {
-        bar.set_message(what.to_string());
-        bar.inc(1);
-    };
-    let mut studies = Vec::new();
-    let mut variant_studies = Vec::new();
-    let mut truth_studies = Vec::new();
-    let mut perceptual_studies = Vec::new();
-    let mut perceptual_notes = Vec::new();
-    for scene in &scenes {
-        let s = study::study_scene(scene, &opts, &progress).map_err(|e| format!("{}: {e}", scene.display()))?;
-        let v = if opts.variants_for(&s.name) {
-            Some(variants::run(&s, &opts, &progress).map_err(|e| format!("{}: variants: {e}", scene.display()))?)
-        } else {
-            None
-        };
-        let t = truth::run(&s, v.as_ref(), &opts, &progress)
-            .map_err(|e| format!("{}: true surfaces: {e}", scene.display()))?;
-        if opts.perceptual {
-            bar.set_message(format!("{} HDR-FLIP", s.name));
-            match perceptual::run(&s, t.as_ref(), &opts) {
-                Ok(p) => perceptual_studies.push(p),
-                Err(e) => {
-                    perceptual_notes.push(format!("{}: the perceptual differences were not computed: {e}", s.name))
-                }
-            }
+    let result = study::run(&scenes, &opts, &bar);
+    bar.finish_and_clear();
+    let study = result?;
+    study::report::write(&study)?;
+    if a.json {
+        println!("{}", study::report::json(&study)?);
+    } else {
+        for answer in study::report::answers(&study) {
+            println!("{answer}");
         }
-        truth_studies.extend(t);
-        variant_studies.extend(v);
-        studies.push(s);
-    }
-    let mut series = Vec::new();
-    for (scene, name, region) in &series_regions {
-        series.push(
-            convergence::run(scene, name, region, &opts, &progress)
-                .map_err(|e| format!("{}: convergence: {e}", scene.display()))?,
+        println!(
+            "report: {} (the numbers: {})",
+            a.out.join("report.html").display(),
+            a.out.join("study.json").display()
         );
     }
-    bar.finish_and_clear();
-    let label = match &opts.renderer {
-        Renderer::Matte => "matte".to_string(),
-        Renderer::Mitsuba(v) => format!("mitsuba {v}"),
-    };
-    let study = Study {
-        renderer: label,
-        passes: a.passes,
-        spp: a.spp,
-        scenes: studies,
-        variants: variant_studies,
-        truths: truth_studies,
-        convergence: series,
-        perceptual: perceptual_studies,
-        perceptual_notes,
-    };
-    study::report::write(&a.out, &study, opts.truth_slices.as_deref())?;
-    println!("{}", serde_json::to_string_pretty(&study::report::json(&study)).expect("json"));
     Ok(())
 }

@@ -1,13 +1,15 @@
 //! The paper's observations, each answered by a sentence computed from the measurements
-//! (never hand-written numbers), for the report and study.json.
+//! (never hand-written numbers), for the report, study.json and the terminal; each section
+//! ([`super::section::Section::answers`]) gives the sentences of its part.
 
 use super::configuration::{Configuration, VARIANTS, main_run};
 use super::convergence::Series;
+use super::main_run::SceneStudy;
+use super::options::Lighting;
 use super::perceptual::{Agreement, Answer, PerceptualStudy, Visibility};
-use super::ratio::{Ratio, Relation};
-use super::truth::{TruthStudy, Verdict};
+use super::ratio::{Ratio, Relation, Verdict};
+use super::truth::TruthStudy;
 use super::variants::VariantStudy;
-use super::{Lighting, SceneStudy, Study};
 
 fn ratio(s: &SceneStudy, model: Configuration, l: Lighting) -> Option<Ratio> {
     s.result(model, l).map(|r| r.ratio)
@@ -40,7 +42,7 @@ pub(crate) fn pct(r: Ratio) -> String {
 }
 
 /// A FLIP value with its interval, with the decimals its half-width needs.
-fn flip_ci(r: Ratio) -> String {
+pub(crate) fn flip_ci(r: Ratio) -> String {
     let d = decimals(r.half_width, 3);
     format!("{:.*} ± {:.*}", d, r.value, d, r.half_width)
 }
@@ -48,27 +50,6 @@ fn flip_ci(r: Ratio) -> String {
 /// A ratio's change against Lambert's 1.
 fn change(r: Ratio) -> Ratio {
     r.minus(Ratio::exact(1.0))
-}
-
-/// One sentence per observation that the measurements at hand can answer.
-pub fn answers(study: &Study) -> Vec<String> {
-    let mut out = scene_answers(&study.scenes);
-    out.extend(truth_summary(&study.truths));
-    for t in &study.truths {
-        out.extend(truth_answers(t));
-    }
-    for v in &study.variants {
-        out.extend(variant_answers(v));
-    }
-    for s in &study.convergence {
-        out.extend(convergence_answers(s, study.variants.iter().find(|v| v.scene_name == s.scene_name)));
-    }
-    out.extend(perceptual_summary(&study.perceptual));
-    for p in &study.perceptual {
-        out.extend(perceptual_scene_answers(p));
-    }
-    out.extend(perceptual_closing(&study.perceptual));
-    out
 }
 
 /// Whether the reference of a perceptual answer is Lambert (else the model's surface).
@@ -214,7 +195,9 @@ pub fn perceptual_closing(studies: &[PerceptualStudy]) -> Option<String> {
     ))
 }
 
-fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
+/// The paper's question over every scene, then per scene: Wolff's change, van Ginneken's
+/// rank, the darkest model and Oren–Nayar in the named regions.
+pub fn scene_answers(studies: &[SceneStudy]) -> Vec<String> {
     let mut out = Vec::new();
     // The paper's question: does the difference to Lambert grow under global illumination?
     let (mut grow, mut total) = (0, 0);

@@ -15,9 +15,10 @@
 //! so the levels are independent.
 
 use super::configuration::{Configuration, SERIES};
+use super::metrics;
+use super::options::{Lighting, Region, StudyOptions, image_defines};
 use super::ratio::Ratio;
 use super::variant_scene::{self, Derivation, DerivedProperty};
-use super::{Lighting, Region, StudyOptions, metrics};
 use crate::validate::crop::{PixelBox, pixel_box};
 use crate::validate::passes::{self, Budget, PassPlan, Side};
 use matte_render::film::SplatWeights;
@@ -115,9 +116,8 @@ pub fn run(
     let rel_dir = PathBuf::from(name).join("convergence");
     let dir = opts.out.join(&rel_dir);
     // The film size with the study's parameters (the crop is in its pixels).
-    let film = load::load_file(scene, &super::image_defines(opts, "lambert", Lighting::Global))
-        .map_err(|e| e.to_string())?
-        .film;
+    let film =
+        load::load_file(scene, &image_defines(opts, "lambert", Lighting::Global)).map_err(|e| e.to_string())?.film;
     let (w, h) = (film.width(), film.height());
     // The one rounding of a region to pixels, shared with the region means (crop.rs).
     let PixelBox { x0, y0, x1, y1 } = pixel_box(w, h, region.rect);
@@ -163,7 +163,7 @@ pub fn run(
         for renderer in active.clone() {
             let mut sides: Vec<Side> = Vec::new();
             for (m, file) in SERIES.iter().zip(&files) {
-                let plan = PassPlan { defines: super::image_defines(opts, m.bsdf(), Lighting::Global), ..plan.clone() };
+                let plan = PassPlan { defines: image_defines(opts, m.bsdf(), Lighting::Global), ..plan.clone() };
                 let what = format!("{name} convergence {spp} spp {renderer} {}", m.label());
                 let side = if renderer == "matte" {
                     passes::rust_side(file, &plan, SplatWeights::of_mitsuba_variant(&opts.mitsuba_variant), &|k| {

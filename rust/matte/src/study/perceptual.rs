@@ -15,14 +15,15 @@
 //! difference is *more visible* under global illumination when the interval lies above 0,
 //! *less visible* below 0 and *undecided* when it contains 0. It is *within the noise* when
 //! either lighting's FLIP interval does not lie entirely above its noise floor's. Beside it
-//! is the energy verdict on Δ ([`metrics::growth`]) and whether the two agree.
+//! is the energy verdict on Δ ([`super::metrics::growth`]) and whether the two agree.
 
 use super::configuration::{Configuration, TRUTHS, WITH_TRUTH, main_run};
-use super::ratio::Ratio;
-use super::truth::{TruthStudy, Verdict};
-use super::{Lighting, SceneStudy, StudyOptions, font, metrics, strip};
-use crate::validate::passes::Side;
-use matte_render::image_io;
+use super::main_run::SceneStudy;
+use super::options::{Lighting, Region, StudyOptions, image_defines};
+use super::ratio::{Ratio, Verdict};
+use super::render::{keep_passes, kept_pass_file, kept_passes_dir, render_side};
+use super::truth::TruthStudy;
+use super::{font, strip};
 use statrs::distribution::{ContinuousCDF, StudentsT};
 use std::path::{Path, PathBuf};
 
@@ -33,42 +34,12 @@ pub const FLOOR_SEED_OFFSET: u64 = 1 << 32;
 /// The key of the noise floor's second Lambert render.
 pub const FLOOR_KEY: &str = "lambert_other_seeds";
 
-/// Where the pass images of a scene wait for the perceptual step, with its job and result
-/// (removed after it).
-fn passes_dir(opts: &StudyOptions, scene_name: &str) -> PathBuf {
-    opts.out.join(scene_name).join("perceptual_work")
-}
-
-fn pass_file(dir: &Path, lighting: Lighting, key: &str, k: usize) -> PathBuf {
-    dir.join(format!("{}_{key}_{k:02}.exr", lighting.name()))
-}
-
-/// Keeps the K pass images of one configuration for [`run`] (nothing when the perceptual step
-/// is off).
-pub fn keep_passes(
-    opts: &StudyOptions,
-    scene_name: &str,
-    lighting: Lighting,
-    key: &str,
-    side: &Side,
-) -> Result<(), String> {
-    if !opts.perceptual {
-        return Ok(());
-    }
-    let dir = passes_dir(opts, scene_name);
-    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    for (k, img) in side.images.iter().enumerate() {
-        image_io::write_exr(&pass_file(&dir, lighting, key, k), img)?;
-    }
-    Ok(())
-}
-
 /// Renders the noise floor's second Lambert (other seeds, same budget) and keeps its passes.
 pub fn render_floor(
     scene: &Path,
     scene_name: &str,
     lighting: Lighting,
-    regions: &[super::Region],
+    regions: &[Region],
     opts: &StudyOptions,
     progress: &dyn Fn(u32),
 ) -> Result<(), String> {
@@ -76,9 +47,9 @@ pub fn render_floor(
         return Ok(());
     }
     let other = StudyOptions { seed: opts.seed.wrapping_add(FLOOR_SEED_OFFSET), ..opts.clone() };
-    let defines = super::image_defines(opts, Configuration::Lambert.bsdf(), lighting);
+    let defines = image_defines(opts, Configuration::Lambert.bsdf(), lighting);
     let work = opts.out.join(scene_name).join("work");
-    let side = super::render_side(scene, &other, defines, regions, &work, progress)?;
+    let side = render_side(scene, &other, defines, regions, &work, progress)?;
     keep_passes(opts, scene_name, lighting, FLOOR_KEY, &side)
 }
 
@@ -164,6 +135,7 @@ pub enum Visibility {
 }
 
 impl Visibility {
+    /// The verdict as the report and study.json write it.
     pub fn name(self) -> &'static str {
         match self {
             Visibility::MoreVisible => "more visible",
@@ -191,6 +163,7 @@ pub enum Agreement {
 }
 
 impl Agreement {
+    /// How the energy verdict and the perceptual one relate.
     pub fn of(energy: Verdict, perceptual: Visibility) -> Agreement {
         let e = match energy {
             Verdict::Grows => Some(true),
@@ -211,6 +184,7 @@ impl Agreement {
         }
     }
 
+    /// The relation as the report and study.json write it.
     pub fn name(self) -> &'static str {
         match self {
             Agreement::Agree => "agree",
@@ -255,14 +229,17 @@ pub struct PerceptualStudy {
 }
 
 impl PerceptualStudy {
+    /// The noise floor of `lighting`.
     pub fn floor(&self, lighting: Lighting) -> Option<&FlipPair> {
         self.floors.iter().find(|(l, _)| *l == lighting).map(|(_, f)| f)
     }
 
+    /// `model` against `reference` in lighting `l`.
     pub fn comparison(&self, model: Configuration, reference: Configuration, l: Lighting) -> Option<&Comparison> {
         self.comparisons.iter().find(|c| c.model == model && c.reference == reference && c.lighting == l)
     }
 
+    /// HDR-FLIP's exposure range of lighting `l`.
     pub fn exposure(&self, l: Lighting) -> Option<&Exposure> {
         self.exposures.iter().find(|(x, _)| *x == l).map(|(_, e)| e)
     }
@@ -315,7 +292,7 @@ fn is_floor((m, r, _): Pair) -> bool {
 /// note for the report (the Python side or flip-evaluator missing, a failed evaluation): the
 /// rest of the study stands without it.
 pub fn run(study: &SceneStudy, truths: Option<&TruthStudy>, opts: &StudyOptions) -> Result<PerceptualStudy, String> {
-    let dir = passes_dir(opts, &study.name);
+    let dir = kept_passes_dir(opts, &study.name);
     let result = evaluate(study, truths, opts, &dir);
     let _ = std::fs::remove_dir_all(&dir);
     result
@@ -330,19 +307,11 @@ fn evaluate(
     let started = std::time::Instant::now();
     let k = opts.passes as usize;
     let files = |l: Lighting, key: &str| -> Option<Vec<PathBuf>> {
-        let v: Vec<PathBuf> = (0..k).map(|i| pass_file(dir, l, key, i)).collect();
+        let v: Vec<PathBuf> = (0..k).map(|i| kept_pass_file(dir, l, key, i)).collect();
         v.iter().all(|p| p.is_file()).then_some(v)
     };
     // A scene whose own max_depth is 2 renders the same image in both settings: one group.
-    let direct_only = match (study.lambert(Lighting::Global), study.lambert(Lighting::Direct)) {
-        (Some(g), Some(d)) => g
-            .moments
-            .pass_means
-            .iter()
-            .zip(&d.moments.pass_means)
-            .all(|(a, b)| (*a - *b).abs().max_element() <= 1e-9 * a.abs().max_element().max(1e-30)),
-        _ => false,
-    };
+    let direct_only = study.direct_only();
     let lightings: &[Lighting] = if direct_only { &[Lighting::Global] } else { &[Lighting::Global, Lighting::Direct] };
     let lambert = Configuration::Lambert;
     let mut pairs_by_group: Vec<(Lighting, Vec<Pair>)> = Vec::new();
@@ -525,14 +494,7 @@ fn answers(p: &PerceptualStudy, study: &SceneStudy, truths: Option<&TruthStudy>)
             Visibility::Undecided
         };
         let energy = if c.reference == Configuration::Lambert {
-            let ratios = |l: Lighting| -> Option<Vec<f64>> {
-                let r = study.result(c.model, l)?;
-                Some(metrics::pass_ratios(&r.pass_means, &study.lambert(l)?.moments.pass_means))
-            };
-            match (ratios(Lighting::Global), ratios(Lighting::Direct)) {
-                (Some(g), Some(d)) => Some(metrics::growth(&g, &d)),
-                _ => None,
-            }
+            study.growth(c.model)
         } else {
             truths.and_then(|t| t.growth(c.model)).map(|(delta, _)| delta)
         };

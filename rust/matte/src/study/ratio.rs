@@ -34,6 +34,7 @@ impl Relation {
 }
 
 impl Ratio {
+    /// An estimate and its 99 % half-width.
     pub fn new(value: f64, half_width: f64) -> Self {
         Ratio { value, half_width }
     }
@@ -43,10 +44,12 @@ impl Ratio {
         Ratio { value, half_width: 0.0 }
     }
 
+    /// The interval's lower end.
     pub fn low(self) -> f64 {
         self.value - self.half_width
     }
 
+    /// The interval's upper end.
     pub fn high(self) -> f64 {
         self.value + self.half_width
     }
@@ -75,6 +78,45 @@ impl Ratio {
     /// `self − other` for independent estimates: half-widths add in quadrature.
     pub fn minus(self, other: Ratio) -> Ratio {
         Ratio::new(self.value - other.value, self.half_width.hypot(other.half_width))
+    }
+}
+
+/// Whether a difference (to Lambert, or a model's from its own surface) grows under global
+/// illumination: the verdict on Δ = |r_global − 1| − |r_direct − 1| ([`super::metrics::growth`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    /// Δ's interval lies above 0.
+    Grows,
+    /// Δ's interval lies below 0.
+    Shrinks,
+    /// Δ's interval contains 0.
+    Undecided,
+    /// The scene is lit directly only (its own max_depth is 2): both settings are one image.
+    DirectOnly,
+}
+
+impl Verdict {
+    /// The verdict as the report and study.json write it: `grows`, `shrinks`, …
+    pub fn name(self) -> &'static str {
+        match self {
+            Verdict::Grows => "grows",
+            Verdict::Shrinks => "shrinks",
+            Verdict::Undecided => "undecided",
+            Verdict::DirectOnly => "direct only",
+        }
+    }
+
+    /// The verdict on Δ's interval.
+    pub fn of(delta: Ratio, direct_only: bool) -> Verdict {
+        if direct_only {
+            Verdict::DirectOnly
+        } else if delta.low() > 0.0 {
+            Verdict::Grows
+        } else if delta.high() < 0.0 {
+            Verdict::Shrinks
+        } else {
+            Verdict::Undecided
+        }
     }
 }
 

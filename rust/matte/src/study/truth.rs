@@ -1,7 +1,7 @@
 //! The paper's question restated against the true surfaces (docs/study.md, true surfaces):
 //! each rough model against the simulated microsurface it describes
 //! ([`Configuration::true_surface`], tables from `docs/microgeometry.md`), per scene and
-//! lighting. The surfaces are rendered in the main run ([`super::study_scene`]) with the
+//! lighting. The surfaces are rendered in the main run ([`super::main_run`]) with the
 //! models' seeds, so the ratio model / surface is paired per pass like every ratio to
 //! Lambert; Oren–Nayar full comes from the variants where they ran, else it is rendered here.
 //!
@@ -11,19 +11,16 @@
 //! closest to its own surface. Per lighting: the heatmap strip (model − surface) / surface.
 
 use super::configuration::{Configuration, WITH_TRUTH};
-use super::ratio::Ratio;
+use super::main_run::{SceneStudy, derived_scene};
+use super::options::{Lighting, StudyOptions, image_defines, load_regions};
+use super::ratio::{Ratio, Verdict};
+use super::render::{keep_passes, render_side};
 use super::variants::VariantStudy;
-use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
+use super::{metrics, strip};
 use glam::DVec3;
 use matte_render::film::Image;
 use matte_render::image_io;
-use std::path::{Path, PathBuf};
-
-/// A true surface's table file: `<folder>/<file>` (the installed package's `ground_truth/`).
-pub fn table_source(folder: &Path, file: &str) -> Result<PathBuf, String> {
-    let path = folder.join(file);
-    if path.is_file() { Ok(path) } else { Err(format!("ground-truth table {file} not found ({})", path.display())) }
-}
+use std::path::PathBuf;
 
 /// One model against its true surface in one lighting.
 pub struct Comparison {
@@ -34,43 +31,6 @@ pub struct Comparison {
     pub ratio: Ratio,
     /// The per-pass ratios, in seed order.
     pub pass_ratios: Vec<f64>,
-}
-
-/// Whether a model's difference from its surface grows under global illumination.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Verdict {
-    /// Δ's interval lies above 0.
-    Grows,
-    /// Δ's interval lies below 0.
-    Shrinks,
-    /// Δ's interval contains 0.
-    Undecided,
-    /// The scene is lit directly only (its own max_depth is 2): both settings are one image.
-    DirectOnly,
-}
-
-impl Verdict {
-    pub fn name(self) -> &'static str {
-        match self {
-            Verdict::Grows => "grows",
-            Verdict::Shrinks => "shrinks",
-            Verdict::Undecided => "undecided",
-            Verdict::DirectOnly => "direct only",
-        }
-    }
-
-    /// The verdict on Δ's interval.
-    pub fn of(delta: Ratio, direct_only: bool) -> Verdict {
-        if direct_only {
-            Verdict::DirectOnly
-        } else if delta.low() > 0.0 {
-            Verdict::Grows
-        } else if delta.high() < 0.0 {
-            Verdict::Shrinks
-        } else {
-            Verdict::Undecided
-        }
-    }
 }
 
 /// One scene's models against their true surfaces.
@@ -87,6 +47,7 @@ pub struct TruthStudy {
 }
 
 impl TruthStudy {
+    /// `model` against its surface in `lighting`.
     pub fn comparison(&self, model: Configuration, lighting: Lighting) -> Option<&Comparison> {
         self.comparisons.iter().find(|c| c.model == model && c.lighting == lighting)
     }
@@ -129,7 +90,7 @@ pub fn run(
         return Ok(None);
     }
     let rel_dir = PathBuf::from(&study.name).join("truth");
-    let regions = super::load_regions(&study.scene)?;
+    let regions = load_regions(&study.scene)?;
     let full = Configuration::OrenNayarFull;
     let mut scene_file = None;
     let mut comparisons = Vec::new();
@@ -145,11 +106,11 @@ pub fn run(
             } else if model == full {
                 let file = match &scene_file {
                     Some(f) => f,
-                    None => scene_file.insert(super::derived_scene(&study.scene, full, opts, &rel_dir)?),
+                    None => scene_file.insert(derived_scene(&study.scene, full, opts, &rel_dir)?),
                 };
                 let what = format!("{} {} {}", study.name, lighting.name(), full.label());
-                let defines = super::image_defines(opts, full.bsdf(), lighting);
-                let side = super::render_side(
+                let defines = image_defines(opts, full.bsdf(), lighting);
+                let side = render_side(
                     &opts.out.join(file),
                     opts,
                     defines,
@@ -157,7 +118,7 @@ pub fn run(
                     &opts.out.join(&rel_dir).join("work"),
                     &|k| progress(&what, k),
                 )?;
-                super::perceptual::keep_passes(opts, &study.name, lighting, full.key(), &side)?;
+                keep_passes(opts, &study.name, lighting, full.key(), &side)?;
                 let mean = side.moments.mean_image();
                 image_io::write_exr(
                     &opts.out.join(&rel_dir).join(format!("{}_{}.exr", lighting.name(), full.key())),

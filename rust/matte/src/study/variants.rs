@@ -9,8 +9,11 @@
 //! `#wolff-normalisations` (Wolff's constant K), with matte's choices.
 
 use super::configuration::{Configuration, VARIANTS};
+use super::main_run::{SceneStudy, derived_scene, region_ratios};
+use super::options::{Lighting, StudyOptions, image_defines, load_regions};
 use super::ratio::{Ratio, RegionRatio};
-use super::{Lighting, SceneStudy, StudyOptions, metrics, strip};
+use super::render::{keep_passes, render_side};
+use super::{metrics, strip};
 use glam::DVec3;
 use matte_render::film::Image;
 use matte_render::image_io;
@@ -36,6 +39,7 @@ pub struct VariantResult {
     pub scene_file: Option<PathBuf>,
 }
 
+/// One scene's model variants.
 pub struct VariantStudy {
     pub scene_name: String,
     pub results: Vec<VariantResult>,
@@ -44,6 +48,7 @@ pub struct VariantStudy {
 }
 
 impl VariantStudy {
+    /// `variant` in `lighting`, if it was rendered.
     pub fn result(&self, variant: Configuration, lighting: Lighting) -> Option<&VariantResult> {
         self.results.iter().find(|r| r.variant == variant && r.lighting == lighting)
     }
@@ -59,7 +64,7 @@ pub fn pass_count(passes: u32) -> u64 {
 pub fn run(study: &SceneStudy, opts: &StudyOptions, progress: &dyn Fn(&str, u32)) -> Result<VariantStudy, String> {
     let rel_dir = PathBuf::from(&study.name).join("variants");
     let dir = opts.out.join(&rel_dir);
-    let regions = super::load_regions(&study.scene)?;
+    let regions = load_regions(&study.scene)?;
     let mut results = Vec::new();
     let mut strips = Vec::new();
     for lighting in [Lighting::Global, Lighting::Direct] {
@@ -71,21 +76,17 @@ pub fn run(study: &SceneStudy, opts: &StudyOptions, progress: &dyn Fn(&str, u32)
                 let r = study.result(v, lighting).ok_or_else(|| format!("the main run has no {} image", v.label()))?;
                 (r.ratio, r.regions.clone(), None, r.exr.clone(), None, r.mean.clone(), r.pass_means.clone())
             } else {
-                let scene_file = super::derived_scene(&study.scene, v, opts, &rel_dir)?;
+                let scene_file = derived_scene(&study.scene, v, opts, &rel_dir)?;
                 let what = format!("{} {} {}", study.name, lighting.name(), v.label());
-                let defines = super::image_defines(opts, v.bsdf(), lighting);
-                let side = super::render_side(
-                    &opts.out.join(&scene_file),
-                    opts,
-                    defines,
-                    &regions,
-                    &dir.join("work"),
-                    &|k| progress(&what, k),
-                )?;
+                let defines = image_defines(opts, v.bsdf(), lighting);
+                let side =
+                    render_side(&opts.out.join(&scene_file), opts, defines, &regions, &dir.join("work"), &|k| {
+                        progress(&what, k)
+                    })?;
                 if v == Configuration::OrenNayarFull {
-                    super::perceptual::keep_passes(opts, &study.name, lighting, v.key(), &side)?;
+                    keep_passes(opts, &study.name, lighting, v.key(), &side)?;
                 }
-                let regs = super::region_ratios(&regions, &side, lambert);
+                let regs = region_ratios(&regions, &side, lambert);
                 let mean = side.moments.mean_image();
                 let exr = rel_dir.join(format!("{}_{}.exr", lighting.name(), v.key()));
                 image_io::write_exr(&opts.out.join(&exr), &mean)?;

@@ -3,14 +3,66 @@
 //! A plot and a table of the region ratio per spp level and renderer, and the verdicts.
 
 use super::plot::ratio_over_spp;
+use crate::study::answers;
 use crate::study::configuration::{Configuration, SERIES};
-use crate::study::convergence::{Point, Series};
+use crate::study::convergence::{self, Point, Series};
+use crate::study::options::{Lighting, StudyOptions};
 use crate::study::ratio::RegionRatio;
+use crate::study::section::{JsonObject, Progress, Scene, Section, Stage, Study};
 use crate::study::variants::VariantStudy;
-use crate::study::{Lighting, answers};
 use askama::Template;
 use serde::Serialize;
+use std::path::Path;
 
+/// The convergence series as a section of the study: one per region marked
+/// `"convergence": true`, after every scene's other sections.
+pub struct Convergence;
+
+impl Section for Convergence {
+    fn name(&self) -> &'static str {
+        "convergence"
+    }
+
+    fn stage(&self) -> Stage {
+        Stage::AfterScenes
+    }
+
+    fn passes(&self, scene: &Scene, opts: &StudyOptions) -> u64 {
+        if opts.convergence_spp.is_empty() {
+            return 0;
+        }
+        scene.regions.iter().filter(|r| r.convergence).map(|_| convergence::pass_count(opts)).sum()
+    }
+
+    fn run(&self, scene: &Scene, study: &mut Study, progress: &dyn Progress) -> Result<(), String> {
+        if study.options.convergence_spp.is_empty() {
+            return Ok(());
+        }
+        for region in scene.regions.iter().filter(|r| r.convergence) {
+            let s = convergence::run(&scene.path, &scene.name, region, &study.options, &|what: &str, _: u32| {
+                progress.pass(what)
+            })?;
+            study.convergence.push(s);
+        }
+        Ok(())
+    }
+
+    fn answers(&self, study: &Study) -> Vec<String> {
+        let variants = |s: &Series| study.variants.iter().find(|v| v.scene_name == s.scene_name);
+        study.convergence.iter().flat_map(|s| answers::convergence_answers(s, variants(s))).collect()
+    }
+
+    fn json(&self, study: &Study, out: &mut JsonObject) -> Result<(), String> {
+        out.entry("convergence", &study.convergence.iter().map(json).collect::<Vec<_>>())
+    }
+
+    fn html(&self, study: &Study, _out: &Path) -> Result<String, String> {
+        let variants = |s: &Series| study.variants.iter().find(|v| v.scene_name == s.scene_name);
+        study.convergence.iter().map(|s| html(s, variants(s)).map_err(|e| e.to_string())).collect()
+    }
+}
+
+/// One convergence series in study.json.
 #[derive(Serialize)]
 pub struct SeriesJson {
     pub scene: String,
@@ -29,6 +81,7 @@ pub struct SeriesJson {
     pub answers: Vec<String>,
 }
 
+/// One model's region ratio at one level in one renderer.
 #[derive(Serialize)]
 pub struct PointJson {
     pub spp: u32,
@@ -47,6 +100,7 @@ pub struct StabilityJson {
     pub per_renderer: Vec<RendererStabilityJson>,
 }
 
+/// One renderer's levels that overlap its highest level.
 #[derive(Serialize)]
 pub struct RendererStabilityJson {
     pub renderer: String,
@@ -67,6 +121,7 @@ fn tracked() -> &'static [Configuration] {
     &SERIES[1..]
 }
 
+/// The series in study.json.
 pub fn json(s: &Series) -> SeriesJson {
     SeriesJson {
         scene: s.scene_name.clone(),
@@ -129,6 +184,7 @@ struct ConvergenceHtml<'a> {
     answers: Vec<String>,
 }
 
+/// The series' part of report.html.
 pub fn html(s: &Series, variants: Option<&VariantStudy>) -> askama::Result<String> {
     let points = |spp: u32, m: &Configuration| s.renderers.iter().map(|r| s.point(*m, r, spp)).collect();
     ConvergenceHtml {

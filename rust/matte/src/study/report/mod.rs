@@ -1,145 +1,111 @@
-//! `study.json` and `report.html`. The page has one section per kind of result, each in its
-//! own file with both its JSON and its HTML: the main run per scene ([`scenes`]: strips,
-//! heatmaps, ratios to Lambert under global and direct lighting), the model variants
-//! ([`variants_section`]), the models against their true surfaces ([`truth_section`]) and the
-//! convergence series ([`convergence_section`], with its plot in [`plot`]). The true-surface
-//! part is also written on its own as `truth.json`.
+//! The study's sections, in order ([`SECTIONS`]), and what is written from them: study.json
+//! (the run's renderer, passes and spp, the answers, then each section's entries) and
+//! report.html (the answer table, [`answer_table`], and the answer sentences, then each
+//! section's part). Each section is one file with its run, its JSON and its HTML (askama
+//! templates in `templates/`): the main run per scene ([`scenes`]), the model variants
+//! ([`variants_section`]), the models against their true surfaces ([`truth_section`], also
+//! written alone as truth.json), the perceptual differences ([`perceptual_section`]) and the
+//! convergence series ([`convergence_section`], with its plot in [`plot`]).
 
+pub mod answer_table;
 pub mod convergence_section;
 pub mod perceptual_section;
 pub mod plot;
 pub mod scenes;
+pub mod shared;
 pub mod truth_section;
 pub mod variants_section;
 
-use super::Study;
+use crate::study::section::{JsonObject, Section, Study};
 use askama::Template;
-use serde::Serialize;
-use std::path::{Path, PathBuf};
+use serde::Serializer;
+use serde::ser::SerializeMap;
+
+/// The study's sections: the order they run in on each scene, of study.json and of the report.
+pub const SECTIONS: &[&dyn Section] = &[
+    &scenes::MainRun,
+    &variants_section::Variants,
+    &truth_section::Truths,
+    &perceptual_section::Perceptual,
+    &convergence_section::Convergence,
+];
+
+/// Every section's answer sentences, in the sections' order.
+pub fn answers(study: &Study) -> Vec<String> {
+    SECTIONS.iter().flat_map(|s| s.answers(study)).collect()
+}
+
+/// A JSON object with the run's renderer, passes and spp, the answers when `with_answers`,
+/// and the entries of `sections`.
+fn json_of(study: &Study, sections: &[&dyn Section], with_answers: bool) -> Result<String, String> {
+    let mut ser = serde_json::Serializer::pretty(Vec::new());
+    let mut map = (&mut ser).serialize_map(None).map_err(|e| e.to_string())?;
+    let mut out = JsonObject::new(&mut map);
+    out.entry("renderer", &study.renderer)?;
+    out.entry("passes", &study.options.passes)?;
+    out.entry("spp", &study.options.spp)?;
+    if with_answers {
+        out.entry("answers", &answers(study))?;
+    }
+    for s in sections {
+        s.json(study, &mut out).map_err(|e| format!("{}: {e}", s.name()))?;
+    }
+    map.end().map_err(|e| e.to_string())?;
+    String::from_utf8(ser.into_inner()).map_err(|e| e.to_string())
+}
 
 /// study.json.
-#[derive(Serialize)]
-pub struct StudyJson {
-    /// "matte" or "mitsuba <variant>".
-    pub renderer: String,
-    pub passes: u32,
-    pub spp: u32,
-    pub answers: Vec<String>,
-    pub scenes: Vec<scenes::SceneJson>,
-    pub variants: Vec<variants_section::VariantsJson>,
-    /// The rough models against the surfaces they describe.
-    pub truths: truth_section::TruthsJson,
-    pub convergence: Vec<convergence_section::SeriesJson>,
-    /// HDR-FLIP against Lambert and the surfaces, with noise floors and intervals.
-    pub perceptual: perceptual_section::PerceptualJson,
+pub fn json(study: &Study) -> Result<String, String> {
+    json_of(study, SECTIONS, true)
 }
 
-/// A region's ratio to Lambert in both lightings.
-#[derive(Serialize)]
-pub struct RegionJson {
-    pub name: String,
-    pub ratio_global: f64,
-    pub ratio_global_ci99: f64,
-    pub ratio_direct: f64,
-    pub ratio_direct_ci99: f64,
-}
-
-impl RegionJson {
-    /// Pairs the regions of one image under global and direct lighting.
-    pub fn pair(global: &[super::ratio::RegionRatio], direct: &[super::ratio::RegionRatio]) -> Vec<RegionJson> {
-        global
-            .iter()
-            .zip(direct)
-            .map(|(g, d)| RegionJson {
-                name: g.name.clone(),
-                ratio_global: g.ratio.value,
-                ratio_global_ci99: g.ratio.half_width,
-                ratio_direct: d.ratio.value,
-                ratio_direct_ci99: d.ratio.half_width,
-            })
-            .collect()
-    }
-}
-
-/// A strip image and its heatmap strip for one lighting.
-#[derive(Serialize)]
-pub struct StripJson {
-    pub lighting: &'static str,
-    pub strip: std::path::PathBuf,
-    pub difference: std::path::PathBuf,
-    /// Colour-scale half-range of the heatmap (relative difference).
-    pub difference_range: f32,
-}
-
-pub fn json(study: &Study) -> StudyJson {
-    StudyJson {
-        renderer: study.renderer.clone(),
-        passes: study.passes,
-        spp: study.spp,
-        answers: super::answers::answers(study),
-        scenes: study.scenes.iter().map(scenes::json).collect(),
-        variants: study.variants.iter().map(variants_section::json).collect(),
-        truths: truth_section::json(&study.truths),
-        convergence: study.convergence.iter().map(convergence_section::json).collect(),
-        perceptual: perceptual_section::json(&study.perceptual, &study.perceptual_notes),
-    }
-}
-
-/// `value ± half-width` with four decimals, the tables' cell.
-pub(super) fn ci(r: &super::ratio::Ratio) -> String {
-    format!("{:.4} ± {:.4}", r.value, r.half_width)
-}
-
-/// report.html: what the numbers mean, the answers, then the sections in order.
+/// report.html: the answer table and sentences, then the sections in order.
 #[derive(Template)]
 #[template(path = "study_report.html")]
 struct ReportHtml<'a> {
     renderer: &'a str,
     passes: u32,
     spp: u32,
+    /// The answer table.
+    table: String,
     answers: Vec<String>,
     /// The sections, rendered by their own templates.
     sections: Vec<String>,
 }
 
-/// report.html; `slices` are the BRDF slice plots copied next to it (relative to it).
-pub fn html(study: &Study, slices: &[PathBuf]) -> askama::Result<String> {
+/// report.html, for the folder `out` (the sections put the files they show there).
+pub fn html(study: &Study, out: &std::path::Path) -> Result<String, String> {
     let mut sections = Vec::new();
-    if !study.truths.is_empty() {
-        sections.push(truth_section::html(&study.truths, slices)?);
+    for s in SECTIONS {
+        let part = s.html(study, out).map_err(|e| format!("{}: {e}", s.name()))?;
+        if !part.is_empty() {
+            sections.push(part);
+        }
     }
-    if !study.perceptual.is_empty() || !study.perceptual_notes.is_empty() {
-        let p = &study.perceptual;
-        sections.push(perceptual_section::html(p, &study.scenes, &study.truths, &study.perceptual_notes)?);
+    ReportHtml {
+        renderer: &study.renderer,
+        passes: study.options.passes,
+        spp: study.options.spp,
+        table: answer_table::html(study).map_err(|e| format!("answer table: {e}"))?,
+        answers: answers(study),
+        sections,
     }
-    for s in &study.scenes {
-        sections.push(scenes::html(s)?);
-    }
-    for v in &study.variants {
-        sections.push(variants_section::html(v)?);
-    }
-    for s in &study.convergence {
-        let v = study.variants.iter().find(|v| v.scene_name == s.scene_name);
-        sections.push(convergence_section::html(s, v)?);
-    }
-    let answers = super::answers::answers(study);
-    ReportHtml { renderer: &study.renderer, passes: study.passes, spp: study.spp, answers, sections }.render()
+    .render()
+    .map_err(|e| e.to_string())
 }
 
-/// study.json, truth.json and report.html in `out`; the BRDF slices copied from `slices`.
-pub fn write(out: &Path, study: &Study, slices: Option<&Path>) -> Result<(), String> {
-    let j = json(study);
-    let text = serde_json::to_string_pretty(&j).map_err(|e| e.to_string())?;
-    std::fs::write(out.join("study.json"), text).map_err(|e| e.to_string())?;
-    let truth = serde_json::to_string_pretty(&serde_json::json!({
-        "renderer": j.renderer, "passes": j.passes, "spp": j.spp, "truths": j.truths,
-    }))
-    .map_err(|e| e.to_string())?;
-    std::fs::write(out.join("truth.json"), truth).map_err(|e| e.to_string())?;
-    let slices = match slices {
-        Some(from) if !study.truths.is_empty() => truth_section::copy_slices(from, out),
-        _ => Vec::new(),
+/// study.json, the sections' own JSON files and report.html in the study's output folder.
+pub fn write(study: &Study) -> Result<(), String> {
+    let out = &study.options.out;
+    let write = |name: &str, text: String| {
+        let path = out.join(name);
+        std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))
     };
-    let page = html(study, &slices).map_err(|e| format!("report.html: {e}"))?;
-    std::fs::write(out.join("report.html"), page).map_err(|e| e.to_string())
+    write("study.json", json(study)?)?;
+    for s in SECTIONS {
+        if let Some(file) = s.json_file() {
+            write(file, json_of(study, &[*s], false)?)?;
+        }
+    }
+    write("report.html", html(study, out).map_err(|e| format!("report.html: {e}"))?)
 }

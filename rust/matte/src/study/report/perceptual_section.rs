@@ -3,15 +3,73 @@
 //! percentile of HDR-FLIP with their 99 % jackknife intervals and the noise floor, and the
 //! verdicts (more or less visible under global illumination, against the energy verdict).
 
+use crate::study::answers;
 use crate::study::configuration::Configuration;
-use crate::study::perceptual::{Answer, Comparison, Exposure, FlipPair, PerceptualStudy};
+use crate::study::main_run::SceneStudy;
+use crate::study::options::{Lighting, StudyOptions};
+use crate::study::perceptual::{self, Answer, Comparison, Exposure, FlipPair, PerceptualStudy};
 use crate::study::ratio::Ratio;
+use crate::study::section::{JsonObject, Progress, Scene, Section, Study};
 use crate::study::truth::TruthStudy;
-use crate::study::{Lighting, SceneStudy, answers};
 use askama::Template;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
+/// The perceptual differences as a section of the study (unless `--no-perceptual`). A scene
+/// whose HDR-FLIP evaluation fails gets a note, and the study goes on.
+pub struct Perceptual;
+
+impl Section for Perceptual {
+    fn name(&self) -> &'static str {
+        "perceptual differences"
+    }
+
+    fn passes(&self, _scene: &Scene, opts: &StudyOptions) -> u64 {
+        perceptual::pass_count(opts)
+    }
+
+    fn run(&self, scene: &Scene, study: &mut Study, progress: &dyn Progress) -> Result<(), String> {
+        let opts = &study.options;
+        if !opts.perceptual {
+            return Ok(());
+        }
+        for l in [Lighting::Global, Lighting::Direct] {
+            let what = format!("{} {} Lambert, other seeds", scene.name, l.name());
+            perceptual::render_floor(&scene.path, &scene.name, l, &scene.regions, opts, &|_: u32| {
+                progress.pass(&what)
+            })?;
+        }
+        progress.step(&format!("{} HDR-FLIP", scene.name));
+        let truths = study.truths.iter().find(|t| t.scene_name == scene.name);
+        match perceptual::run(study.scene(&scene.name)?, truths, opts) {
+            Ok(p) => study.perceptual.push(p),
+            Err(e) => study
+                .perceptual_notes
+                .push(format!("{}: the perceptual differences were not computed: {e}", scene.name)),
+        }
+        Ok(())
+    }
+
+    fn answers(&self, study: &Study) -> Vec<String> {
+        let mut out = answers::perceptual_summary(&study.perceptual);
+        out.extend(study.perceptual.iter().flat_map(answers::perceptual_scene_answers));
+        out.extend(answers::perceptual_closing(&study.perceptual));
+        out
+    }
+
+    fn json(&self, study: &Study, out: &mut JsonObject) -> Result<(), String> {
+        out.entry("perceptual", &json(&study.perceptual, &study.perceptual_notes))
+    }
+
+    fn html(&self, study: &Study, _out: &Path) -> Result<String, String> {
+        if study.perceptual.is_empty() && study.perceptual_notes.is_empty() {
+            return Ok(String::new());
+        }
+        html(&study.perceptual, &study.scenes, &study.truths, &study.perceptual_notes).map_err(|e| e.to_string())
+    }
+}
+
+/// The perceptual differences in study.json.
 #[derive(Serialize)]
 pub struct PerceptualJson {
     /// The metric and how every value is computed.
@@ -21,6 +79,7 @@ pub struct PerceptualJson {
     pub notes: Vec<String>,
 }
 
+/// One scene's perceptual differences.
 #[derive(Serialize)]
 pub struct SceneJson {
     pub scene: String,
@@ -36,6 +95,7 @@ pub struct SceneJson {
     pub answers: Vec<AnswerJson>,
 }
 
+/// HDR-FLIP's exposure range of one lighting.
 #[derive(Serialize)]
 pub struct ExposureJson {
     pub lighting: &'static str,
@@ -43,6 +103,7 @@ pub struct ExposureJson {
     pub exposure: Exposure,
 }
 
+/// The noise floor of one lighting.
 #[derive(Serialize)]
 pub struct FloorJson {
     pub lighting: &'static str,
@@ -75,6 +136,7 @@ impl FlipJson {
     }
 }
 
+/// The FLIP strips of one lighting.
 #[derive(Serialize)]
 pub struct StripJson {
     pub lighting: &'static str,
@@ -84,6 +146,7 @@ pub struct StripJson {
     pub flip_against_surface: Option<PathBuf>,
 }
 
+/// One pair (a model against Lambert or its surface) in one lighting.
 #[derive(Serialize)]
 pub struct ComparisonJson {
     /// The configuration's key (`eon`, `truth_v_cavities`, …).
@@ -101,6 +164,7 @@ pub struct ComparisonJson {
     pub above_noise_floor: bool,
 }
 
+/// The verdicts of one pair: ΔFLIP and the energy Δ.
 #[derive(Serialize)]
 pub struct AnswerJson {
     pub model: &'static str,
@@ -118,12 +182,14 @@ pub struct AnswerJson {
     pub agreement: &'static str,
 }
 
+/// What the values are and how they are computed, for study.json and the report.
 pub const METRIC: &str = "HDR-FLIP (flip-evaluator, NVIDIA's reference implementation) of the two mean images of a pair; one exposure range per scene and lighting, derived by HDR-FLIP from that lighting's Lambert image (ACES tone mapping, 67 pixels per degree); intervals: 99 % jackknife over the passes (pass k left out of both images); noise floor: Lambert against Lambert rendered with other seeds at the same budget";
 
 fn floor_of(p: &PerceptualStudy, l: Lighting) -> (f64, f64) {
     p.floor(l).map_or((f64::NAN, f64::NAN), |f| (f.mean.value.value, f.p95.value.value))
 }
 
+/// The perceptual differences in study.json.
 pub fn json(studies: &[PerceptualStudy], notes: &[String]) -> PerceptualJson {
     PerceptualJson {
         metric: METRIC,
@@ -247,7 +313,7 @@ fn scene_html<'a>(
             heading: if p.direct_only { "global = direct lighting".into() } else { format!("{} lighting", l.name()) },
             against_lambert_signed: scene.and_then(|s| {
                 let (_, _, diff) = s.strips.iter().find(|(x, _, _)| x == l)?;
-                Some((diff.as_path(), super::scenes::range_of(s, l)))
+                Some((diff.as_path(), s.difference_range(*l)))
             }),
             against_lambert,
             against_surface_signed: against_surface.as_ref().and(truth).and_then(|t| {

@@ -1,15 +1,50 @@
-//! The main run's section per scene: the strips and heatmaps of every model, and per model
-//! the luminance ratio to Lambert (99 % CI) under global and direct lighting, the change
-//! between them (the paper's question), the edge/flat concentration of the difference, and
-//! the named regions' ratios.
+//! The main run's section ([`crate::study::main_run`]), per scene: the strips and heatmaps of
+//! every model, and per model the luminance ratio to Lambert (99 % CI) under global and
+//! direct lighting, the change between them (the paper's question), the edge/flat
+//! concentration of the difference, and the named regions' ratios.
 
-use super::{RegionJson, StripJson};
+use super::shared::{LightingRatios, RegionJson, StripJson};
+use crate::study::answers;
 use crate::study::configuration::{TRUTHS, main_run};
-use crate::study::{Lighting, ModelResult, SceneStudy, metrics};
+use crate::study::main_run::{ModelResult, SceneStudy, study_scene};
+use crate::study::options::{Lighting, StudyOptions};
+use crate::study::section::{JsonObject, Progress, Scene, Section, Study};
 use askama::Template;
 use serde::Serialize;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
+/// The main run as a section of the study.
+pub struct MainRun;
+
+impl Section for MainRun {
+    fn name(&self) -> &'static str {
+        "main run"
+    }
+
+    fn passes(&self, _scene: &Scene, opts: &StudyOptions) -> u64 {
+        ((main_run().len() + TRUTHS.len()) * 2) as u64 * opts.passes as u64
+    }
+
+    fn run(&self, scene: &Scene, study: &mut Study, progress: &dyn Progress) -> Result<(), String> {
+        let s = study_scene(&scene.path, &study.options, &|what: &str, _: u32| progress.pass(what))?;
+        study.scenes.push(s);
+        Ok(())
+    }
+
+    fn answers(&self, study: &Study) -> Vec<String> {
+        answers::scene_answers(&study.scenes)
+    }
+
+    fn json(&self, study: &Study, out: &mut JsonObject) -> Result<(), String> {
+        out.entry("scenes", &study.scenes.iter().map(json).collect::<Vec<_>>())
+    }
+
+    fn html(&self, study: &Study, _out: &Path) -> Result<String, String> {
+        study.scenes.iter().map(|s| html(s).map_err(|e| e.to_string())).collect()
+    }
+}
+
+/// One scene's main run in study.json.
 #[derive(Serialize)]
 pub struct SceneJson {
     pub scene: PathBuf,
@@ -27,10 +62,9 @@ pub struct ModelJson {
     /// The configuration's key (the two true surfaces share the plugin `tabulated_brdf`).
     pub key: &'static str,
     pub label: &'static str,
-    pub ratio_global: f64,
-    pub ratio_global_ci99: f64,
-    pub ratio_direct: f64,
-    pub ratio_direct_ci99: f64,
+    /// Its luminance ratio to Lambert.
+    #[serde(flatten)]
+    pub ratios: LightingRatios,
     /// The per-pass ratios to Lambert, in seed order.
     pub pass_ratios_global: Vec<f64>,
     pub pass_ratios_direct: Vec<f64>,
@@ -59,19 +93,16 @@ fn both_lightings(s: &SceneStudy) -> impl Iterator<Item = (&ModelResult, &ModelR
 
 /// The paper's question for one model: does the difference to Lambert grow with global
 /// illumination?
-pub(super) fn growth(g: &ModelResult, d: &ModelResult) -> f64 {
+fn growth(g: &ModelResult, d: &ModelResult) -> f64 {
     (g.ratio.value - 1.0).abs() - (d.ratio.value - 1.0).abs()
 }
 
-/// A result's per-pass ratios to Lambert's passes in the same lighting.
-fn lambert_ratios(s: &SceneStudy, r: &ModelResult) -> Vec<f64> {
-    s.lambert(r.lighting).map(|l| metrics::pass_ratios(&r.pass_means, &l.moments.pass_means)).unwrap_or_default()
+/// The half-range of a lighting's heatmap strip, for the template.
+fn range_of(s: &SceneStudy, l: &Lighting) -> f32 {
+    s.difference_range(*l)
 }
 
-pub(super) fn range_of(s: &SceneStudy, l: &Lighting) -> f32 {
-    s.difference_ranges.iter().find(|(x, _)| *x == *l).map_or(f32::NAN, |r| r.1)
-}
-
+/// The scene's entry of study.json.
 pub fn json(s: &SceneStudy) -> SceneJson {
     SceneJson {
         scene: s.scene.clone(),
@@ -82,7 +113,7 @@ pub fn json(s: &SceneStudy) -> SceneJson {
                 lighting: l.name(),
                 strip: strip.clone(),
                 difference: diff.clone(),
-                difference_range: range_of(s, l),
+                difference_range: s.difference_range(*l),
             })
             .collect(),
         models: both_lightings(s)
@@ -90,12 +121,9 @@ pub fn json(s: &SceneStudy) -> SceneJson {
                 model: g.model.bsdf(),
                 key: g.model.key(),
                 label: g.model.label(),
-                ratio_global: g.ratio.value,
-                ratio_global_ci99: g.ratio.half_width,
-                ratio_direct: d.ratio.value,
-                ratio_direct_ci99: d.ratio.half_width,
-                pass_ratios_global: lambert_ratios(s, g),
-                pass_ratios_direct: lambert_ratios(s, d),
+                ratios: LightingRatios::new(g.ratio, d.ratio),
+                pass_ratios_global: s.pass_ratios(g),
+                pass_ratios_direct: s.pass_ratios(d),
                 abs_difference_global_minus_direct: growth(g, d),
                 edge_mean_abs_rel_diff_global: g.edge_flat.0,
                 flat_mean_abs_rel_diff_global: g.edge_flat.1,
@@ -121,6 +149,7 @@ struct SceneHtml<'a> {
     regions: Vec<&'a str>,
 }
 
+/// The scene's part of report.html.
 pub fn html(s: &SceneStudy) -> askama::Result<String> {
     let regions = s.results.first().map(|r| r.regions.iter().map(|x| x.name.as_str()).collect()).unwrap_or_default();
     SceneHtml { s, rows: both_lightings(s).collect(), regions }.render()

@@ -3,13 +3,62 @@
 //! global illumination), the closest model per scene, the heatmap strips (model − surface) /
 //! surface, and the BRDF slices of the models against the simulated surfaces.
 
+use super::shared::LightingRatios;
+use crate::study::answers;
 use crate::study::configuration::{Configuration, TRUTHS, WITH_TRUTH, main_run};
+use crate::study::options::{Lighting, StudyOptions};
 use crate::study::ratio::Ratio;
-use crate::study::truth::TruthStudy;
-use crate::study::{Lighting, answers};
+use crate::study::section::{JsonObject, Progress, Scene, Section, Study};
+use crate::study::truth::{self, TruthStudy};
 use askama::Template;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
+
+/// The models against their true surfaces as a section of the study.
+pub struct Truths;
+
+impl Section for Truths {
+    fn name(&self) -> &'static str {
+        "true surfaces"
+    }
+
+    fn passes(&self, scene: &Scene, opts: &StudyOptions) -> u64 {
+        truth::pass_count(opts, &scene.name)
+    }
+
+    fn run(&self, scene: &Scene, study: &mut Study, progress: &dyn Progress) -> Result<(), String> {
+        let variants = study.variants.iter().find(|v| v.scene_name == scene.name);
+        let t =
+            truth::run(study.scene(&scene.name)?, variants, &study.options, &|what: &str, _: u32| progress.pass(what))?;
+        study.truths.extend(t);
+        Ok(())
+    }
+
+    fn answers(&self, study: &Study) -> Vec<String> {
+        let mut out: Vec<String> = answers::truth_summary(&study.truths).into_iter().collect();
+        out.extend(study.truths.iter().flat_map(answers::truth_answers));
+        out
+    }
+
+    fn json(&self, study: &Study, out: &mut JsonObject) -> Result<(), String> {
+        out.entry("truths", &json(&study.truths))
+    }
+
+    fn json_file(&self) -> Option<&'static str> {
+        Some("truth.json")
+    }
+
+    fn html(&self, study: &Study, out: &Path) -> Result<String, String> {
+        if study.truths.is_empty() {
+            return Ok(String::new());
+        }
+        let slices = match &study.options.truth_slices {
+            Some(from) => copy_slices(from, out),
+            None => Vec::new(),
+        };
+        html(&study.truths, &slices).map_err(|e| e.to_string())
+    }
+}
 
 /// The BRDF slices of `docs/microgeometry/` shown in the section, at the study's roughness 0.3
 /// and facet albedo 0.8: per model, the slice through its largest error against its surface
@@ -38,6 +87,7 @@ pub struct TruthsJson {
     pub scenes: Vec<TruthJson>,
 }
 
+/// A true surface, its table and the models that describe it.
 #[derive(Serialize)]
 pub struct SurfaceJson {
     pub key: &'static str,
@@ -59,6 +109,7 @@ pub struct TruthJson {
     pub answers: Vec<String>,
 }
 
+/// A heatmap strip of the models against their surfaces in one lighting.
 #[derive(Serialize)]
 pub struct TruthStripJson {
     pub lighting: &'static str,
@@ -75,10 +126,8 @@ pub struct ComparisonJson {
     pub truth: &'static str,
     pub truth_label: &'static str,
     /// Image-mean luminance ratio model / surface (paired passes), 99 % half-width.
-    pub ratio_global: f64,
-    pub ratio_global_ci99: f64,
-    pub ratio_direct: f64,
-    pub ratio_direct_ci99: f64,
+    #[serde(flatten)]
+    pub ratios: LightingRatios,
     /// The per-pass ratios model / surface, in seed order.
     pub pass_ratios_global: Vec<f64>,
     pub pass_ratios_direct: Vec<f64>,
@@ -105,10 +154,7 @@ fn comparisons(t: &TruthStudy) -> Vec<ComparisonJson> {
                 label: m.label(),
                 truth: g.truth.key(),
                 truth_label: g.truth.label(),
-                ratio_global: g.ratio.value,
-                ratio_global_ci99: g.ratio.half_width,
-                ratio_direct: d.ratio.value,
-                ratio_direct_ci99: d.ratio.half_width,
+                ratios: LightingRatios::new(g.ratio, d.ratio),
                 pass_ratios_global: g.pass_ratios.clone(),
                 pass_ratios_direct: d.pass_ratios.clone(),
                 growth: delta.value,
@@ -121,6 +167,7 @@ fn comparisons(t: &TruthStudy) -> Vec<ComparisonJson> {
         .collect()
 }
 
+/// The true surfaces in study.json and truth.json.
 pub fn json(truths: &[TruthStudy]) -> TruthsJson {
     TruthsJson {
         surfaces: TRUTHS

@@ -1,15 +1,52 @@
 //! The model variants' section per scene ([`crate::study::variants`]): what each variant
 //! means, its strips and heatmaps, and its ratio to Lambert in both lightings.
 
-use super::{RegionJson, StripJson};
+use super::shared::{LightingRatios, RegionJson, StripJson};
+use crate::study::answers;
 use crate::study::configuration::{Configuration, VARIANTS};
-use crate::study::variants::{VariantResult, VariantStudy};
-use crate::study::{Lighting, answers};
+use crate::study::options::{Lighting, StudyOptions};
+use crate::study::section::{JsonObject, Progress, Scene, Section, Study};
+use crate::study::variants::{self, VariantResult, VariantStudy};
 use askama::Template;
 use serde::Serialize;
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
+/// The model variants as a section of the study, for the scenes of `--variant-scenes`.
+pub struct Variants;
+
+impl Section for Variants {
+    fn name(&self) -> &'static str {
+        "variants"
+    }
+
+    fn passes(&self, scene: &Scene, opts: &StudyOptions) -> u64 {
+        if opts.variants_for(&scene.name) { variants::pass_count(opts.passes) } else { 0 }
+    }
+
+    fn run(&self, scene: &Scene, study: &mut Study, progress: &dyn Progress) -> Result<(), String> {
+        if !study.options.variants_for(&scene.name) {
+            return Ok(());
+        }
+        let v = variants::run(study.scene(&scene.name)?, &study.options, &|what: &str, _: u32| progress.pass(what))?;
+        study.variants.push(v);
+        Ok(())
+    }
+
+    fn answers(&self, study: &Study) -> Vec<String> {
+        study.variants.iter().flat_map(answers::variant_answers).collect()
+    }
+
+    fn json(&self, study: &Study, out: &mut JsonObject) -> Result<(), String> {
+        out.entry("variants", &study.variants.iter().map(json).collect::<Vec<_>>())
+    }
+
+    fn html(&self, study: &Study, _out: &Path) -> Result<String, String> {
+        study.variants.iter().map(|v| html(v).map_err(|e| e.to_string())).collect()
+    }
+}
+
+/// One scene's variants in study.json.
 #[derive(Serialize)]
 pub struct VariantsJson {
     pub scene: String,
@@ -31,10 +68,9 @@ pub struct VariantJson {
     pub meaning: &'static str,
     /// The derived scene (none for the main run's images).
     pub scene_file: Option<PathBuf>,
-    pub ratio_global: f64,
-    pub ratio_global_ci99: f64,
-    pub ratio_direct: f64,
-    pub ratio_direct_ci99: f64,
+    /// Its luminance ratio to Lambert.
+    #[serde(flatten)]
+    pub ratios: LightingRatios,
     pub seconds_global: Option<f64>,
     pub seconds_direct: Option<f64>,
     pub exr_global: PathBuf,
@@ -47,6 +83,7 @@ fn both_lightings(v: &VariantStudy) -> impl Iterator<Item = (Configuration, &Var
     VARIANTS.into_iter().filter_map(|x| Some((x, v.result(x, Lighting::Global)?, v.result(x, Lighting::Direct)?)))
 }
 
+/// The scene's variants in study.json.
 pub fn json(v: &VariantStudy) -> VariantsJson {
     VariantsJson {
         scene: v.scene_name.clone(),
@@ -69,10 +106,7 @@ pub fn json(v: &VariantStudy) -> VariantsJson {
                 main_run: x.is_main_run(),
                 meaning: x.meaning(),
                 scene_file: g.scene_file.clone(),
-                ratio_global: g.ratio.value,
-                ratio_global_ci99: g.ratio.half_width,
-                ratio_direct: d.ratio.value,
-                ratio_direct_ci99: d.ratio.half_width,
+                ratios: LightingRatios::new(g.ratio, d.ratio),
                 seconds_global: g.seconds,
                 seconds_direct: d.seconds,
                 exr_global: g.exr.clone(),
@@ -94,6 +128,7 @@ struct VariantsHtml<'a> {
     regions: Vec<&'a str>,
 }
 
+/// The scene's variants in report.html.
 pub fn html(v: &VariantStudy) -> askama::Result<String> {
     let regions = v.results.first().map(|r| r.regions.iter().map(|x| x.name.as_str()).collect()).unwrap_or_default();
     VariantsHtml { v, variants: VARIANTS, rows: both_lightings(v).collect(), regions }.render()
