@@ -4,7 +4,7 @@
     MATTE_DUMP_WALK=/tmp/walk cargo test -p matte-render --test render every_harvested
     .venv/bin/python validation/check_harvest.py /tmp/walk
 
-The walk test of tests/render/load.rs builds, for every property Mitsuba 3.9.1 reads in every
+The walk test of tests/render/load/walk.rs builds, for every property Mitsuba 3.9.1 reads in every
 plugin matte renders, a small scene holding that property; with MATTE_DUMP_WALK it writes
 them out. This script loads each in Mitsuba (scalar_rgb) and reports the scenes Mitsuba
 refuses, with its reason: a property harvested wrongly, or one Mitsuba reads only in a branch

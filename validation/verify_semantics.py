@@ -11,10 +11,10 @@ emitters and BSDFs, and 1×1 to 8×2 renders compared with closed forms. It neve
     .venv/bin/python validation/verify_semantics.py --list     # names only
 
 Exit status 1 if any check fails. The numeric items come first in each section: they are the
-test oracles (tests/render/load.rs, xml.rs, mesh.rs, tests/render/film.rs, bitmap.rs,
+test oracles (tests/render/load/, xml.rs, mesh.rs, tests/render/film.rs, bitmap.rs,
 render_core.rs, specular_bsdfs.rs cite them as "§N [verified]"). The per-test generators next to
 those tests (tests/*/*/generate_reference.py) check the tests' own inline copies of the same
-numbers. Renders use fixed seeds; a rendered value passes when it is within 4 standard errors
+numbers, or write the references file the tests read (tests/render/load/references.rs). Renders use fixed seeds; a rendered value passes when it is within 4 standard errors
 (over 4–8 seeds) plus the stated tolerance of the doc's number.
 
 Not covered here (each has its own oracle): the sampler sequences of §5

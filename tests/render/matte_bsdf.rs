@@ -4,7 +4,7 @@
 //! a table file as `tabulated_brdf` (each RGB channel its own ρ, a missing file a one-line
 //! error), and Mitsuba 0.6's `roughdiffuse` XML through the version upgrade. (Which colour of a
 //! checkerboard a parameter reads, Mitsuba's `eval_1`, is checked with the other checkerboard
-//! tests in `tests/render/load.rs`.)
+//! tests in `tests/render/load/texture.rs`.)
 
 use crate::common::{direction, model, table_of};
 use glam::{Vec2, Vec3};

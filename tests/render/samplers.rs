@@ -6,9 +6,9 @@
 //! several dimensions to its known value.
 
 use glam::{Vec2, Vec3};
-use matte_render::camera::Camera;
 use matte_render::load::load_str;
 use matte_render::sampler::{Sampler, SamplerKind, Sampling};
+use matte_render::sensor::Camera;
 use serde_json::Value;
 use std::path::Path;
 

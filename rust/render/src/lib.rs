@@ -2,8 +2,8 @@
 //! same expected image (`docs/renderer-semantics.md`).
 //!
 //! Data flow: [`matte_scene_file`] reads the XML (and meshes) into an object tree → [`load`]
-//! builds a [`scene::Scene`] (shapes, BSDFs, emitters, ray queries) plus camera, film,
-//! sampler and integrator → [`renderer`] runs the integrator per pixel sample in parallel
+//! builds a [`scene::Scene`] (shapes, BSDFs, emitters, ray queries) plus camera ([`sensor`]),
+//! film, sampler and integrator → [`renderer`] runs the integrator per pixel sample in parallel
 //! tiles and splats into the film.
 
 /// `T` for `Box<T>`, `Arc<T>` and `T`: the type an enum variant stores, boxed, shared or
@@ -22,17 +22,15 @@ macro_rules! stored_type {
 
 pub mod accel;
 pub mod bsdf;
-pub mod camera;
 pub mod emitter;
 pub mod film;
 pub mod geometry;
 pub mod image_io;
 pub mod integrator;
 pub mod load;
-pub mod orthographic;
 pub mod renderer;
 pub mod sampler;
 pub mod scene;
+pub mod sensor;
 pub mod shape;
 pub mod texture;
-pub mod thinlens;

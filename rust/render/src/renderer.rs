@@ -5,12 +5,12 @@
 //! Every sample goes to the tile's image block, which the film accumulates (Mitsuba
 //! `SamplingIntegrator::render`).
 
-use crate::camera::Camera;
 use crate::film::{Film, Image};
 use crate::integrator::wavefront::StageTicks;
 use crate::integrator::{Driver, Integrator, TileJob};
 use crate::sampler::Sampling;
 use crate::scene::Scene;
+use crate::sensor::Camera;
 use rayon::prelude::*;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicU64, Ordering};

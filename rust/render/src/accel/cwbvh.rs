@@ -3,7 +3,7 @@
 //! order in the layout `obvhs` intersects fastest (v0, v0−v1, v2−v0, normal). With Embree
 //! (`super::embree`) it holds the analytic shapes only; without, everything.
 
-use super::Hit;
+use super::hit::Hit;
 use crate::geometry::Ray;
 use crate::shape::{Geometry, Shape};
 use glam::{Vec2, Vec3A};

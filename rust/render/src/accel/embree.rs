@@ -5,8 +5,8 @@
 //! analytic shape (sphere, disk, cylinder) whose callbacks call the shape's own exact
 //! intersection, as Mitsuba's `embree_intersect` does.
 
-use super::Hit;
 use super::embree_api::{self as rtc, Api, BoundsArgs, IntersectContext, RtcRay, RtcRayHit, UserQueryArgs};
+use super::hit::Hit;
 use crate::geometry::Ray;
 use crate::shape::{Geometry, Shape};
 use glam::{Vec2, Vec3};

@@ -14,22 +14,14 @@
 pub mod cwbvh;
 pub mod embree;
 pub mod embree_api;
+mod hit;
+
+pub use hit::Hit;
 
 use crate::geometry::Ray;
 use crate::shape::Shape;
 use cwbvh::CwBvhAccel;
 use embree::EmbreeScene;
-use glam::Vec2;
-
-/// A closest hit: distance, shape, primitive (triangle index; 0 for analytic shapes) and
-/// barycentrics (meshes only: `(b1, b2)` of vertices 1 and 2).
-#[derive(Clone, Copy, Debug)]
-pub struct Hit {
-    pub t: f32,
-    pub shape: u32,
-    pub prim: u32,
-    pub bary: Vec2,
-}
 
 /// Which structures hold which shapes (module docs).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

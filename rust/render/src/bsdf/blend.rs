@@ -9,7 +9,10 @@
 //!   `f` is its sample weight times its pdf and the other's is evaluated in the sampled
 //!   direction (one-sample MIS over the two). The picked sample's Dirac flag and η are kept.
 
-use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf};
+use super::Bsdf;
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

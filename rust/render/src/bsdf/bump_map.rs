@@ -16,7 +16,10 @@
 //! meshes only. [`BumpMap::eval_pdf_at`] and [`BumpMap::sample_at`] take the geometry
 //! explicitly (tested against Mitsuba at given geometry).
 
-use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf, perturbed_frame};
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
+use super::{Bsdf, perturbed_frame};
 use crate::geometry::Frame;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;

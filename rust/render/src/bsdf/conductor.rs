@@ -1,10 +1,12 @@
 //! Mitsuba's smooth `conductor` (`src/bsdfs/conductor.cpp`): a one-sided Dirac mirror whose
 //! reflectance is the complex-index Fresnel term times `specular_reflectance` (§10).
 
+use super::bxdf::Bxdf;
 use super::conductor_ior::conductor_ior_from_props;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_conductor;
 use super::parameter_checks::{check_colour, check_finite};
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

@@ -2,9 +2,11 @@
 //! Dirac reflection and one Dirac refraction lobe, the lobe chosen with probability Fresnel R
 //! (docs/renderer-semantics.md §10). Two-sided: the interior is the side opposite the normal.
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

@@ -1,7 +1,9 @@
 //! Mitsuba's built-in `diffuse` (`src/bsdfs/diffuse.cpp`): ρ/π, one-sided (zero when either
 //! direction is below the shading surface), cosine-weighted sampling with weight ρ.
 
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

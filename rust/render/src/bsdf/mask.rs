@@ -12,7 +12,10 @@
 //! after a Dirac sample, and there is no light sampling through it. Shadow rays do not see
 //! through masks (Mitsuba's `Scene::ray_test` only tests geometry).
 
-use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf};
+use super::Bsdf;
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

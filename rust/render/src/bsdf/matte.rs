@@ -9,7 +9,9 @@
 //! `eval_1` and turned into kernel constants per hit (`matte_brdf::lane`;
 //! `docs/models.md#spatially-varying-parameters`).
 
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

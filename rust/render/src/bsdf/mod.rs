@@ -7,10 +7,12 @@
 //! One type per plugin, one file each; every type implements [`Bxdf`] and reads its own
 //! properties (`from_props`, through `render::load::props::PluginProps`, as Mitsuba's plugin
 //! constructors do). [`Bsdf`] is the closed set of them: an enum whose [`Bxdf`] impl
-//! forwards to the variant's type (static dispatch), generated from one list below.
+//! forwards to the variant's type (static dispatch), generated from one list below. The trait
+//! is in `bxdf.rs`, below every type's file.
 
 pub mod blend;
 pub mod bump_map;
+mod bxdf;
 pub mod conductor;
 pub mod conductor_ior;
 #[allow(clippy::excessive_precision)] // generated data: Mitsuba's values printed in full
@@ -41,6 +43,7 @@ pub mod vndf;
 
 pub use blend::Blend;
 pub use bump_map::BumpMap;
+pub use bxdf::Bxdf;
 pub use conductor::Conductor;
 pub use conductor_ior::{conductor_material, conductor_material_names};
 pub use dielectric::Dielectric;
@@ -64,22 +67,6 @@ pub use two_sided::TwoSided;
 
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
-
-/// The method set of every renderer BSDF (Mitsuba's `BSDF` interface: `eval_pdf`, `sample`,
-/// `flags`), in the local shading frame (z = shading normal). `wi` points from the surface
-/// towards the previous path vertex (the camera side), `wo` towards the next one.
-pub trait Bxdf {
-    /// `(f·|cos θo|, pdf)` of the smooth part (Dirac lobes contribute nothing here).
-    fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32);
-
-    /// Samples `wo` from one number for the lobe choice and two for the direction; `None`
-    /// where Mitsuba's sample has zero weight or zero density.
-    fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample>;
-
-    /// The union of the lobes' flags, as the Mitsuba plugin sets `m_flags` (e.g.
-    /// [`BsdfFlags::SMOOTH`]: light sampling is useful; [`BsdfFlags::TRANSMISSION`]).
-    fn flags(&self) -> BsdfFlags;
-}
 
 /// Declares [`Bsdf`] with one variant per BSDF type, its [`Bxdf`] impl (one forwarding
 /// match arm per variant and method) and `From` every type.

@@ -13,7 +13,10 @@
 //! Only the local shading frame is involved, so the result depends on the shape's tangent
 //! orientation exactly as in Mitsuba (`sh_frame.s` along ∂p/∂u there).
 
-use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf, perturbed_frame};
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
+use super::{Bsdf, perturbed_frame};
 use crate::geometry::Frame;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;

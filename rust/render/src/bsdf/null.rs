@@ -2,7 +2,9 @@
 //! through with weight 1 (a Dirac "null" lobe: no light sampling, no MIS). Like every surface
 //! it still blocks shadow rays, as in Mitsuba.
 
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

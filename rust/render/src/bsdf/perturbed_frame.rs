@@ -4,8 +4,9 @@
 //! shadow-terminator term on values and weights when `use_shadowing_function` is set.
 //! Each wrapper builds its own frame (from a normal map, from a height map's gradient).
 
+use super::Bsdf;
+use super::bxdf::Bxdf;
 use super::sample::BsdfSample;
-use super::{Bsdf, Bxdf};
 use crate::geometry::Frame;
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

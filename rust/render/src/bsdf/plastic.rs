@@ -15,8 +15,10 @@
 //! textures' `mean()`), then draws a cosine-weighted direction. The diffuse pdf is
 //! p_d·cos θo/π.
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

@@ -9,13 +9,15 @@
 //! gates and quirks follow the Mitsuba source (e.g. the clearcoat term has no 1/(4 cos θi),
 //! and in scalar variants sheen is only added where the diffuse lobe is active).
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
     Gtr1, calc_schlick, diffuse_lobe, dist_params, flagged, luminance, mac_mic_compatibility, sampling_rate,
     schlick_r0_eta, schlick_weight, sheen_color, smith_ggx1, texture,
 };
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

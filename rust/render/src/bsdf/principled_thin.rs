@@ -7,13 +7,15 @@
 //! lobes exist only with `spec_trans` (Mitsuba's `get_flag`); lobe probabilities follow the
 //! `*_sampling_rate`s; the sample weight is eval/pdf of the mixture.
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution};
 use super::principled_helpers::{
     calc_schlick, diffuse_lobe, dist_params, flagged, mac_mic_compatibility, sampling_rate, schlick_r0_eta,
     schlick_weight, sheen_color, texture, tint_color,
 };
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

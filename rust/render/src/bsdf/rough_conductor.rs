@@ -12,11 +12,13 @@
 //! hit). Numbers give one distribution, computed once; with a texture the lobe is copied per
 //! hit with the textures' roughness (raised to 1e-4 as in Mitsuba).
 
+use super::bxdf::Bxdf;
 use super::conductor_ior::conductor_ior_from_props;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_conductor;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::{check_colour, check_finite};
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

@@ -18,10 +18,12 @@
 //! ([`super::rough_conductor`]): numbers give one distribution, computed once; with a texture
 //! the lobe is copied per hit with the textures' roughness.
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::parameter_checks::check_colour;
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

@@ -14,10 +14,12 @@
 //! microfacet reflection density and the cosine density, and the sample weight is eval/pdf
 //! (Mitsuba evaluates both lobes for either choice). One-sided.
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
 use super::microfacet::{Microfacet, MicrofacetDistribution, MicrofacetParams};
 use super::microfacet_albedo::{TABLE_RES, external_transmittance, internal_reflectance, lerp_table};
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;

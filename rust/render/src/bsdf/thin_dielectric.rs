@@ -3,9 +3,11 @@
 //! the pane reflects R' = 2R/(1 + R) (Dirac mirror) and passes 1 − R' straight through
 //! (`wo = −wi`, Mitsuba's "null" lobe: no refraction, no η change). Two-sided; no smooth part.
 
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
 use super::fresnel::fresnel_dielectric;
 use super::parameter_checks::check_colour;
-use super::{BsdfFlags, BsdfSample, Bxdf};
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

@@ -3,7 +3,10 @@
 //! both directions mirrored through the surface. A transmissive nested BSDF is refused unless
 //! `allow_transmission` is true, as in Mitsuba.
 
-use super::{Bsdf, BsdfFlags, BsdfSample, Bxdf};
+use super::Bsdf;
+use super::bxdf::Bxdf;
+use super::flags::BsdfFlags;
+use super::sample::BsdfSample;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};

@@ -5,7 +5,9 @@
 //! radiance by its uv instead, which has the same expectation) and a cosine-weighted direction
 //! about the normal, weight `L(uv)·π·A`.
 
-use super::{EmitterFlags, EmitterPosition, EmitterSample, Light, LightRay};
+use super::emitter_sample::{EmitterPosition, EmitterSample, LightRay};
+use super::flags::EmitterFlags;
+use super::light::Light;
 use crate::geometry::Frame;
 use crate::load::props::PluginProps;
 use crate::shape::{Geometry, Shape, SurfaceInteraction};

@@ -3,7 +3,9 @@
 //! `to_world` (`src/render/endpoint.cpp`); a uniform environment is invariant under it, so it
 //! is validated and ignored.
 
-use super::{EmitterFlags, EmitterSample, Light};
+use super::emitter_sample::EmitterSample;
+use super::flags::EmitterFlags;
+use super::light::Light;
 use crate::geometry::warp;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::{Shape, SurfaceInteraction};

@@ -2,7 +2,9 @@
 //! `irradiance` E (default 1) travelling along `direction`, or along `to_world`'s +z (not
 //! both); every point receives E from the opposite direction.
 
-use super::{EmitterFlags, EmitterSample, Light};
+use super::emitter_sample::EmitterSample;
+use super::flags::EmitterFlags;
+use super::light::Light;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::Shape;
 use glam::{Vec2, Vec3};

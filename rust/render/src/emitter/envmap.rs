@@ -19,8 +19,10 @@
 //!   `to_world` (invertible), `mis_compensation` (default false). Mitsuba's `bitmap` property
 //!   (an in-memory image) has no XML form.
 
+use super::emitter_sample::EmitterSample;
+use super::flags::EmitterFlags;
+use super::light::Light;
 use super::projector::scale_and_to_world;
-use super::{EmitterFlags, EmitterSample, Light};
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::Shape;
 use crate::texture::{BitmapOptions, BitmapTexture};

@@ -3,7 +3,9 @@
 //! `I / d²` towards a point at distance d; for the particle tracer a uniform direction, weight
 //! `4π·I`.
 
-use super::{EmitterFlags, EmitterSample, Light, LightRay};
+use super::emitter_sample::{EmitterSample, LightRay};
+use super::flags::EmitterFlags;
+use super::light::Light;
 use crate::geometry::warp;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::Shape;

@@ -7,9 +7,11 @@
 //! expectation) and the direction through it; weight `E(uv)·scale·π·A_image`, with A_image
 //! the image rectangle's area at unit distance.
 
-use super::{EmitterFlags, EmitterSample, Light, LightRay};
-use crate::camera::{field_of_view, x_half_tan};
+use super::emitter_sample::{EmitterSample, LightRay};
+use super::flags::EmitterFlags;
+use super::light::Light;
 use crate::load::props::{FromProps, PluginProps};
+use crate::sensor::{field_of_view, x_half_tan};
 use crate::shape::Shape;
 use crate::texture::Texture;
 use glam::{Affine3A, Vec2, Vec3};

@@ -5,7 +5,9 @@
 //! y)/(z·tan cutoff) of the local direction (`direction_to_uv`). For the particle tracer a
 //! uniform direction in the cutoff cone, weight `I·texture(uv)·falloff/pdf`.
 
-use super::{EmitterFlags, EmitterSample, Light, LightRay};
+use super::emitter_sample::{EmitterSample, LightRay};
+use super::flags::EmitterFlags;
+use super::light::Light;
 use crate::geometry::warp;
 use crate::load::props::{FromProps, PluginProps};
 use crate::shape::Shape;

@@ -6,9 +6,15 @@
 //! tile can splat its full footprint without synchronisation. The film later adds the block
 //! into its crop-sized storage and drops whatever falls outside the crop ([`super::Film`]).
 
-use super::Tile;
 use super::filter::{FilterTable, ReconstructionFilter, SplatWeights};
 use glam::{Vec2, Vec3, Vec4};
+
+/// A rectangle of the crop window, in full-film pixel coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Tile {
+    pub offset: [u32; 2],
+    pub size: [u32; 2],
+}
 
 /// Weighted sums (Σw·R, Σw·G, Σw·B, Σw) for the pixels of one tile and its border.
 #[derive(Clone, Debug)]

@@ -17,7 +17,7 @@ mod block;
 mod filter;
 mod image;
 
-pub use block::ImageBlock;
+pub use block::{ImageBlock, Tile};
 pub use filter::{FILTER_RESOLUTION, FilterTable, GAUSSIAN_FIT, ReconstructionFilter, SplatWeights};
 pub use image::Image;
 
@@ -29,13 +29,6 @@ use matte_scene_file::SceneError;
 /// `crop_width/height`). The camera projection always uses the full film.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CropWindow {
-    pub offset: [u32; 2],
-    pub size: [u32; 2],
-}
-
-/// A rectangle of the crop window, in full-film pixel coordinates.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Tile {
     pub offset: [u32; 2],
     pub size: [u32; 2],
 }

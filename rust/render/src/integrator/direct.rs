@@ -11,7 +11,7 @@
 //! hit gives the next probe.
 
 use super::mis::power_heuristic;
-use super::{SampleIntegrator, ShadowTest};
+use super::sample_integrator::{SampleIntegrator, ShadowTest};
 use crate::bsdf::{BsdfFlags, BsdfSample, Bxdf};
 use crate::emitter::Light;
 use crate::geometry::{Ray, ray};

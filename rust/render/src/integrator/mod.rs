@@ -3,28 +3,27 @@
 //!
 //! Both are state machines advanced once per ray query (`start`, then `advance` with each
 //! hit), so that they can be driven one path at a time ([`one_path`], the renderer's default)
-//! or many paths per thread with batched ray queries ([`wavefront`]).
+//! or many paths per thread with batched ray queries ([`wavefront`]); what integrators and
+//! drivers share is in `sample_integrator.rs`.
 
 pub mod direct;
 pub mod mis;
 pub mod one_path;
 pub mod path;
 pub mod ptracer;
+mod sample_integrator;
 pub mod wavefront;
 
 pub use direct::DirectIntegrator;
 pub use path::PathIntegrator;
 pub use ptracer::ParticleTracer;
+pub use sample_integrator::{SampleIntegrator, ShadowTest, TileJob};
 
-use crate::camera::Camera;
 use crate::film::ImageBlock;
 use crate::geometry::Ray;
-use crate::load::props::PluginProps;
-use crate::sampler::{Sampler, Sampling};
+use crate::sampler::Sampler;
 use crate::scene::Scene;
-use crate::shape::SurfaceInteraction;
 use glam::Vec3;
-use matte_scene_file::SceneError;
 
 /// How the renderer runs an integrator over a tile. Both give the same estimator
 /// (`tests/render/render_drivers.rs`).
@@ -119,16 +118,6 @@ impl Integrator {
     }
 }
 
-/// What every tile of one render shares: the scene, the camera, the sampler (kind, samples
-/// per pixel, seed) and the film's width (the pixel index of the sampler streams).
-#[derive(Clone, Copy)]
-pub struct TileJob<'a> {
-    pub scene: &'a Scene,
-    pub camera: &'a Camera,
-    pub sampling: Sampling,
-    pub width: u64,
-}
-
 /// Runs `integrator` over `block`'s tile with `driver`.
 fn drive<I: SampleIntegrator>(
     integrator: &I,
@@ -142,44 +131,4 @@ fn drive<I: SampleIntegrator>(
         Driver::Wavefront => wavefront::render_tile::<I, false>(integrator, job, block, profile),
         Driver::WavefrontProfiled => wavefront::render_tile::<I, true>(integrator, job, block, profile),
     }
-}
-
-/// An integrator written as a state machine advanced once per ray query, which the drivers
-/// ([`one_path`], [`wavefront`]) run.
-pub trait SampleIntegrator {
-    type State: Copy;
-
-    /// The state for a camera ray and the first ray to trace; `None` if the radiance is zero
-    /// without tracing.
-    fn start(&self, camera_ray: Ray) -> Option<(Self::State, Ray)>;
-
-    /// Consumes the pending ray's hit; pushes shadow rays onto `shadows` and returns the next
-    /// ray (`None`: the sample is done).
-    fn advance(
-        &self,
-        scene: &Scene,
-        sampler: &mut Sampler,
-        state: &mut Self::State,
-        hit: Option<SurfaceInteraction>,
-        shadows: &mut Vec<ShadowTest>,
-    ) -> Option<Ray>;
-
-    /// The radiance gathered so far.
-    fn radiance(state: &mut Self::State) -> &mut Vec3;
-}
-
-/// A shadow ray an integrator asks its driver to test: if nothing blocks `ray`, the driver
-/// adds `contribution` to the sample's radiance.
-#[derive(Clone, Copy, Debug)]
-pub struct ShadowTest {
-    pub ray: Ray,
-    pub contribution: Vec3,
-}
-
-/// `max_depth` (−1: unbounded, `u32::MAX`) and `rr_depth` of Mitsuba's `MonteCarloIntegrator`
-/// (`src/render/integrator.cpp`), read by `path` and `ptracer`.
-pub(crate) fn depths(p: &mut PluginProps) -> Result<(u32, u32), SceneError> {
-    let max_depth = p.integer("max_depth", -1..=u32::MAX as i64)?;
-    let rr_depth = p.integer("rr_depth", 1..=u32::MAX as i64)?;
-    Ok((if max_depth < 0 { u32::MAX } else { max_depth as u32 }, rr_depth as u32))
 }

@@ -1,7 +1,7 @@
 //! The reference driver: one path at a time, every query on its own (the renderer before
 //! [`super::wavefront`]; `matte bench` times both on the same scenes).
 
-use super::{SampleIntegrator, ShadowTest, TileJob};
+use super::sample_integrator::{SampleIntegrator, ShadowTest, TileJob};
 use crate::film::ImageBlock;
 use crate::geometry::Ray;
 use crate::sampler::Sampler;

@@ -10,7 +10,7 @@
 //! sample, the lobe 1-D and direction 2-D samples, the roulette 1-D sample.
 
 use super::mis::power_heuristic;
-use super::{SampleIntegrator, ShadowTest};
+use super::sample_integrator::{SampleIntegrator, ShadowTest};
 use crate::bsdf::{BsdfFlags, Bxdf};
 use crate::emitter::Light;
 use crate::geometry::{Ray, ray};
@@ -38,7 +38,7 @@ impl FromProps for PathIntegrator {
         if p.object().plugin == "volpathmis" {
             let _ = p.boolean("use_spectral_mis")?;
         }
-        let (max_depth, rr_depth) = super::depths(p)?;
+        let (max_depth, rr_depth) = super::sample_integrator::depths(p)?;
         Ok(PathIntegrator { max_depth, rr_depth, hide_emitters: p.boolean("hide_emitters")? })
     }
 }

@@ -20,13 +20,13 @@
 //! refuses scenes whose BSDFs refract (those differ by η² between the two modes).
 
 use crate::bsdf::Bxdf;
-use crate::camera::Camera;
 use crate::emitter::Light;
 use crate::film::{Film, Image};
 use crate::geometry::ray;
 use crate::load::props::{FromProps, PluginProps};
 use crate::sampler::{Sampler, Sampling};
 use crate::scene::Scene;
+use crate::sensor::Camera;
 use glam::{Vec2, Vec3};
 use matte_scene_file::SceneError;
 use rayon::prelude::*;
@@ -42,7 +42,7 @@ pub struct ParticleTracer {
 impl FromProps for ParticleTracer {
     /// `samples_per_pass` (default −1, an expression in Mitsuba) is read and ignored.
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
-        let (max_depth, rr_depth) = super::depths(p)?;
+        let (max_depth, rr_depth) = super::sample_integrator::depths(p)?;
         let _ = p.integer_or("samples_per_pass", -1, -1..=u32::MAX as i64)?;
         Ok(ParticleTracer { max_depth, rr_depth, hide_emitters: p.boolean("hide_emitters")? })
     }
@@ -128,7 +128,7 @@ impl ParticleTracer {
     fn sample(
         &self,
         scene: &Scene,
-        cam: &crate::camera::PerspectiveCamera,
+        cam: &crate::sensor::PerspectiveCamera,
         sampler: &mut Sampler,
         out: &mut Splats,
         scale: f32,
@@ -198,7 +198,7 @@ impl ParticleTracer {
     fn visible_emitter(
         &self,
         scene: &Scene,
-        cam: &crate::camera::PerspectiveCamera,
+        cam: &crate::sensor::PerspectiveCamera,
         sampler: &mut Sampler,
         out: &mut Splats,
         scale: f32,

@@ -14,7 +14,7 @@
 //! splats it and starts its next sample (or its next pixel) at once, so the
 //! lanes stay full until the tile runs out of pixels.
 
-use super::{SampleIntegrator, ShadowTest, TileJob};
+use super::sample_integrator::{SampleIntegrator, ShadowTest, TileJob};
 use crate::film::{ImageBlock, Tile};
 use crate::geometry::Ray;
 use crate::sampler::{Sampler, Sampling};

@@ -4,9 +4,10 @@
 //! `roughconductor`, `plastic`, `roughplastic`, `normalmap`, `null`, `bumpmap`, `mask`,
 //! `blendbsdf`, `principled`, `principledthin`, and matte's registered types
 //! (`matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`, built as [`Matte`] by the
-//! kernels' own construction, the one the Mitsuba plugin uses).
+//! kernels' own construction, the one the Mitsuba plugin uses). A wrapper's nested BSDF is built
+//! through [`PluginProps::build_bsdf`], here beside the dispatch.
 
-use super::Builder;
+use super::builder::{Builder, err};
 use super::props::{FromProps, PluginProps};
 use crate::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, Mask, Matte, NormalMap, Null, Plastic, Principled,
@@ -53,53 +54,47 @@ fn make<T: FromProps + Into<Bsdf>>(p: &mut PluginProps) -> Result<Bsdf, SceneErr
     T::from_props(p).map(Into::into)
 }
 
-/// Mitsuba 3.9.1's BSDF plugins matte builds, each with its type.
-const MITSUBA: [(&str, Constructor); 16] = [
-    ("diffuse", make::<Diffuse>),
-    ("twosided", make::<TwoSided>),
-    ("dielectric", make::<Dielectric>),
-    ("thindielectric", make::<ThinDielectric>),
-    ("roughdielectric", make::<RoughDielectric>),
-    ("conductor", make::<Conductor>),
-    ("roughconductor", make::<RoughConductor>),
-    ("plastic", make::<Plastic>),
-    ("roughplastic", make::<RoughPlastic>),
-    ("normalmap", make::<NormalMap>),
-    ("null", make::<Null>),
-    ("bumpmap", make::<BumpMap>),
-    ("mask", make::<Mask>),
-    ("blendbsdf", make::<Blend>),
-    ("principled", make::<Principled>),
-    ("principledthin", make::<PrincipledThin>),
-];
-
-/// The names of [`MITSUBA`]: the bsdf entry of [`super::MITSUBA_PLUGINS`].
-pub(super) const MITSUBA_NAMES: [&str; MITSUBA.len()] = {
-    let mut names = [""; MITSUBA.len()];
-    let mut i = 0;
-    while i < MITSUBA.len() {
-        names[i] = MITSUBA[i].0;
-        i += 1;
-    }
-    names
-};
+plugins! {
+    /// Mitsuba 3.9.1's BSDF plugins matte builds, each with its type.
+    pub(super) MITSUBA_NAMES, MITSUBA: Constructor = [
+        "diffuse" => make::<Diffuse>,
+        "twosided" => make::<TwoSided>,
+        "dielectric" => make::<Dielectric>,
+        "thindielectric" => make::<ThinDielectric>,
+        "roughdielectric" => make::<RoughDielectric>,
+        "conductor" => make::<Conductor>,
+        "roughconductor" => make::<RoughConductor>,
+        "plastic" => make::<Plastic>,
+        "roughplastic" => make::<RoughPlastic>,
+        "normalmap" => make::<NormalMap>,
+        "null" => make::<Null>,
+        "bumpmap" => make::<BumpMap>,
+        "mask" => make::<Mask>,
+        "blendbsdf" => make::<Blend>,
+        "principled" => make::<Principled>,
+        "principledthin" => make::<PrincipledThin>,
+    ];
+}
 
 /// Builds the BSDF of `obj` (nested BSDFs are built by their wrapper's `from_props`).
 pub(crate) fn build(b: &Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> {
     let name = obj.plugin.as_str();
-    let plugins = || MITSUBA.iter();
-    let constructor = match plugins().find(|(n, _)| *n == name) {
+    let constructor = match MITSUBA.iter().find(|(n, _)| *n == name) {
         Some(&(_, c)) => c,
         None if BSDF_TYPES.contains(&name) => make::<Matte>,
         None => {
-            let names: Vec<&str> = plugins().map(|(n, _)| *n).chain(BSDF_TYPES.iter().copied()).collect();
-            return Err(super::err(
-                obj,
-                format!("unsupported bsdf type \"{name}\" (matte renders: {})", names.join(", ")),
-            ));
+            let names: Vec<&str> = MITSUBA_NAMES.iter().chain(BSDF_TYPES.iter()).copied().collect();
+            return Err(err(obj, format!("unsupported bsdf type \"{name}\" (matte renders: {})", names.join(", "))));
         }
     };
     let bsdf = constructor(&mut PluginProps::new(b, obj))?;
     obj.check_all_used()?;
     Ok(bsdf)
+}
+
+impl PluginProps<'_> {
+    /// Builds a nested BSDF object (each nested BSDF reads its own properties).
+    pub fn build_bsdf(&self, obj: &SceneObject) -> Result<Bsdf, SceneError> {
+        build(self.builder(), obj)
+    }
 }

@@ -3,8 +3,8 @@
 //! reads what Mitsuba's `Emitter` base class reads (`sampling_weight`,
 //! `src/render/emitter.cpp`) and attaches `area` emitters to their shapes.
 
+use super::builder::{Builder, err};
 use super::props::{FromProps, PluginProps};
-use super::{Builder, err};
 use crate::emitter::{Area, Constant, Directional, Emitter, EnvMap, Point, Projector, Spot};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
@@ -24,9 +24,14 @@ fn push(b: &mut Builder, e: Emitter, w: f32) -> u32 {
     (b.emitters.len() - 1) as u32
 }
 
+/// Whether `obj` is an emitter that is built nested in a shape (`area`).
+pub(super) fn in_shape(obj: &SceneObject) -> bool {
+    matches!(EMITTERS.iter().find(|(n, _)| *n == obj.plugin), Some((_, Place::InShape)))
+}
+
 /// An `area` emitter nested in shape `shape`.
 pub fn build_area(b: &mut Builder, obj: &SceneObject, shape: u32) -> Result<u32, SceneError> {
-    if obj.plugin != "area" {
+    if !in_shape(obj) {
         return Err(err(obj, "only an \"area\" emitter can be nested in a shape"));
     }
     let mut p = PluginProps::new(b, obj);
@@ -44,24 +49,34 @@ fn make<T: FromProps + Into<Emitter>>(p: &mut PluginProps) -> Result<Emitter, Sc
     T::from_props(p).map(Into::into)
 }
 
-/// Mitsuba 3.9.1's emitter plugins matte builds at the top level, each with its type.
-const STANDALONE: [(&str, Constructor); 6] = [
-    ("point", make::<Point>),
-    ("spot", make::<Spot>),
-    ("projector", make::<Projector>),
-    ("directional", make::<Directional>),
-    ("constant", make::<Constant>),
-    ("envmap", make::<EnvMap>),
-];
+/// Where an emitter plugin is built.
+enum Place {
+    /// Nested in a shape only ([`build_area`]).
+    InShape,
+    /// At the top level ([`build_standalone`]), by its type.
+    TopLevel(Constructor),
+}
+
+plugins! {
+    /// Mitsuba 3.9.1's emitter plugins matte builds, each with where and how.
+    pub(super) NAMES, EMITTERS: Place = [
+        "area" => Place::InShape,
+        "point" => Place::TopLevel(make::<Point>),
+        "spot" => Place::TopLevel(make::<Spot>),
+        "projector" => Place::TopLevel(make::<Projector>),
+        "directional" => Place::TopLevel(make::<Directional>),
+        "constant" => Place::TopLevel(make::<Constant>),
+        "envmap" => Place::TopLevel(make::<EnvMap>),
+    ];
+}
 
 /// A top-level emitter.
 pub fn build_standalone(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
-    let constructor = match STANDALONE.iter().find(|(n, _)| *n == obj.plugin) {
-        Some(&(_, c)) => c,
-        None if obj.plugin == "area" => return Err(err(obj, "an area emitter must be nested in a shape")),
+    let constructor = match EMITTERS.iter().find(|(n, _)| *n == obj.plugin) {
+        Some((_, Place::TopLevel(c))) => *c,
+        Some((_, Place::InShape)) => return Err(err(obj, "an area emitter must be nested in a shape")),
         None => {
-            let names: Vec<&str> = ["area"].into_iter().chain(STANDALONE.iter().map(|(n, _)| *n)).collect();
-            let message = format!("unsupported emitter type \"{}\" (matte renders: {})", obj.plugin, names.join(", "));
+            let message = format!("unsupported emitter type \"{}\" (matte renders: {})", obj.plugin, NAMES.join(", "));
             return Err(err(obj, message));
         }
     };

@@ -3,9 +3,11 @@
 //! with its `to_world` in front of each shape's own. matte flattens the instances into
 //! world-space copies (same images as Mitsuba's two-level BVH; memory grows with the
 //! instance count). As in Mitsuba, groups cannot nest and grouped shapes cannot emit light.
+//! Both are declared with the shape family in `load/shape.rs`, on which this file builds.
 
+use super::builder::{Builder, err};
 use super::props::PluginProps;
-use super::{Builder, err, shape};
+use super::shape;
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
 

@@ -6,8 +6,8 @@
 //! produced) and reads nothing but its nested integrators, which this dispatch builds. Every
 //! nested integrator is still built, so an invalid one is reported.
 
+use super::builder::{Builder, err};
 use super::props::{FromProps, PluginProps};
-use super::{Builder, err};
 use crate::integrator::{DirectIntegrator, Integrator, ParticleTracer, PathIntegrator};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
@@ -17,21 +17,24 @@ fn make<T: FromProps + Into<Integrator>>(p: &mut PluginProps) -> Result<Integrat
     T::from_props(p).map(Into::into)
 }
 
-/// The integrator of `obj`.
-pub fn build(b: &Builder, obj: &SceneObject) -> Result<Integrator, SceneError> {
-    let build: fn(&mut PluginProps) -> Result<Integrator, SceneError> = match obj.plugin.as_str() {
-        "path" | "volpath" | "volpathmis" => make::<PathIntegrator>,
+plugins! {
+    /// Mitsuba 3.9.1's integrator plugins matte builds, each with its type (`moment` with
+    /// [`moment`]).
+    pub(super) NAMES, INTEGRATORS: fn(&mut PluginProps) -> Result<Integrator, SceneError> = [
+        "path" => make::<PathIntegrator>,
+        "volpath" => make::<PathIntegrator>,
+        "volpathmis" => make::<PathIntegrator>,
         "direct" => make::<DirectIntegrator>,
         "ptracer" => make::<ParticleTracer>,
         "moment" => moment,
-        other => {
-            return Err(err(
-                obj,
-                format!(
-                    "unsupported integrator type \"{other}\" (matte renders: path, volpath, volpathmis, direct, ptracer, moment)"
-                ),
-            ));
-        }
+    ];
+}
+
+/// The integrator of `obj`.
+pub fn build(b: &Builder, obj: &SceneObject) -> Result<Integrator, SceneError> {
+    let Some(&(_, build)) = INTEGRATORS.iter().find(|(n, _)| *n == obj.plugin) else {
+        let message = format!("unsupported integrator type \"{}\" (matte renders: {})", obj.plugin, NAMES.join(", "));
+        return Err(err(obj, message));
     };
     let integrator = build(&mut PluginProps::new(b, obj))?;
     obj.check_all_used()?;

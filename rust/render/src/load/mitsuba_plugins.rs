@@ -2,7 +2,7 @@
 //! The properties each Mitsuba 3.9.1 plugin reads, harvested from its sources (the
 //! plugin's `.cpp`, its base-class constructors and the `Properties` helpers it calls).
 //! `rust/render/src/load/no_effect.rs` and the builders in `rust/render/src/load/` decide what matte
-//! does with each; `tests/render/load.rs` walks the whole list.
+//! does with each; `tests/render/load/walk.rs` walks the whole list.
 
 /// How a plugin reads a property (which XML values it takes).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

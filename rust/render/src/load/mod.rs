@@ -1,9 +1,28 @@
 //! Mitsuba XML object tree (`matte_scene_file::xml`) → a renderable scene. One file per plugin
 //! family, each reading exactly the properties Mitsuba 3.9.1's plugin reads, with its
 //! defaults; whatever is left unread is an error naming file, line and property (Mitsuba
-//! does the same: `unused_properties = Error`).
+//! does the same: `unused_properties = Error`). Each family declares its plugin names once,
+//! with what builds each ([`plugins!`]): its dispatch looks names up there, and
+//! [`MITSUBA_PLUGINS`] is assembled from the families' lists.
+
+/// Declares a plugin family once: `$table`, each Mitsuba plugin name with what builds it, in
+/// the order the family's error messages list them (its dispatch looks names up there), and
+/// `$names`, the names alone (the family's entry of [`MITSUBA_PLUGINS`]).
+macro_rules! plugins {
+    (
+        $(#[$doc:meta])*
+        $vis:vis $names:ident, $table:ident: $entry:ty = [$($name:literal => $build:expr),+ $(,)?];
+    ) => {
+        $(#[$doc])*
+        const $table: &[(&str, $entry)] = &[$(($name, $build)),+];
+
+        #[doc = concat!("The plugin names of `", stringify!($table), "`, in its order.")]
+        $vis const $names: &[&str] = &[$($name),+];
+    };
+}
 
 pub(crate) mod bsdf;
+mod builder;
 mod emitter;
 mod instance;
 mod integrator;
@@ -19,56 +38,41 @@ mod walk_rays;
 pub use walk_rays::WALK_BOUNCES;
 pub(crate) mod texture;
 
-use crate::camera::Camera;
+use builder::Builder;
+pub(crate) use builder::err;
+pub use builder::{LoadedScene, set_package_folder};
+
 use crate::emitter::Emitter;
-use crate::film::Film;
 use crate::integrator::Integrator;
-use crate::sampler::Sampling;
 use crate::scene::Scene;
+use crate::sensor::Camera;
+use glam::Affine3A;
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::{self, SceneObject};
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::rc::Rc;
 
 /// The Mitsuba 3.9.1 plugins matte's renderer builds, by element tag (`"scene"`: the root's
-/// own properties). Every property each of them reads in Mitsuba's sources
-/// ([`mitsuba_plugins`]) is implemented by its builder here or accepted as one that cannot
-/// change the image ([`no_effect`]); `tests/render/load.rs` walks the list. matte's own BSDFs
-/// (the registered types, `matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`)
-/// come on top; what is refused by scope is in [`scope`].
+/// own properties), each family's list as its file declares it. Every property each of them
+/// reads in Mitsuba's sources ([`mitsuba_plugins`]) is implemented by its builder here or
+/// accepted as one that cannot change the image ([`no_effect`]); `tests/render/load/walk.rs`
+/// walks the list. matte's own BSDFs (the registered types, `matte_brdf::BSDF_TYPES`: the
+/// diffuse models and `tabulated_brdf`) come on top; what is refused by scope is in [`scope`].
 pub const MITSUBA_PLUGINS: &[(&str, &[&str])] = &[
     ("scene", &["scene"]),
-    ("bsdf", &bsdf::MITSUBA_NAMES),
-    ("emitter", &["area", "constant", "directional", "envmap", "point", "projector", "spot"]),
-    ("film", &["hdrfilm"]),
-    ("integrator", &["direct", "moment", "path", "ptracer", "volpath", "volpathmis"]),
-    ("rfilter", &["box", "catmullrom", "gaussian", "lanczos", "mitchell", "tent"]),
-    ("sampler", &["independent", "ldsampler", "multijitter", "orthogonal", "stratified"]),
-    ("sensor", &["orthographic", "perspective", "thinlens"]),
-    (
-        "shape",
-        &["cube", "cylinder", "disk", "instance", "obj", "ply", "rectangle", "serialized", "shapegroup", "sphere"],
-    ),
-    ("texture", &["bitmap", "checkerboard", "mesh_attribute", "rawconstant", "volume"]),
+    ("bsdf", bsdf::MITSUBA_NAMES),
+    ("emitter", emitter::NAMES),
+    ("film", sensor::FILM_NAMES),
+    ("integrator", integrator::NAMES),
+    ("rfilter", sensor::RFILTER_NAMES),
+    ("sampler", sensor::SAMPLER_NAMES),
+    ("sensor", sensor::NAMES),
+    ("shape", shape::NAMES),
+    ("texture", texture::NAMES),
     // Only as the `volume` of a `volume` texture, or declared at the top level ([`scope`]).
-    ("volume", &["constvolume", "gridvolume"]),
+    ("volume", texture::VOLUME_NAMES),
 ];
-
-/// Everything `matte render` needs.
-pub struct LoadedScene {
-    pub scene: Scene,
-    pub camera: Camera,
-    /// A fresh film (size, crop, filter) to render into.
-    pub film: Film,
-    pub integrator: Integrator,
-    /// The sensor's sampler: its kind, `sample_count` (rounded as Mitsuba rounds it) and
-    /// `seed`.
-    pub sampling: Sampling,
-    /// What the user should know about how the scene was read (one line each, for stderr):
-    /// e.g. which of several sensors is rendered.
-    pub notes: Vec<String>,
-}
 
 /// Parses and builds the scene at `path` with `-D name=value` overrides.
 pub fn load_file(path: &Path, overrides: &[(String, String)]) -> Result<LoadedScene, SceneError> {
@@ -80,75 +84,6 @@ pub fn load_file(path: &Path, overrides: &[(String, String)]) -> Result<LoadedSc
 pub fn load_str(text: &str, path: &Path, overrides: &[(String, String)]) -> Result<LoadedScene, SceneError> {
     let root = xml::parse_str(text, path, overrides)?;
     build(&root, path)
-}
-
-/// Shared state while walking the tree: BSDFs are built once per XML object (a `<ref>`ed
-/// BSDF used by many shapes is one BSDF), and asset file names resolve against the main
-/// scene file's folder (Mitsuba resolves them there even inside `<include>`d files).
-pub(crate) struct Builder {
-    pub base_dir: PathBuf,
-    /// `<path>` folders, searched first (Mitsuba's file resolver).
-    pub search_paths: Vec<PathBuf>,
-    pub bsdfs: Vec<crate::bsdf::Bsdf>,
-    pub bsdf_index: HashMap<*const SceneObject, u32>,
-    pub shapes: Vec<crate::shape::Shape>,
-    pub emitters: Vec<Emitter>,
-    pub sampling_weights: Vec<f32>,
-    /// The shape whose BSDF is being built (`None` at the top level).
-    pub shape: Option<ShapeContext>,
-    /// Set while building when something read [`Self::shape`] (a `mesh_attribute` texture, a
-    /// `bumpmap`): that BSDF is then built again for every shape instead of being shared.
-    pub shape_dependent: std::cell::Cell<bool>,
-    /// BSDF objects that depend on their shape (see [`Self::shape_dependent`]).
-    pub shape_dependent_bsdfs: std::collections::HashSet<*const SceneObject>,
-    /// `area` emitter objects built for some shape.
-    pub area_emitters: std::collections::HashSet<*const SceneObject>,
-}
-
-/// What a BSDF may need to know of the shape it is built for.
-pub(crate) struct ShapeContext {
-    /// A triangle mesh (`obj`, `ply`, `rectangle`, `cube`), which has ∂p/∂u, ∂p/∂v and
-    /// attributes in matte; the analytic shapes have neither.
-    pub is_mesh: bool,
-    pub attributes: Vec<std::sync::Arc<matte_scene_file::mesh::MeshAttribute>>,
-    pub triangles: std::sync::Arc<Vec<[u32; 3]>>,
-}
-
-/// Where the installed package's data is (`ground_truth/<table>.json` names a packaged table),
-/// as `import matte_mitsuba` registers its folder with Mitsuba's file resolver. The `matte`
-/// command registers its lookup at start ([`set_package_folder`]); it is asked only for a
-/// relative path found nowhere before it.
-static PACKAGE_FOLDER: std::sync::OnceLock<fn() -> Option<PathBuf>> = std::sync::OnceLock::new();
-
-/// Registers the lookup of the package folder [`Builder::resolve`] falls back on (once; later
-/// calls are ignored).
-pub fn set_package_folder(lookup: fn() -> Option<PathBuf>) {
-    let _ = PACKAGE_FOLDER.set(lookup);
-}
-
-impl Builder {
-    /// An asset path: absolute, or the first existing one relative to a `<path>` folder of the
-    /// main file, the scene file's folder, matte's package folder or the working directory
-    /// (Mitsuba's `FileResolver::resolve` with the resolver `load_file` sets up once
-    /// `matte_mitsuba` is imported: the scene's folder prepended, `<path>` folders in front of
-    /// it, the package folder registered by the import, so `ground_truth/<table>.json` names
-    /// a packaged table); when none exists, the scene folder's one (for the error message).
-    pub fn resolve(&self, file: &str) -> PathBuf {
-        let p = Path::new(file);
-        if p.is_absolute() {
-            return p.to_path_buf();
-        }
-        let in_base = self.base_dir.join(p);
-        let package = || PACKAGE_FOLDER.get().and_then(|lookup| lookup()).map(|d| d.join(p));
-        self.search_paths
-            .iter()
-            .map(|d| d.join(p))
-            .chain([in_base.clone()])
-            .find(|c| c.exists())
-            .or_else(|| package().filter(|c| c.exists()))
-            .or_else(|| std::env::current_dir().ok().map(|d| d.join(p)).filter(|c| c.exists()))
-            .unwrap_or(in_base)
-    }
 }
 
 fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError> {
@@ -199,9 +134,14 @@ fn build(root: &Rc<SceneObject>, path: &Path) -> Result<LoadedScene, SceneError>
                     ));
                 }
             }
-            "shape" => shape::build(&mut b, obj)?,
+            // `shapegroup` and `instance` are built on the shapes they hold ([`instance`]).
+            "shape" => match shape::how(obj) {
+                Some(shape::How::Group) => instance::check_group(obj)?,
+                Some(shape::How::Instance) => instance::build(&mut b, obj)?,
+                _ => shape::build_placed(&mut b, obj, Affine3A::IDENTITY, false)?,
+            },
             // An area emitter declared at the top level is built by the shapes that `<ref>` it.
-            "emitter" if obj.plugin == "area" => top_level_area.push(obj.clone()),
+            "emitter" if emitter::in_shape(obj) => top_level_area.push(obj.clone()),
             "emitter" => {
                 if (obj.plugin == "constant" || obj.plugin == "envmap")
                     && b.emitters.iter().any(Emitter::is_environment)
@@ -282,11 +222,6 @@ fn particle_tracer_limits(b: &Builder, sensor: &sensor::Sensor, obj: &SceneObjec
         return Err(err(obj, "matte's ptracer does not support refracting BSDFs (dielectrics, principled spec_trans)"));
     }
     Ok(())
-}
-
-/// Error helper: `what` at the object's position.
-pub(crate) fn err(obj: &SceneObject, what: impl Into<String>) -> SceneError {
-    SceneError::at(&obj.pos, format!("{} \"{}\": {}", obj.tag, obj.plugin, what.into()))
 }
 
 /// Puts the emitters in the order of Mitsuba 3.9.1's `Scene::emitters()`, which emitter

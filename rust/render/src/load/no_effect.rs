@@ -3,7 +3,7 @@
 //! harvested [`super::mitsuba_plugins`]), then ignored. Every other property Mitsuba reads
 //! is implemented by the plugin's builder (or refused there with a one-line reason when a
 //! value needs something matte does not do); anything else is an unreferenced property, as
-//! in Mitsuba. `tests/render/load.rs` walks the harvested list to show that every property
+//! in Mitsuba. `tests/render/load/walk.rs` walks the harvested list to show that every property
 //! of every supported plugin is one of the two.
 
 use super::mitsuba_plugins::{self, Kind};

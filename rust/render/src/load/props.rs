@@ -8,19 +8,18 @@
 //! plugin, name) in [`super::mitsuba_plugins`] (matte's own plugins, `tabulated_brdf` included:
 //! [`MATTE_MODEL`]). Where Mitsuba's default is an expression rather than a literal (another
 //! property, a constructor argument), the plugin's file supplies it, as its `.cpp` does. Each
-//! type reads in its own file (`from_props`, most through [`FromProps`]); a type with nested
-//! objects has them built through here too (`build_bsdf`, `build_texture`, `build_volume`,
-//! `nested_rfilter`), by the loader's dispatch.
+//! type reads in its own file (`from_props`, most through [`FromProps`]). The reads that build
+//! a nested object are methods of [`PluginProps`] too, written beside the dispatch that builds
+//! it, which this file does not import: `texture` and `emission_texture`, `build_texture` and
+//! `build_volume` in `load/texture.rs`, `build_bsdf` in `load/bsdf.rs`, `nested_rfilter` in
+//! `load/sensor.rs`.
 //!
 //! Reading a name the entry does not list, or reading it as a kind of value the plugin does not
-//! accept, is a bug in the plugin's file and panics; `tests/render/load.rs` loads every
+//! accept, is a bug in the plugin's file and panics; `tests/render/load/walk.rs` loads every
 //! supported plugin with each harvested property, which runs every read.
 
+use super::builder::{Builder, err};
 use super::mitsuba_plugins::{self, Kind, Plugin, PluginProperty};
-use super::{Builder, err, texture};
-use crate::bsdf::Bsdf;
-use crate::film::ReconstructionFilter;
-use crate::texture::{Texture, Volume};
 use glam::{Affine2, Affine3A, DMat4, DVec4, Mat2, Mat3, Vec3};
 use matte_brdf::params::{MAX_MAGNITUDE, too_large};
 use matte_scene_file::SceneError;
@@ -57,7 +56,7 @@ pub fn plugin_entry(tag: &str, name: &str) -> Option<&'static Plugin> {
 
 /// How a plugin's file reads a name: each accepts a subset of the values of some kinds.
 #[derive(Clone, Copy, Debug)]
-enum Read {
+pub(super) enum Read {
     /// Whether it is given (Mitsuba's `has_property`, `type`).
     Query,
     Float,
@@ -159,7 +158,7 @@ impl<'a> PluginProps<'a> {
     ///
     /// # Panics
     /// If the plugin does not read `name`, or not as `read` (a bug in the plugin's file).
-    fn entry(&mut self, name: &str, read: Read) -> Option<&'static PluginProperty> {
+    pub(super) fn entry(&mut self, name: &str, read: Read) -> Option<&'static PluginProperty> {
         if !matches!(read, Read::Query) && !self.read.iter().any(|n| n == name) {
             self.read.push(name.to_string());
         }
@@ -217,7 +216,7 @@ impl<'a> PluginProps<'a> {
     }
 
     /// Whether a nested object is named `name`; marks nothing read.
-    fn has_nested(&self, name: &str) -> bool {
+    pub(super) fn has_nested(&self, name: &str) -> bool {
         self.obj.children.iter().any(|c| c.name.as_deref() == Some(name))
     }
 
@@ -417,7 +416,7 @@ impl<'a> PluginProps<'a> {
     }
 
     /// How a texture or colour read as `kind` is checked (docs/renderer-semantics.md §2).
-    fn usage(e: Option<&'static PluginProperty>) -> ColorUse {
+    pub(super) fn usage(e: Option<&'static PluginProperty>) -> ColorUse {
         match e.map(|e| e.kind) {
             Some(Kind::Texture | Kind::Color) => ColorUse::Bounded,
             Some(Kind::EmissiveTexture) => ColorUse::Emissive,
@@ -426,7 +425,7 @@ impl<'a> PluginProps<'a> {
     }
 
     /// The harvested default of a colour or texture, as a grey.
-    fn grey_default(e: Option<&'static PluginProperty>) -> Option<Vec3> {
+    pub(super) fn grey_default(e: Option<&'static PluginProperty>) -> Option<Vec3> {
         e.and_then(|e| e.literal).map(|l| Vec3::splat(l.parse().expect("a numeric literal")))
     }
 
@@ -435,7 +434,7 @@ impl<'a> PluginProps<'a> {
     /// value (`<float>`/`<spectrum>`; the parser already rejects an `<rgb>` outside [0, 1]).
     /// Mitsuba takes such floats silently; they would only produce NaN or negative pixels. A
     /// `<float>` reflectance above 1 stays allowed, as in Mitsuba.
-    fn colour_value(&self, name: &str, usage: ColorUse, default: Vec3) -> Result<Vec3, SceneError> {
+    pub(super) fn colour_value(&self, name: &str, usage: ColorUse, default: Vec3) -> Result<Vec3, SceneError> {
         let Some(c) = self.obj.properties.color(name, usage)? else { return Ok(default) };
         let v = Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
         if !v.is_finite() {
@@ -445,21 +444,6 @@ impl<'a> PluginProps<'a> {
             return Err(self.prop_err(name, format!("must not be negative, got {v}")));
         }
         Ok(v)
-    }
-
-    /// A texture: a nested `<texture>` named `name`, else a constant colour property (bounded to
-    /// [0, 1] or not, as the plugin reads it), else the harvested default. Absent without a
-    /// default: an error (Mitsuba: "property has not been specified").
-    pub fn texture(&mut self, name: &str) -> Result<Texture, SceneError> {
-        let e = self.entry(name, Read::Texture);
-        let default = Self::grey_default(e);
-        if default.is_none() && !self.obj.properties.contains(name) && !self.has_nested(name) {
-            return Err(self.err(format!("missing property \"{name}\"")));
-        }
-        if let Some(t) = texture::nested(self.b, self.obj, name)? {
-            return Ok(t);
-        }
-        self.colour_value(name, Self::usage(e), default.unwrap_or(Vec3::ZERO)).map(Texture::Constant)
     }
 
     /// A constant colour property (a nested object of that name is not looked at), or the
@@ -500,40 +484,10 @@ impl<'a> PluginProps<'a> {
         self.colour_value(name, ColorUse::Emissive, Self::grey_default(e).unwrap_or(Vec3::ONE))
     }
 
-    /// An emitted colour or a nested `<texture>` of that name (not a volume texture, which
-    /// matte's emitters cannot look up: their light sampling knows only the uv).
-    pub fn emission_texture(&mut self, name: &str) -> Result<Texture, SceneError> {
-        match self.child(name) {
-            Some(c) if c.tag == "texture" => texture::build_for_emitter(self.b, c, name),
-            Some(c) => Err(err(c, format!("\"{name}\" must be a colour or a texture"))),
-            None => self.emission(name).map(Texture::Constant),
-        }
-    }
-
     /// The nested objects with element name `tag` (`"bsdf"`, `"texture"`), in document order,
     /// whatever their names (Mitsuba's `props.objects()`); marked used.
     pub fn nested(&mut self, tag: &str) -> Vec<Rc<SceneObject>> {
         self.obj.children_with_tag(tag).map(|c| c.object.clone()).collect()
-    }
-
-    /// Builds a nested BSDF object (each nested BSDF reads its own properties).
-    pub fn build_bsdf(&self, obj: &SceneObject) -> Result<Bsdf, SceneError> {
-        super::bsdf::build(self.b, obj)
-    }
-
-    /// Builds a nested texture object.
-    pub fn build_texture(&self, obj: &SceneObject) -> Result<Texture, SceneError> {
-        texture::build(self.b, obj)
-    }
-
-    /// Builds a nested `<volume>` object (`gridvolume`, `constvolume`).
-    pub fn build_volume(&self, obj: &SceneObject) -> Result<Volume, SceneError> {
-        texture::build_volume(self.b, obj)
-    }
-
-    /// Builds a film's nested `<rfilter>`, if any (at most one, and nothing else nested).
-    pub fn nested_rfilter(&self) -> Result<Option<ReconstructionFilter>, SceneError> {
-        super::sensor::film_filter(self.b, self.obj)
     }
 
     /// An asset file name resolved as Mitsuba's file resolver does.

@@ -1,19 +1,18 @@
 //! `<sensor>`: which type builds each plugin name, and the sensor's nested film and sampler
 //! (docs/renderer-semantics.md §4–6). `perspective`, `orthographic` and `thinlens` read their
-//! own properties (`from_props` in `rust/render/src/camera.rs`, `orthographic.rs`, `thinlens.rs`,
-//! through [`PluginProps`]), and so do the film (`hdrfilm`, `rust/render/src/film/mod.rs`), the
+//! own properties (`from_props` in their files under `rust/render/src/sensor/`, through
+//! [`PluginProps`]), and so do the film (`hdrfilm`, `rust/render/src/film/mod.rs`), the
 //! reconstruction filters (`rust/render/src/film/filter.rs`) and the samplers (`independent`,
-//! `stratified`, `multijitter`, `orthogonal`, `ldsampler`, `rust/render/src/sampler.rs`). The loader
-//! attaches the film (with its filter) and the sampler to the sensor, with Mitsuba's defaults
-//! when absent.
+//! `stratified`, `multijitter`, `orthogonal`, `ldsampler`, `rust/render/src/sampler/mod.rs`).
+//! The loader attaches the film (with its filter) and the sampler to the sensor, with
+//! Mitsuba's defaults when absent; a film's filter is read through
+//! [`PluginProps::nested_rfilter`], here beside the dispatch.
 
+use super::builder::{Builder, err};
 use super::props::{FromProps, PluginProps};
-use super::{Builder, err};
-use crate::camera::{Camera, PerspectiveCamera};
 use crate::film::{Film, ReconstructionFilter};
-use crate::orthographic::OrthographicCamera;
 use crate::sampler::Sampling;
-use crate::thinlens::ThinLensCamera;
+use crate::sensor::{Camera, OrthographicCamera, PerspectiveCamera, ThinLensCamera};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
 
@@ -23,21 +22,51 @@ pub struct Sensor {
     pub sampling: Sampling,
 }
 
+type Constructor<T> = fn(&mut PluginProps) -> Result<T, SceneError>;
+
+plugins! {
+    /// Mitsuba 3.9.1's sensor plugins matte builds, each with its camera type.
+    pub(super) NAMES, SENSORS: Constructor<Sensor> = [
+        "perspective" => |p| with_film(p, PerspectiveCamera::from_props, Camera::Perspective),
+        "orthographic" => |p| with_film(p, OrthographicCamera::from_props, Camera::Orthographic),
+        "thinlens" => |p| with_film(p, ThinLensCamera::from_props, Camera::ThinLens),
+    ];
+}
+
+plugins! {
+    /// Mitsuba 3.9.1's film plugins matte builds.
+    pub(super) FILM_NAMES, FILMS: Constructor<Film> = [
+        "hdrfilm" => Film::from_props,
+    ];
+}
+
+plugins! {
+    /// Mitsuba 3.9.1's reconstruction filters, all read by [`ReconstructionFilter`]'s `from_props`.
+    pub(super) RFILTER_NAMES, RFILTERS: Constructor<ReconstructionFilter> = [
+        "box" => ReconstructionFilter::from_props,
+        "tent" => ReconstructionFilter::from_props,
+        "gaussian" => ReconstructionFilter::from_props,
+        "mitchell" => ReconstructionFilter::from_props,
+        "catmullrom" => ReconstructionFilter::from_props,
+        "lanczos" => ReconstructionFilter::from_props,
+    ];
+}
+
+plugins! {
+    /// Mitsuba 3.9.1's samplers, all read by [`Sampling`]'s `from_props` (one file each under
+    /// `rust/render/src/sampler/`).
+    pub(super) SAMPLER_NAMES, SAMPLERS: Constructor<Sampling> = [
+        "independent" => Sampling::from_props,
+        "stratified" => Sampling::from_props,
+        "multijitter" => Sampling::from_props,
+        "orthogonal" => Sampling::from_props,
+        "ldsampler" => Sampling::from_props,
+    ];
+}
+
 /// The sensor of `obj`, with its film and sampler.
 pub fn build(b: &Builder, obj: &SceneObject) -> Result<Sensor, SceneError> {
-    const NAMES: [&str; 3] = ["perspective", "orthographic", "thinlens"];
-    if !NAMES.contains(&obj.plugin.as_str()) {
-        let message = format!("unsupported sensor type \"{}\" (matte renders: {})", obj.plugin, NAMES.join(", "));
-        return Err(err(obj, message));
-    }
-    let p = &mut PluginProps::new(b, obj);
-    let sensor = match obj.plugin.as_str() {
-        "orthographic" => with_film(p, OrthographicCamera::from_props, Camera::Orthographic),
-        "thinlens" => with_film(p, ThinLensCamera::from_props, Camera::ThinLens),
-        _ => with_film(p, PerspectiveCamera::from_props, Camera::Perspective),
-    }?;
-    obj.check_all_used()?;
-    Ok(sensor)
+    build_one(b, obj, SENSORS, NAMES, "matte renders: ")
 }
 
 /// The camera `read` reads, made for the size of the film read after it.
@@ -82,25 +111,31 @@ fn film_and_sampler(p: &mut PluginProps) -> Result<(Film, Sampling), SceneError>
     Ok((film, sampling))
 }
 
-/// `T::from_props` for `obj`, a plugin among `names` (listed after `lead` when it is not);
-/// everything read.
-fn build_one<T: FromProps>(b: &Builder, obj: &SceneObject, names: &[&str], lead: &str) -> Result<T, SceneError> {
-    if !names.contains(&obj.plugin.as_str()) {
+/// `obj` built by its entry of `table`, a family's table with its `names` (listed after `lead`
+/// when `obj` is not among them); everything read.
+fn build_one<T>(
+    b: &Builder,
+    obj: &SceneObject,
+    table: &[(&str, Constructor<T>)],
+    names: &[&str],
+    lead: &str,
+) -> Result<T, SceneError> {
+    let Some(&(_, build)) = table.iter().find(|(n, _)| *n == obj.plugin) else {
         let message = format!("unsupported {} type \"{}\" ({lead}{})", obj.tag, obj.plugin, names.join(", "));
         return Err(err(obj, message));
-    }
-    let built = T::from_props(&mut PluginProps::new(b, obj))?;
+    };
+    let built = build(&mut PluginProps::new(b, obj))?;
     obj.check_all_used()?;
     Ok(built)
 }
 
-/// A `<film>`: `hdrfilm` ([`Film`]).
+/// A `<film>`: one of [`FILM_NAMES`] ([`Film`]).
 pub(super) fn build_film(b: &Builder, obj: &SceneObject) -> Result<Film, SceneError> {
-    build_one(b, obj, &["hdrfilm"], "matte renders: ")
+    build_one(b, obj, FILMS, FILM_NAMES, "matte renders: ")
 }
 
 /// The film's nested reconstruction filter, if any (at most one).
-pub(super) fn film_filter(b: &Builder, obj: &SceneObject) -> Result<Option<ReconstructionFilter>, SceneError> {
+fn film_filter(b: &Builder, obj: &SceneObject) -> Result<Option<ReconstructionFilter>, SceneError> {
     let mut filter = None;
     for child in obj.children.iter() {
         child.mark_used();
@@ -117,13 +152,19 @@ pub(super) fn film_filter(b: &Builder, obj: &SceneObject) -> Result<Option<Recon
     Ok(filter)
 }
 
-/// An `<rfilter>` ([`ReconstructionFilter`]).
+/// An `<rfilter>`: one of [`RFILTER_NAMES`] ([`ReconstructionFilter`]).
 pub(super) fn build_rfilter(b: &Builder, obj: &SceneObject) -> Result<ReconstructionFilter, SceneError> {
-    build_one(b, obj, &["box", "tent", "gaussian", "mitchell", "catmullrom", "lanczos"], "")
+    build_one(b, obj, RFILTERS, RFILTER_NAMES, "")
 }
 
-/// A `<sampler>` ([`Sampling`]).
+/// A `<sampler>`: one of [`SAMPLER_NAMES`] ([`Sampling`]).
 pub(super) fn build_sampler(b: &Builder, obj: &SceneObject) -> Result<Sampling, SceneError> {
-    let names = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"];
-    build_one(b, obj, &names, "matte renders: ")
+    build_one(b, obj, SAMPLERS, SAMPLER_NAMES, "matte renders: ")
+}
+
+impl PluginProps<'_> {
+    /// Builds a film's nested `<rfilter>`, if any (at most one, and nothing else nested).
+    pub fn nested_rfilter(&self) -> Result<Option<ReconstructionFilter>, SceneError> {
+        film_filter(self.builder(), self.object())
+    }
 }

@@ -4,22 +4,47 @@
 //! `Shape` base class's `to_world` and `flip_normals`, [`Placement`]); the loader attaches a
 //! nested or referenced `<bsdf>` and an optional nested `area` emitter
 //! (docs/renderer-semantics.md §8) and checks the extent. A shape without a BSDF gets diffuse
-//! 0.5, or black diffuse when it emits. `shapegroup` and `instance`: see [`super::instance`].
+//! 0.5, or black diffuse when it emits. `shapegroup` and `instance` are declared here with the
+//! family and built on these shapes by `load/instance.rs` (the loader's walk dispatches to it).
 
+use super::builder::{Builder, ShapeContext, err};
 use super::props::PluginProps;
-use super::{Builder, ShapeContext, bsdf, emitter, err};
+use super::{bsdf, emitter};
 use crate::shape::{Cylinder, Disk, Geometry, Placement, Shape, Sphere, Triangles};
 use glam::{Affine3A, Vec3};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::SceneObject;
 use std::sync::Arc;
 
-pub fn build(b: &mut Builder, obj: &SceneObject) -> Result<(), SceneError> {
-    match obj.plugin.as_str() {
-        "shapegroup" => super::instance::check_group(obj),
-        "instance" => super::instance::build(b, obj),
-        _ => build_placed(b, obj, Affine3A::IDENTITY, false),
-    }
+/// How a shape plugin is built.
+pub(super) enum How {
+    /// Its geometry, placed by the `Shape` base class's transform ([`Placement`]).
+    Placed(fn(&mut PluginProps, Placement) -> Result<Geometry, SceneError>),
+    /// `shapegroup`: a group of shapes for instances (`load/instance.rs`).
+    Group,
+    /// `instance`: a group placed once more (`load/instance.rs`).
+    Instance,
+}
+
+plugins! {
+    /// Mitsuba 3.9.1's shape plugins matte builds, each with how.
+    pub(super) NAMES, SHAPES: How = [
+        "obj" => How::Placed(|p, at| Triangles::from_file(p, at).map(Geometry::Triangles)),
+        "ply" => How::Placed(|p, at| Triangles::from_file(p, at).map(Geometry::Triangles)),
+        "serialized" => How::Placed(|p, at| Triangles::from_file(p, at).map(Geometry::Triangles)),
+        "rectangle" => How::Placed(|p, at| Triangles::from_primitive(p, at).map(Geometry::Triangles)),
+        "cube" => How::Placed(|p, at| Triangles::from_primitive(p, at).map(Geometry::Triangles)),
+        "sphere" => How::Placed(|p, at| Sphere::from_props(p, at).map(Geometry::Sphere)),
+        "disk" => How::Placed(|p, at| Disk::from_props(p, at).map(Geometry::Disk)),
+        "cylinder" => How::Placed(|p, at| Cylinder::from_props(p, at).map(Geometry::Cylinder)),
+        "shapegroup" => How::Group,
+        "instance" => How::Instance,
+    ];
+}
+
+/// How the shape `obj` is built; `None` for a plugin matte does not render.
+pub(super) fn how(obj: &SceneObject) -> Option<&'static How> {
+    SHAPES.iter().find(|(n, _)| *n == obj.plugin).map(|(_, how)| how)
 }
 
 /// One shape, placed by `outer · to_world` (`outer` is an instance's transform). In a
@@ -30,25 +55,17 @@ pub(super) fn build_placed(
     outer: Affine3A,
     in_group: bool,
 ) -> Result<(), SceneError> {
-    let geometry: fn(&mut PluginProps, Placement) -> Result<Geometry, SceneError> = match obj.plugin.as_str() {
-        "obj" | "ply" | "serialized" => |p, at| Triangles::from_file(p, at).map(Geometry::Triangles),
-        "rectangle" | "cube" => |p, at| Triangles::from_primitive(p, at).map(Geometry::Triangles),
-        "sphere" => |p, at| Sphere::from_props(p, at).map(Geometry::Sphere),
-        "disk" => |p, at| Disk::from_props(p, at).map(Geometry::Disk),
-        "cylinder" => |p, at| Cylinder::from_props(p, at).map(Geometry::Cylinder),
-        "shapegroup" | "instance" => {
+    let geometry = match how(obj) {
+        Some(How::Placed(geometry)) => *geometry,
+        Some(How::Group | How::Instance) => {
             return Err(err(
                 obj,
                 "nested instancing is not permitted (a shapegroup cannot contain a shapegroup or an instance)",
             ));
         }
-        other => {
-            return Err(err(
-                obj,
-                format!(
-                    "unsupported shape type \"{other}\" (matte renders: obj, ply, serialized, rectangle, cube, sphere, disk, cylinder, shapegroup, instance)"
-                ),
-            ));
+        None => {
+            let message = format!("unsupported shape type \"{}\" (matte renders: {})", obj.plugin, NAMES.join(", "));
+            return Err(err(obj, message));
         }
     };
     let mut p = PluginProps::new(b, obj);

@@ -3,7 +3,7 @@
 //! positions, then up to [`WALK_BOUNCES`] cosine-weighted bounces around the shading normal;
 //! the shadow rays join consecutive hit points of different paths (so about half are blocked).
 
-use super::LoadedScene;
+use super::builder::LoadedScene;
 use crate::geometry::{Ray, ray};
 use crate::sampler::Sampler;
 use glam::{Vec2, Vec3};

@@ -4,8 +4,9 @@
 //! radius = |to_world·x̂|, length = |to_world·ẑ| (a negative radius toggles `flip_normals`);
 //! emission sampled uniformly by area.
 
+use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use super::{Placement, area_sampling};
+use super::placement::Placement;
 use crate::geometry::{Frame, Ray};
 use crate::load::props::PluginProps;
 use glam::{Affine3A, DVec3, Mat3, Vec2, Vec3};

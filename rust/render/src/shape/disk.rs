@@ -2,8 +2,9 @@
 //! normal = to_world applied to +z as a normal; `flip_normals` = `to_world·S(1,1,−1)`;
 //! uv = (r, φ/2π); emission sampled uniformly by area (concentric map).
 
+use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use super::{Placement, area_sampling};
+use super::placement::Placement;
 use crate::geometry::Ray;
 use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec2, Vec3};

@@ -1,45 +1,27 @@
 //! Shapes as the renderer sees them: world-space triangle meshes (`obj`, `ply`, `serialized`,
 //! `rectangle`, `cube`) and the analytic `sphere`, `disk` and `cylinder`, each with its BSDF
 //! and optional area emitter (docs/renderer-semantics.md §8). Each type reads its plugin's
-//! properties in its file (`from_props`, through [`PluginProps`]) after what Mitsuba's `Shape`
-//! base class reads ([`Placement`]); the loader (`rust/render/src/load/shape.rs`) picks the type by
-//! plugin name and attaches the BSDF and emitter.
+//! properties in its file (`from_props`, through `PluginProps`) after what Mitsuba's `Shape`
+//! base class reads ([`Placement`], `placement.rs`); the loader (`rust/render/src/load/shape.rs`)
+//! picks the type by plugin name and attaches the BSDF and emitter.
 
 pub mod area_sampling;
 pub mod cylinder;
 pub mod disk;
 pub mod interaction;
+mod placement;
 pub mod sphere;
 pub mod triangles;
 
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use interaction::{DirectionSample, SurfaceInteraction};
+pub(crate) use placement::Placement;
 pub use sphere::Sphere;
 pub use triangles::Triangles;
 
 use crate::geometry::Ray;
-use crate::load::props::PluginProps;
-use glam::{Affine3A, Vec2, Vec3};
-use matte_scene_file::SceneError;
-
-/// What Mitsuba's `Shape` base class reads for every shape (`src/render/shape.cpp`):
-/// `to_world` (here after the transform of the `instance` placing the shape, if any) and
-/// `flip_normals`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Placement {
-    pub to_world: Affine3A,
-    pub flip_normals: bool,
-}
-
-impl Placement {
-    /// Reads `to_world` and `flip_normals`; `outer` is the placing instance's transform (the
-    /// identity outside a shape group).
-    pub(crate) fn from_props(p: &mut PluginProps, outer: Affine3A) -> Result<Self, SceneError> {
-        let to_world = outer * p.transform("to_world")?;
-        Ok(Placement { to_world, flip_normals: p.boolean("flip_normals")? })
-    }
-}
+use glam::{Vec2, Vec3};
 
 #[derive(Clone, Debug)]
 pub enum Geometry {

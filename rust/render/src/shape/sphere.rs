@@ -5,8 +5,8 @@
 //! conditions (docs/renderer-semantics.md §8: the two branches' densities do not match on the surface, and
 //! copying them keeps the expected image identical).
 
-use super::Placement;
 use super::interaction::{DirectionSample, SurfaceInteraction};
+use super::placement::Placement;
 use crate::geometry::ray::RAY_EPSILON;
 use crate::geometry::{Frame, Ray, warp};
 use crate::load::props::PluginProps;

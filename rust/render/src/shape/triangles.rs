@@ -3,8 +3,9 @@
 //! counter-clockwise faces the viewer; shading normal = interpolated vertex normals when the
 //! mesh has them; `flip_normals` negates both at query time (docs/renderer-semantics.md §8).
 
+use super::area_sampling;
 use super::interaction::{DirectionSample, SurfaceInteraction};
-use super::{Placement, area_sampling};
+use super::placement::Placement;
 use crate::geometry::{Frame, warp};
 use crate::load::props::{PluginProps, one_line};
 use glam::{Affine3A, Mat4, Vec2, Vec3};

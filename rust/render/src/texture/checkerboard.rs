@@ -9,7 +9,6 @@
 //!
 //! docs/renderer-semantics.md §11 (checkerboard).
 
-use super::Texture;
 use crate::load::props::{FromProps, PluginProps};
 use glam::{Affine2, Vec2, Vec3};
 use matte_scene_file::SceneError;
@@ -59,9 +58,11 @@ impl FromProps for Checkerboard {
     /// are not supported.
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
         let mut colour = |name: &str| -> Result<Vec3, SceneError> {
-            match p.texture(name)? {
-                Texture::Constant(c) => Ok(c),
-                _ => Err(p.err(format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)"))),
+            match p.texture(name)?.constant() {
+                Some(c) => Ok(c),
+                None => {
+                    Err(p.err(format!("\"{name}\" must be a colour (a textured {name} is not supported by matte)")))
+                }
             }
         };
         let (color0, color1) = (colour("color0")?, colour("color1")?);

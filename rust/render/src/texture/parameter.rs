@@ -71,6 +71,22 @@ impl From<&SurfaceInteraction> for TexPoint {
 }
 
 impl Texture {
+    /// The value of a constant, `None` for any other texture.
+    #[must_use]
+    pub fn constant(&self) -> Option<Vec3> {
+        match self {
+            Texture::Constant(c) => Some(*c),
+            _ => None,
+        }
+    }
+
+    /// Whether a lookup needs the surface point (the triangle for a mesh attribute, the
+    /// world-space point for a volume texture), not only the uv.
+    #[must_use]
+    pub fn needs_surface_point(&self) -> bool {
+        matches!(self, Texture::MeshAttribute(_) | Texture::Volume(_))
+    }
+
     #[inline]
     pub fn eval(&self, at: impl Into<TexPoint>) -> Vec3 {
         let at = at.into();

@@ -19,7 +19,6 @@
 //!
 //! The `volume` texture, `gridvolume` and `constvolume` read their properties here.
 
-use super::Texture;
 use super::bitmap::{WrapMode, wrap};
 use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec3};
@@ -217,8 +216,12 @@ impl GridVolume {
 #[derive(Clone, Debug)]
 pub enum VolumeData {
     Grid(GridVolume),
-    /// `constvolume`'s `value`: a colour or a texture looked up at uv = (0, 0).
-    Constant(Texture),
+    /// `constvolume`'s `value`, a colour or a texture looked up at uv = (0, 0): that lookup
+    /// (`eval`) and the texture's `mean()` (its `eval_1` and mean), read once.
+    Constant {
+        value: Vec3,
+        mean: f32,
+    },
 }
 
 /// A volume (`gridvolume` or `constvolume`) with the map from world space to its local space.
@@ -234,7 +237,7 @@ impl Volume {
     pub fn eval(&self, p: Vec3) -> Vec3 {
         match &self.data {
             VolumeData::Grid(g) => g.eval(self.to_local.transform_point3(p)),
-            VolumeData::Constant(t) => t.eval(glam::Vec2::ZERO),
+            VolumeData::Constant { value, .. } => *value,
         }
     }
 
@@ -247,7 +250,7 @@ impl Volume {
                 let v = g.eval(self.to_local.transform_point3(p));
                 if g.channels == 1 { v.x } else { v.dot(LUMINANCE) }
             }
-            VolumeData::Constant(t) => t.mean(),
+            VolumeData::Constant { mean, .. } => *mean,
         }
     }
 
@@ -262,7 +265,7 @@ impl Volume {
                     g.mean.dot(LUMINANCE)
                 }
             }
-            VolumeData::Constant(t) => t.mean(),
+            VolumeData::Constant { mean, .. } => *mean,
         }
     }
 }
@@ -349,12 +352,13 @@ fn grid_bbox(p: &PluginProps, path: &Path, grid: &VolumeGrid) -> Result<Affine3A
 pub(crate) fn constant_from_props(p: &mut PluginProps) -> Result<Volume, SceneError> {
     p.transform("to_world")?;
     let value = p.texture("value")?;
-    if matches!(value, Texture::MeshAttribute(_) | Texture::Volume(_)) {
+    if value.needs_surface_point() {
         let c = p.child("value").expect("a nested texture");
         return Err(crate::load::err(
             c,
             "constvolume looks its value up without a surface point: a mesh_attribute or volume texture is not supported",
         ));
     }
-    Ok(Volume { to_local: Affine3A::IDENTITY, data: VolumeData::Constant(value) })
+    let data = VolumeData::Constant { value: value.eval(glam::Vec2::ZERO), mean: value.mean() };
+    Ok(Volume { to_local: Affine3A::IDENTITY, data })
 }

@@ -6,7 +6,7 @@
 //! far_clip − near_clip. Unlike `perspective`, `to_world` may scale (the view's size), but must
 //! be invertible.
 
-use crate::camera::clip_range;
+use super::projective::clip_range;
 use crate::geometry::Ray;
 use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec2, Vec3};

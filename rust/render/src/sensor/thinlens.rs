@@ -9,7 +9,7 @@
 //! the focal point, starts where it crosses z = near_clip and ends at z = far_clip. Its
 //! weight is 1.
 
-use crate::camera::{FovAxis, clip_range, field_of_view, rigid_to_world, x_half_tan};
+use super::projective::{FovAxis, clip_range, field_of_view, rigid_to_world, x_half_tan};
 use crate::geometry::Ray;
 use crate::load::props::PluginProps;
 use glam::{Affine3A, Vec2, Vec3};
