@@ -77,13 +77,13 @@ public:
                     // evaluated per lane (docs/models.md#spatially-varying-parameters); the model
                     // is built and validated with its mean.
                     ref<Texture> texture = props.get_unbounded_texture<Texture>(name);
-                    m_params.push_back(param(name, matte::ffi::ParamKind::Texture, scalar_value(texture->mean())));
+                    m_params.push_back(param(name, matte::ffi::PropertyType::Texture, scalar_value(texture->mean())));
                     textured.emplace_back(name, texture);
                     break;
                 }
                 case Properties::Type::Float:
                 case Properties::Type::Integer:
-                    m_params.push_back(param(name, matte::ffi::ParamKind::Number, props.get<double>(name)));
+                    m_params.push_back(param(name, matte::ffi::PropertyType::Number, props.get<double>(name)));
                     break;
                 case Properties::Type::String:
                     if (matte::ffi::is_file_parameter(rust::Str(m_kind.data(), m_kind.size()),
@@ -91,13 +91,13 @@ public:
                         // A file (tabulated_brdf's table): resolved as Mitsuba resolves files
                         // (next to the scene, then the search path); Rust reads it.
                         fs::path path = file_resolver()->resolve(props.get<std::string>(name));
-                        m_params.push_back(param(name, matte::ffi::ParamKind::Text, 0.0, path.string()));
+                        m_params.push_back(param(name, matte::ffi::PropertyType::Text, 0.0, path.string()));
                     } else {
-                        m_params.push_back(param(name, matte::ffi::ParamKind::Text, 0.0, props.get<std::string>(name)));
+                        m_params.push_back(param(name, matte::ffi::PropertyType::Text, 0.0, props.get<std::string>(name)));
                     }
                     break;
                 case Properties::Type::Bool:
-                    m_params.push_back(param(name, matte::ffi::ParamKind::Flag, props.get<bool>(name) ? 1.0 : 0.0));
+                    m_params.push_back(param(name, matte::ffi::PropertyType::Flag, props.get<bool>(name) ? 1.0 : 0.0));
                     break;
                 default:
                     break;
@@ -139,12 +139,12 @@ public:
             bool found = false;
             for (auto &p : m_params)
                 if (text_of(p.name) == n.name) {
-                    p.kind = matte::ffi::ParamKind::Number;
+                    p.kind = matte::ffi::PropertyType::Number;
                     p.number = value;
                     found = true;
                 }
             if (!found)
-                m_params.push_back(param(n.name, matte::ffi::ParamKind::Number, value));
+                m_params.push_back(param(n.name, matte::ffi::PropertyType::Number, value));
         }
         build_model();
         update_traced_kernel();
@@ -245,7 +245,7 @@ public:
                     tex = n.texture.get();
             if (tex)
                 oss << string::indent(tex);
-            else if (p.kind == matte::ffi::ParamKind::Number)
+            else if (p.kind == matte::ffi::PropertyType::Number)
                 oss << p.number;
             else
                 oss << "\"" << text_of(p.text) << "\"";
@@ -260,7 +260,7 @@ public:
 private:
     static constexpr size_t Channels = dr::size_v<UnpolarizedSpectrum>;
 
-    static matte::ffi::Param param(const std::string &name, matte::ffi::ParamKind kind, double number,
+    static matte::ffi::Param param(const std::string &name, matte::ffi::PropertyType kind, double number,
                                    const std::string &text = {}) {
         return matte::ffi::Param{ rust::String(name.data(), name.size()), kind, number,
                                   rust::String(text.data(), text.size()) };

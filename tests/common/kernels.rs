@@ -9,7 +9,7 @@
 
 use glam::{Vec2, Vec3};
 use matte_brdf::tabulated::{BrdfTable, TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
 use std::f64::consts::PI;
 
@@ -47,13 +47,11 @@ impl PcgExt for Pcg32 {
     }
 }
 
-/// Builds a model from `(name, value)` pairs, panicking on rejection (test inputs are valid).
+/// A model from `(name, value)` pairs written as in a scene (the catalogue's, the SPECs'
+/// examples; [`ParamValue::parse`]), panicking on rejection (test inputs are valid).
 pub fn model(kind: &str, params: &[(&str, &str)]) -> DiffuseModel {
-    let mut p = Params::new();
-    for (n, v) in params {
-        p.push(n, ParamValue::parse(v));
-    }
-    DiffuseModel::from_params(kind, p).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
+    let values: Vec<(&str, ParamValue)> = params.iter().map(|(n, v)| (*n, ParamValue::parse(v))).collect();
+    DiffuseModel::with(kind, &values).unwrap_or_else(|e| panic!("{kind} {params:?}: {e}"))
 }
 
 /// Every registered model that builds from its defaults, at its defaults and at each of its

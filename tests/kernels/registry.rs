@@ -7,18 +7,10 @@
 
 use matte_brdf::kernel;
 use matte_brdf::registry::{ParamKind, Range};
-use matte_brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, MODELS, ParamValue, Params};
+use matte_brdf::{BSDF_TYPES, DiffuseBrdf, DiffuseModel, MODELS, ParamValue};
 use std::collections::HashSet;
 
 use crate::common::{Pcg32, PcgExt};
-
-fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<DiffuseModel, matte_brdf::ParamError> {
-    let mut p = Params::new();
-    for (n, v) in params {
-        p.push(n, v.clone());
-    }
-    DiffuseModel::from_params(kind, p)
-}
 
 #[test]
 fn names_are_unique_and_listed_in_order() {
@@ -38,11 +30,12 @@ fn defaults_are_the_declared_ones() {
     for m in MODELS {
         if !m.builds_from_defaults() {
             // A required parameter (`tabulated_brdf`'s file) left out is an error naming it.
-            let e = build(m.name, &[]).expect_err(m.name);
+            let e = DiffuseModel::with::<ParamValue>(m.name, &[]).expect_err(m.name);
             assert!(m.param(&e.param).is_some_and(|p| p.default_value().is_none()), "{}: {e}", m.name);
             continue;
         }
-        let model = build(m.name, &[]).unwrap_or_else(|e| panic!("{}: defaults rejected: {e}", m.name));
+        let model = DiffuseModel::with::<ParamValue>(m.name, &[])
+            .unwrap_or_else(|e| panic!("{}: defaults rejected: {e}", m.name));
         assert_eq!(model.kind(), m.name);
         let got = model.parameters();
         assert_eq!(got.len(), m.params.len(), "{}", m.name);
@@ -61,7 +54,7 @@ fn examples_build() {
     for m in MODELS {
         for ex in m.examples {
             let params: Vec<(&str, ParamValue)> = ex.iter().map(|(n, v)| (*n, ParamValue::parse(v))).collect();
-            build(m.name, &params).unwrap_or_else(|e| panic!("{} {ex:?}: {e}", m.name));
+            DiffuseModel::with(m.name, &params).unwrap_or_else(|e| panic!("{} {ex:?}: {e}", m.name));
         }
     }
 }
@@ -86,16 +79,18 @@ fn ranges_are_enforced_at_their_ends() {
                 v
             };
             for x in accepted {
-                build(m.name, &with(x)).unwrap_or_else(|e| panic!("{}.{} = {x} rejected: {e}", m.name, p.name));
+                DiffuseModel::with(m.name, &with(x))
+                    .unwrap_or_else(|e| panic!("{}.{} = {x} rejected: {e}", m.name, p.name));
             }
             for x in rejected.into_iter().chain([f64::NAN, f64::INFINITY]) {
-                let e = build(m.name, &[(p.name, ParamValue::Number(x))])
+                let e = DiffuseModel::with(m.name, &[(p.name, ParamValue::Number(x))])
                     .expect_err(&format!("{}.{} = {x}", m.name, p.name));
                 assert_eq!(e.param, p.name, "{}: {e}", m.name);
             }
         }
         for p in m.params.iter().filter(|p| matches!(p.kind, ParamKind::Choice { .. })) {
-            let e = build(m.name, &[(p.name, ParamValue::Text("no such choice".into()))]).expect_err(p.name);
+            let e =
+                DiffuseModel::with(m.name, &[(p.name, ParamValue::Text("no such choice".into()))]).expect_err(p.name);
             assert_eq!(e.param, p.name);
         }
     }
@@ -116,7 +111,7 @@ fn lane_values(model: &DiffuseModel, values: &[f32], rng: &mut Pcg32) -> Vec<f32
 fn lane_values_clamp_to_the_declared_bounds() {
     // The models with numeric parameters build from their defaults (a table file has none).
     for m in MODELS.iter().filter(|m| m.builds_from_defaults()) {
-        let model = build(m.name, &[]).unwrap();
+        let model = DiffuseModel::with::<ParamValue>(m.name, &[]).unwrap();
         let defaults: Vec<f32> = model
             .parameters()
             .into_iter()
@@ -149,7 +144,7 @@ fn in_range_lane_values_evaluate_as_the_constant_model() {
         let hi = if hi.is_finite() { hi } else { lo + 2.0 };
         for t in [0.1, 0.5, 0.9] {
             let x = (lo + t * (hi - lo)) as f32;
-            let model = build(m.name, &[(p.name, ParamValue::Number(x as f64))]).unwrap();
+            let model = DiffuseModel::with(m.name, &[(p.name, ParamValue::Number(x as f64))]).unwrap();
             let values: Vec<f32> = model
                 .parameters()
                 .into_iter()

@@ -38,7 +38,7 @@ fn defaults_are_mitsuba_0_6s() {
         rd.parameters(),
         vec![
             ("alpha", ParamValue::Number(0.2f32 as f64)),
-            ("use_fast_approx", ParamValue::Text("false".into())),
+            ("use_fast_approx", ParamValue::Flag(false)),
             ("sampling", ParamValue::Text("cosine".into()))
         ]
     );

@@ -5,15 +5,7 @@
 
 use glam::Vec3;
 use matte_brdf::kernel;
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
-
-fn model(kind: &str, params: &[(&str, f64)]) -> DiffuseModel {
-    let mut p = Params::new();
-    for (n, v) in params {
-        p.push(n, ParamValue::Number(*v));
-    }
-    DiffuseModel::from_params(kind, p).unwrap()
-}
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 
 /// Quasi-random direction pairs above the surface, grazing included.
 fn pairs() -> Vec<(Vec3, Vec3)> {
@@ -48,10 +40,7 @@ fn lane_kernels_equal_the_constant_models() {
     // (van Ginneken's per-lane kernel interpolates tables over m: `ginneken_fast_path.rs`.)
     for (kind, params, tol) in cases {
         for extra in [vec![], vec![("model", "full")], vec![("normalization", "normal")]] {
-            let mut p = Params::new();
-            for (n, v) in params.iter() {
-                p.push(n, ParamValue::Number(*v));
-            }
+            let mut p: Vec<(&str, ParamValue)> = params.iter().map(|(n, v)| (*n, (*v).into())).collect();
             let applies = extra
                 .iter()
                 .all(|(n, _)| (*n == "model" && *kind == "oren_nayar") || (*n == "normalization" && *kind == "wolff"));
@@ -59,9 +48,9 @@ fn lane_kernels_equal_the_constant_models() {
                 continue;
             }
             for (n, v) in &extra {
-                p.push(n, ParamValue::Text(v.to_string()));
+                p.push((n, (*v).into()));
             }
-            let m = DiffuseModel::from_params(kind, p).unwrap();
+            let m = DiffuseModel::with(kind, &p).unwrap();
             let values: Vec<f32> = params.iter().map(|(_, v)| *v as f32).collect();
             let k = m.lane_kernel_f32(&values).expect("per-lane kernel");
             for (wi, wo) in pairs() {
@@ -93,13 +82,13 @@ fn lane_values_out_of_range_are_clamped() {
         ("ginneken", "roughness", 4.0, &[9.0, f32::INFINITY]),
     ];
     for (kind, name, bound, values) in cases {
-        let want = model(kind, &[(name, *bound)]).eval(wi, wo, [0.7])[0];
+        let want = DiffuseModel::with(kind, &[(name, *bound)]).unwrap().eval(wi, wo, [0.7])[0];
         for &v in *values {
             let mut lane = vec![v];
             if *kind == "wolff" {
                 lane.push(1.0);
             }
-            let m = model(kind, &[]);
+            let m = DiffuseModel::with::<f64>(kind, &[]).unwrap();
             let k = m.lane_kernel_f32(&lane).unwrap();
             let got = kernel::eval(&k, wi.into(), wo.into(), [0.7])[0];
             assert!(got.is_finite(), "{kind} {name} = {v}: {got}");

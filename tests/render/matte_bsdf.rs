@@ -120,7 +120,7 @@ fn mitsuba_0_6_xml_loads_through_the_upgrade() {
         model.parameters(),
         vec![
             ("alpha", ParamValue::Number(0.4f32 as f64)),
-            ("use_fast_approx", ParamValue::Text("true".into())),
+            ("use_fast_approx", ParamValue::Flag(true)),
             ("sampling", ParamValue::Text("cosine".into()))
         ]
     );

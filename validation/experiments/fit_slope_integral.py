@@ -1,6 +1,6 @@
 """Prototype representations of van Ginneken's slope integral I(θi, θo, Δφ; m) that keep the
 6.2 MB table out of the hot path, measured the way `matte tables` measures the fast
-path (`rust/brdf/src/ginneken/accuracy.rs`: relative error of f at 20,000 R3 configurations,
+path (`rust/brdf/src/models/ginneken/accuracy.rs`: relative error of f at 20,000 R3 configurations,
 θi, θo ≤ 80° or 85°, Δφ ∈ [0°, 180°]). f = (ρ/π) I / (μi μo / P_ill+vis) and the visibility is
 evaluated in closed form by every representation alike, so the relative error of f is that of I
 (`--check-f` confirms it against the installed `matte brdf`).

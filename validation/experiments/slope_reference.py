@@ -1,5 +1,5 @@
 """van Ginneken's slope integral in numpy, vectorised over configurations: the same
-semi-analytic scheme as `rust/brdf/src/ginneken/slope_integral.rs` (`SlopeIntegrator`), for the
+semi-analytic scheme as `rust/brdf/src/models/ginneken/slope_integral.rs` (`SlopeIntegrator`), for the
 prototype fits of `fit_slope_integral.py`.
 
     I(μi, μo, Δφ) = ∬ P22(p, q) (μi − p·wi)⁺ (μo − p·wo)⁺ / √(1 + p² + q²) dp dq

@@ -1,8 +1,8 @@
 """Fits the rational form of van Ginneken's shadowing term `μΛ` that the kernels evaluate
-(`rust/brdf/src/ginneken/shadowing.rs`, `mu_lambda_closed`), and writes its coefficients to
-`rust/brdf/src/ginneken/mu_lambda_fit.rs`.
+(`rust/brdf/src/models/ginneken/shadowing.rs`, `mu_lambda_closed`), and writes its coefficients to
+`rust/brdf/src/models/ginneken/mu_lambda_fit.rs`.
 
-    .venv/bin/python validation/generators/fit_mu_lambda.py [--out rust/brdf/src/ginneken/mu_lambda_fit.rs]
+    .venv/bin/python validation/generators/fit_mu_lambda.py [--out rust/brdf/src/models/ginneken/mu_lambda_fit.rs]
 
 With `a = cot θ / m = μ / (m sin θ)`, Smith's shadowing of the Gaussian surface gives
 
@@ -52,7 +52,7 @@ def fit(a, g, iterations=80):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--out", default="rust/brdf/src/ginneken/mu_lambda_fit.rs")
+    ap.add_argument("--out", default="rust/brdf/src/models/ginneken/mu_lambda_fit.rs")
     args = ap.parse_args()
     a = np.linspace(0, A, 40001)
     g = g_exact(a)

@@ -15,7 +15,7 @@ the kernel already holds and maps the model's whole parameter range onto a bound
 * Oren–Nayar, qualitative and full (ρ = 1, so the full model's ρ² interreflection term is at
   its largest): `t = σ² / (σ² + 0.09) = B / 0.45`, B the kernel's coefficient. σ ∈ [0, ∞) maps
   onto [0, 1): σ = 0.3 is t = 0.5, σ = 1 is t = 0.917. f is evaluated here in float64 (the
-  formulas of `rust/brdf/src/oren_nayar.rs`, checked against the CLI).
+  formulas of `rust/brdf/src/models/oren_nayar.rs`, checked against the CLI).
 * Burley: `t = r`, its roughness.
 * van Ginneken: `t = u / 0.8`, `u = m / (1 + m)` the roughness axis
   of its per-lane tables (m ∈ (0, 4] onto (0, 1]; m = 0.3 is t = 0.288, m = 1 is t = 0.625).
@@ -131,7 +131,7 @@ def t_of_sigma(sigma):
 
 
 def on_qualitative_f(t, wi, wo):
-    """f (1/sr) of Oren–Nayar's qualitative model, ρ = 1 (`rust/brdf/src/oren_nayar.rs`)."""
+    """f (1/sr) of Oren–Nayar's qualitative model, ρ = 1 (`rust/brdf/src/models/oren_nayar.rs`)."""
     a, b, _, _ = on_coefficients(t)
     s = wi[0] * wo[:, 0] + wi[1] * wo[:, 1]
     g = a + np.maximum(s, 0.0) * b / np.maximum(np.maximum(wi[2], wo[:, 2]), 1e-7)
@@ -164,7 +164,7 @@ def on_full_f(t, wi, wo):
 
 
 def burley_f(t, wi, wo):
-    """f of Burley's diffuse, ρ = 1, at roughness r = t (`rust/brdf/src/burley.rs`)."""
+    """f of Burley's diffuse, ρ = 1, at roughness r = t (`rust/brdf/src/models/burley.rs`)."""
     schlick = lambda mu: (1.0 - np.clip(mu, 0.0, 1.0)) ** 5  # noqa: E731
     f_i, f_o = schlick(wi[2]), schlick(wo[:, 2])
     f_d = (1.0 - 0.5 * f_i) * (1.0 - 0.5 * f_o)
@@ -478,7 +478,7 @@ def bfgs(obj, x0, iters=200, log=None, gtol=1e-6):
 
 
 def eon_params(r, mu):
-    """EON's CLTC (`rust/brdf/src/eon.rs`, `EonKernel::sampler`) at roughness r."""
+    """EON's CLTC (`rust/brdf/src/models/eon.rs`, `EonKernel::sampler`) at roughness r."""
     poly2 = lambda c0, c1, c2: c0 + c1 * mu + c2 * mu * mu  # noqa: E731
     a = 1 + r * (poly2(0.303392, -0.518982, 0.111709) + r * (-0.276266 + 0.335918 * mu))
     b = r * ((-1.16407 + 1.15859 * mu) + r * (0.150815 - 0.150105 * mu)) / (mu**3 - 1.43545)

@@ -23,7 +23,6 @@
 //! `pdf(eval)` exactly.
 
 use super::real::{Real, V3};
-use super::registry::ParamSpec;
 use super::sampling::concentric_disk;
 use std::f64::consts::{FRAC_1_PI, PI};
 
@@ -188,10 +187,4 @@ impl Sampling {
             Sampling::Cosine => "cosine",
         }
     }
-}
-
-/// The `sampling` parameter of a model with its own sampler (default `cosine`); `doc` says
-/// what `cltc` is.
-pub const fn sampling_param(doc: &'static str) -> ParamSpec {
-    ParamSpec::choice("sampling", Sampling::CHOICES, "cosine", doc)
 }

@@ -1,7 +1,7 @@
 //! Forward-mode dual numbers over f64 (`v + d ε`, ε² = 0) as a [`Real`]: running a kernel with
 //! them gives its value and its derivative along one input in one pass, with the same code
 //! the CPU and Dr.Jit run. matte uses them to measure the traced kernels' roughness gradient
-//! against finite differences of the reference integral ([`super::ginneken::accuracy`]).
+//! against finite differences of the reference integral ([`crate::ginneken::accuracy`]).
 
 use super::real::{Nodes, Real};
 use std::ops::{Add, Div, Mul, Neg, Sub};

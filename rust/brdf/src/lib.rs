@@ -1,4 +1,4 @@
-//! The diffuse BRDF kernels: one file per model, pure functions over local-frame directions,
+//! The diffuse BRDF kernels: one file per model (`models/`), pure functions over local-frame directions,
 //! no renderer or FFI types. [`DiffuseModel`] is the closed set of models matte offers, constructed
 //! from the plugin names and parameters of the README's model table. Each model is written
 //! once over the scalar trait [`real::Real`] ([`kernel`]): f32 on the CPU, traced into Dr.Jit
@@ -24,19 +24,10 @@ pub mod sampling;
 pub mod simd;
 pub mod wide;
 
-// The models, in the README's order: one line each (`docs/adding-a-model.md`).
-registry::models! {
-    Lambert: lambert::Lambert,
-    OrenNayar: oren_nayar::OrenNayar,
-    Eon: eon::Eon,
-    Wolff: wolff::Wolff,
-    Ginneken: ginneken::Ginneken,
-    RoughDiffuse: rough_diffuse::RoughDiffuse,
-    Burley: burley::Burley,
-    Tabulated: tabulated::Tabulated,
-}
+pub mod models;
 
 pub use diffuse_brdf::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
+pub use models::*;
 
 /// The registered types that build from their defaults alone, in the README's order: every
 /// model but `tabulated_brdf`, whose table file is required. The sweeps over every model at
@@ -44,9 +35,9 @@ pub use diffuse_brdf::{Albedo, AlbedoMethod, BrdfSample, DiffuseBrdf};
 pub fn default_models() -> impl Iterator<Item = &'static str> {
     MODELS.iter().filter(|s| s.builds_from_defaults()).map(|s| s.name)
 }
-pub use oren_nayar::OrenNayarForm;
+pub use models::oren_nayar::OrenNayarForm;
+pub use models::wolff::WolffNormalization;
 pub use params::{ParamError, ParamValue, Params};
-pub use wolff::WolffNormalization;
 
 use glam::{Vec2, Vec3};
 

@@ -26,13 +26,22 @@ fn bounded(name: &str, x: f64) -> Result<f64, ParamError> {
     }
 }
 
-/// A parameter value as the front ends deliver it: a number or a word
-/// (`model=full`, `int_ior=bk7`). In JSON it is the number or the string itself.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-#[serde(untagged)]
+/// A parameter value: what a front end gives for one parameter (a `<bsdf>` property, a CLI
+/// `--param`, a test's pair) and what a model reports as its effective value
+/// ([`crate::DiffuseModel::parameters`]). In JSON a number is the number, text and a flag the
+/// string (`"true"`, as the XML writes it), a texture its mean.
+#[derive(Clone, Debug, PartialEq)]
 pub enum ParamValue {
+    /// `<float>`, `<integer>`, a number on the command line.
     Number(f64),
+    /// `<string>`: a choice, a named index of refraction, a file name.
     Text(String),
+    /// `<boolean>`.
+    Flag(bool),
+    /// A nested `<texture>`, given by its mean: [`crate::construction::construct`] builds and
+    /// validates the model with the number it stands for (the mean clamped into the
+    /// parameter's per-lane range) and marks the parameter textured.
+    Texture { mean: f64 },
 }
 
 impl From<f64> for ParamValue {
@@ -48,10 +57,9 @@ impl From<f32> for ParamValue {
     }
 }
 
-/// A flag as text (`true`, `false`).
 impl From<bool> for ParamValue {
     fn from(b: bool) -> Self {
-        ParamValue::Text(b.to_string())
+        ParamValue::Flag(b)
     }
 }
 
@@ -68,11 +76,36 @@ impl From<String> for ParamValue {
 }
 
 impl ParamValue {
-    /// A number if the text parses as one, else the text itself (CLI `--param k=v`).
+    /// A value as written in a scene or on the command line (`--param k=v`, a SPEC's
+    /// examples): a number if the text parses as one, a flag for `true` and `false`, else the
+    /// text itself.
     pub fn parse(text: &str) -> Self {
-        match text.trim().parse::<f64>() {
-            Ok(x) => ParamValue::Number(x),
-            Err(_) => ParamValue::Text(text.trim().to_string()),
+        let text = text.trim();
+        match (text.parse::<f64>(), text) {
+            (Ok(x), _) => ParamValue::Number(x),
+            (Err(_), "true") => ParamValue::Flag(true),
+            (Err(_), "false") => ParamValue::Flag(false),
+            (Err(_), _) => ParamValue::Text(text.to_string()),
+        }
+    }
+
+    /// The value as a word, where a word is read (a choice, a named index of refraction, a
+    /// file name): text itself, a flag as `true` or `false`; `None` for a number.
+    fn word(&self) -> Option<String> {
+        match self {
+            ParamValue::Text(s) => Some(s.clone()),
+            ParamValue::Flag(b) => Some(b.to_string()),
+            ParamValue::Number(_) | ParamValue::Texture { .. } => None,
+        }
+    }
+}
+
+impl serde::Serialize for ParamValue {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            ParamValue::Number(x) | ParamValue::Texture { mean: x } => s.serialize_f64(*x),
+            ParamValue::Text(t) => s.serialize_str(t),
+            ParamValue::Flag(b) => s.serialize_str(if *b { "true" } else { "false" }),
         }
     }
 }
@@ -82,6 +115,8 @@ impl fmt::Display for ParamValue {
         match self {
             ParamValue::Number(x) => write!(f, "{x}"),
             ParamValue::Text(s) => write!(f, "\"{s}\""),
+            ParamValue::Flag(b) => write!(f, "{b}"),
+            ParamValue::Texture { mean } => write!(f, "a texture of mean {mean}"),
         }
     }
 }
@@ -106,6 +141,13 @@ impl fmt::Display for ParamError {
 }
 
 impl std::error::Error for ParamError {}
+
+/// The error as the front ends print it (`?` in functions that return `Result<_, String>`).
+impl From<ParamError> for String {
+    fn from(e: ParamError) -> Self {
+        e.to_string()
+    }
+}
 
 /// The parameters given for one BSDF. Readers mark what they consume; [`Params::finish`]
 /// rejects whatever was not consumed (unknown parameter names), as Mitsuba's parser does.
@@ -146,37 +188,40 @@ impl Params {
     pub fn number(&mut self, name: &str, default: f64) -> Result<f64, ParamError> {
         match self.take(name)? {
             None => Ok(default),
-            Some(ParamValue::Number(x)) => bounded(name, x),
-            Some(ParamValue::Text(s)) => Err(ParamError::new(name, format!("must be a number (got \"{s}\")"))),
+            Some(ParamValue::Number(x) | ParamValue::Texture { mean: x }) => bounded(name, x),
+            Some(v) => {
+                Err(ParamError::new(name, format!("must be a number (got \"{}\")", v.word().unwrap_or_default())))
+            }
         }
     }
 
     /// One of `choices`, `default` if absent.
     pub fn choice<'c>(&mut self, name: &str, choices: &[&'c str], default: &'c str) -> Result<&'c str, ParamError> {
-        let given = match self.take(name)? {
-            None => return Ok(default),
-            Some(ParamValue::Text(s)) => s,
-            Some(ParamValue::Number(x)) => x.to_string(),
-        };
-        choices
-            .iter()
-            .find(|c| c.eq_ignore_ascii_case(&given))
-            .copied()
-            .ok_or_else(|| ParamError::new(name, format!("must be one of {} (got \"{given}\")", choices.join(", "))))
+        match self.take(name)? {
+            None => Ok(default),
+            Some(v) => one_of(name, choices, &v),
+        }
     }
 
-    /// A boolean (`<boolean>` in XML reaches the kernels as the text "true" / "false"),
-    /// `default` if absent.
+    /// A boolean (`<boolean>`; as text, `true` or `false`), `default` if absent.
     pub fn flag(&mut self, name: &str, default: bool) -> Result<bool, ParamError> {
-        Ok(self.choice(name, &["true", "false"], if default { "true" } else { "false" })? == "true")
+        match self.take(name)? {
+            None => Ok(default),
+            Some(ParamValue::Flag(b)) => Ok(b),
+            Some(v) => Ok(one_of(name, &["true", "false"], &v)? == "true"),
+        }
     }
 
     /// A required file name (`tabulated_brdf`'s table).
     pub fn file(&mut self, name: &str) -> Result<String, ParamError> {
         match self.take(name)? {
-            Some(ParamValue::Text(s)) if !s.is_empty() => Ok(s),
-            Some(ParamValue::Text(_)) => Err(ParamError::new(name, "must name a file (got \"\")")),
-            Some(ParamValue::Number(x)) => Err(ParamError::new(name, format!("must be a file name (got {x})"))),
+            Some(ParamValue::Number(x) | ParamValue::Texture { mean: x }) => {
+                Err(ParamError::new(name, format!("must be a file name (got {x})")))
+            }
+            Some(v) => match v.word() {
+                Some(s) if !s.is_empty() => Ok(s),
+                _ => Err(ParamError::new(name, "must name a file (got \"\")")),
+            },
             None => Err(ParamError::new(name, "is missing (required: the file to read)")),
         }
     }
@@ -186,11 +231,14 @@ impl Params {
     pub fn ior(&mut self, name: &str, default: f64) -> Result<f64, ParamError> {
         match self.take(name)? {
             None => Ok(default),
-            Some(ParamValue::Number(x)) => bounded(name, x),
-            Some(ParamValue::Text(s)) => lookup_ior(&s).ok_or_else(|| {
-                let names: Vec<&str> = NAMED_IORS.iter().map(|(n, _)| *n).collect();
-                ParamError::new(name, format!("unknown material \"{s}\"; valid names: {}", names.join(", ")))
-            }),
+            Some(ParamValue::Number(x) | ParamValue::Texture { mean: x }) => bounded(name, x),
+            Some(v) => {
+                let s = v.word().unwrap_or_default();
+                lookup_ior(&s).ok_or_else(|| {
+                    let names: Vec<&str> = NAMED_IORS.iter().map(|(n, _)| *n).collect();
+                    ParamError::new(name, format!("unknown material \"{s}\"; valid names: {}", names.join(", ")))
+                })
+            }
         }
     }
 
@@ -203,6 +251,20 @@ impl Params {
             }
         }
     }
+}
+
+/// The entry of `choices` that `value` names (case-insensitive), or the error naming the
+/// parameter.
+fn one_of<'c>(name: &str, choices: &[&'c str], value: &ParamValue) -> Result<&'c str, ParamError> {
+    let given = match value {
+        ParamValue::Number(x) | ParamValue::Texture { mean: x } => x.to_string(),
+        v => v.word().unwrap_or_default(),
+    };
+    choices
+        .iter()
+        .find(|c| c.eq_ignore_ascii_case(&given))
+        .copied()
+        .ok_or_else(|| ParamError::new(name, format!("must be one of {} (got \"{given}\")", choices.join(", "))))
 }
 
 /// Named indices of refraction, as in Mitsuba 3.9.1 `include/mitsuba/render/ior.h`

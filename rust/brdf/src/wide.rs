@@ -52,7 +52,7 @@ impl ModelPair {
     ) -> LaneKernel<'_, T> {
         let defaults = self.bsdf.parameters().into_iter().filter_map(|(_, v)| match v {
             ParamValue::Number(x) => Some(x as f32),
-            ParamValue::Text(_) => None,
+            _ => None,
         });
         let values: Vec<T> = defaults.enumerate().map(|(k, d)| param(k, d)).collect();
         dispatch!(&self.bsdf, m => {

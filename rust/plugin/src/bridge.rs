@@ -5,23 +5,23 @@
 #[allow(clippy::too_many_arguments)]
 #[cxx::bridge(namespace = "matte::ffi")]
 pub mod ffi {
-    /// How a [`Param`] is given (`matte_brdf::construction::Property`).
-    enum ParamKind {
+    /// The type of a [`Param`] as the C++ property has it (`matte_brdf::ParamValue`).
+    enum PropertyType {
         /// `<float>` or `<integer>`: `number`.
         Number,
         /// `<string>`: `text`.
         Text,
-        /// `<boolean>`: `number` is 1 or 0.
+        /// `<boolean>`: `number` is 1 or 0 (from Rust, `text` is `true` or `false` too).
         Flag,
         /// A nested `<texture>`: `number` is its mean.
         Texture,
     }
 
     /// One property of the `<bsdf>` element (to Rust), or one parameter of a model with its
-    /// effective value (from Rust: `Number` or `Text`).
+    /// effective value (from Rust: `Number`, `Text` or `Flag`).
     struct Param {
         name: String,
-        kind: ParamKind,
+        kind: PropertyType,
         number: f64,
         text: String,
     }

@@ -14,9 +14,9 @@ mod bridge;
 pub mod traced;
 mod traced_entry;
 
-use bridge::ffi::{Channels, Param, ParamKind, Vec3f};
+use bridge::ffi::{Channels, Param, PropertyType, Vec3f};
 use glam::{Vec2, Vec3};
-use matte_brdf::construction::{Property, construct};
+use matte_brdf::construction::construct;
 use matte_brdf::kernel;
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -30,12 +30,12 @@ pub struct PluginBsdf {
 }
 
 /// A property as [`construct`] takes it.
-fn property(p: &Param) -> (&str, Property) {
+fn property(p: &Param) -> (&str, ParamValue) {
     let value = match p.kind {
-        ParamKind::Text => Property::Text(p.text.clone()),
-        ParamKind::Flag => Property::Flag(p.number != 0.0),
-        ParamKind::Texture => Property::Texture { mean: p.number },
-        _ => Property::Number(p.number),
+        PropertyType::Text => ParamValue::Text(p.text.clone()),
+        PropertyType::Flag => ParamValue::Flag(p.number != 0.0),
+        PropertyType::Texture => ParamValue::Texture { mean: p.number },
+        _ => ParamValue::Number(p.number),
     };
     (p.name.as_str(), value)
 }
@@ -50,7 +50,7 @@ fn v3(v: &Vec3f) -> Vec3 {
 
 fn bsdf_new(kind: &str, properties: &[Param]) -> Result<Box<PluginBsdf>, String> {
     let built = catch_unwind(AssertUnwindSafe(|| {
-        let properties: Vec<(&str, Property)> = properties.iter().map(property).collect();
+        let properties: Vec<(&str, ParamValue)> = properties.iter().map(property).collect();
         construct(kind, &properties).map(|c| c.model).map_err(|e| e.to_string())
     }));
     match built {
@@ -98,18 +98,20 @@ fn eval_channels(bsdf: &impl DiffuseBrdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f
 impl PluginBsdf {
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
-        self.describe_parameters().into_iter().filter(|p| p.kind == ParamKind::Number).collect()
+        self.describe_parameters().into_iter().filter(|p| p.kind == PropertyType::Number).collect()
     }
 
     fn describe_parameters(&self) -> Vec<Param> {
         self.model
             .parameters()
             .into_iter()
-            .map(|(name, value)| match value {
-                ParamValue::Number(x) => {
-                    Param { name: name.into(), kind: ParamKind::Number, number: x, text: String::new() }
-                }
-                ParamValue::Text(s) => Param { name: name.into(), kind: ParamKind::Text, number: 0.0, text: s },
+            .map(|(name, value)| {
+                let (kind, number, text) = match value {
+                    ParamValue::Number(x) | ParamValue::Texture { mean: x } => (PropertyType::Number, x, String::new()),
+                    ParamValue::Text(s) => (PropertyType::Text, 0.0, s),
+                    ParamValue::Flag(b) => (PropertyType::Flag, f64::from(u8::from(b)), b.to_string()),
+                };
+                Param { name: name.into(), kind, number, text }
             })
             .collect()
     }

@@ -4,7 +4,7 @@ Model: Portsmouth, Kutz & Hill, "EON: A practical energy-preserving rough
 diffuse BRDF", JCGT 14(1), 2025 (arXiv:2410.18026); fitted constants as in
 github.com/portsmouth/EON-diffuse, main.glsl (ltc_coeffs, sample_EON).
 Written from the maths of the paper's section 4, not transcribed from that code; a
-second implementation beside matte's (rust/brdf/src/cltc.rs, rust/brdf/src/eon.rs), in float64.
+second implementation beside matte's (rust/brdf/src/cltc.rs, rust/brdf/src/models/eon.rs), in float64.
 matte's two choices are parameters here: the uniform component's roughness factor
 r**UNIFORM_EXPONENT (the paper: 0.1, matte: 1/8) and d clamped to <= 0 (CLAMP_D).
 

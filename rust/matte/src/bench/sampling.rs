@@ -9,7 +9,7 @@
 //! to the cosine's.
 
 use glam::{Vec2, Vec3};
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use std::f64::consts::PI;
 use std::time::Instant;
 
@@ -97,14 +97,6 @@ fn time_sampling(model: &DiffuseModel, count: usize) -> f64 {
     best
 }
 
-fn build(kind: &str, params: &[(&str, String)]) -> Option<DiffuseModel> {
-    let mut p = Params::new();
-    for (k, v) in params {
-        p.push(k, ParamValue::parse(v));
-    }
-    DiffuseModel::from_params(kind, p).ok()
-}
-
 /// Every registered model with a numeric first parameter (its roughness) at 0.3 and 1.0,
 /// and Lambert; `quick`: a coarse grid and few timed samples.
 pub fn measure(quick: bool) -> Vec<SamplerRow> {
@@ -114,17 +106,17 @@ pub fn measure(quick: bool) -> Vec<SamplerRow> {
         let roughness = spec.numeric().next().filter(|p| p.name != "int_ior").map(|p| p.name);
         let values: &[f64] = if roughness.is_some() { &[0.3, 1.0] } else { &[0.0] };
         for &r in values {
-            let params: Vec<(&str, String)> = roughness.map(|name| (name, r.to_string())).into_iter().collect();
+            let params: Vec<(&str, ParamValue)> = roughness.map(|name| (name, r.into())).into_iter().collect();
             // The model's own sampler where it offers one (its `sampling` choices), and the cosine.
             let own_name = spec.own_sampler();
             let with = |sampling: &str| {
                 let mut p = params.clone();
-                p.push(("sampling", sampling.to_string()));
-                build(spec.name, &p)
+                p.push(("sampling", sampling.into()));
+                DiffuseModel::with(spec.name, &p).ok()
             };
             let (Some(model), Some(cosine)) = (
-                own_name.map_or_else(|| build(spec.name, &params), &with),
-                own_name.map_or_else(|| build(spec.name, &params), |_| with("cosine")),
+                own_name.map_or_else(|| DiffuseModel::with(spec.name, &params).ok(), &with),
+                own_name.map_or_else(|| DiffuseModel::with(spec.name, &params).ok(), |_| with("cosine")),
             ) else {
                 continue;
             };

@@ -2,7 +2,7 @@
 //! Schema in docs/usage.md.
 
 use clap::Args;
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, frame::spherical_direction};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -17,13 +17,14 @@ pub struct BsdfSpec {
 }
 
 impl BsdfSpec {
+    /// The model, built as every front end builds one ([`DiffuseModel::with`]).
     pub fn build(&self) -> Result<DiffuseModel, String> {
-        let mut params = Params::new();
+        let mut params: Vec<(&str, ParamValue)> = Vec::new();
         for p in &self.params {
             let (name, value) = p.split_once('=').ok_or_else(|| format!("--param \"{p}\": expected NAME=VALUE"))?;
-            params.push(name.trim(), ParamValue::parse(value));
+            params.push((name.trim(), ParamValue::parse(value)));
         }
-        DiffuseModel::from_params(&self.kind, params).map_err(|e| format!("bsdf \"{}\": {e}", self.kind))
+        DiffuseModel::with(&self.kind, &params).map_err(|e| format!("bsdf \"{}\": {e}", self.kind))
     }
 }
 

@@ -10,7 +10,7 @@ use matte_brdf::ginneken::shadowing::Shadowing;
 
 /// Roughnesses whose van Ginneken fast-path error is printed besides the tables' own (0.3, 0.5).
 const FAST_PATH_ROUGHNESS: [f64; 5] = [0.02, 0.1, 1.0, 2.0, 4.0];
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params, frame::spherical_direction};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, frame::spherical_direction};
 
 #[derive(Args, Debug)]
 pub struct TablesArgs {
@@ -56,17 +56,14 @@ const TABLE1_COLUMNS: &[(f64, f64, f64)] = &[
 
 const TABLE2_ANGLES: &[f64] = &[0.0, 30.0, 60.0, 80.0, 89.0];
 
-fn build(kind: &str, params: &[(&str, &str)]) -> Result<DiffuseModel, String> {
-    let mut p = Params::new();
-    for (n, v) in params {
-        p.push(n, ParamValue::parse(v));
-    }
-    DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
-}
-
 pub fn run(args: &TablesArgs) -> Result<(), String> {
-    let models: Vec<(&str, DiffuseModel)> =
-        ROWS.iter().map(|(l, k, p)| build(k, p).map(|b| (*l, b))).collect::<Result<_, _>>()?;
+    let models: Vec<(&str, DiffuseModel)> = ROWS
+        .iter()
+        .map(|(l, k, p)| {
+            let values: Vec<(&str, ParamValue)> = p.iter().map(|(n, v)| (*n, ParamValue::parse(v))).collect();
+            DiffuseModel::with(k, &values).map(|b| (*l, b))
+        })
+        .collect::<Result<_, _>>()?;
 
     println!("Table 1: f(wi, wo) in 1/sr, reflectance 0.8 (columns: θi/θo/Δφ in degrees)");
     print!("{:<26}", "model");

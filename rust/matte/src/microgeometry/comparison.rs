@@ -11,7 +11,7 @@ use super::v_cavity::VCavities;
 use glam::DVec3;
 use matte_brdf::frame::spherical_direction_f64;
 use matte_brdf::oren_nayar::OrenNayarCoefficients;
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, Params};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use serde::Serialize;
 
 /// Incidence angles of the grid (degrees).
@@ -80,12 +80,6 @@ pub struct ModelDeviation {
     pub worst_albedo_at: f64,
 }
 
-fn build(kind: &str, params: &[(&str, ParamValue)]) -> Result<DiffuseModel, String> {
-    let mut p = Params::new();
-    params.iter().for_each(|(n, v)| p.push(n, v.clone()));
-    DiffuseModel::from_params(kind, p).map_err(|e| e.to_string())
-}
-
 fn direction(theta_deg: f64, phi_deg: f64) -> DVec3 {
     spherical_direction_f64(theta_deg.to_radians(), phi_deg.to_radians())
 }
@@ -105,15 +99,15 @@ pub fn models_at(s: f64) -> Result<Vec<(String, DiffuseModel)>, String> {
     use ParamValue::{Number as N, Text as T};
     let r = eon_roughness_by_term_ratio(s);
     let mut models = vec![
-        ("Oren–Nayar qualitative".into(), build("oren_nayar", &[("sigma", N(s))])?),
-        ("Oren–Nayar full".into(), build("oren_nayar", &[("sigma", N(s)), ("model", T("full".into()))])?),
-        (format!("EON (r = B/A = {r:.3})"), build("eon", &[("roughness", N(r))])?),
+        ("Oren–Nayar qualitative".into(), DiffuseModel::with("oren_nayar", &[("sigma", N(s))])?),
+        ("Oren–Nayar full".into(), DiffuseModel::with("oren_nayar", &[("sigma", N(s)), ("model", T("full".into()))])?),
+        (format!("EON (r = B/A = {r:.3})"), DiffuseModel::with("eon", &[("roughness", N(r))])?),
     ];
     if s > 0.0 {
-        models.push(("van Ginneken (vginneken)".into(), build("ginneken", &[("roughness", N(s))])?));
+        models.push(("van Ginneken (vginneken)".into(), DiffuseModel::with("ginneken", &[("roughness", N(s))])?));
         models.push((
             "van Ginneken (height_correlated)".into(),
-            build("ginneken", &[("roughness", N(s)), ("shadowing", T("height_correlated".into()))])?,
+            DiffuseModel::with("ginneken", &[("roughness", N(s)), ("shadowing", T("height_correlated".into()))])?,
         ));
     }
     Ok(models)
@@ -214,7 +208,10 @@ fn compare(
     let targets: Vec<(DVec3, DVec3, f64)> =
         sims.iter().flat_map(|(_, wi, f, _)| f.iter().zip(&wo).map(|((all, _), w)| (*wi, *w, all.mean))).collect();
     let r = super::eon_fit::best_eon_roughness(&targets, reflectance)?;
-    models.push((format!("EON (fitted r = {r:.3})"), build("eon", &[("roughness", ParamValue::Number(r))])?));
+    models.push((
+        format!("EON (fitted r = {r:.3})"),
+        DiffuseModel::with("eon", &[("roughness", ParamValue::Number(r))])?,
+    ));
 
     let rho = [reflectance as f32];
     let mut points = Vec::new();

@@ -16,10 +16,10 @@ use crate::load::props::{FromProps, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
-use matte_brdf::construction::{Property, construct, is_file_parameter};
+use matte_brdf::construction::{construct, is_file_parameter};
 use matte_brdf::kernel;
 use matte_brdf::registry::MAX_NUMERIC;
-use matte_brdf::{DiffuseBrdf, DiffuseModel};
+use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use matte_scene_file::SceneError;
 use matte_scene_file::xml::Value;
 
@@ -69,17 +69,17 @@ impl FromProps for Matte {
         let kind = p.object().plugin.clone();
         let reflectance = p.texture("reflectance")?;
         let nested_names = p.remaining_nested_names();
-        let mut properties: Vec<(String, Property)> = Vec::new();
+        let mut properties: Vec<(String, ParamValue)> = Vec::new();
         for prop in p.remaining_properties() {
             let value = match &prop.value {
-                Value::Float(x) => Property::Number(*x),
-                Value::Integer(i) => Property::Number(*i as f64),
+                Value::Float(x) => ParamValue::Number(*x),
+                Value::Integer(i) => ParamValue::Number(*i as f64),
                 // A file (`tabulated_brdf`'s table) is resolved as every file of the scene.
                 Value::String(s) if is_file_parameter(&kind, &prop.name) => {
-                    Property::Text(p.resolve(s).display().to_string())
+                    ParamValue::Text(p.resolve(s).display().to_string())
                 }
-                Value::String(s) => Property::Text(s.clone()),
-                Value::Boolean(v) => Property::Flag(*v),
+                Value::String(s) => ParamValue::Text(s.clone()),
+                Value::Boolean(v) => ParamValue::Flag(*v),
                 other => {
                     return Err(
                         p.prop_err(&prop.name, format!("must be a number or a string, not {}", other.type_name()))
@@ -91,7 +91,7 @@ impl FromProps for Matte {
         let mut textures: Vec<(String, Texture)> = Vec::new();
         for name in nested_names {
             let t = p.texture(&name)?;
-            properties.push((name.clone(), Property::Texture { mean: t.mean() as f64 }));
+            properties.push((name.clone(), ParamValue::Texture { mean: t.mean() as f64 }));
             textures.push((name, t));
         }
         let c = construct(&kind, &properties).map_err(|e| p.prop_err(&e.param, e.message))?;

@@ -4,16 +4,16 @@
 //! below are Oren & Nayar's qualitative model (1994, eq. 30) and their full model (C1–C3 plus the
 //! ρ² interreflection term, eqs. 27–29 and 37), identical to Mitsuba 0.6 `roughdiffuse` with `useFastApprox` true / false.
 
-use super::approx::acos_unit;
-use super::cltc::{self, ClippedLtc, Sampling};
-use super::kernel::{Kernel, azimuthal_dot};
-use super::params::{ParamError, ParamValue};
-use super::real::{Real, V3};
-use super::registry::{
+use crate::approx::acos_unit;
+use crate::cltc::{ClippedLtc, Sampling};
+use crate::kernel::{Kernel, azimuthal_dot};
+use crate::params::{ParamError, ParamValue};
+use crate::real::{Real, V3};
+use crate::registry::{
     Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
     parameter_values,
 };
-use super::sampler_fits::{OREN_NAYAR_FULL, OREN_NAYAR_QUALITATIVE};
+use crate::sampler_fits::{OREN_NAYAR_FULL, OREN_NAYAR_QUALITATIVE};
 use std::f64::consts::{FRAC_1_PI, FRAC_2_PI};
 
 /// Which of the 1994 forms to evaluate.
@@ -225,7 +225,7 @@ impl Registered for OrenNayar {
                 "qualitative",
                 "`qualitative` (eq. 30) or `full` (C1–C3 and the ρ² interreflection term)",
             ),
-            cltc::sampling_param("`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model"),
+            ParamSpec::sampling("`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model"),
         ],
         examples: &[&[("sigma", "0.8"), ("model", "full")], &[("sigma", "1.0"), ("sampling", "cltc")]],
         in_study: true,

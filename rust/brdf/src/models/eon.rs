@@ -4,13 +4,13 @@
 //! `base_diffuse_roughness`, not the Oren–Nayar σ. matte uses the **exact** FON albedo E_F
 //! (closed form G(μ)), not the polynomial fit, so the white furnace is 1 to float precision.
 
-use super::approx::acos_unit;
-use super::cltc::{self, ClippedLtc};
-pub use super::cltc::Sampling;
-use super::kernel::{Kernel, azimuthal_dot};
-use super::params::{ParamError, ParamValue};
-use super::real::{Real, V3};
-use super::registry::{
+use crate::approx::acos_unit;
+use crate::cltc::ClippedLtc;
+pub use crate::cltc::Sampling;
+use crate::kernel::{Kernel, azimuthal_dot};
+use crate::params::{ParamError, ParamValue};
+use crate::real::{Real, V3};
+use crate::registry::{
     Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Registered, Values, flat_values, param, parameter_values,
 };
 use std::f64::consts::PI;
@@ -227,7 +227,7 @@ impl Registered for Eon {
         summary: "energy-preserving Oren–Nayar (Portsmouth et al. 2025), exact albedo: the white furnace gives 1",
         params: &[
             ParamSpec::unit_interval("roughness", 0.3, "roughness r ∈ [0, 1] (OpenPBR `base_diffuse_roughness`)"),
-            cltc::sampling_param(
+            ParamSpec::sampling(
                 "`cosine`: as `diffuse`; `cltc`: the paper's clipped linearly transformed cosine with a uniform share",
             ),
         ],

@@ -5,12 +5,12 @@
 //! qualitative model; the default is the full one. Defaults as 0.6: α = 0.2, ρ = 0.5.
 //! So that scenes written for Mitsuba 0.6 render with the rough diffuse model they asked for.
 
-use super::cltc::{self, Sampling};
-use super::kernel::Kernel;
+use crate::cltc::Sampling;
+use crate::kernel::Kernel;
 use super::oren_nayar::{OrenNayar, OrenNayarCoefficients, OrenNayarForm, OrenNayarKernel};
-use super::params::{ParamError, ParamValue};
-use super::real::Real;
-use super::registry::{
+use crate::params::{ParamError, ParamValue};
+use crate::real::Real;
+use crate::registry::{
     Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
     parameter_values,
 };
@@ -79,7 +79,7 @@ impl Registered for RoughDiffuse {
         params: &[
             ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)"),
             ParamSpec::flag("use_fast_approx", false, "the qualitative model instead of the full one"),
-            cltc::sampling_param("`cosine`: as `diffuse`; `cltc`: Oren–Nayar's fitted sampler"),
+            ParamSpec::sampling("`cosine`: as `diffuse`; `cltc`: Oren–Nayar's fitted sampler"),
         ],
         examples: &[&[("alpha", "0.6"), ("use_fast_approx", "true")]],
         in_study: false,

@@ -1,10 +1,10 @@
 //! Lambert: `f = ρ/π` (Lambert 1760). Must agree with Mitsuba's built-in `diffuse` to float
 //! precision, including its sampling routine and its sampling weight `ρ`.
 
-use super::kernel::Kernel;
-use super::params::{ParamError, ParamValue};
-use super::real::{Real, V3};
-use super::registry::{Evaluation, Gradients, KernelBrdf, ModelSpec, NoValues, Registered, Values, parameter_values};
+use crate::kernel::Kernel;
+use crate::params::{ParamError, ParamValue};
+use crate::real::{Real, V3};
+use crate::registry::{Evaluation, Gradients, KernelBrdf, ModelSpec, NoValues, Registered, Values, parameter_values};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Lambert;

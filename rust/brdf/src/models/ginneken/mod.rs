@@ -18,16 +18,16 @@ pub mod shadowing;
 pub mod slope_integral;
 pub mod table;
 
-use super::approx;
-use super::cltc::{self, ClippedLtc, Sampling};
-use super::kernel::{Kernel, azimuthal_dot};
-use super::params::{ParamError, ParamValue};
-use super::real::{Nodes, Real, V3};
-use super::registry::{
+use crate::approx;
+use crate::cltc::{ClippedLtc, Sampling};
+use crate::kernel::{Kernel, azimuthal_dot};
+use crate::params::{ParamError, ParamValue};
+use crate::real::{Nodes, Real, V3};
+use crate::registry::{
     Evaluation, Flat, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
     parameter_values,
 };
-use super::sampler_fits::GINNEKEN;
+use crate::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{
     Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction,
@@ -354,7 +354,7 @@ impl Registered for Ginneken {
                 "vginneken",
                 "the shadowing-masking term: the paper's or height-correlated Smith",
             ),
-            cltc::sampling_param("`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model"),
+            ParamSpec::sampling("`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model"),
         ],
         examples: &[&[("roughness", "0.7"), ("shadowing", "height_correlated")]],
         in_study: true,

@@ -17,12 +17,12 @@
 //! albedo (interreflections go as ρ², ρ³ …) but `f/ρ` is smooth and finite down to ρ = 0
 //! (where it is the single-scattering BRDF of a white surface), so a few ρ nodes interpolate it.
 
-use super::DiffuseBrdf;
-use super::approx::{acos_unit, angle};
-use super::kernel::Kernel;
-use super::real::{Nodes, Real, V3};
-use super::params::{ParamError, ParamValue};
-use super::registry::{
+use crate::DiffuseBrdf;
+use crate::approx::{acos_unit, angle};
+use crate::kernel::Kernel;
+use crate::real::{Nodes, Real, V3};
+use crate::params::{ParamError, ParamValue};
+use crate::registry::{
     Evaluation, Gradients, KernelBrdf, ModelSpec, NoValues, ParamSpec, Registered, Values, param, parameter_values,
 };
 use glam::Vec3;
@@ -456,7 +456,7 @@ impl KernelBrdf for Tabulated {
 }
 
 /// The interpolation over [`Real`]: θi, θo and Δφ from the directions (`acos` and `atan2` by
-/// the polynomials of [`super::approx`]), the cells located on the nodes ([`Axis::locate`]),
+/// the polynomials of [`crate::approx`]), the cells located on the nodes ([`Axis::locate`]),
 /// the eight corners of the (θi, θo, Δφ) cell gathered at the two reflectance nodes around
 /// each channel's ρ: 16 gathers per channel.
 #[derive(Clone, Copy)]

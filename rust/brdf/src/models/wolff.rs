@@ -16,12 +16,12 @@
 //!   Lambert at normal incidence; the fair side-by-side comparison).
 //! * `raw`: `ρ / π`.
 
-use super::fresnel::{Transmittance, dielectric_reflectance, diffuse_fresnel_external};
-use super::fresnel_fit::diffuse_fresnel_external_fit;
-use super::kernel::Kernel;
-use super::params::{ParamError, ParamValue};
-use super::real::{Real, V3};
-use super::registry::{
+use crate::fresnel::{Transmittance, dielectric_reflectance, diffuse_fresnel_external};
+use crate::fresnel_fit::diffuse_fresnel_external_fit;
+use crate::kernel::Kernel;
+use crate::params::{ParamError, ParamValue};
+use crate::real::{Real, V3};
+use crate::registry::{
     Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Registered, Values, flat_values, param, parameter_values,
 };
 

@@ -9,14 +9,14 @@
 //! `cos²θ_d = (1 + wi·wo)/2` (no normalisation, no square root). Reciprocal; not energy
 //! conserving (the retro-reflection adds light at grazing for large r), as published.
 
-use super::cltc::{self, ClippedLtc, Sampling};
-use super::kernel::Kernel;
-use super::params::{ParamError, ParamValue};
-use super::real::{Real, V3};
-use super::registry::{
+use crate::cltc::{ClippedLtc, Sampling};
+use crate::kernel::Kernel;
+use crate::params::{ParamError, ParamValue};
+use crate::real::{Real, V3};
+use crate::registry::{
     Evaluation, Gradients, KernelBrdf, ModelSpec, ParamSpec, Registered, Values, flat_values, param, parameter_values,
 };
-use super::sampler_fits::BURLEY;
+use crate::sampler_fits::BURLEY;
 
 /// Burley's diffuse with its roughness in any [`Real`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -107,7 +107,7 @@ impl Registered for Burley {
         summary: "Burley 2012 (Disney): Lambert with Fresnel-like grazing factors and a roughness-driven retro-reflection; `principled`'s diffuse lobe",
         params: &[
             ParamSpec::unit_interval("roughness", 0.5, "roughness r ∈ [0, 1] (Disney's, as `principled`'s)"),
-            cltc::sampling_param(
+            ParamSpec::sampling(
                 "`cosine`: as `diffuse`; `cltc`: a clipped linearly transformed cosine with a uniform share fitted to the model",
             ),
         ],
