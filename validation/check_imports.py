@@ -142,9 +142,7 @@ def main() -> int:
     src = Path(sys.argv[1] if len(sys.argv) > 1 else "rust/brdf/src")
     edges = graph(src)
     rel = lambda f: str(f.relative_to(src))  # noqa: E731
-    pairs = sorted(
-        {tuple(sorted((rel(a), rel(b)))) for a, ts in edges.items() for b in ts if a in edges.get(b, ())}
-    )
+    pairs = sorted({tuple(sorted((rel(a), rel(b)))) for a, ts in edges.items() for b in ts if a in edges.get(b, ())})
     comps = circles(edges)
     print(f"{len(edges)} files, {sum(len(t) for t in edges.values())} imports between them")
     for a, b in pairs:

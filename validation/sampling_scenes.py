@@ -2,7 +2,7 @@
 "Scene level"), in Mitsuba's `llvm_ad_rgb` (symbolic, the plugin users run) and in matte's
 renderer, measured in one run on one machine.
 
-For every model that offers a sampler besides the cosine (`matte types --json`: "samplers"), each scene
+For every model that offers a sampler besides the cosine (`matte_mitsuba.registry.own_samplers`), each scene
 (the study's four, mitsuba_scenes/sampling/grazing.xml and indirect.xml), roughness 0.3 and 1.0, and each
 `sampling` (the model's own, `cosine`): K independent renders (seeds 1..K) at a small spp;
 V = the per-pixel variance across the renders (unbiased, mean over pixels and channels), T =
@@ -130,21 +130,20 @@ def main():
 
     mi.set_variant("llvm_ad_rgb")
     import matte_mitsuba
+    from matte_mitsuba import registry
 
     matte_mitsuba.register()
 
-    types = json.loads(subprocess.run([MATTE, "types", "--json"], check=True, capture_output=True, text=True).stdout)
     own = [
         (m, s)
-        for m in types
-        for s in m["samplers"]
-        if s != "cosine"
+        for m in registry.MODELS
+        for s in registry.own_samplers(m)
         if not a.models or m["name"] in a.models.split(",")
     ]
     seeds = list(range(1, a.renders + 1))
     rows = []
     for m, own_sampler in own:
-        rough = next(p["name"] for p in m["params"] if p["kind"]["type"] == "number")
+        rough = registry.numeric_parameters(m)[0]["name"]
         for scene in a.scenes.split(","):
             for r in (0.3, 1.0):
                 for renderer, run in (("mitsuba llvm_ad_rgb", mitsuba_renders), ("matte", matte_renders)):

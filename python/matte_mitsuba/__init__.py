@@ -27,8 +27,10 @@ The package also holds what the ``matte`` command-line tool needs at run time: t
 side of its commands (``python -m matte_mitsuba.passes`` for ``matte validate`` and ``matte
 study``, ``.bench`` for ``matte bench``, ``.fit`` for ``matte fit``), the plugin benchmark
 (``python -m matte_mitsuba.bench_plugin``), the GPU check (``python -m matte_mitsuba.gpu_check``),
-and its data: the bundled scenes (:data:`SCENES`, what ``matte validate --all`` and ``matte
-study`` render) and the simulated surfaces' tables (:data:`GROUND_TRUTH`).
+its data: the bundled scenes (:data:`SCENES`, what ``matte validate --all`` and ``matte
+study`` render) and the simulated surfaces' tables (:data:`GROUND_TRUTH`), and the model
+registry as the Rust side declares it (``matte_mitsuba.registry``: the types, their parameters,
+defaults, examples and fit ranges; :data:`MODELS` and :func:`numeric_parameters` are its).
 """
 
 import os as _os
@@ -133,11 +135,6 @@ def ground_truth_path(name):
     return path
 
 
-def numeric_parameters(model):
-    """The parameters of ``model`` (an entry of :data:`MODELS`) a texture may give, in order."""
-    return [p for p in model["params"] if p["kind"]["type"] in ("number", "ior")]
-
-
 def register():
     """Adds the running release's plugin folder and the package folder (for relative paths to
     its tables) to Mitsuba's file resolver (idempotent). Called on import."""
@@ -153,15 +150,6 @@ def register():
 register()
 
 
-def _models():
-    import json
-
-    from ._build import MODELS_JSON
-
-    return json.loads(MODELS_JSON)
-
-
-#: Every model's declaration, as ``matte types --json`` prints it: ``name``, ``summary``,
-#: ``params`` (each with ``name``, ``kind`` (``type``: number, ior, choice or flag, and its
-#: ``default``), ``range``, ``lane_clamp``) and ``examples`` (parameter sets the tests sweep).
-MODELS = _models()
+# The model registry (`registry`: which types there are, their parameters, defaults, examples
+# and fit ranges); `MODELS` and `numeric_parameters` stay here for the callers that used them.
+from .registry import MODELS, numeric_parameters  # noqa: E402,F401

@@ -36,12 +36,13 @@ import time
 
 import matte_mitsuba
 from matte_mitsuba import BSDF_TYPES as TYPES  # the plugin names, as the build wrote them
+from matte_mitsuba import registry
 
 # Each type's first numeric parameter and its default, from the model registry.
 SHAPE_PARAMETER = {
-    m["name"]: (p[0]["name"], p[0]["kind"]["default"])
-    for m in matte_mitsuba.MODELS
-    for p in [matte_mitsuba.numeric_parameters(m)]
+    m["name"]: (p[0]["name"], registry.default(p[0]))
+    for m in registry.MODELS
+    for p in [registry.numeric_parameters(m)]
     if p
 }
 

@@ -15,8 +15,10 @@ with Mitsuba's ``prb`` integrator and ``mi.ad.Adam`` so that renders match the t
 * **Parameters** are Mitsuba ``SceneParameters`` keys (``python -m matte_mitsuba.fit scene.xml
   --list`` prints the differentiable ones): floats (``obj.bsdf.sigma``) or textures' data
   (``obj.bsdf.sigma.data``, ``obj.bsdf.reflectance.data``). ``--init KEY=VALUE`` sets a start
-  value (a texture is filled with it). After every step the values are clamped to their valid
-  range, chosen from the key's parameter name (``RANGES``; ``--range KEY=LO,HI`` overrides).
+  value (a texture is filled with it). After every step the values are clamped to where the
+  model registry lets a fit search the parameter the key names, for the matte type of its BSDF
+  (``registry.fit_range``: each parameter's ``fit`` bounds in its Rust declaration; a
+  reflectance in [0, 1], of any BSDF); ``--range KEY=LO,HI`` overrides.
 * **Loss**: mean squared error per pixel and channel, averaged over configurations.
 * **Learning rate**: ``--lr``, constant, or decaying geometrically to ``--lr-final`` at the last
   iteration (Adam's steps keep a size of about the learning rate while the gradients are
@@ -35,23 +37,11 @@ import html
 import json
 import math
 import os
+import re
 import sys
 import time
 
-# Valid ranges by parameter name (the last dotted component that names a BSDF parameter).
-# sigma: Oren-Nayar's slope-angle std (rad); roughness: EON's r in [0, 1] (van Ginneken's m
-# must stay > 0, so the lower bound is 1e-3); alpha: roughdiffuse's RMS slope; int_ior /
-# ext_ior: Wolff's indices; reflectance: albedo. Oren-Nayar depends on σ² only, so σ = 0
-# exactly (Lambert) is a stationary point of the loss: σ and α start and stay at >= 1e-3
-# (A(σ) = 1 − 1.5e-6 there, Lambert for any image), from where Adam's scale-free steps move.
-RANGES = {
-    "sigma": (1e-3, 1.5),
-    "roughness": (1e-3, 1.0),
-    "alpha": (1e-3, 2.0),
-    "int_ior": (1.0, 4.0),
-    "ext_ior": (1.0, 4.0),
-    "reflectance": (0.0, 1.0),
-}
+from . import registry
 
 
 class FitError(Exception):
@@ -123,16 +113,34 @@ def parse_pairs(items, what):
     return out
 
 
-def range_for(key, overrides):
+def matte_type(params, key):
+    """The matte type of the BSDF the ``SceneParameters`` key belongs to (one of its own
+    parameters, or the data of a texture it holds): the first object up the key's traversal
+    hierarchy that is one of matte's BSDFs, whose description names its type; ``None`` when
+    no matte BSDF holds the key."""
+    node = params.properties[key][2]
+    while node is not None:
+        if node.class_name() == "MatteBSDF":
+            found = re.search(r'type = "(\w+)"', str(node))
+            return found.group(1) if found else None
+        node = params.hierarchy.get(node, (None, 0))[0]
+    return None
+
+
+def range_for(key, overrides, kind):
+    """The clamp range of the freed ``key``: ``--range``'s, else where the registry lets a fit
+    search the parameter the key names (the last dotted component that is a numeric parameter
+    of the matte type ``kind``, or ``reflectance``), else none."""
     if key in overrides:
         try:
             lo, hi = (float(x) for x in overrides[key].split(","))
         except ValueError:
             raise FitError(f"--range {key}={overrides[key]}: expected LO,HI") from None
         return lo, hi
+    names = {"reflectance"} | ({p["name"] for p in registry.numeric_parameters(kind)} if kind else set())
     for part in reversed(key.split(".")):
-        if part in RANGES:
-            return RANGES[part]
+        if part in names:
+            return registry.fit_range(kind, part) if kind else registry.REFLECTANCE_FIT
     return (-math.inf, math.inf)
 
 
@@ -297,7 +305,7 @@ def fit(args):
 
     inits = parse_pairs(args.init, "--init")
     ranges_over = parse_pairs(args.range, "--range")
-    ranges = {k: range_for(k, ranges_over) for k in args.param}
+    ranges = {k: range_for(k, ranges_over, matte_type(params[0], k)) for k in args.param}
 
     if not (args.lr > 0 and math.isfinite(args.lr)):
         raise FitError(f"--lr {args.lr}: must be a positive number")

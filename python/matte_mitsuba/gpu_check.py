@@ -28,7 +28,7 @@ import subprocess
 import sys
 import time
 
-from . import MODELS, SCENES, bench_plugin
+from . import SCENES, bench_plugin, registry
 from .gradient_check import adjoint_gradient, central_difference
 
 SCENE = os.path.join(SCENES, "all_types.xml")
@@ -48,7 +48,7 @@ GRADIENT_OVERRIDES = {
 def gradient_cases(models):
     cases = []
     for m in models:
-        numeric = [p for p in m["params"] if p["kind"]["type"] in ("number", "ior")]
+        numeric = registry.numeric_parameters(m)
         if not numeric:
             # The properties a type needs beyond its defaults (tabulated_brdf's table).
             required = bench_plugin.REQUIRED.get(m["name"], dict)()
@@ -64,7 +64,7 @@ def gradient_cases(models):
     return cases
 
 
-GRADIENT_CASES = gradient_cases(MODELS)
+GRADIENT_CASES = gradient_cases(registry.MODELS)
 GRADIENT_TOLERANCE = 0.01
 MEAN_Z_LIMIT = 4.5
 

@@ -12,6 +12,7 @@ import sys
 
 import numpy as np
 import pytest
+from matte_mitsuba import registry
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 # The installed `matte` command of the environment running the tests (the checkout's .venv,
@@ -36,12 +37,6 @@ CHECKOUT_MITSUBA = next(
 )
 
 
-def _registry():
-    """The model registry as the installed `matte types --json` prints it."""
-    out = subprocess.run([MATTE, "types", "--json"], capture_output=True, text=True, check=True)
-    return json.loads(out.stdout)
-
-
 def _value(text):
     try:
         return float(text)
@@ -49,23 +44,14 @@ def _value(text):
         return text
 
 
-MODELS = _registry()
-
-
-def builds_from_defaults(model):
-    """Whether a registered type builds from its defaults alone: no required parameter (a
-    file: `tabulated_brdf`'s table, which its own tests give)."""
-    return all(p["kind"]["type"] != "file" for p in model["params"])
-
-
 # (type, parameters) exercised by the agreement, χ² and finiteness tests: every registered
-# model that builds from its defaults, at its defaults and at each of its declared examples
-# (every option).
+# model (the installed package's registry) that builds from its defaults, at its defaults and
+# at each of its declared examples (every option).
 CONFIGS = [
     (m["name"], params)
-    for m in MODELS
-    if builds_from_defaults(m)
-    for params in [{}] + [{k: _value(v) for k, v in ex} for ex in m["examples"]]
+    for m in registry.MODELS
+    if registry.builds_from_defaults(m)
+    for params in [{}] + [{k: _value(v) for k, v in ex.items()} for ex in registry.examples(m)]
 ]
 
 

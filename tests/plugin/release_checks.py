@@ -27,17 +27,13 @@ RES, SPP = 24, 64
 
 
 def types():
-    """(type, parameters) for every registered type at its defaults; tabulated_brdf with a
-    packaged table."""
+    """(type, parameters) for every registered type at its defaults, a file parameter
+    (tabulated_brdf's table) given the packaged V-cavity table."""
     import matte_mitsuba
+    from matte_mitsuba import registry
 
-    out = []
-    for m in matte_mitsuba.MODELS:
-        if any(p["kind"]["type"] == "file" for p in m["params"]):
-            out.append((m["name"], {"filename": matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")}))
-        else:
-            out.append((m["name"], {}))
-    return out
+    table = matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")
+    return [(m["name"], {p["name"]: table for p in registry.file_parameters(m)}) for m in registry.MODELS]
 
 
 def pairs():
@@ -109,16 +105,15 @@ def gradient(only=None):
     """Per type (or the one named), d(image mean)/d(its first numeric parameter, else the
     reflectance) on the Cornell box whose three materials are that type: prb's adjoint and
     central differences."""
-    import matte_mitsuba
+    from matte_mitsuba import registry
     from matte_mitsuba.gradient_check import adjoint_gradient, central_difference, shifted
 
     out = {}
     for kind, fixed in types():
         if only and kind != only:
             continue
-        model = next(m for m in matte_mitsuba.MODELS if m["name"] == kind)
-        numeric = [p["name"] for p in model["params"] if p["kind"]["type"] in ("number", "ior")]
-        name = numeric[0] if numeric else "reflectance.value"
+        numeric = registry.numeric_parameters(kind)
+        name = numeric[0]["name"] if numeric else "reflectance.value"
         scene = cornell([kind] * 3, "prb", fixed)
         params = mi.traverse(scene)
         key = "white." + name

@@ -94,3 +94,51 @@ def test_fit_errors_are_one_line(scenes, tmp_path):
     assert p.returncode == 2 and "--lr-factor plane.bsdf.sigma=-1: must be a positive number" in p.stderr, p.stderr
     p = run("--target-scene", str(truth), "--param", "plane.bsdf.sigma", "--init", "plane.bsdf.sigma=0.1,0.2,0.3")
     assert p.returncode == 2 and "3 values for a parameter of another size" in p.stderr, p.stderr
+
+
+# Two BSDFs with a parameter of one name, `roughness`: EON's r in [0, 1] as a float, van
+# Ginneken's rms slope m in (0, 4] as a texture (its key names the texture's data).
+SAME_NAME = """<scene version="3.0.0">
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+    </sensor>
+    <emitter type="constant"/>
+    <shape type="rectangle" id="a">
+        <transform name="to_world"><translate x="-1"/></transform>
+        <bsdf type="eon"><float name="roughness" value="0.5"/></bsdf>
+    </shape>
+    <shape type="rectangle" id="b">
+        <transform name="to_world"><translate x="1"/></transform>
+        <bsdf type="ginneken">
+            <texture type="checkerboard" name="roughness">
+                <float name="color0" value="0.3"/>
+                <float name="color1" value="0.6"/>
+            </texture>
+        </bsdf>
+    </shape>
+</scene>
+"""
+
+
+def test_fit_clamps_each_parameter_to_its_own_types_bounds(tmp_path):
+    """The clamp range of a freed key is its type's `fit` bounds for that parameter as the Rust
+    registry declares them (`matte types --json`), not another type's of the same name."""
+    from matte_mitsuba.fit import main
+
+    scene = tmp_path / "same_name.xml"
+    scene.write_text(SAME_NAME)
+    keys = {"eon": "a.bsdf.roughness", "ginneken": "b.bsdf.roughness.color0.value"}
+    out = tmp_path / "out"
+    args = [str(scene), "--target-scene", str(scene), "--iterations", "1", "--spp", "1", "--target-spp", "1"]
+    assert main([*args, *(a for k in keys.values() for a in ("--param", k)), "-o", str(out), "--quiet"]) == 0
+    ranges = json.loads((out / "fit.json").read_text())["ranges"]
+    matte = os.path.join(os.path.dirname(sys.executable), "matte")
+    declared = {
+        m["name"]: p["fit"]
+        for m in json.loads(subprocess.run([matte, "types", "--json"], capture_output=True, check=True).stdout)
+        for p in m["params"]
+        if p["name"] == "roughness"
+    }
+    assert declared["eon"] != declared["ginneken"], declared
+    assert {kind: ranges[key] for kind, key in keys.items()} == {kind: declared[kind] for kind in keys}, ranges

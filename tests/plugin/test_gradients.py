@@ -15,7 +15,8 @@ import os
 import drjit as dr
 import numpy as np
 import pytest
-from conftest import MODELS, REPO
+from conftest import REPO
+from matte_mitsuba import registry
 from matte_mitsuba.gradient_check import adjoint_gradient, central_difference, shifted
 
 RES, SPP, SEED = 24, 8, 3
@@ -45,9 +46,9 @@ CASES += [
     (
         m["name"],
         {},
-        {"reflectance.value": 1e-2, **{p["name"]: 1e-2 for p in m["params"] if p["kind"]["type"] in ("number", "ior")}},
+        {"reflectance.value": 1e-2, **{p["name"]: 1e-2 for p in registry.numeric_parameters(m)}},
     )
-    for m in MODELS
+    for m in registry.MODELS
     if m["name"] not in {c[0] for c in CASES}
 ]
 
@@ -91,11 +92,9 @@ def test_ad_matches_finite_differences(mi_variant, case):
 # against the cosine-sampled one (checked against finite differences above).
 OWN = [
     (m["name"], p["name"], s)
-    for m in MODELS
-    for s in m["samplers"]
-    if s != "cosine"
-    for p in m["params"]
-    if p["kind"]["type"] in ("number", "ior")
+    for m in registry.MODELS
+    for s in registry.own_samplers(m)
+    for p in registry.numeric_parameters(m)
 ]
 
 

@@ -6,12 +6,12 @@ sampled direction; and a roughness texture samples as the number it stands for."
 import drjit as dr
 import numpy as np
 import pytest
-from conftest import MODELS
+from matte_mitsuba import registry
 
 # Every model that offers a sampler besides the cosine, with it, at two roughnesses (its first
 # numeric parameter, as the registry declares it).
-OWN = [(m, s) for m in MODELS for s in m["samplers"] if s != "cosine"]
-CASES = [(m["name"], {m["params"][0]["name"]: r, "sampling": s}) for m, s in OWN for r in (0.3, 1.0)]
+OWN = [(m, s) for m in registry.MODELS for s in registry.own_samplers(m)]
+CASES = [(m["name"], {registry.numeric_parameters(m)[0]["name"]: r, "sampling": s}) for m, s in OWN for r in (0.3, 1.0)]
 ANGLES = [30.0, 85.0, 89.0]
 
 

@@ -1,5 +1,5 @@
-"""Textured numeric parameters (sigma, roughness, alpha, int_ior, ext_ior) of matte's plugins
-(docs/models.md#spatially-varying-parameters).
+"""Textured numeric parameters of matte's plugins, every numeric parameter of every registered
+type (σ, r, α, int_ior, ext_ior, m; docs/models.md#spatially-varying-parameters).
 
 Oracles: central finite differences of the same function (for the gradients that reach the
 texture's data through `mi.traverse`), the float form of each parameter (a texture with the
@@ -7,9 +7,12 @@ same value everywhere must give the float's BSDF and, summed over its texels, th
 gradient), and Mitsuba's own error reporting for refused forms.
 """
 
+import math
+
 import numpy as np
 import pytest
 from conftest import random_pairs
+from matte_mitsuba import registry
 from matte_mitsuba.gradient_check import adjoint_gradient, image_mean
 
 N = 4000
@@ -18,6 +21,7 @@ CASES = [
     ("oren_nayar", "sigma", 0.4, {}, 1e-5),
     ("oren_nayar", "sigma", 0.7, {"model": "full"}, 1e-5),
     ("eon", "roughness", 0.6, {}, 1e-5),
+    ("burley", "roughness", 0.6, {}, 1e-5),
     ("roughdiffuse", "alpha", 0.5, {}, 1e-5),
     ("wolff", "int_ior", 1.6, {}, 2e-4),  # F_dr from its fit (|error| <= 2e-5)
     ("wolff", "ext_ior", 1.2, {"int_ior": 1.9, "normalization": "normal"}, 2e-4),
@@ -28,6 +32,12 @@ CASES = [
 # (fit: its n-derivative is within 0.11 % for n in [1.1, 4]) and van Ginneken (its first-order
 # ∂/∂m table at m₀ against the Hermite interpolation over m).
 GRADIENT_TOLERANCE = {"wolff": 3e-3, "ginneken": 1e-2}
+
+
+def test_every_numeric_parameter_of_every_registered_type_has_a_case():
+    declared = {(m["name"], p["name"]) for m in registry.MODELS for p in registry.numeric_parameters(m)}
+    covered = {(kind, name) for kind, name, _, _, _ in CASES}
+    assert declared <= covered, f"no textured case for {sorted(declared - covered)}"
 
 
 def case_id(case):
@@ -157,31 +167,26 @@ def test_texture_gradient_matches_finite_differences(mi_variant, case):
     assert abs(g_texels - g_float) <= GRADIENT_TOLERANCE.get(kind, 2e-5) * abs(g_float), (g_texels, g_float)
 
 
-@pytest.mark.parametrize(
-    "kind, name, bound",
-    [
-        ("oren_nayar", "sigma", 0.0),
-        ("roughdiffuse", "alpha", 0.0),
-        ("eon", "roughness", 0.0),
-        ("eon", "roughness", 1.0),
-        ("wolff", "int_ior", 1.0),
-        ("ginneken", "roughness", 0.0),
-        ("ginneken", "roughness", 4.0),
-    ],
-)
+# Every finite bound of every numeric parameter's lane clamp (its range, or van Ginneken's
+# roughness axis from 0.02), with a texel 0.5 beyond it.
+BOUNDS = [
+    (m["name"], p["name"], bound, beyond)
+    for m in registry.MODELS
+    for p in registry.numeric_parameters(m)
+    for bound, beyond in zip(registry.lane_clamp(m, p["name"]), (-0.5, 0.5))
+    if math.isfinite(bound)
+]
+
+
+@pytest.mark.parametrize("kind, name, bound, beyond", BOUNDS, ids=[f"{k}-{n}={b}" for k, n, b, _ in BOUNDS])
 @pytest.mark.parametrize("mi_variant", ["llvm_ad_rgb"], indirect=True)
-def test_texture_at_and_beyond_the_bounds_is_finite(mi_variant, kind, name, bound):
+def test_texture_at_and_beyond_the_bounds_is_finite(mi_variant, kind, name, bound, beyond):
     """Texels at the bound and beyond it (clamped) give finite values and gradients: the
     finiteness rule of docs/traced-kernels.md holds per lane."""
     mi = mi_variant
     import drjit as dr
 
-    beyond = bound - 0.5 if bound == 0.0 or name == "int_ior" else bound + 0.5
-    if kind == "ginneken" and bound == 0.0:
-        bound = 0.02  # the roughness axis starts at 0.02: 0 and below clamp to it
-    bsdf = load(
-        mi, "oren_nayar" if kind == "oren_nayar" else kind, {}, name, bitmap(mi, [[bound, beyond], [bound, bound]])
-    )
+    bsdf = load(mi, kind, {}, name, bitmap(mi, [[bound, bound + beyond], [bound, bound]]))
     params = mi.traverse(bsdf)
     dr.enable_grad(params[name + ".data"])
     params.update()

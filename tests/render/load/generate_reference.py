@@ -143,29 +143,56 @@ cam = camera(
     4,
     2,
 )
-const("CAMERA_CORNER", "CameraRay", ray(cam, 0, 0, 4, 2), "fov 90, at (0, 0, 5) looking at the origin, 4×2 film: the ray through film corner (0, 0).")
+const(
+    "CAMERA_CORNER",
+    "CameraRay",
+    ray(cam, 0, 0, 4, 2),
+    "fov 90, at (0, 0, 5) looking at the origin, 4×2 film: the ray through film corner (0, 0).",
+)
 const("CAMERA_CENTRE", "CameraRay", ray(cam, 2, 1, 4, 2), "The same camera's ray through the film centre (2, 1).")
 const("CAMERA_OPPOSITE_CORNER", "CameraRay", ray(cam, 4, 2, 4, 2), "The same camera's ray through film corner (4, 2).")
 
 p = mi.traverse(one('<sensor type="perspective"/>'))
 size = vec(p["film.size"])
-const("DEFAULT_FILM_SIZE", "(u32, u32)", f"({int(size[0])}, {int(size[1])})", "A bare `perspective` sensor's film size.")
-const("DEFAULT_X_FOV", "f64", repr(float(np.float32(p["x_fov"]))), "A bare `perspective` sensor's x_fov in degrees (focal_length 50mm).")
+const(
+    "DEFAULT_FILM_SIZE", "(u32, u32)", f"({int(size[0])}, {int(size[1])})", "A bare `perspective` sensor's film size."
+)
+const(
+    "DEFAULT_X_FOV",
+    "f64",
+    repr(float(np.float32(p["x_fov"]))),
+    "A bare `perspective` sensor's x_fov in degrees (focal_length 50mm).",
+)
 rows = []
 for axis in ["x", "y", "diagonal", "smaller", "larger", "Y"]:
     cam = camera(f'<float name="fov" value="45"/><string name="fov_axis" value="{axis}"/>', 768, 576)
     rows.append(f"({string(axis)}, {repr(float(np.float32(mi.traverse(cam)['x_fov'])))})")
-const("FOV_45_X_FOV", "&[(&str, f64)]", "&[" + ", ".join(rows) + "]", "fov 45 along `fov_axis` at 768×576: (fov_axis, x_fov in degrees).")
+const(
+    "FOV_45_X_FOV",
+    "&[(&str, f64)]",
+    "&[" + ", ".join(rows) + "]",
+    "fov 45 along `fov_axis` at 768×576: (fov_axis, x_fov in degrees).",
+)
 rows = []
 for axis in ["larger", "smaller"]:
     cam = camera(f'<float name="fov" value="45"/><string name="fov_axis" value="{axis}"/>', 576, 768)
     rows.append(f"({string(axis)}, {f32(np.tan(np.radians(mi.traverse(cam)['x_fov']) / 2))})")
-const("FOV_45_PORTRAIT_TAN_HALF", "&[(&str, f32)]", "&[" + ", ".join(rows) + "]", "fov 45 along `fov_axis` at 576×768 (portrait): (fov_axis, tan(x_fov / 2)).")
+const(
+    "FOV_45_PORTRAIT_TAN_HALF",
+    "&[(&str, f32)]",
+    "&[" + ", ".join(rows) + "]",
+    "fov 45 along `fov_axis` at 576×768 (portrait): (fov_axis, tan(x_fov / 2)).",
+)
 
 cam = camera(
     '<float name="fov" value="90"/><float name="near_clip" value="0.5"/><float name="far_clip" value="20"/>', 4, 2
 )
-const("NEAR_FAR_CENTRE", "CameraRay", ray(cam, 2, 1, 4, 2), "fov 90, near_clip 0.5, far_clip 20, 4×2 film: the ray through the centre.")
+const(
+    "NEAR_FAR_CENTRE",
+    "CameraRay",
+    ray(cam, 2, 1, 4, 2),
+    "fov 90, near_clip 0.5, far_clip 20, 4×2 film: the ray through the centre.",
+)
 const("NEAR_FAR_CORNER", "CameraRay", ray(cam, 0, 0, 4, 2), "The same camera's ray through corner (0, 0).")
 off = camera(
     '<float name="fov" value="60"/><float name="principal_point_offset_x" value="0.25"/>'
@@ -173,7 +200,12 @@ off = camera(
     8,
     4,
 )
-const("PRINCIPAL_POINT_CENTRE", "CameraRay", ray(off, 4, 2, 8, 4), "fov 60, principal point offset (0.25, −0.125), 8×4 film: the ray through the centre.")
+const(
+    "PRINCIPAL_POINT_CENTRE",
+    "CameraRay",
+    ray(off, 4, 2, 8, 4),
+    "fov 60, principal point offset (0.25, −0.125), 8×4 film: the ray through the centre.",
+)
 const(
     "PLAIN_AT_SHIFTED_CENTRE",
     "CameraRay",
@@ -186,7 +218,12 @@ cam = camera(
     4,
     2,
 )
-const("TURNED_CAMERA_CENTRE", "CameraRay", ray(cam, 2, 1, 4, 2), "fov 90, rotated +90° about y, then moved to (1, 2, 3), 4×2 film: the ray through the centre.")
+const(
+    "TURNED_CAMERA_CENTRE",
+    "CameraRay",
+    ray(cam, 2, 1, 4, 2),
+    "fov 90, rotated +90° about y, then moved to (1, 2, 3), 4×2 film: the ray through the centre.",
+)
 
 # ----------------------------------------------------------------------------------------------
 # Shapes: nested_includes_resolve_paths_like_mitsuba
@@ -214,13 +251,18 @@ main = root / "x/y/main.xml"
 main.write_text(main_xml("../../meshes/tri.obj"))
 scene = mi.load_file(str(main))
 hit = bool(scene.ray_intersect(mi.Ray3f([0, 0, 1], [0, 0, -1])).is_valid())
-const("NESTED_INCLUDES_FIND_THE_MESH", "bool", rust_bool(hit), "The mesh found through nested `<include>`s and `<path>`s: the scene loads and the triangle is hit.")
+const(
+    "NESTED_INCLUDES_FIND_THE_MESH",
+    "bool",
+    rust_bool(hit),
+    "The mesh found through nested `<include>`s and `<path>`s: the scene loads and the triangle is hit.",
+)
 main.write_text(main_xml("tri.obj"))
 const(
     "INCLUDED_PATH_OUTLIVES_ITS_FILE",
     "bool",
     rust_bool(not fails(lambda: mi.load_file(str(main)), "file not found")),
-    "Whether a `<path>` given in an included file still holds after it (Mitsuba: \"file not found\").",
+    'Whether a `<path>` given in an included file still holds after it (Mitsuba: "file not found").',
 )
 
 # ----------------------------------------------------------------------------------------------
@@ -237,21 +279,48 @@ for prop in [
 ]:
     scene = load(f'<shape type="rectangle"><emitter type="area">{prop}</emitter></shape>')
     rows.append(f"({string(prop)}, {arr(vec(scene.emitters()[0].eval(si_at())))})")
-const("AREA_RADIANCE", "&[(&str, [f32; 3])]", "&[" + ", ".join(rows) + "]", "An `area` emitter on a rectangle: (its radiance property, the radiance it emits).")
+const(
+    "AREA_RADIANCE",
+    "&[(&str, [f32; 3])]",
+    "&[" + ", ".join(rows) + "]",
+    "An `area` emitter on a rectangle: (its radiance property, the radiance it emits).",
+)
 emitter = one(
     '<emitter type="point"><transform name="to_world"><translate x="-1" y="4"/></transform>'
     '<spectrum name="intensity" value="1"/></emitter>'
 )
 p = mi.traverse(emitter)
-const("POINT_POSITION_FROM_TO_WORLD", "[f32; 3]", arr(vec(p["position"])), "A `point` emitter translated by (−1, 4, 0): its position.")
-const("POINT_SPECTRUM_1_INTENSITY", "[f32; 3]", arr(vec(p["intensity.value"])), "A `point` emitter's `<spectrum name=\"intensity\" value=\"1\"/>`.")
-const("POINT_DEFAULT_POSITION", "[f32; 3]", arr(vec(mi.traverse(one('<emitter type="point"/>'))["position"])), "A bare `point` emitter's position.")
-const("CONSTANT_DEFAULT_RADIANCE", "[f32; 3]", arr(vec(one('<emitter type="constant"/>').eval(si_at(wi=(0, 0, -1))))), "A bare `constant` emitter's radiance.")
+const(
+    "POINT_POSITION_FROM_TO_WORLD",
+    "[f32; 3]",
+    arr(vec(p["position"])),
+    "A `point` emitter translated by (−1, 4, 0): its position.",
+)
+const(
+    "POINT_SPECTRUM_1_INTENSITY",
+    "[f32; 3]",
+    arr(vec(p["intensity.value"])),
+    'A `point` emitter\'s `<spectrum name="intensity" value="1"/>`.',
+)
+const(
+    "POINT_DEFAULT_POSITION",
+    "[f32; 3]",
+    arr(vec(mi.traverse(one('<emitter type="point"/>'))["position"])),
+    "A bare `point` emitter's position.",
+)
+const(
+    "CONSTANT_DEFAULT_RADIANCE",
+    "[f32; 3]",
+    arr(vec(one('<emitter type="constant"/>').eval(si_at(wi=(0, 0, -1))))),
+    "A bare `constant` emitter's radiance.",
+)
 const(
     "CONSTANT_SPECTRUM_1_RADIANCE",
     "[f32; 3]",
-    arr(vec(one('<emitter type="constant"><spectrum name="radiance" value="1"/></emitter>').eval(si_at(wi=(0, 0, -1))))),
-    "A `constant` emitter's `<spectrum name=\"radiance\" value=\"1\"/>`.",
+    arr(
+        vec(one('<emitter type="constant"><spectrum name="radiance" value="1"/></emitter>').eval(si_at(wi=(0, 0, -1))))
+    ),
+    'A `constant` emitter\'s `<spectrum name="radiance" value="1"/>`.',
 )
 
 
@@ -338,7 +407,12 @@ for prop in [
 ]:
     value = mi.traverse(one(f'<bsdf type="diffuse">{prop}</bsdf>'))["reflectance.value"]
     rows.append(f"({string(prop)}, {arr(vec(value) if hasattr(value, '__len__') else [value] * 3)})")
-const("DIFFUSE_REFLECTANCE", "&[(&str, [f32; 3])]", "&[" + ", ".join(rows) + "]", "`diffuse`: (its reflectance property, the reflectance it holds).")
+const(
+    "DIFFUSE_REFLECTANCE",
+    "&[(&str, [f32; 3])]",
+    "&[" + ", ".join(rows) + "]",
+    "`diffuse`: (its reflectance property, the reflectance it holds).",
+)
 
 b = one('<bsdf type="null"/>')
 bs, w = b.sample(CTX, si_at(wi=[0.3, 0.0, 0.954]), 0.3, [0.2, 0.7])
@@ -353,7 +427,7 @@ const(
     "TWOSIDED_AROUND_NULL_REFUSED",
     "bool",
     rust_bool(fails(lambda: one('<bsdf type="twosided"><bsdf type="null"/></bsdf>'), "transmission")),
-    "Whether `twosided` refuses a nested `null` (\"Only materials without a transmission component can be nested!\").",
+    'Whether `twosided` refuses a nested `null` ("Only materials without a transmission component can be nested!").',
 )
 scene = load(f'{SENSOR}<shape type="rectangle"><bsdf type="mask"><bsdf type="diffuse"/></bsdf></shape>')
 opacity = [v for k, v in mi.traverse(scene).items() if k.endswith("opacity.value")][0]
@@ -367,23 +441,48 @@ for props in [
 ]:
     eta = mi.traverse(one('<bsdf type="dielectric">' + props + "</bsdf>"))["eta"]
     rows.append(f"({string(props)}, {f32(eta)})")
-const("DIELECTRIC_ETA", "&[(&str, f32)]", "&[" + ", ".join(rows) + "]", "`dielectric`: (its ior properties, η = int_ior / ext_ior).")
+const(
+    "DIELECTRIC_ETA",
+    "&[(&str, f32)]",
+    "&[" + ", ".join(rows) + "]",
+    "`dielectric`: (its ior properties, η = int_ior / ext_ior).",
+)
 b = one(
     '<bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/>'
     '<rgb name="specular_reflectance" value="0.5 0.6 0.7"/><float name="specular_transmittance" value="0.9"/></bsdf>'
 )
 bs, w = b.sample(CTX, si_at(), 0.0, [0.0, 0.0])
-const("DIELECTRIC_REFLECTION", "([f32; 3], [f32; 3])", f"({arr(vec(bs.wo))}, {arr(vec(w))})", "`dielectric` 1.5 / 1 with specular_reflectance (0.5, 0.6, 0.7) and specular_transmittance 0.9, sampled at normal incidence with ξ = 0 (reflection): (wo, weight).")
+const(
+    "DIELECTRIC_REFLECTION",
+    "([f32; 3], [f32; 3])",
+    f"({arr(vec(bs.wo))}, {arr(vec(w))})",
+    "`dielectric` 1.5 / 1 with specular_reflectance (0.5, 0.6, 0.7) and specular_transmittance 0.9, sampled at normal incidence with ξ = 0 (reflection): (wo, weight).",
+)
 bs, w = b.sample(CTX, si_at(), 0.999, [0.0, 0.0])
-const("DIELECTRIC_REFRACTION", "([f32; 3], [f32; 3])", f"({arr(vec(bs.wo))}, {arr(vec(w))})", "The same with ξ = 0.999 (refraction): (wo, weight).")
+const(
+    "DIELECTRIC_REFRACTION",
+    "([f32; 3], [f32; 3])",
+    f"({arr(vec(bs.wo))}, {arr(vec(w))})",
+    "The same with ξ = 0.999 (refraction): (wo, weight).",
+)
 
 
 def f0(xml):
     return arr(vec(one(xml).sample(CTX, si_at(), 0.5, [0.5, 0.5])[1]))
 
 
-const("CONDUCTOR_DEFAULT_F0", "[f32; 3]", f0('<bsdf type="conductor"/>'), "A bare `conductor` (material none) at normal incidence: its sample weight F(0).")
-const("CONDUCTOR_AU_F0", "[f32; 3]", f0('<bsdf type="conductor"><string name="material" value="Au"/></bsdf>'), "`conductor` Au: F(0).")
+const(
+    "CONDUCTOR_DEFAULT_F0",
+    "[f32; 3]",
+    f0('<bsdf type="conductor"/>'),
+    "A bare `conductor` (material none) at normal incidence: its sample weight F(0).",
+)
+const(
+    "CONDUCTOR_AU_F0",
+    "[f32; 3]",
+    f0('<bsdf type="conductor"><string name="material" value="Au"/></bsdf>'),
+    "`conductor` Au: F(0).",
+)
 const(
     "CONDUCTOR_ETA_K_F0",
     "[f32; 3]",
@@ -404,7 +503,9 @@ const(
 )
 rc = one('<bsdf type="roughconductor"/>')
 text = str(rc)
-fields = {line.split("=")[0].strip(): line.split("=", 1)[1].strip().rstrip(",") for line in text.splitlines() if "=" in line}
+fields = {
+    line.split("=")[0].strip(): line.split("=", 1)[1].strip().rstrip(",") for line in text.splitlines() if "=" in line
+}
 alpha = lambda s: s.split("value=")[1].rstrip("]")  # noqa: E731  # UniformSpectrum[value=0.100000]
 distribution = {"beckmann": "Beckmann", "ggx": "Ggx"}[fields["distribution"]]
 const(
@@ -416,7 +517,12 @@ const(
 )
 au = one('<bsdf type="roughconductor"><string name="material" value="Au"/></bsdf>')
 ratio = np.array(vec(au.eval(CTX, si_at(), [0, 0, 1]))) / np.array(vec(rc.eval(CTX, si_at(), [0, 0, 1])))
-const("ROUGHCONDUCTOR_AU_OVER_MIRROR", "[f32; 3]", arr(ratio), "`roughconductor` Au over the bare (mirror) one, `eval` at wi = wo = n.")
+const(
+    "ROUGHCONDUCTOR_AU_OVER_MIRROR",
+    "[f32; 3]",
+    arr(ratio),
+    "`roughconductor` Au over the bare (mirror) one, `eval` at wi = wo = n.",
+)
 
 # ----------------------------------------------------------------------------------------------
 # Textures (§2, §11)
@@ -429,16 +535,34 @@ def bitmap(extra=""):
     return one(f'<texture type="bitmap"><string name="filename" value="{png}"/>{extra}</texture>')
 
 
-const("BITMAP_BILINEAR_CENTRE", "[f32; 3]", arr(vec(bitmap().eval(si_at((0.5, 0.5))))), "The 2×2 PNG (red, green / blue, grey 128) as a `bitmap`: `eval` at uv (0.5, 0.5).")
+const(
+    "BITMAP_BILINEAR_CENTRE",
+    "[f32; 3]",
+    arr(vec(bitmap().eval(si_at((0.5, 0.5))))),
+    "The 2×2 PNG (red, green / blue, grey 128) as a `bitmap`: `eval` at uv (0.5, 0.5).",
+)
 t = bitmap('<string name="filter_type" value="nearest"/>')
-rows = [f"({arr(uv)}, {arr(vec(t.eval(si_at(uv))))})" for uv in [(0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75), (1.25, 0.25)]]
-const("BITMAP_NEAREST", "&[([f32; 2], [f32; 3])]", "&[" + ", ".join(rows) + "]", "The same PNG with filter_type nearest: (uv, `eval`).")
+rows = [
+    f"({arr(uv)}, {arr(vec(t.eval(si_at(uv))))})"
+    for uv in [(0.25, 0.25), (0.75, 0.25), (0.25, 0.75), (0.75, 0.75), (1.25, 0.25)]
+]
+const(
+    "BITMAP_NEAREST",
+    "&[([f32; 2], [f32; 3])]",
+    "&[" + ", ".join(rows) + "]",
+    "The same PNG with filter_type nearest: (uv, `eval`).",
+)
 t = bitmap(
     '<boolean name="raw" value="true"/><string name="filter_type" value="nearest"/>'
     '<string name="wrap_mode" value="clamp"/>'
 )
 rows = [f"({arr(uv)}, {arr(vec(t.eval(si_at(uv))))})" for uv in [(0.75, 0.75), (1.75, 0.25)]]
-const("BITMAP_RAW_CLAMP", "&[([f32; 2], [f32; 3])]", "&[" + ", ".join(rows) + "]", "The same PNG, raw, nearest, wrap_mode clamp: (uv, `eval`).")
+const(
+    "BITMAP_RAW_CLAMP",
+    "&[([f32; 2], [f32; 3])]",
+    "&[" + ", ".join(rows) + "]",
+    "The same PNG, raw, nearest, wrap_mode clamp: (uv, `eval`).",
+)
 
 
 def reflectance_at(scene, x, y):
@@ -465,7 +589,12 @@ scene = load(
     'name="reflectance"/></bsdf></shape>'
 )
 rows = [f"({f32(x)}, {f32(y)}, {arr(reflectance_at(scene, x, y))})" for x, y in [(-0.75, -0.75), (0.25, -0.75)]]
-const("CHECKERBOARD_DEFAULTS", "&[(f32, f32, [f32; 3])]", "&[" + ", ".join(rows) + "]", "A bare `checkerboard` the same way: (x, y, reflectance).")
+const(
+    "CHECKERBOARD_DEFAULTS",
+    "&[(f32, f32, [f32; 3])]",
+    "&[" + ", ".join(rows) + "]",
+    "A bare `checkerboard` the same way: (x, y, reflectance).",
+)
 t = one(
     '<texture type="checkerboard"><rgb name="color0" value="0.9, 0.1, 0.2"/><float name="color1" value="0.3"/></texture>'
 )
@@ -473,12 +602,27 @@ rows = [
     f"({arr(uv)}, {arr(vec(t.eval(si_at(uv))))}, {f32(t.eval_1(si_at(uv)))})"
     for uv in [(0.25, 0.25), (0.75, 0.25), (0.75, 0.75), (1.25, 0.75)]
 ]
-const("CHECKERBOARD_EVAL", "&[([f32; 2], [f32; 3], f32)]", "&[" + ", ".join(rows) + "]", "A `checkerboard` of color0 (0.9, 0.1, 0.2) and color1 0.3: (uv, `eval`, `eval_1`).")
+const(
+    "CHECKERBOARD_EVAL",
+    "&[([f32; 2], [f32; 3], f32)]",
+    "&[" + ", ".join(rows) + "]",
+    "A `checkerboard` of color0 (0.9, 0.1, 0.2) and color1 0.3: (uv, `eval`, `eval_1`).",
+)
 const("CHECKERBOARD_MEAN", "f32", f32(t.mean()), "The same checkerboard's `mean()`.")
 t = one('<texture type="rawconstant"><vector name="value" value="0.5, 0.25, 1"/></texture>')
-const("RAWCONSTANT_VECTOR", "[f32; 3]", arr(vec(t.eval(si_at()))), "`rawconstant` with `<vector name=\"value\" value=\"0.5, 0.25, 1\"/>`: `eval`.")
+const(
+    "RAWCONSTANT_VECTOR",
+    "[f32; 3]",
+    arr(vec(t.eval(si_at()))),
+    '`rawconstant` with `<vector name="value" value="0.5, 0.25, 1"/>`: `eval`.',
+)
 t = one('<texture type="rawconstant"><float name="value" value="0.3"/></texture>')
-const("RAWCONSTANT_FLOAT", "[f32; 3]", arr(vec(t.eval(si_at()))), "`rawconstant` with `<float name=\"value\" value=\"0.3\"/>`: `eval`.")
+const(
+    "RAWCONSTANT_FLOAT",
+    "[f32; 3]",
+    arr(vec(t.eval(si_at()))),
+    '`rawconstant` with `<float name="value" value="0.3"/>`: `eval`.',
+)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -218,7 +218,11 @@ impl Registered for OrenNayar {
                 Range::AtLeast(0.0),
                 "be a finite angle >= 0 in radians",
                 "slope-angle standard deviation σ (radians)",
-            ),
+            )
+            // The model depends on σ² only, so σ = 0 (Lambert) is a stationary point of any
+            // loss: a fit starts and stays at σ ≥ 1e-3 (A(σ) = 1 − 1.5·10⁻⁶ there, Lambert for
+            // any image), from where Adam's scale-free steps move.
+            .with_fit(1e-3, 1.5),
             ParamSpec::choice(
                 "model",
                 &["qualitative", "full"],

@@ -77,7 +77,9 @@ impl Registered for RoughDiffuse {
         label: "roughdiffuse",
         summary: "Mitsuba 0.6's rough diffuse: full Oren–Nayar with σ = α/√2, or the qualitative one with `use_fast_approx`",
         params: &[
-            ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)"),
+            // σ = α/√2: a fit stays at α ≥ 1e-3 for Oren–Nayar's reason (σ = 0 is stationary).
+            ParamSpec::number("alpha", 0.2, Range::AtLeast(0.0), "be a finite RMS slope >= 0", "RMS slope α (σ = α/√2)")
+                .with_fit(1e-3, 2.0),
             ParamSpec::flag("use_fast_approx", false, "the qualitative model instead of the full one"),
             ParamSpec::sampling("`cosine`: as `diffuse`; `cltc`: Oren–Nayar's fitted sampler"),
         ],

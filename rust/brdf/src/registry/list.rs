@@ -31,6 +31,10 @@ macro_rules! models {
                     <<$ty as $crate::registry::Registered>::Parameters<f32> as $crate::registry::Flat<f32>>::NAMES,
                 ),
                 "a model's Parameters are not its SPEC's numeric parameters, in order"
+            );
+            assert!(
+                $crate::registry::fits_are_valid(&<$ty as $crate::registry::Registered>::SPEC),
+                "a model's fit bounds lie outside its range or lane clamp (declare them with `with_fit`)"
             );)+
         };
 

@@ -25,6 +25,6 @@ pub(crate) use flat::flat_values;
 pub use flat::{Flat, NoValues};
 pub(crate) use list::models;
 pub use registered::{Evaluation, Gradients, Registered, clamp_lanes};
-pub use spec::{MAX_NUMERIC, ModelSpec, ParamKind, ParamSpec, Range, numeric_count};
+pub use spec::{MAX_NUMERIC, ModelSpec, ParamKind, ParamSpec, Range, fits_are_valid, numeric_count};
 pub use values::{Param, Values, index_of, kind, names_all_parameters, names_numeric_parameters};
 pub(crate) use values::{param, parameter_values};

@@ -33,6 +33,12 @@ pub struct ParamSpec {
     /// Per-lane (textured) values are clamped into `[lo, hi]`, NaN to `lo`
     /// (`docs/models.md#spatially-varying-parameters`); numeric kinds only.
     pub lane_clamp: (f64, f64),
+    /// Where an inverse-rendering fit (`matte fit`, `python/matte_mitsuba/fit.py`) may search:
+    /// the fitted value is clamped into `[lo, hi]` after every step. Within `range` and the
+    /// lane clamp (checked at compile time by `models!`); numeric kinds only. By default the
+    /// range's bounds ([`ParamSpec::with_fit`] for others: away from a stationary point, or
+    /// an upper bound for an open range).
+    pub fit: (f64, f64),
     /// What a valid value is, completing "must ...": the error text for a value outside
     /// `range` ("be a finite angle >= 0 in radians").
     pub what: &'static str,
@@ -71,7 +77,7 @@ pub enum Range {
 }
 
 impl Range {
-    pub fn contains(self, x: f64) -> bool {
+    pub const fn contains(self, x: f64) -> bool {
         match self {
             Range::AtLeast(lo) => x >= lo,
             Range::Closed(lo, hi) => lo <= x && x <= hi,
@@ -87,7 +93,7 @@ impl ParamSpec {
             Range::AtLeast(lo) => (lo, f64::INFINITY),
             Range::Closed(lo, hi) | Range::OpenClosed(lo, hi) => (lo, hi),
         };
-        Self { name, kind: ParamKind::Number { default }, range, lane_clamp, what, doc }
+        Self { name, kind: ParamKind::Number { default }, range, lane_clamp, fit: lane_clamp, what, doc }
     }
 
     /// A number in [0, 1] (a roughness).
@@ -95,13 +101,15 @@ impl ParamSpec {
         Self::number(name, default, Range::Closed(0.0, 1.0), "lie in [0, 1]", doc)
     }
 
-    /// An index of refraction (a number ≥ 1 or a named material).
+    /// An index of refraction (a number ≥ 1 or a named material). A fit searches [1, 4]: the
+    /// named materials reach 2.42 (diamond).
     pub const fn ior(name: &'static str, default: f64, doc: &'static str) -> Self {
         Self {
             name,
             kind: ParamKind::Ior { default },
             range: Range::AtLeast(1.0),
             lane_clamp: (1.0, f64::INFINITY),
+            fit: (1.0, 4.0),
             what: "be a finite index of refraction >= 1",
             doc,
         }
@@ -139,6 +147,7 @@ impl ParamSpec {
             kind: ParamKind::Flag { default: false },
             range: Range::AtLeast(f64::NEG_INFINITY),
             lane_clamp: (f64::NEG_INFINITY, f64::INFINITY),
+            fit: (f64::NEG_INFINITY, f64::INFINITY),
             what: "",
             doc,
         }
@@ -147,6 +156,19 @@ impl ParamSpec {
     /// The same parameter with per-lane values clamped into `[lo, hi]` instead.
     pub const fn with_lane_clamp(self, lo: f64, hi: f64) -> Self {
         Self { lane_clamp: (lo, hi), ..self }
+    }
+
+    /// The same parameter with a fit searching `[lo, hi]` instead ([`ParamSpec::fit`]).
+    pub const fn with_fit(self, lo: f64, hi: f64) -> Self {
+        Self { fit: (lo, hi), ..self }
+    }
+
+    /// Whether a numeric parameter's fit bounds lie within its range and its lane clamp, lower
+    /// below upper (true for the other kinds).
+    pub const fn fit_is_valid(&self) -> bool {
+        let ((lo, hi), (clamp_lo, clamp_hi)) = (self.fit, self.lane_clamp);
+        !self.is_numeric()
+            || (lo < hi && self.range.contains(lo) && self.range.contains(hi) && clamp_lo <= lo && hi <= clamp_hi)
     }
 
     /// A number or an index of refraction: the parameters a texture may give.
@@ -209,6 +231,19 @@ impl ModelSpec {
     pub fn builds_from_defaults(&self) -> bool {
         self.params.iter().all(|p| p.default_value().is_some())
     }
+}
+
+/// Whether every parameter of `spec` has valid fit bounds ([`ParamSpec::fit_is_valid`]; a
+/// `const fn`, for the compile-time check of `models!`).
+pub const fn fits_are_valid(spec: &ModelSpec) -> bool {
+    let mut i = 0;
+    while i < spec.params.len() {
+        if !spec.params[i].fit_is_valid() {
+            return false;
+        }
+        i += 1;
+    }
+    true
 }
 
 /// Counts the numeric parameters of `spec` (a `const fn`, for the compile-time limit below).

@@ -1,7 +1,7 @@
 //! `matte types`: the registered diffuse models (`matte_brdf::MODELS`), as plugin names (one
 //! per line; the plugin build reads them), as JSON (every parameter with its kind, default,
-//! range and lane clamp, the example configurations the tests sweep, the sampler) or as the README's
-//! model table.
+//! range, lane clamp and fit bounds, the example configurations the tests sweep, the sampler; the
+//! wheel holds it, `matte_mitsuba.registry` reads it) or as the README's model table.
 
 use matte_brdf::registry::{ModelSpec, ParamKind, ParamSpec};
 

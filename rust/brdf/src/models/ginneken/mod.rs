@@ -347,7 +347,9 @@ impl Registered for Ginneken {
                 "be a finite rms slope in (0, 4] (1 is already a 45° mean facet tilt)",
                 "per-axis rms slope m",
             )
-            .with_lane_clamp(M_MIN, M_MAX),
+            .with_lane_clamp(M_MIN, M_MAX)
+            // m > 0; a textured m below M_MIN is clamped to it, where its gradient vanishes.
+            .with_fit(M_MIN, M_MAX),
             ParamSpec::choice(
                 "shadowing",
                 &["vginneken", "height_correlated"],
