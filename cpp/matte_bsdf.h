@@ -93,7 +93,8 @@ public:
                         fs::path path = file_resolver()->resolve(props.get<std::string>(name));
                         m_params.push_back(param(name, matte::ffi::PropertyType::Text, 0.0, path.string()));
                     } else {
-                        m_params.push_back(param(name, matte::ffi::PropertyType::Text, 0.0, props.get<std::string>(name)));
+                        m_params.push_back(
+                            param(name, matte::ffi::PropertyType::Text, 0.0, props.get<std::string>(name)));
                     }
                     break;
                 case Properties::Type::Bool:
