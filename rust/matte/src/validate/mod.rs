@@ -14,6 +14,7 @@ pub mod scales;
 pub mod stats;
 pub mod summary;
 pub mod validation_report;
+pub mod welch;
 
 use matte_render::film::SplatWeights;
 use matte_render::image_io;

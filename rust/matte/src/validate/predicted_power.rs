@@ -13,7 +13,7 @@
 use super::crop::PixelBox;
 use super::power::{TARGET_POWER, patch_place};
 use super::scales::{BlockMoments, MultiScale, alpha_test};
-use super::stats::welch_df;
+use super::welch::welch_df;
 use matte_render::film::Image;
 use statrs::distribution::{ContinuousCDF, StudentsT};
 

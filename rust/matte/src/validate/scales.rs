@@ -2,7 +2,7 @@
 //! pixel wide (a rim, a shifted edge), a few pixels (a filter's footprint), an object or a
 //! shadow (tens of pixels), or the whole image. Each scale averages the pass images over
 //! blocks of `s × s` pixels, per pass, and tests every block and channel with Welch's test on
-//! the K per-pass block means of each side ([`super::stats::welch`]). Block means of
+//! the K per-pass block means of each side ([`super::welch::welch`]). Block means of
 //! independent passes are independent whatever the reconstruction filter does inside a pass,
 //! so the test is valid at every scale.
 //!
@@ -14,7 +14,7 @@
 //! and conservative for positively correlated ones, Bonferroni holds for any dependence).
 
 use super::crop::PixelBox;
-use super::stats::{sidak, welch};
+use super::welch::{sidak, welch};
 use glam::DVec3;
 use matte_render::film::Image;
 use statrs::distribution::{ContinuousCDF, Normal};
