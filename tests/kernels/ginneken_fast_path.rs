@@ -67,7 +67,7 @@ fn roughness_gradient_matches_the_reference_derivative() {
 /// (`docs/models.md#van-ginneken-with-a-textured-roughness` has the measured numbers).
 #[test]
 fn roughness_axis_matches_the_reference_between_nodes() {
-    use matte_brdf::ginneken::roughness_axis::axis_accuracy;
+    use matte_brdf::ginneken::accuracy::axis_accuracy;
     use matte_brdf::ginneken::shadowing::Shadowing;
     for m in [0.05, 0.13, 0.45, 0.8] {
         for shadowing in [Shadowing::VanGinneken, Shadowing::HeightCorrelated] {

@@ -16,46 +16,26 @@ mod mu_lambda_fit;
 pub mod roughness_axis;
 pub mod shadowing;
 pub mod slope_integral;
+mod split;
 pub mod table;
 
-use crate::approx;
 use crate::cltc::{ClippedLtc, Sampling};
-use crate::kernel::{Kernel, azimuthal_dot};
+use crate::kernel::Kernel;
 use crate::params::{ParamError, ParamValue};
 use crate::real::{Nodes, Real, V3};
 use crate::registry::{
     Evaluation, Flat, Gradients, KernelBrdf, ModelSpec, ParamSpec, Range, Registered, Values, flat_values, param,
     parameter_values,
 };
-use crate::sampler_fits::GINNEKEN;
 use roughness_axis::{GinnekenAxisKernel, M_MAX, M_MIN, RoughnessAxisTables, clamp_roughness};
 use shadowing::{
-    Shadowing, azimuth_correlation, mu_lambda, visibility_denominator, visibility_fraction,
+    Shadowing, azimuth_correlation, mu_lambda, visibility_denominator,
 };
 use slope_integral::{REFERENCE_NODES, SlopeIntegrator};
+use split::{SlopeSplit, reduced_with};
+pub use split::{sampler, sampler_roughness};
 use std::sync::Arc;
-use table::{SlopeGeometry, SlopeTable, axis_of_cos, oned_cell, oned_in, ratio_in};
-
-/// Cosines are clamped to this before entering `1/(μi μo)`-type terms: f stays finite (the
-/// model's back-scattering peak grows like 1/μ at grazing) without affecting any angle a
-/// renderer can resolve.
-const MIN_COS: f32 = 1e-7;
-
-/// The sampler's roughness variable `t = (m/(1 + m))/0.8` ∈ (0, 1] for m ∈ (0, 4]: the
-/// roughness axis of the per-lane tables ([`roughness_axis`]), scaled to 1 at m = 4.
-#[inline(always)]
-pub fn sampler_roughness<T: Real>(m: T) -> T {
-    (m / (m + T::c(1.0))).scale(1.25)
-}
-
-/// The importance sampler at `μ = cos θi` and roughness variable `t`
-/// ([`sampler_roughness`]): the CLTC fitted to the model (`rust/brdf/src/sampler_fits.rs`,
-/// `validation/generators/fit_samplers.py`), polynomial in μ and t, no table; the cosine at t = 0. One
-/// fit serves both shadowing options (fitted to each, they differ by 2–3 % in variance).
-#[inline(always)]
-pub fn sampler<T: Real>(mu: T, t: T) -> ClippedLtc<T> {
-    GINNEKEN.sampler(mu, t)
-}
+use table::{SlopeGeometry, SlopeTable, oned_cell, oned_in, ratio_in};
 
 /// van Ginneken's tables and options in any [`Real`], and its evaluation (the fast path).
 /// The tables are built for one roughness m₀; the traced kernels may carry their `∂/∂m`
@@ -77,17 +57,6 @@ pub struct GinnekenKernel<'t, T: Real> {
     pub sampler_t: T,
     /// Sample the fitted lobe ([`sampler`]) rather than the cosine (the `sampling` parameter).
     pub cltc: bool,
-}
-
-/// How a kernel looks up the slope integral's split `I = rest / (1 − r)` ([`table`]) and μΛ:
-/// one roughness's tables ([`GinnekenKernel`]) or tables over m too
-/// ([`roughness_axis::GinnekenAxisKernel`]). A trait rather than a closure so that the lookup
-/// is inlined into the kernel (a closure this size was called out of line).
-pub(crate) trait SlopeSplit<T: Real> {
-    /// Per direction, `([P0/μ², P1/μ³, H/μ], μΛ)`.
-    fn directions(&self, g: &SlopeGeometry<T>) -> [([T; 3], T); 2];
-    /// The wedge ratio `r = K/I`.
-    fn ratio(&self, g: &SlopeGeometry<T>) -> T;
 }
 
 impl<'t, T: Real> SlopeSplit<T> for GinnekenKernel<'t, T> {
@@ -135,39 +104,6 @@ impl<'t, T: Real> Kernel<T> for GinnekenKernel<'t, T> {
     fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
         self.cltc.then_some(move |mu| sampler(mu, self.sampler_t))
     }
-}
-
-/// `π f` given how the slope integral's split `I = rest / (1 − r)` and μΛ are looked up
-/// ([`SlopeSplit`]).
-#[inline(always)]
-pub(crate) fn reduced_with<T: Real, const N: usize>(
-    shadowing: Shadowing,
-    wi: V3<T>,
-    wo: V3<T>,
-    rho: [T; N],
-    split: &impl SlopeSplit<T>,
-) -> [T; N] {
-    // Only the lower clamp matters (a cosine a rounding above 1 changes nothing); NaN gives MIN_COS.
-    let (mu_i, mu_o) = (wi.z.max(T::c(MIN_COS as f64)), wo.z.max(T::c(MIN_COS as f64)));
-    // s = wi·wo − μi μo = sin θi sin θo cos Δφ, with the sines from the directions' xy. Δφ
-    // (for the ratio table and the visibility) is the angle of (s, c) with c = (wi × wo)·z,
-    // since s² + c² = sin²θi sin²θo: no division by the sines and no acos; (0, 0) gives 0.
-    let s = azimuthal_dot(wi, wo);
-    let (sin_i, sin_o) = ((wi.x * wi.x + wi.y * wi.y).sqrt(), (wo.x * wo.x + wo.y * wo.y).sqrt());
-    let phi = approx::angle_coarse(wi.x * wo.y - wi.y * wo.x, s);
-    let geometry = SlopeGeometry {
-        mu: [mu_i, mu_o],
-        sin: [sin_i, sin_o],
-        x: [axis_of_cos(mu_i, sin_i), axis_of_cos(mu_o, sin_o)],
-        // ≥ 0 exactly; the clamp removes the rounding of s ≈ −si so at Δφ ≈ π.
-        sin_sum: sin_i.fma(sin_o, s).max(T::c(0.0)),
-        phi,
-    };
-    let [(fi, ml_i), (fo, ml_o)] = split.directions(&geometry);
-    let (num, den) = visibility_fraction(shadowing, mu_i, mu_o, ml_i, ml_o, phi);
-    let rest = geometry.rest(fi, fo);
-    let g = (rest * num) / (den * (T::c(1.0) - split.ratio(&geometry)));
-    rho.map(|r| r * g)
 }
 
 flat_values! {
@@ -434,6 +370,7 @@ impl Registered for Ginneken {
 
 #[cfg(test)]
 mod tests {
+    use super::split::MIN_COS;
     use super::*;
     use crate::diffuse_brdf::DiffuseBrdf;
     use crate::frame::spherical_direction_f64;

@@ -13,7 +13,7 @@
 //! is then accurate to a few 1e-4 between nodes, and its m-derivative (the texture's gradient,
 //! exact derivative of the interpolant) is continuous. `μΛ` is evaluated in closed form at the
 //! lane's m. Measured against
-//! [`super::Ginneken::eval_reference`] by [`axis_accuracy`] (`tests/kernels/ginneken_fast_path.rs`; docs/models.md).
+//! [`super::Ginneken::eval_reference`] by [`super::accuracy::axis_accuracy`] (`tests/kernels/ginneken_fast_path.rs`; docs/models.md).
 //!
 //! A texture value outside [M_MIN, M_MAX] is clamped into it (NaN gives M_MIN). The stack is
 //! built once per process, on first use (M_NODES single-roughness builds, well under a second).
@@ -22,9 +22,8 @@ use super::shadowing::{Shadowing, mu_lambda_closed};
 use super::table::{
     ONED_NODES, ONED_VALUES, RATIO_AXIS_MAX_M, RATIO_NODES, SlopeGeometry, SlopeTable, oned_cell, oned_in, ratio_layer_in,
 };
-use super::{Ginneken, SlopeSplit, reduced_with, sampler};
+use super::split::{SlopeSplit, reduced_with, sampler};
 use crate::cltc::{ClippedLtc, Sampling};
-use crate::frame::spherical_direction_f64;
 use crate::kernel::Kernel;
 use crate::real::{Nodes, Real, V3};
 use std::sync::OnceLock;
@@ -241,57 +240,5 @@ impl<'t, T: Real> Kernel<T> for GinnekenAxisKernel<'t, T> {
     #[inline(always)]
     fn fitted_sampler(&self) -> Option<impl Fn(T) -> ClippedLtc<T>> {
         self.cltc.then_some(move |mu| sampler(mu, self.sampler_t))
-    }
-}
-
-/// How well the roughness-axis kernel matches the reference integral at one roughness.
-#[derive(Clone, Copy, Debug)]
-pub struct AxisAccuracy {
-    /// Largest and mean |axis − reference| / reference of f.
-    pub max_relative: f64,
-    pub mean_relative: f64,
-    /// Largest and mean error of the elasticity `∂ ln f / ∂ ln m` (kernel derivative by dual
-    /// numbers against central differences of the reference, `m (1 ± 10⁻³)`).
-    pub max_log_derivative: f64,
-    pub mean_log_derivative: f64,
-    pub samples: usize,
-}
-
-/// The axis kernel at roughness `m` (f64 evaluation of the same interpolation, with dual
-/// numbers for `∂f/∂m`) against [`Ginneken::eval_reference`] at `samples` quasi-random
-/// configurations (R3 sequence) with θi, θo ≤ `max_theta_deg`, Δφ ∈ [0°, 180°].
-pub fn axis_accuracy(m: f64, shadowing: Shadowing, max_theta_deg: f64, samples: usize) -> AxisAccuracy {
-    use crate::dual::Dual;
-    let tables = RoughnessAxisTables::shared();
-    let kernel = GinnekenAxisKernel::<Dual>::new(tables.nodes(), Dual::variable(m), shadowing);
-    let (reference, plus, minus) = (
-        Ginneken::new(m, shadowing).expect("valid roughness"),
-        Ginneken::new(m * (1.0 + 1e-3), shadowing).expect("valid roughness"),
-        Ginneken::new(m * (1.0 - 1e-3), shadowing).expect("valid roughness"),
-    );
-    let g = 1.220_744_084_605_759_5_f64;
-    let alpha = [1.0 / g, 1.0 / (g * g), 1.0 / (g * g * g)];
-    let (mut max_rel, mut sum_rel, mut max_d, mut sum_d) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    for k in 0..samples {
-        let x: Vec<f64> = alpha.iter().map(|a| (0.5 + a * (k as f64 + 1.0)).fract()).collect();
-        let (ti, to, ph) = (x[0] * max_theta_deg, x[1] * max_theta_deg, x[2] * 180.0);
-        let wi = spherical_direction_f64(ti.to_radians(), 0.0);
-        let wo = spherical_direction_f64(to.to_radians(), ph.to_radians());
-        let dual = |w: glam::DVec3| V3::new(Dual::c(w.x), Dual::c(w.y), Dual::c(w.z));
-        let f = kernel.reduced_f(dual(wi), dual(wo), [Dual::c(1.0)])[0];
-        let (value, d) = (f.v * std::f64::consts::FRAC_1_PI, f.d * std::f64::consts::FRAC_1_PI);
-        let want = reference.eval_reference(wi, wo, 1.0);
-        let d_want = (plus.eval_reference(wi, wo, 1.0) - minus.eval_reference(wi, wo, 1.0)) / (2e-3 * m);
-        let rel = (value - want).abs() / want;
-        let d_err = (d - d_want).abs() * m / want;
-        (sum_rel, sum_d) = (sum_rel + rel, sum_d + d_err);
-        (max_rel, max_d) = (max_rel.max(rel), max_d.max(d_err));
-    }
-    AxisAccuracy {
-        max_relative: max_rel,
-        mean_relative: sum_rel / samples as f64,
-        max_log_derivative: max_d,
-        mean_log_derivative: sum_d / samples as f64,
-        samples,
     }
 }
