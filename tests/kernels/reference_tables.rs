@@ -9,20 +9,8 @@
 use crate::common::model;
 use glam::DVec3;
 use matte_brdf::frame::spherical_direction;
+use matte_brdf::reference_values::TABLE1_COLUMNS;
 use matte_brdf::{DiffuseBrdf, DiffuseModel};
-
-const COLUMNS: [(f32, f32, f32); 10] = [
-    (0.0, 0.0, 0.0),
-    (30.0, 30.0, 0.0),
-    (60.0, 60.0, 0.0),
-    (60.0, 60.0, 180.0),
-    (45.0, 45.0, 90.0),
-    (75.0, 75.0, 0.0),
-    (75.0, 75.0, 180.0),
-    (80.0, 10.0, 0.0),
-    (10.0, 80.0, 0.0),
-    (60.0, 20.0, 180.0),
-];
 
 /// Table 1 rows matte implements (FON is not a matte plugin).
 fn table1() -> Vec<(&'static str, DiffuseModel, [f64; 10])> {
@@ -85,7 +73,7 @@ fn table1_brdf_values() {
     let mut failures = vec![];
     for (label, bsdf, row) in table1() {
         let vg = matches!(bsdf, DiffuseModel::Ginneken(_));
-        for (&(ti, to, ph), &want) in COLUMNS.iter().zip(&row) {
+        for (&(ti, to, ph), &want) in TABLE1_COLUMNS.iter().zip(&row) {
             let wi = spherical_direction(ti.to_radians(), 0.0);
             let wo = spherical_direction(to.to_radians(), ph.to_radians());
             let got = bsdf.eval(wi, wo, [0.8])[0] as f64;

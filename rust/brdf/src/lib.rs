@@ -17,6 +17,7 @@ pub mod lane;
 pub mod params;
 pub mod quadrature;
 pub mod real;
+pub mod reference_values;
 pub mod registry;
 pub mod rng;
 pub mod sampler_fits;

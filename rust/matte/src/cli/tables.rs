@@ -10,6 +10,7 @@ use matte_brdf::ginneken::shadowing::Shadowing;
 
 /// Roughnesses whose van Ginneken fast-path error is printed besides the tables' own (0.3, 0.5).
 const FAST_PATH_ROUGHNESS: [f64; 5] = [0.02, 0.1, 1.0, 2.0, 4.0];
+use matte_brdf::reference_values::TABLE1_COLUMNS;
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue, frame::spherical_direction};
 
 #[derive(Args, Debug)]
@@ -41,19 +42,6 @@ const ROWS: &[Row] = &[
     ("vG m=0.5", "ginneken", &[("roughness", "0.5")]),
 ];
 
-const TABLE1_COLUMNS: &[(f64, f64, f64)] = &[
-    (0.0, 0.0, 0.0),
-    (30.0, 30.0, 0.0),
-    (60.0, 60.0, 0.0),
-    (60.0, 60.0, 180.0),
-    (45.0, 45.0, 90.0),
-    (75.0, 75.0, 0.0),
-    (75.0, 75.0, 180.0),
-    (80.0, 10.0, 0.0),
-    (10.0, 80.0, 0.0),
-    (60.0, 20.0, 180.0),
-];
-
 const TABLE2_ANGLES: &[f64] = &[0.0, 30.0, 60.0, 80.0, 89.0];
 
 pub fn run(args: &TablesArgs) -> Result<(), String> {
@@ -73,9 +61,9 @@ pub fn run(args: &TablesArgs) -> Result<(), String> {
     println!();
     for (label, bsdf) in &models {
         print!("{label:<26}");
-        for &(ti, to, ph) in TABLE1_COLUMNS {
-            let wi = spherical_direction((ti as f32).to_radians(), 0.0);
-            let wo = spherical_direction((to as f32).to_radians(), (ph as f32).to_radians());
+        for (ti, to, ph) in TABLE1_COLUMNS {
+            let wi = spherical_direction(ti.to_radians(), 0.0);
+            let wo = spherical_direction(to.to_radians(), ph.to_radians());
             print!("{:>10.5}", bsdf.eval(wi, wo, [0.8])[0]);
         }
         println!();
