@@ -3,7 +3,10 @@
 //! `volume` texture at the hit's world-space position (Mitsuba `get_texture`). A constant is
 //! also what the `rawconstant` plugin reads ([`Texture::raw_constant_from_props`]).
 
-use super::{BitmapTexture, BoundAttribute, Checkerboard, Volume};
+use super::bitmap::BitmapTexture;
+use super::checkerboard::Checkerboard;
+use super::mesh_attribute::BoundAttribute;
+use super::volume::Volume;
 use crate::load::props::PluginProps;
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
