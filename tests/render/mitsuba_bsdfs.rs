@@ -391,7 +391,7 @@ fn bumpmap_matches_mitsuba_at_given_hit_geometry() {
     let height = Texture::Bitmap(Arc::new(
         BitmapTexture::from_linear(WIDTH, HEIGHT, texels, &BitmapOptions::default()).unwrap(),
     ));
-    let maps: Vec<BumpMap> = NESTED
+    let maps: Vec<BumpMap<Bsdf>> = NESTED
         .iter()
         .map(|&(xml, scale)| BumpMap {
             height: height.clone(),

@@ -9,25 +9,25 @@
 //!   `f` is its sample weight times its pdf and the other's is evaluated in the sampled
 //!   direction (one-sample MIS over the two). The picked sample's Dirac flag and η are kept.
 
-use super::Bsdf;
 use super::bxdf::Bxdf;
 use super::flags::BsdfFlags;
 use super::sample::BsdfSample;
-use crate::load::props::{FromProps, PluginProps};
+use crate::load::props::{FromProps, NestedBsdf, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
 use matte_scene_file::SceneError;
 
-/// Mitsuba's `blendbsdf`: `(1 − weight)·first + weight·second`.
+/// Mitsuba's `blendbsdf`: `(1 − weight)·first + weight·second`, over nested BSDFs of type `B`
+/// (the scene's: [`super::Bsdf`]).
 #[derive(Clone, Debug)]
-pub struct Blend {
+pub struct Blend<B> {
     pub weight: Texture,
-    pub first: Box<Bsdf>,
-    pub second: Box<Bsdf>,
+    pub first: Box<B>,
+    pub second: Box<B>,
 }
 
-impl FromProps for Blend {
+impl<B: NestedBsdf> FromProps for Blend<B> {
     /// Two nested BSDFs and `weight` (a float or a texture; required).
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
         let nested = p.nested("bsdf");
@@ -38,11 +38,11 @@ impl FromProps for Blend {
             return Err(p.err("missing the blend \"weight\" (a float or a texture)"));
         }
         let weight = p.texture("weight")?;
-        Ok(Blend { weight, first: Box::new(p.build_bsdf(first)?), second: Box::new(p.build_bsdf(second)?) })
+        Ok(Blend { weight, first: Box::new(B::from_nested(p, first)?), second: Box::new(B::from_nested(p, second)?) })
     }
 }
 
-impl Blend {
+impl<B> Blend<B> {
     /// w at the hit, clipped to [0, 1] (NaN → 0).
     #[inline]
     pub fn weight(&self, si: &SurfaceInteraction) -> f32 {
@@ -57,7 +57,7 @@ impl Blend {
     }
 }
 
-impl Bxdf for Blend {
+impl<B: Bxdf> Bxdf for Blend<B> {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let w = self.weight(si);

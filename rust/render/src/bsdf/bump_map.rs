@@ -18,10 +18,10 @@
 
 use super::bxdf::Bxdf;
 use super::flags::BsdfFlags;
+use super::perturbed_frame;
 use super::sample::BsdfSample;
-use super::{Bsdf, perturbed_frame};
 use crate::geometry::Frame;
-use crate::load::props::{FromProps, PluginProps};
+use crate::load::props::{FromProps, NestedBsdf, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
@@ -37,11 +37,11 @@ pub struct HitGeometry {
     pub sh_frame: Frame,
 }
 
-/// Mitsuba's `bumpmap` wrapper around a nested BSDF.
+/// Mitsuba's `bumpmap` wrapper around a nested BSDF of type `B` (the scene's: [`super::Bsdf`]).
 #[derive(Clone, Debug)]
-pub struct BumpMap {
+pub struct BumpMap<B> {
     pub height: Texture,
-    pub nested: Box<Bsdf>,
+    pub nested: Box<B>,
     pub scale: f32,
     pub flip_invalid_normals: bool,
     pub use_shadowing_function: bool,
@@ -54,7 +54,7 @@ impl HitGeometry {
     }
 }
 
-impl FromProps for BumpMap {
+impl<B: NestedBsdf> FromProps for BumpMap<B> {
     /// One nested BSDF, one nested `bitmap` texture of any name (the height map, as Mitsuba
     /// takes the one texture child), `scale` (default 1), `flip_invalid_normals` and
     /// `use_shadowing_function` (default true). The BSDF is built for its shape, which must be
@@ -87,7 +87,7 @@ impl FromProps for BumpMap {
         let use_shadowing_function = p.boolean("use_shadowing_function")?;
         Ok(BumpMap {
             height,
-            nested: Box::new(p.build_bsdf(inner)?),
+            nested: Box::new(B::from_nested(p, inner)?),
             scale,
             flip_invalid_normals,
             use_shadowing_function,
@@ -95,7 +95,7 @@ impl FromProps for BumpMap {
     }
 }
 
-impl Bxdf for BumpMap {
+impl<B: Bxdf> Bxdf for BumpMap<B> {
     /// `(f·|cos θo|, pdf)` at the hit `si`.
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
@@ -115,7 +115,7 @@ impl Bxdf for BumpMap {
     }
 }
 
-impl BumpMap {
+impl<B: Bxdf> BumpMap<B> {
     /// Mitsuba's `BumpMap::frame`, relative to the shading frame (`wi` local).
     pub fn frame(&self, si: &SurfaceInteraction, wi: Vec3, g: &HitGeometry) -> Frame {
         let grad = self.height.eval_1_grad(si) * self.scale;
@@ -137,7 +137,7 @@ impl BumpMap {
     /// `(f·|cos θo|, pdf)` at a hit with geometry `g`.
     pub fn eval_pdf_at(&self, si: &SurfaceInteraction, g: &HitGeometry, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(si, wi, g);
-        perturbed_frame::eval_pdf(&self.nested, &frame, self.use_shadowing_function, si, wi, wo)
+        perturbed_frame::eval_pdf(&*self.nested, &frame, self.use_shadowing_function, si, wi, wo)
     }
 
     /// Samples the nested BSDF in the perturbed frame.
@@ -150,6 +150,6 @@ impl BumpMap {
         u: Vec2,
     ) -> Option<BsdfSample> {
         let frame = self.frame(si, wi, g);
-        perturbed_frame::sample(&self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
+        perturbed_frame::sample(&*self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
     }
 }

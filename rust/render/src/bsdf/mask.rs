@@ -12,24 +12,24 @@
 //! after a Dirac sample, and there is no light sampling through it. Shadow rays do not see
 //! through masks (Mitsuba's `Scene::ray_test` only tests geometry).
 
-use super::Bsdf;
 use super::bxdf::Bxdf;
 use super::flags::BsdfFlags;
 use super::sample::BsdfSample;
-use crate::load::props::{FromProps, PluginProps};
+use crate::load::props::{FromProps, NestedBsdf, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
 use matte_scene_file::SceneError;
 
-/// Mitsuba's `mask`: the nested BSDF with probability `opacity`, else pass-through.
+/// Mitsuba's `mask`: the nested BSDF (of type `B`, the scene's: [`super::Bsdf`]) with
+/// probability `opacity`, else pass-through.
 #[derive(Clone, Debug)]
-pub struct Mask {
+pub struct Mask<B> {
     pub opacity: Texture,
-    pub nested: Box<Bsdf>,
+    pub nested: Box<B>,
 }
 
-impl FromProps for Mask {
+impl<B: NestedBsdf> FromProps for Mask<B> {
     /// One nested BSDF and `opacity` (a texture, default 0.5).
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
         let nested = p.nested("bsdf");
@@ -37,11 +37,11 @@ impl FromProps for Mask {
             return Err(p.err(format!("needs exactly one nested BSDF, found {}", nested.len())));
         };
         let opacity = p.texture("opacity")?;
-        Ok(Mask { opacity, nested: Box::new(p.build_bsdf(inner)?) })
+        Ok(Mask { opacity, nested: Box::new(B::from_nested(p, inner)?) })
     }
 }
 
-impl Mask {
+impl<B> Mask<B> {
     /// α at the hit, clipped to [0, 1] (NaN becomes 0: a texel that is not a number lets
     /// everything through rather than poisoning the path).
     #[inline]
@@ -57,7 +57,7 @@ impl Mask {
     }
 }
 
-impl Bxdf for Mask {
+impl<B: Bxdf> Bxdf for Mask<B> {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let a = self.opacity(si);

@@ -8,7 +8,10 @@
 //! properties (`from_props`, through `render::load::props::PluginProps`, as Mitsuba's plugin
 //! constructors do). [`Bsdf`] is the closed set of them: an enum whose [`Bxdf`] impl
 //! forwards to the variant's type (static dispatch), generated from one list below. The trait
-//! is in `bxdf.rs`, below every type's file.
+//! is in `bxdf.rs`, below every type's file. The wrappers (`twosided`, `mask`, `blendbsdf`,
+//! `normalmap`, `bumpmap`) are generic over the BSDF they nest, any [`Bxdf`]: [`Bsdf`] stores
+//! `TwoSided<Bsdf>`, `Mask<Bsdf>`, …, whose nested BSDFs the loader builds through
+//! `load::props::NestedBsdf`, so that no type's file names the enum.
 
 pub mod blend;
 pub mod bump_map;
@@ -118,7 +121,7 @@ bsdfs! {
     /// A registered matte diffuse model (`matte_brdf::BSDF_TYPES`).
     Matte(Matte),
     /// `twosided`.
-    TwoSided(TwoSided),
+    TwoSided(TwoSided<Bsdf>),
     /// `dielectric`.
     Dielectric(Dielectric),
     /// `conductor`.
@@ -134,13 +137,13 @@ bsdfs! {
     /// `roughplastic`.
     RoughPlastic(Box<RoughPlastic>),
     /// `normalmap`.
-    NormalMap(NormalMap),
+    NormalMap(NormalMap<Bsdf>),
     /// `mask`.
-    Mask(Mask),
+    Mask(Mask<Bsdf>),
     /// `bumpmap`.
-    BumpMap(Box<BumpMap>),
+    BumpMap(Box<BumpMap<Bsdf>>),
     /// `blendbsdf`.
-    Blend(Box<Blend>),
+    Blend(Box<Blend<Bsdf>>),
     /// `principled`.
     Principled(Box<Principled>),
     /// `principledthin`.

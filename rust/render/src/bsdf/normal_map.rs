@@ -15,25 +15,25 @@
 
 use super::bxdf::Bxdf;
 use super::flags::BsdfFlags;
+use super::perturbed_frame;
 use super::sample::BsdfSample;
-use super::{Bsdf, perturbed_frame};
 use crate::geometry::Frame;
-use crate::load::props::{FromProps, PluginProps};
+use crate::load::props::{FromProps, NestedBsdf, PluginProps};
 use crate::shape::SurfaceInteraction;
 use crate::texture::Texture;
 use glam::{Vec2, Vec3};
 use matte_scene_file::SceneError;
 
-/// Mitsuba's `normalmap` wrapper around a nested BSDF.
+/// Mitsuba's `normalmap` wrapper around a nested BSDF of type `B` (the scene's: [`super::Bsdf`]).
 #[derive(Clone, Debug)]
-pub struct NormalMap {
+pub struct NormalMap<B> {
     pub normals: Texture,
-    pub nested: Box<Bsdf>,
+    pub nested: Box<B>,
     pub flip_invalid_normals: bool,
     pub use_shadowing_function: bool,
 }
 
-impl FromProps for NormalMap {
+impl<B: NestedBsdf> FromProps for NormalMap<B> {
     /// One nested BSDF, the `normalmap` texture (required), `flip_invalid_normals` and
     /// `use_shadowing_function` (default true).
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
@@ -47,11 +47,16 @@ impl FromProps for NormalMap {
         let normals = p.texture("normalmap")?;
         let flip_invalid_normals = p.boolean("flip_invalid_normals")?;
         let use_shadowing_function = p.boolean("use_shadowing_function")?;
-        Ok(NormalMap { normals, nested: Box::new(p.build_bsdf(inner)?), flip_invalid_normals, use_shadowing_function })
+        Ok(NormalMap {
+            normals,
+            nested: Box::new(B::from_nested(p, inner)?),
+            flip_invalid_normals,
+            use_shadowing_function,
+        })
     }
 }
 
-impl NormalMap {
+impl<B> NormalMap<B> {
     /// The perturbed frame in the coordinates of the unperturbed shading frame.
     #[inline]
     pub fn frame(&self, si: &SurfaceInteraction, wi: Vec3) -> Frame {
@@ -65,17 +70,17 @@ impl NormalMap {
     }
 }
 
-impl Bxdf for NormalMap {
+impl<B: Bxdf> Bxdf for NormalMap<B> {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         let frame = self.frame(si, wi);
-        perturbed_frame::eval_pdf(&self.nested, &frame, self.use_shadowing_function, si, wi, wo)
+        perturbed_frame::eval_pdf(&*self.nested, &frame, self.use_shadowing_function, si, wi, wo)
     }
 
     #[inline]
     fn sample(&self, si: &SurfaceInteraction, wi: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let frame = self.frame(si, wi);
-        perturbed_frame::sample(&self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
+        perturbed_frame::sample(&*self.nested, &frame, self.use_shadowing_function, si, wi, u_lobe, u)
     }
 
     /// The nested BSDF's.

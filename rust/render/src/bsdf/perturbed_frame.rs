@@ -4,7 +4,6 @@
 //! shadow-terminator term on values and weights when `use_shadowing_function` is set.
 //! Each wrapper builds its own frame (from a normal map, from a height map's gradient).
 
-use super::Bsdf;
 use super::bxdf::Bxdf;
 use super::sample::BsdfSample;
 use crate::geometry::Frame;
@@ -35,7 +34,7 @@ fn is_finite(f: &Frame) -> bool {
 /// `wi` and `wo`); zero without a frame.
 #[inline]
 pub fn eval_pdf(
-    nested: &Bsdf,
+    nested: &impl Bxdf,
     frame: &Frame,
     shadowing: bool,
     si: &SurfaceInteraction,
@@ -60,7 +59,7 @@ pub fn eval_pdf(
 /// A sample of `nested` in `frame`, its direction back in the unperturbed shading frame.
 #[inline]
 pub fn sample(
-    nested: &Bsdf,
+    nested: &impl Bxdf,
     frame: &Frame,
     shadowing: bool,
     si: &SurfaceInteraction,

@@ -3,31 +3,31 @@
 //! both directions mirrored through the surface. A transmissive nested BSDF is refused unless
 //! `allow_transmission` is true, as in Mitsuba.
 
-use super::Bsdf;
 use super::bxdf::Bxdf;
 use super::flags::BsdfFlags;
 use super::sample::BsdfSample;
-use crate::load::props::{FromProps, PluginProps};
+use crate::load::props::{FromProps, NestedBsdf, PluginProps};
 use crate::shape::SurfaceInteraction;
 use glam::{Vec2, Vec3};
 use matte_scene_file::SceneError;
 
-/// Mitsuba's `twosided`: `front` for cos θi > 0, `back` for the other side.
+/// Mitsuba's `twosided`: `front` for cos θi > 0, `back` for the other side, nested BSDFs of
+/// type `B` (the scene's: [`super::Bsdf`]).
 #[derive(Clone, Debug)]
-pub struct TwoSided {
-    pub front: Box<Bsdf>,
-    pub back: Box<Bsdf>,
+pub struct TwoSided<B> {
+    pub front: Box<B>,
+    pub back: Box<B>,
 }
 
-impl FromProps for TwoSided {
+impl<B: NestedBsdf + Bxdf + Clone> FromProps for TwoSided<B> {
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError> {
         let nested = p.nested("bsdf");
         let (front, back) = match nested.as_slice() {
             [one] => {
-                let f = p.build_bsdf(one)?;
+                let f = B::from_nested(p, one)?;
                 (f.clone(), f)
             }
-            [f, bk] => (p.build_bsdf(f)?, p.build_bsdf(bk)?),
+            [f, bk] => (B::from_nested(p, f)?, B::from_nested(p, bk)?),
             _ => return Err(p.err(format!("needs one or two nested BSDFs, found {}", nested.len()))),
         };
         let allow_transmission = p.boolean("allow_transmission")?;
@@ -48,7 +48,7 @@ fn flip(v: Vec3) -> Vec3 {
     Vec3::new(v.x, v.y, -v.z)
 }
 
-impl Bxdf for TwoSided {
+impl<B: Bxdf> Bxdf for TwoSided<B> {
     #[inline]
     fn eval_pdf(&self, si: &SurfaceInteraction, wi: Vec3, wo: Vec3) -> (Vec3, f32) {
         if wi.z > 0.0 { self.front.eval_pdf(si, wi, wo) } else { self.back.eval_pdf(si, flip(wi), flip(wo)) }

@@ -5,10 +5,10 @@
 //! `blendbsdf`, `principled`, `principledthin`, and matte's registered types
 //! (`matte_brdf::BSDF_TYPES`: the diffuse models and `tabulated_brdf`, built as [`Matte`] by the
 //! kernels' own construction, the one the Mitsuba plugin uses). A wrapper's nested BSDF is built
-//! through [`PluginProps::build_bsdf`], here beside the dispatch.
+//! through [`NestedBsdf`], implemented for [`Bsdf`] here beside the dispatch.
 
 use super::builder::{Builder, err};
-use super::props::{FromProps, PluginProps};
+use super::props::{FromProps, NestedBsdf, PluginProps};
 use crate::bsdf::{
     Blend, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, Mask, Matte, NormalMap, Null, Plastic, Principled,
     PrincipledThin, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
@@ -58,7 +58,7 @@ plugins! {
     /// Mitsuba 3.9.1's BSDF plugins matte builds, each with its type.
     pub(super) MITSUBA_NAMES, MITSUBA: Constructor = [
         "diffuse" => make::<Diffuse>,
-        "twosided" => make::<TwoSided>,
+        "twosided" => make::<TwoSided<Bsdf>>,
         "dielectric" => make::<Dielectric>,
         "thindielectric" => make::<ThinDielectric>,
         "roughdielectric" => make::<RoughDielectric>,
@@ -66,11 +66,11 @@ plugins! {
         "roughconductor" => make::<RoughConductor>,
         "plastic" => make::<Plastic>,
         "roughplastic" => make::<RoughPlastic>,
-        "normalmap" => make::<NormalMap>,
+        "normalmap" => make::<NormalMap<Bsdf>>,
         "null" => make::<Null>,
-        "bumpmap" => make::<BumpMap>,
-        "mask" => make::<Mask>,
-        "blendbsdf" => make::<Blend>,
+        "bumpmap" => make::<BumpMap<Bsdf>>,
+        "mask" => make::<Mask<Bsdf>>,
+        "blendbsdf" => make::<Blend<Bsdf>>,
         "principled" => make::<Principled>,
         "principledthin" => make::<PrincipledThin>,
     ];
@@ -92,9 +92,9 @@ pub(crate) fn build(b: &Builder, obj: &SceneObject) -> Result<Bsdf, SceneError> 
     Ok(bsdf)
 }
 
-impl PluginProps<'_> {
-    /// Builds a nested BSDF object (each nested BSDF reads its own properties).
-    pub fn build_bsdf(&self, obj: &SceneObject) -> Result<Bsdf, SceneError> {
-        build(self.builder(), obj)
+impl NestedBsdf for Bsdf {
+    /// Builds a nested BSDF object of any plugin (each nested BSDF reads its own properties).
+    fn from_nested(p: &PluginProps, obj: &SceneObject) -> Result<Self, SceneError> {
+        build(p.builder(), obj)
     }
 }

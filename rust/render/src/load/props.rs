@@ -9,10 +9,10 @@
 //! [`MATTE_MODEL`]). Where Mitsuba's default is an expression rather than a literal (another
 //! property, a constructor argument), the plugin's file supplies it, as its `.cpp` does. Each
 //! type reads in its own file (`from_props`, most through [`FromProps`]). The reads that build
-//! a nested object are methods of [`PluginProps`] too, written beside the dispatch that builds
-//! it, which this file does not import: `texture` and `emission_texture`, `build_texture` and
-//! `build_volume` in `load/texture.rs`, `build_bsdf` in `load/bsdf.rs`, `nested_rfilter` in
-//! `load/sensor.rs`.
+//! a nested object are written beside the dispatch that builds it, which this file does not
+//! import: methods of [`PluginProps`] (`texture` and `emission_texture`, `build_texture` and
+//! `build_volume` in `load/texture.rs`, `nested_rfilter` in `load/sensor.rs`), and for a
+//! wrapper's nested BSDF [`NestedBsdf`], which `load/bsdf.rs` implements for the scene's BSDF.
 //!
 //! Reading a name the entry does not list, or reading it as a kind of value the plugin does not
 //! accept, is a bug in the plugin's file and panics; `tests/render/load/walk.rs` loads every
@@ -104,6 +104,16 @@ impl Read {
 /// `Plugin(const Properties &props)` constructors); errors name the file and line.
 pub(crate) trait FromProps: Sized {
     fn from_props(p: &mut PluginProps) -> Result<Self, SceneError>;
+}
+
+/// A BSDF that a wrapper (`twosided`, `mask`, `blendbsdf`, `normalmap`, `bumpmap`) builds from
+/// one of its nested `<bsdf>` objects, whatever that object's plugin. The wrappers are generic
+/// over the BSDF they nest; the scene's BSDF ([`crate::bsdf::Bsdf`], the enum that holds the
+/// wrappers) implements this in `load/bsdf.rs`, beside its dispatch, so that no wrapper's file
+/// names the enum.
+pub(crate) trait NestedBsdf: Sized {
+    /// Builds `obj`, a BSDF nested in the object `p` reads (it reads its own properties).
+    fn from_nested(p: &PluginProps, obj: &SceneObject) -> Result<Self, SceneError>;
 }
 
 /// One XML object as its plugin reads it; see the module documentation.
