@@ -16,8 +16,10 @@
 //! * A `v` index must refer to a vertex defined above the face (Mitsuba checks it there);
 //!   `vt`/`vn` indices may refer forward and are checked at the end.
 
-use super::{LoadedMesh, MeshError, MeshOptions, finish, world_normal};
-use crate::mesh::TriangleMesh;
+use super::error::MeshError;
+use super::loaded::{LoadedMesh, finish, world_normal};
+use super::options::MeshOptions;
+use super::triangle_mesh::TriangleMesh;
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;

@@ -18,9 +18,12 @@
 //! to [0, 1] like colours, which is never what a mesh means); zero-length normals are
 //! rejected (Mitsuba would produce NaN).
 
+use super::attribute::MeshAttribute;
+use super::error::MeshError;
+use super::loaded::{LoadedMesh, finish, world_normal};
+use super::options::MeshOptions;
 use super::ply_attributes::{AttributeFields, find_attributes};
-use super::{LoadedMesh, MeshAttribute, MeshError, MeshOptions, finish, world_normal};
-use crate::mesh::TriangleMesh;
+use super::triangle_mesh::TriangleMesh;
 use glam::{Vec2, Vec3};
 use ply_rs_bw::parser::{Parser, Reader};
 use ply_rs_bw::ply::{ElementDef, Encoding, Header, Property, PropertyAccess, PropertyAccessResult};

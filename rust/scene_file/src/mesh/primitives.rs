@@ -9,7 +9,8 @@
 //! a rectangle scaled by (−1, 2, 1) has `si.n = −z` but `sh_frame.n = +z`.
 //! `flip_normals` is left to the renderer, as for every mesh (see [`super`]).
 
-use super::{MeshOptions, TriangleMesh};
+use super::options::MeshOptions;
+use super::triangle_mesh::TriangleMesh;
 use glam::{Mat3, Vec2, Vec3};
 
 /// `[-1,1]² × {0}`, normal +z, uv = ((x+1)/2, (y+1)/2). Vertex i sits at

@@ -12,7 +12,7 @@
 //! * only the header of the first mesh decides the version; mesh `shape_index` is found
 //!   through the end-of-file dictionary (mesh 0 starts at offset 0);
 //! * positions × `to_world`; file normals × the inverse transpose, normalised; no file normals
-//!   → smooth angle-weighted normals; `face_normals` drops them ([`super::finish`]);
+//!   → smooth angle-weighted normals; `face_normals` drops them ([`super::loaded::finish`]);
 //! * uvs are used as stored (no flip); vertex colours are skipped (Mitsuba's loader reads and
 //!   discards them); the file's own `0x10` "face normals" flag is ignored (only the
 //!   `face_normals` property counts).
@@ -21,8 +21,10 @@
 //! equal to the mesh count, a triangle index out of range, a NaN position, a zero normal and
 //! a stream that ends early are errors naming the file and the problem.
 
-use super::{LoadedMesh, MeshError, MeshOptions, finish, world_normal};
-use crate::mesh::TriangleMesh;
+use super::error::MeshError;
+use super::loaded::{LoadedMesh, finish, world_normal};
+use super::options::MeshOptions;
+use super::triangle_mesh::TriangleMesh;
 use flate2::bufread::ZlibDecoder;
 use glam::{Vec2, Vec3};
 use std::io::{BufReader, Read, Seek, SeekFrom};
