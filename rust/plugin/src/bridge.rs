@@ -1,5 +1,8 @@
 //! The `cxx` bridge declarations (C++ side: `cpp/matte_bsdf.h` includes the generated
-//! `rust/plugin/src/bridge.rs.h`). Implementations live in `super` (`rust/plugin/src/lib.rs`).
+//! `rust/plugin/src/bridge.rs.h`). The Rust type it exports is [`PluginBsdf`]
+//! (`rust/plugin/src/plugin_bsdf.rs`), whose methods are implemented in `rust/plugin/src/lib.rs`
+//! (construction, f32 entry points) and `rust/plugin/src/traced_entry.rs` (traced entry
+//! points); the free functions are [`bsdf_new`] here and `matte_brdf`'s `is_file_parameter`.
 
 // The C++-facing signatures pass every traced operand separately.
 #[allow(clippy::too_many_arguments)]
@@ -162,5 +165,10 @@ pub mod ffi {
     }
 }
 
-use super::{PluginBsdf, bsdf_new};
+use super::plugin_bsdf::PluginBsdf;
 use matte_brdf::construction::is_file_parameter;
+
+/// `ffi::bsdf_new`: [`PluginBsdf::new`], boxed for C++.
+fn bsdf_new(kind: &str, properties: &[ffi::Param]) -> Result<Box<PluginBsdf>, String> {
+    PluginBsdf::new(kind, properties).map(Box::new)
+}

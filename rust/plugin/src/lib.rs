@@ -1,5 +1,6 @@
 //! The boundary the Mitsuba plugin (`cpp/`) calls through `cxx`. The bridge declarations
-//! are in [`bridge`]; this module implements the f32 entry points (scalar variants) on top of
+//! are in [`bridge`], the Rust type it hands to C++, [`PluginBsdf`], in `plugin_bsdf.rs`; this
+//! module implements its construction and the f32 entry points (scalar variants) on top of
 //! the kernels, [`traced_entry`] the traced ones (JIT variants), which run the same generic
 //! kernels with [`traced::Traced`] so that they are recorded into Dr.Jit.
 //!
@@ -11,6 +12,7 @@
 //! generated shim aborts the process instead of unwinding across the FFI boundary.
 
 mod bridge;
+mod plugin_bsdf;
 pub mod traced;
 mod traced_entry;
 
@@ -18,16 +20,11 @@ use bridge::ffi::{Channels, Param, PropertyType, Vec3f};
 use glam::{Vec2, Vec3};
 use matte_brdf::construction::construct;
 use matte_brdf::kernel;
-use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
+use matte_brdf::{DiffuseBrdf, ParamValue};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 pub use bridge::ffi;
-
-/// The Rust side of one plugin BSDF (`cpp/matte_bsdf.h` holds it): the constructed model,
-/// any registered type, `tabulated_brdf` included.
-pub struct PluginBsdf {
-    model: DiffuseModel,
-}
+pub use plugin_bsdf::PluginBsdf;
 
 /// A property as [`construct`] takes it.
 fn property(p: &Param) -> (&str, ParamValue) {
@@ -46,18 +43,6 @@ const MAX_CHANNELS: usize = 4;
 #[inline]
 fn v3(v: &Vec3f) -> Vec3 {
     Vec3::new(v.x, v.y, v.z)
-}
-
-fn bsdf_new(kind: &str, properties: &[Param]) -> Result<Box<PluginBsdf>, String> {
-    let built = catch_unwind(AssertUnwindSafe(|| {
-        let properties: Vec<(&str, ParamValue)> = properties.iter().map(property).collect();
-        construct(kind, &properties).map(|c| c.model).map_err(|e| e.to_string())
-    }));
-    match built {
-        Ok(Ok(model)) => Ok(Box::new(PluginBsdf { model })),
-        Ok(Err(message)) => Err(message),
-        Err(_) => Err(format!("internal error while constructing bsdf \"{kind}\" (a bug in matte; please report it)")),
-    }
 }
 
 /// The used channels of a [`Channels`], zero-padded to [`MAX_CHANNELS`].
@@ -96,6 +81,22 @@ fn eval_channels(bsdf: &impl DiffuseBrdf, wi: Vec3, wo: Vec3, rho: &[f32]) -> [f
 }
 
 impl PluginBsdf {
+    /// Builds `kind` (plugin name) from the element's properties (the bridge's `bsdf_new`); the
+    /// error names the bad parameter. A panic during construction becomes an error too.
+    fn new(kind: &str, properties: &[Param]) -> Result<Self, String> {
+        let built = catch_unwind(AssertUnwindSafe(|| {
+            let properties: Vec<(&str, ParamValue)> = properties.iter().map(property).collect();
+            construct(kind, &properties).map(|c| c.model).map_err(|e| e.to_string())
+        }));
+        match built {
+            Ok(Ok(model)) => Ok(PluginBsdf { model }),
+            Ok(Err(message)) => Err(message),
+            Err(_) => {
+                Err(format!("internal error while constructing bsdf \"{kind}\" (a bug in matte; please report it)"))
+            }
+        }
+    }
+
     /// Numeric parameters with their effective values (defaults filled in), for `traverse`.
     fn numeric_parameters(&self) -> Vec<Param> {
         self.describe_parameters().into_iter().filter(|p| p.kind == PropertyType::Number).collect()

@@ -8,8 +8,8 @@
 //!
 //! Slices of unexpected lengths (a bug in the C++ caller) give zeros, never a panic.
 
-use super::PluginBsdf;
 use super::bridge::ffi::Arena;
+use super::plugin_bsdf::PluginBsdf;
 use super::traced::{Traced, TracedTable};
 use matte_brdf::LaneKernel;
 use matte_brdf::kernel;
