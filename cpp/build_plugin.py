@@ -4,33 +4,46 @@ cpp/mitsuba_releases.txt published there (and the installed one, when the table 
 
  1. once: the Rust staticlib (the matte-plugin crate: kernels + cxx bridge glue) and the `matte`
     binary, for the platform's Rust target;
- 2. per release: its headers and libraries (mitsuba/include, libmitsuba.so, drjit/include and
+ 2. per release: its headers and libraries (mitsuba/include, libmitsuba, drjit/include and
     Dr.Jit's libraries), taken from that release's mitsuba and drjit wheels for the platform,
     downloaded from the package index by pip and cached in $MATTE_MITSUBA_CACHE (default
     ~/.cache/matte-mitsuba), or from the installed Mitsuba for a release the table lacks;
- 3. per release: cpp/plugin.cpp compiled against them with that release's instruction set and
-    C++ string ABI (the release's C++ layer), in parallel;
- 4. once: lib/libmatte_kernels.so, the Rust kernels with exactly the bridge symbols the layers
-    call (the union of their undefined symbols), so the kernels ship once;
- 5. per release: releases/<release>/plugins/libmatte_bsdfs.so (the layer, linked against the
-    kernels and the release's libmitsuba.so with undefined symbols an error; exports only
-    matte_register) and one small stub <type>.so per plugin name (exports only init_plugin,
-    forwards to the layer);
+ 3. per release: cpp/plugin.cpp compiled against them with that release's instruction set,
+    C++ string ABI and backends (the release's C++ layer), in parallel;
+ 4. once: lib/<kernels library>, the Rust kernels with the bridge symbols the layers call, so
+    the kernels ship once;
+ 5. per release: releases/<release>/plugins/<layer library> (linked against the kernels and the
+    release's Mitsuba and Dr.Jit libraries, with an unresolved symbol an error: the link check)
+    and one small stub <type><suffix> per plugin name (exports only init_plugin, forwards to the
+    layer);
  6. bin/matte (stripped) and _build.py: the platform, the releases built and the model registry.
 
-    python3 cpp/build_plugin.py [--platform linux-x86_64|linux-aarch64] [--out DIR]
+    python3 cpp/build_plugin.py [--platform NAME] [--out DIR]
 
-The platform defaults to this machine's; another one is cross-built (linux-aarch64 on x86-64:
-Debian's g++-aarch64-linux-gnu and Rust's aarch64-unknown-linux-gnu target). DIR defaults to
-python/matte_mitsuba. MATTE_MITSUBA_RELEASES="3.9.1 3.8.0" builds a subset of the table (a
-development shortcut; a wheel for users holds every release). The installed Mitsuba is the one
-of $MATTE_MITSUBA_PYTHON, else of the Python running this script (outside pip's build
-isolation); a release of it that the table lacks gets a layer from its own headers. setup.py
-calls this for the wheel, and `make plugin`/`make dist` through it.
+Platforms (PLATFORMS below; one column each in cpp/mitsuba_releases.txt):
+
+  linux-x86_64   g++ (ELF: -z defs, a version script, $ORIGIN rpaths)
+  linux-aarch64  g++; cross-built on x86-64 with Debian's g++-aarch64-linux-gnu and Rust's
+                 aarch64-unknown-linux-gnu target
+  macos-arm64    clang++ on a Mac; cross-built on Linux with Zig (PyPI's ziglang, as the C++
+                 compiler and Mach-O linker, and cargo-zigbuild for Rust's aarch64-apple-darwin):
+                 Mach-O, undefined symbols an error, @rpath install names, @loader_path rpaths,
+                 libc++ imported from /usr/lib/libc++.1.dylib as Mitsuba's own libraries do
+  windows-x86_64 MSVC (cl, link, lib) on Windows only (no cross build: MSVC's C++ ABI); the
+                 import libraries of Mitsuba's DLLs are made from their export tables, an
+                 unresolved external fails link; the kernels are linked into each layer
+
+The platform defaults to this machine's. DIR defaults to python/matte_mitsuba.
+MATTE_MITSUBA_RELEASES="3.9.1 3.8.0" builds a subset of the table (a development shortcut; a
+wheel for users holds every release). The installed Mitsuba is the one of $MATTE_MITSUBA_PYTHON,
+else of the Python running this script (outside pip's build isolation); a release of it that
+the table lacks gets a layer from its own headers. setup.py calls this for the wheel, and `make
+plugin`/`make dist` through it.
 """
 
 import argparse
 import concurrent.futures
+import importlib.util
 import json
 import os
 import platform
@@ -50,14 +63,29 @@ class Platform:
     """What building for one platform takes."""
 
     name: str  # the table's column and the CLI's name
-    machine: str  # platform.machine() where it runs natively
+    os: str  # "linux", "macos" or "windows": the binary format, its link check and toolchain
+    machine: str  # platform.machine() where it runs natively, lower case
     rust_target: str
-    tool_prefix: str  # of the cross toolchain (g++, nm, strip), used when cross-building
-    cross_packages: str  # the Debian packages that provide that toolchain
     wheel_platforms: tuple  # pip --platform tags that find Mitsuba's wheels
-    wheel_tag: str  # the tag of matte's own (unrepaired) wheel
+    wheel_tag: str  # the tag of matte's own wheel (before any repair)
     # Compiler flags per instruction set of the table's column.
     isa_flags: dict
+    # How it is cross-built on Linux: a GNU toolchain's prefix (g++, nm, strip), "zig", or None
+    # (not cross-buildable), and what provides that toolchain.
+    cross: str | None
+    cross_packages: str
+
+    def library(self, name):
+        """The file name of shared library `name` (libNAME.so, libNAME.dylib, NAME.dll)."""
+        return {"linux": f"lib{name}.so", "macos": f"lib{name}.dylib", "windows": f"{name}.dll"}[self.os]
+
+    @property
+    def plugin_suffix(self):
+        """What Mitsuba appends to a plugin's name (src/core/plugin.cpp: .so, .dylib, .dll)."""
+        return {"linux": ".so", "macos": ".dylib", "windows": ".dll"}[self.os]
+
+    def executable(self, name):
+        return name + ".exe" if self.os == "windows" else name
 
 
 PLATFORMS = {
@@ -65,28 +93,59 @@ PLATFORMS = {
     for p in (
         Platform(
             "linux-x86_64",
+            "linux",
             "x86_64",
             "x86_64-unknown-linux-gnu",
-            "x86_64-linux-gnu-",
-            "g++-x86-64-linux-gnu",
             ("manylinux_2_28_x86_64", "manylinux_2_17_x86_64", "manylinux2014_x86_64"),
             "linux_x86_64",
             {"avx": ["-mavx"], "x86-64-v3": ["-march=x86-64-v3"]},
+            "x86_64-linux-gnu-",
+            "Debian: apt-get install g++-x86-64-linux-gnu",
         ),
         Platform(
             "linux-aarch64",
+            "linux",
             "aarch64",
             "aarch64-unknown-linux-gnu",
-            "aarch64-linux-gnu-",
-            "g++-aarch64-linux-gnu",
             ("manylinux_2_28_aarch64", "manylinux_2_17_aarch64", "manylinux2014_aarch64"),
             "linux_aarch64",
             {"armv8-a": ["-march=armv8-a"]},
+            "aarch64-linux-gnu-",
+            "Debian: apt-get install g++-aarch64-linux-gnu",
+        ),
+        Platform(
+            "macos-arm64",
+            "macos",
+            "arm64",
+            "aarch64-apple-darwin",
+            ("macosx_11_0_arm64",),
+            "macosx_11_0_arm64",
+            {"arm64": []},  # the compilers' arm64 baseline, as Mitsuba's macOS wheels
+            "zig",
+            "pip install ziglang cargo-zigbuild lief",
+        ),
+        Platform(
+            "windows-x86_64",
+            "windows",
+            "amd64",
+            "x86_64-pc-windows-msvc",
+            ("win_amd64",),
+            "win_amd64",
+            {"avx": ["/arch:AVX"], "x86-64-v3": ["/arch:AVX2"]},
+            None,
+            "MSVC's C++ ABI: build it on Windows with Visual Studio's tools (cl, link, lib)",
         ),
     )
 }
 # The libraries each layer links against, from the mitsuba and drjit wheels (not shipped).
 MITSUBA_LIBRARIES = ["mitsuba", "drjit-core", "drjit-extra", "nanothread"]
+# The deployment target of the macOS layers: Mitsuba's macOS wheels' (macosx_11_0_arm64).
+MACOS_MIN = "11.0"
+# libc++ symbols matte's objects import (cxx's runtime: its Str throws std::invalid_argument; its
+# shared_ptr bridge locks a weak count) that no Mach-O file of Mitsuba's wheels imports: each is
+# in libc++'s stable ABI v1 of every macOS (<stdexcept>, <memory>). The macOS link check accepts
+# libc++ imports that Mitsuba's own binaries make and these; any other fails the link, naming it.
+LIBCXX_ALSO = ["__ZNSt16invalid_argumentD1Ev", "__ZTVSt16invalid_argument", "__ZNSt3__119__shared_weak_count4lockEv"]
 
 
 class BuildError(Exception):
@@ -94,9 +153,10 @@ class BuildError(Exception):
 
 
 def host_platform():
-    machine = platform.machine()
+    machine = platform.machine().lower()
+    system = {"linux": "linux", "darwin": "macos", "win32": "windows"}.get(sys.platform)
     for p in PLATFORMS.values():
-        if p.machine == machine and sys.platform.startswith("linux"):
+        if p.os == system and p.machine == machine:
             return p
     raise BuildError(f"no platform of cpp/build_plugin.py is this machine ({sys.platform} {machine})")
 
@@ -146,11 +206,13 @@ def installed_mitsuba(python=None):
 
 
 def detect_isa(target, mitsuba_dir):
-    """The instruction set an installed Mitsuba was compiled for, read from its library: on
-    x86-64, x86-64-v3 when it holds FMA instructions, else avx."""
-    if target.name == "linux-aarch64":
-        return "armv8-a"
-    lib = os.path.join(mitsuba_dir, "libmitsuba.so")
+    """The instruction set an installed Mitsuba was compiled for. On x86-64 it is read from its
+    library (x86-64-v3 when it holds FMA instructions, else avx; objdump reads ELF and PE); a
+    platform with one instruction set in the table has that one."""
+    isas = list(target.isa_flags)
+    if len(isas) == 1:
+        return isas[0]
+    lib = os.path.join(mitsuba_dir, target.library("mitsuba"))
     objdump = subprocess.Popen(["objdump", "-d", "--no-show-raw-insn", lib], stdout=subprocess.PIPE, text=True)
     fma = any(op in line for line in objdump.stdout for op in ("vfmadd", "vfmsub", "vfnmadd"))
     objdump.kill()
@@ -205,10 +267,11 @@ class Release:
     """One layer to build: the release, its headers and libraries, its instruction set."""
 
     version: str
-    mitsuba_dir: str  # holds include/ and libmitsuba.so
+    mitsuba_dir: str  # holds include/ and Mitsuba's library
     drjit_dir: str  # holds include/ and Dr.Jit's libraries
     isa: str
     source: str  # where its headers came from, for the summary
+    root: str | None  # the cache folder of a downloaded release (macOS: its libc++ stub)
 
 
 class Build:
@@ -222,19 +285,48 @@ class Build:
         self.cargo_target = os.environ.get("CARGO_TARGET_DIR") or os.path.join(ROOT, "target")
         self.obj = os.path.join(self.cargo_target, "plugin", target.name)
         self.python = sys.executable
-        self.cxx = self.tool("g++")
+        self.zig = self.cross and target.cross == "zig"
+        if self.cross and target.cross is None:
+            raise BuildError(f"{target.name} cannot be cross-built here: {target.cross_packages}")
+        if self.zig:
+            missing = [m for m in ("ziglang", "lief") if importlib.util.find_spec(m) is None]
+            if missing or not shutil.which("cargo-zigbuild", path=self.tool_path()):
+                raise BuildError(
+                    f"cross-building for {target.name} needs Zig, cargo-zigbuild and lief ({target.cross_packages})"
+                )
+        self.cxx = self.compiler()
+
+    def tool_path(self):
+        """PATH with this Python's scripts first (cargo-zigbuild, which runs `python -m ziglang`)."""
+        return os.pathsep.join([os.path.dirname(self.python), os.environ.get("PATH", "")])
 
     def tool(self, name):
-        """The toolchain's `name` for the target: the cross one when cross-building."""
+        """The toolchain's `name` (g++, gcc, ar, nm, strip) for the target: the cross one when
+        cross-building with a GNU toolchain."""
         if not self.cross:
             return name
-        path = shutil.which(self.target.tool_prefix + name)
+        path = shutil.which(self.target.cross + name)
         if not path:
             raise BuildError(
-                f"cross-building for {self.target.name} needs {self.target.tool_prefix}{name} "
-                f"(Debian: apt-get install {self.target.cross_packages})"
+                f"cross-building for {self.target.name} needs {self.target.cross}{name} ({self.target.cross_packages})"
             )
         return path
+
+    def compiler(self):
+        """The C++ compiler (and linker driver) as a command prefix."""
+        if self.target.os == "windows":
+            return ["cl", "/nologo"]
+        if self.zig:
+            # Zig's clang with its libc++ headers, told that the library is Apple's (availability
+            # markup for the deployment target, as Apple's SDK does), so that nothing newer than
+            # macOS 11's /usr/lib/libc++.1.dylib is called.
+            return [self.python, "-m", "ziglang", "c++", "-target", f"aarch64-macos.{MACOS_MIN}"] + [
+                "-U_LIBCPP_HAS_VENDOR_AVAILABILITY_ANNOTATIONS",
+                "-D_LIBCPP_HAS_VENDOR_AVAILABILITY_ANNOTATIONS=1",
+            ]
+        if self.target.os == "macos":
+            return ["clang++", "-arch", "arm64", f"-mmacosx-version-min={MACOS_MIN}"]
+        return [self.tool("g++")]
 
     # 1. Rust.
     def rust_dir(self):
@@ -243,8 +335,15 @@ class Build:
             return os.path.join(self.cargo_target, self.target.rust_target, "release")
         return os.path.join(self.cargo_target, "release")
 
+    def staticlib(self):
+        name = "matte_plugin.lib" if self.target.os == "windows" else "libmatte_plugin.a"
+        return os.path.join(self.rust_dir(), name)
+
     def build_rust(self):
         cmd = ["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"]
+        env = dict(os.environ)
+        if self.target.os == "macos":
+            env["MACOSX_DEPLOYMENT_TARGET"] = MACOS_MIN
         if self.cross:
             installed = output(["rustup", "target", "list", "--installed"]) if shutil.which("rustup") else ""
             if self.target.rust_target not in installed.split():
@@ -252,30 +351,51 @@ class Build:
                     f"cross-building for {self.target.name} needs Rust's {self.target.rust_target} target "
                     f"(rustup target add {self.target.rust_target})"
                 )
+            if self.zig:
+                # cargo-zigbuild: Zig as the C/C++ compiler of the cxx bridge and as the linker
+                # of the `matte` binary (Zig carries macOS's libSystem stubs; no SDK needed).
+                cmd[1] = "zigbuild"
+                env["PATH"] = self.tool_path()
+            else:
+                # The cxx bridge's C++ (cc) for the target, with the target's compiler.
+                triple = self.target.rust_target.replace("-", "_")
+                env.setdefault("CXX_" + triple, self.cxx[0])
+                env.setdefault("CC_" + triple, self.tool("gcc"))
+                env.setdefault("AR_" + triple, self.tool("ar"))
             cmd += ["--target", self.target.rust_target]
-            # The cxx bridge's C++ (cc) for the target, with the target's compiler.
-            triple = self.target.rust_target.replace("-", "_")
-            os.environ.setdefault("CXX_" + triple, self.cxx)
-            os.environ.setdefault("CC_" + triple, self.tool("gcc"))
-            os.environ.setdefault("AR_" + triple, self.tool("ar"))
-        run(cmd, cwd=ROOT)
+        run(cmd, cwd=ROOT, env=env)
         if self.cross:
             # The type list and the registry come from a matte that runs here: the native build's
             # (the same packages, so the same features: nothing to build after a native build).
-            run(cmd[: cmd.index("--target")], cwd=ROOT)
+            run(["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"], cwd=ROOT)
         # The generated bridge header includes "matte/cpp/arena.h" (build.rs sets the prefix `matte`).
         inc = os.path.join(self.cargo_target, "inc")
         os.makedirs(inc, exist_ok=True)
         link = os.path.join(inc, "matte")
         if os.path.realpath(link) != ROOT:
-            if os.path.lexists(link):
-                os.remove(link)
-            os.symlink(ROOT, link)
+            if os.path.lexists(link) or os.path.isdir(link):
+                shutil.rmtree(link) if os.path.isdir(link) and not os.path.islink(link) else os.remove(link)
+            try:
+                os.symlink(ROOT, link, target_is_directory=True)
+            except OSError:  # Windows without the right to make links: a copy of what is included
+                shutil.copytree(os.path.join(ROOT, "cpp"), os.path.join(link, "cpp"))
 
     def host_matte(self, *args):
-        return output([os.path.join(self.cargo_target, "release", "matte"), *args])
+        return output([os.path.join(self.cargo_target, "release", host_platform().executable("matte")), *args])
 
     # 2. Headers and libraries.
+    def wanted(self, name):
+        """Whether a file of a Mitsuba or Dr.Jit wheel is one a layer builds or links against:
+        the headers, and the shared libraries (and Windows' import libraries) beside __init__.py."""
+        package, _, rest = name.partition("/")
+        if rest.startswith("include/"):
+            return True
+        if "/" in rest or not rest:
+            return False
+        if self.target.os == "windows":
+            return rest.endswith((".dll", ".lib"))
+        return rest.startswith("lib") and (".so" in rest if self.target.os == "linux" else rest.endswith(".dylib"))
+
     def fetch(self, version, drjit, isa):
         dest = os.path.join(self.cache, self.target.name, version)
         if not os.path.isfile(os.path.join(dest, ".complete")):
@@ -292,17 +412,24 @@ class Build:
                         f"could not download mitsuba=={version} and drjit=={drjit} for {self.target.name} "
                         "(their headers build its layer)"
                     )
+                libcxx = set()
                 for wheel in os.listdir(tmp):
-                    package = wheel.split("-")[0]
                     with zipfile.ZipFile(os.path.join(tmp, wheel)) as z:
                         for name in z.namelist():
-                            base = os.path.basename(name)
-                            if name.startswith(package + "/include/") or (
-                                name.count("/") == 1 and base.startswith("lib") and ".so" in base
-                            ):
+                            if self.wanted(name):
                                 z.extract(name, dest)
+                            elif self.zig and name.endswith((".dylib", ".so")):
+                                libcxx |= libcxx_imports(z.read(name))
+                if self.zig:
+                    for d in ("mitsuba", "drjit"):
+                        for f in os.listdir(os.path.join(dest, d)):
+                            if f.endswith(".dylib"):
+                                with open(os.path.join(dest, d, f), "rb") as fh:
+                                    libcxx |= libcxx_imports(fh.read())
+                    with open(os.path.join(dest, "libc++.imports"), "w") as f:
+                        f.write("".join(name + "\n" for name in sorted(libcxx)))
             open(os.path.join(dest, ".complete"), "w").close()
-        return Release(version, os.path.join(dest, "mitsuba"), os.path.join(dest, "drjit"), isa, "its wheel")
+        return Release(version, os.path.join(dest, "mitsuba"), os.path.join(dest, "drjit"), isa, "its wheel", dest)
 
     def releases(self):
         out = []
@@ -313,63 +440,113 @@ class Build:
                     raise BuildError(
                         f"the installed Mitsuba {version} ({mitsuba_dir}) has no include/ to build against"
                     )
-                out.append(Release(version, mitsuba_dir, drjit_dir, detect_isa(self.target, mitsuba_dir), "installed"))
+                isa = detect_isa(self.target, mitsuba_dir)
+                out.append(Release(version, mitsuba_dir, drjit_dir, isa, "installed", None))
             else:
                 out.append(self.fetch(version, drjit, isa))
         return out
 
     # 3. The layers' objects.
-    def flags(self, release):
+    def defines(self, release):
+        """The release's backends, as its headers need them declared (they change the layout of
+        Mitsuba's classes): those of the variants its config.h lists, Embree (every wheel's CPU
+        ray tracer) and autodiff."""
+        config = open(os.path.join(release.mitsuba_dir, "include", "mitsuba", "core", "config.h")).read()
+        variants = config.split("#define MI_VARIANTS", 1)[1].split("\n\n", 1)[0]
+        backends = [b for b in ("LLVM", "CUDA", "METAL") if f'"{b.lower()}_' in variants]
+        return [f"MI_ENABLE_{b}=1" for b in backends + ["EMBREE", "AUTODIFF"]] + ["NDEBUG"]
+
+    def includes(self, release):
         nb = output([self.python, "-c", "import os, nanobind; print(os.path.dirname(nanobind.__file__))"]).strip()
-        # Releases built with the pre-C++11 string ABI (manylinux2014's toolchain) name no
-        # std::__cxx11 symbol.
-        symbols = output([self.tool("nm"), "-D", "--defined-only", os.path.join(release.mitsuba_dir, "libmitsuba.so")])
-        abi = 1 if "__cxx11" in symbols else 0
         return [
-            "-std=c++17",
-            "-O3",
-            "-fPIC",
-            "-fvisibility=hidden",
-            "-fno-strict-aliasing",
-            *self.target.isa_flags[release.isa],
-            f"-D_GLIBCXX_USE_CXX11_ABI={abi}",
-            "-DMI_ENABLE_LLVM=1",
-            "-DMI_ENABLE_CUDA=1",
-            "-DMI_ENABLE_EMBREE=1",
-            "-DMI_ENABLE_AUTODIFF=1",
-            "-DNDEBUG",
-            "-I" + os.path.join(release.mitsuba_dir, "include"),
-            "-I" + os.path.join(release.drjit_dir, "include"),
-            "-I" + os.path.join(nb, "include"),
-            "-I" + os.path.join(nb, "ext", "robin_map", "include"),
-            "-I" + os.path.join(self.cargo_target, "cxxbridge"),
-            "-I" + os.path.join(self.cargo_target, "inc"),
+            os.path.join(release.mitsuba_dir, "include"),
+            os.path.join(release.drjit_dir, "include"),
+            os.path.join(nb, "include"),
+            os.path.join(nb, "ext", "robin_map", "include"),
+            os.path.join(self.cargo_target, "cxxbridge"),
+            os.path.join(self.cargo_target, "inc"),
         ]
+
+    def flags(self, release):
+        isa = self.target.isa_flags[release.isa]
+        if self.target.os == "windows":
+            return (
+                ["/std:c++17", "/O2", "/EHsc", "/MD", "/bigobj", "/permissive-", "/Zc:__cplusplus", "/utf-8", *isa]
+                + ["/DNOMINMAX", "/D_USE_MATH_DEFINES"]
+                + ["/D" + d for d in self.defines(release)]
+                + ["/I" + i for i in self.includes(release)]
+            )
+        flags = ["-std=c++17", "-O3", "-fPIC", "-fvisibility=hidden", "-fno-strict-aliasing", *isa]
+        if self.target.os == "macos":
+            # As Mitsuba's own macOS libraries, which import no sized operator delete.
+            flags.append("-fno-sized-deallocation")
+        if self.target.os == "linux":
+            # Releases built with the pre-C++11 string ABI (manylinux2014's toolchain) name no
+            # std::__cxx11 symbol.
+            library = os.path.join(release.mitsuba_dir, "libmitsuba.so")
+            symbols = output([self.tool("nm"), "-D", "--defined-only", library])
+            flags.append(f"-D_GLIBCXX_USE_CXX11_ABI={1 if '__cxx11' in symbols else 0}")
+        return flags + ["-D" + d for d in self.defines(release)] + ["-I" + i for i in self.includes(release)]
+
+    def object(self, release, src):
+        return os.path.join(self.obj, release.version, src + (".obj" if self.target.os == "windows" else ".o"))
 
     def compile_layers(self, releases):
         jobs = []
         for release in releases:
-            d = os.path.join(self.obj, release.version)
-            os.makedirs(d, exist_ok=True)
+            os.makedirs(os.path.join(self.obj, release.version), exist_ok=True)
             flags = self.flags(release)
             for src in ("plugin", "plugin_stub"):
-                jobs.append([self.cxx, *flags, "-c", os.path.join(ROOT, "cpp", src + ".cpp"), "-o", f"{d}/{src}.o"])
+                source, obj = os.path.join(ROOT, "cpp", src + ".cpp"), self.object(release, src)
+                if self.target.os == "windows":
+                    jobs.append([*self.cxx, *flags, "/c", source, "/Fo" + obj])
+                else:
+                    jobs.append([*self.cxx, *flags, "-c", source, "-o", obj])
         with concurrent.futures.ThreadPoolExecutor(max_workers=os.cpu_count() or 2) as pool:
             for r in pool.map(lambda cmd: subprocess.run(cmd, cwd=ROOT), jobs):
                 if r.returncode != 0:
                     raise BuildError(f"compiling {' '.join(r.args[-3:])} failed")
 
     # 4. The kernels, once.
+    def libcxx(self):
+        """Zig's link against macOS's libc++ instead of Zig's own static libc++: a stub of the
+        system library exporting what the Mach-O files of every release's wheels import from it
+        (fetch() lists them; the wheels share one deployment target, so each is in macOS 11's
+        libc++) and LIBCXX_ALSO."""
+        if not self.zig:
+            return []
+        return ["-nostdlib++", os.path.join(self.obj, "libc++.tbd")]
+
+    def write_libcxx_stub(self, releases):
+        symbols = set(LIBCXX_ALSO)
+        for release in releases:
+            with open(os.path.join(release.root, "libc++.imports")) as f:
+                symbols |= set(f.read().split())
+        write_libcxx_stub(os.path.join(self.obj, "libc++.tbd"), sorted(symbols))
+
     def link_kernels(self, releases):
+        lib = os.path.join(self.out, "lib")
+        os.makedirs(lib, exist_ok=True)
+        out = os.path.join(lib, self.target.library("matte_kernels"))
+        if self.target.os == "windows":
+            return  # linked into each layer (link.exe exports by .def only; no shared copy)
+        if self.target.os == "macos":
+            # The whole staticlib; a Mach-O image binds every import to the library it names
+            # (two-level namespace), so its exports cannot meet another library's symbols.
+            run(
+                [*self.cxx, "-shared", "-o", out, "-Wl,-force_load," + self.staticlib()]
+                + ["-Wl,-install_name,@rpath/" + os.path.basename(out), "-Wl,-dead_strip", "-Wl,-undefined,error"]
+                + self.libcxx()
+            )
+            return
         nm = self.tool("nm")
-        staticlib = os.path.join(self.rust_dir(), "libmatte_plugin.a")
         needed = set()
         for release in releases:
-            for line in output([nm, "-u", "--format=posix", f"{self.obj}/{release.version}/plugin.o"]).splitlines():
+            for line in output([nm, "-u", "--format=posix", self.object(release, "plugin")]).splitlines():
                 needed.add(line.split()[0])
         defined = set()
         for line in subprocess.run(
-            [nm, "--defined-only", "--format=posix", staticlib], capture_output=True, text=True
+            [nm, "--defined-only", "--format=posix", self.staticlib()], capture_output=True, text=True
         ).stdout.splitlines():
             f = line.split()
             if len(f) >= 2 and f[1] in "TWVDRB":
@@ -378,46 +555,105 @@ class Build:
         kernels_map = os.path.join(self.obj, "kernels.map")
         with open(kernels_map, "w") as f:
             f.write("{ global:\n" + "".join(s + ";\n" for s in exported) + "local: *; };\n")
-        lib = os.path.join(self.out, "lib")
-        os.makedirs(lib, exist_ok=True)
         run(
-            [self.cxx, "-shared", "-o", os.path.join(lib, "libmatte_kernels.so")]
+            [*self.cxx, "-shared", "-o", out]
             + ["-Wl,--undefined=" + s for s in exported]
-            + [staticlib, "-Wl,--gc-sections", "-Wl,--version-script=" + kernels_map, "-s"]
-            + ["-Wl,-soname,libmatte_kernels.so", "-lpthread", "-ldl", "-lm"]
+            + [self.staticlib(), "-Wl,--gc-sections", "-Wl,--version-script=" + kernels_map, "-s"]
+            + ["-Wl,-soname," + os.path.basename(out), "-lpthread", "-ldl", "-lm"]
         )
 
     # 5. Each release's plugin folder.
     def link_layers(self, releases, types):
         for old in ("plugins", "releases"):  # plugins/: the single-release layout of earlier builds
             shutil.rmtree(os.path.join(self.out, old), ignore_errors=True)
-        cpp = os.path.join(ROOT, "cpp")
         for release in releases:
             d = os.path.join(self.out, "releases", release.version, "plugins")
             os.makedirs(d)
-            o = os.path.join(self.obj, release.version)
+            {"linux": self.link_elf, "macos": self.link_macho, "windows": self.link_pe}[self.target.os](release, d, types)
+
+    def link_elf(self, release, d, types):
+        cpp = os.path.join(ROOT, "cpp")
+        layer = os.path.join(d, self.target.library("matte_bsdfs"))
+        run(
+            [*self.cxx, "-shared", "-o", layer, self.object(release, "plugin")]
+            + ["-L" + os.path.join(self.out, "lib"), "-lmatte_kernels", "-Wl,-rpath,$ORIGIN/../../../lib"]
+            + ["-Wl,--gc-sections", f"-Wl,--version-script={cpp}/exports.map", "-s"]
+            + ["-L" + release.mitsuba_dir, "-L" + release.drjit_dir]
+            + ["-l" + lib for lib in MITSUBA_LIBRARIES]
+            + ["-Wl,-z,defs", "-lpthread", "-ldl", "-lm"]
+        )
+        for t in types:
             run(
-                [self.cxx, "-shared", "-o", f"{d}/libmatte_bsdfs.so", f"{o}/plugin.o"]
-                + ["-L" + os.path.join(self.out, "lib"), "-lmatte_kernels", "-Wl,-rpath,$ORIGIN/../../../lib"]
-                + ["-Wl,--gc-sections", f"-Wl,--version-script={cpp}/exports.map", "-s"]
-                + ["-L" + release.mitsuba_dir, "-L" + release.drjit_dir]
-                + ["-l" + lib for lib in MITSUBA_LIBRARIES]
-                + ["-Wl,-z,defs", "-lpthread", "-ldl", "-lm"]
+                [*self.cxx, "-shared", "-o", os.path.join(d, t + ".so"), self.object(release, "plugin_stub")]
+                + [f"-Wl,--version-script={cpp}/stub_exports.map", "-s", "-L" + d, "-lmatte_bsdfs"]
+                + ["-Wl,-rpath,$ORIGIN", "-Wl,-z,defs"]
             )
-            for t in types:
-                run(
-                    [self.cxx, "-shared", "-o", f"{d}/{t}.so", f"{o}/plugin_stub.o"]
-                    + [f"-Wl,--version-script={cpp}/stub_exports.map", "-s", "-L" + d, "-lmatte_bsdfs"]
-                    + ["-Wl,-rpath,$ORIGIN"]
-                )
+
+    def link_macho(self, release, d, types):
+        def exports(symbol):
+            path = os.path.join(self.obj, symbol + ".exp")
+            with open(path, "w") as f:
+                f.write("_" + symbol + "\n")
+            return "-Wl,-exported_symbols_list," + path
+
+        common = ["-shared", "-Wl,-undefined,error", "-Wl,-dead_strip"] + self.libcxx()
+        layer = os.path.join(d, self.target.library("matte_bsdfs"))
+        # Mitsuba's and Dr.Jit's libraries are found where pip installs them beside matte_mitsuba
+        # (site-packages/{mitsuba,drjit}); the process has loaded them already, by the same
+        # install names (@rpath/libmitsuba.dylib, …).
+        run(
+            [*self.cxx, *common, "-o", layer, self.object(release, "plugin"), exports("matte_register")]
+            + ["-Wl,-install_name,@rpath/" + os.path.basename(layer)]
+            + ["-L" + os.path.join(self.out, "lib"), "-lmatte_kernels"]
+            + ["-L" + release.mitsuba_dir, "-L" + release.drjit_dir]
+            + ["-l" + lib for lib in MITSUBA_LIBRARIES]
+            + ["-Wl,-rpath,@loader_path/" + p for p in ("../../../lib", "../../../../mitsuba", "../../../../drjit")]
+        )
+        for t in types:
+            stub = os.path.join(d, t + self.target.plugin_suffix)
+            run(
+                [*self.cxx, *common, "-o", stub, self.object(release, "plugin_stub"), exports("init_plugin")]
+                + ["-Wl,-install_name,@rpath/" + os.path.basename(stub)]
+                + ["-L" + d, "-lmatte_bsdfs", "-Wl,-rpath,@loader_path"]
+            )
+
+    def link_pe(self, release, d, types):
+        """MSVC: link.exe fails on an unresolved external by itself. Mitsuba's wheel has no
+        import library for mitsuba.dll: one is made from the DLL's export table."""
+        implib = os.path.join(self.obj, release.version, "mitsuba.lib")
+        if not os.path.isfile(os.path.join(release.mitsuba_dir, "mitsuba.lib")):
+            import lief
+
+            names = [e.name for e in lief.parse(os.path.join(release.mitsuba_dir, "mitsuba.dll")).exported_functions]
+            definition = implib[:-4] + ".def"
+            with open(definition, "w") as f:
+                f.write("LIBRARY mitsuba.dll\nEXPORTS\n" + "".join(f"    {n}\n" for n in names if n))
+            run(["lib", "/nologo", "/machine:x64", "/def:" + definition, "/out:" + implib])
+        else:
+            implib = os.path.join(release.mitsuba_dir, "mitsuba.lib")
+        libs = [implib] + [os.path.join(release.drjit_dir, lib + ".lib") for lib in MITSUBA_LIBRARIES[1:]]
+        system = ["advapi32.lib", "bcrypt.lib", "kernel32.lib", "ntdll.lib", "userenv.lib", "ws2_32.lib"]
+        layer = os.path.join(d, self.target.library("matte_bsdfs"))
+        run(
+            ["link", "/nologo", "/DLL", "/OPT:REF", "/OUT:" + layer, self.object(release, "plugin"), self.staticlib()]
+            + libs
+            + system
+        )
+        for t in types:
+            run(
+                ["link", "/nologo", "/DLL", "/OUT:" + os.path.join(d, t + ".dll"), self.object(release, "plugin_stub")]
+                + [layer[:-4] + ".lib"]
+            )
 
     # 6. The binary and _build.py.
     def finish(self, releases):
         bin_dir = os.path.join(self.out, "bin")
         os.makedirs(bin_dir, exist_ok=True)
-        binary = os.path.join(bin_dir, "matte")
-        shutil.copy2(os.path.join(self.rust_dir(), "matte"), binary)
-        run([self.tool("strip"), binary])
+        name = self.target.executable("matte")
+        binary = os.path.join(bin_dir, name)
+        shutil.copy2(os.path.join(self.rust_dir(), name), binary)
+        if self.target.os == "linux":
+            run([self.tool("strip"), binary])
         versions = ", ".join(f'"{r.version}"' for r in releases)
         with open(os.path.join(self.out, "_build.py"), "w") as f:
             f.write(
@@ -431,24 +667,62 @@ class Build:
         self.build_rust()
         releases = self.releases()
         self.compile_layers(releases)
+        if self.zig:
+            self.write_libcxx_stub(releases)
         self.link_kernels(releases)
         types = self.host_matte("types").split()
         self.link_layers(releases, types)
         self.finish(releases)
 
         def kb(path):
-            return os.path.getsize(path) // 1024
+            return os.path.getsize(path) // 1024 if os.path.isfile(path) else 0
 
+        layer = self.target.library("matte_bsdfs")
         layers = "; ".join(
-            f"{r.version} ({r.isa}, from {r.source}): "
-            f"{kb(os.path.join(self.out, 'releases', r.version, 'plugins', 'libmatte_bsdfs.so'))} KB"
+            f"{r.version} ({r.isa}, from {r.source}): {kb(os.path.join(self.out, 'releases', r.version, 'plugins', layer))} KB"
             for r in releases
         )
+        kernels = self.target.library("matte_kernels")
         print(
-            f"build_plugin: {self.target.name}: lib/libmatte_kernels.so "
-            f"({kb(os.path.join(self.out, 'lib', 'libmatte_kernels.so'))} KB) and a layer per Mitsuba release "
-            f"({layers}), plugins: {' '.join(types)}",
+            f"build_plugin: {self.target.name}: lib/{kernels} ({kb(os.path.join(self.out, 'lib', kernels))} KB) "
+            f"and a layer per Mitsuba release ({layers}), plugins: {' '.join(types)}",
             file=sys.stderr,
+        )
+
+
+def libcxx_imports(data):
+    """The symbols a Mach-O image (bytes) imports from libc++ or libc++abi: its undefined
+    external symbols whose two-level library ordinal (n_desc >> 8) names one of them."""
+    import lief
+
+    lief.logging.disable()
+    binary = lief.MachO.parse(list(data))
+    if binary is None:
+        return set()
+    loads = {getattr(lief.MachO.LoadCommand.TYPE, t) for t in ("LOAD_DYLIB", "LOAD_WEAK_DYLIB", "REEXPORT_DYLIB")}
+    out = set()
+    for image in binary:
+        libraries = [c.name for c in image.commands if c.command in loads]
+        for s in image.symbols:
+            if s.raw_type & 0x0E or not s.raw_type & 0x01:  # not N_UNDF | N_EXT
+                continue
+            ordinal = (s.description >> 8) & 0xFF
+            if 1 <= ordinal <= len(libraries):
+                if os.path.basename(libraries[ordinal - 1]).startswith(("libc++.", "libc++abi.")):
+                    out.add(s.name)
+    return out
+
+
+def write_libcxx_stub(path, symbols):
+    """A text-based stub (TAPI .tbd, which Zig's linker reads) of /usr/lib/libc++.1.dylib that
+    exports `symbols`."""
+    with open(path, "w") as f:
+        f.write(
+            "--- !tapi-tbd\ntbd-version: 4\ntargets: [ arm64-macos ]\n"
+            "install-name: '/usr/lib/libc++.1.dylib'\ncurrent-version: 1200.3\n"
+            "exports:\n  - targets: [ arm64-macos ]\n    symbols: [ "
+            + ",\n               ".join(f"'{s}'" for s in symbols)
+            + " ]\n...\n"
         )
 
 
