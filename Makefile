@@ -4,8 +4,9 @@
 #               then the Mitsuba plugin's pytest suite); .ci/run calls it
 # and two more (not set-up commands; they need the same things as main):
 #   make bench  matte against Mitsuba in one run (bench_out/bench.json)
-#   make dist   the release files in dist/: the sdist and the manylinux wheels for Linux x86_64
-#               and aarch64 (cross-built), each repaired by auditwheel
+#   make dist   the release files in dist/: the sdist, the manylinux wheels for Linux x86_64
+#               and aarch64 (cross-built), each repaired by auditwheel, and the macOS arm64
+#               wheel (cross-built with Zig, its links checked)
 # and one that recomputes data the repository holds:
 #   make ground-truth  the simulated microsurfaces' BRDF tables in python/matte_mitsuba/ground_truth/
 .PHONY: main test bench venv plugin dist ground-truth
@@ -15,6 +16,7 @@ PY     := .venv/bin/python
 # the Linux aarch64 one, cross-built (cpp/build_plugin.py, MATTE_PLATFORM=linux-aarch64).
 WHEEL  := dist/matte_mitsuba-0.1.0-py3-none-linux_x86_64.whl
 WHEEL_AARCH64 := dist/matte_mitsuba-0.1.0-py3-none-linux_aarch64.whl
+WHEEL_MACOS := dist/matte_mitsuba-0.1.0-py3-none-macosx_11_0_arm64.whl
 # The wheel's inputs: sources, the package with its tables, and the package data setup.py copies
 # in (the bundled scenes, the study report's slices); not the copies themselves.
 SOURCES := $(shell find rust cpp python/matte_mitsuba mitsuba_scenes -type f -not -path '*/plugins/*' -not -path '*/bin/*' -not -path 'python/matte_mitsuba/lib/*' \
@@ -59,16 +61,17 @@ plugin: venv $(WHEEL)
 # The libraries the plugin loads from the mitsuba and drjit wheels it requires: not copied in.
 PROVIDED := libmitsuba.so libdrjit-core.so libdrjit-extra.so libnanothread.so
 
-# The sdist (python -m build, the PEP 517 front end; MANIFEST.in says what goes in) and both
-# wheels repaired by auditwheel to the lowest manylinux tag their symbols allow; twine checks all.
-dist: plugin $(WHEEL_AARCH64)
+# The sdist (python -m build, the PEP 517 front end; MANIFEST.in says what goes in), both Linux
+# wheels repaired by auditwheel to the lowest manylinux tag their symbols allow, and the macOS
+# wheel (nothing to repair: it links only the system's and Mitsuba's libraries); twine checks all.
+dist: plugin $(WHEEL_AARCH64) $(WHEEL_MACOS)
 	@rm -f dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
 	@mkdir -p target
 	@$(PY) -m build --sdist --no-isolation --outdir dist . > target/sdist.log 2>&1 || (cat target/sdist.log; false)
 	@for w in $(WHEEL) $(WHEEL_AARCH64); do \
 		PATH="$(CURDIR)/.venv/bin:$$PATH" auditwheel repair $$w -w dist $(addprefix --exclude ,$(PROVIDED)) \
 			> target/auditwheel.log 2>&1 || { cat target/auditwheel.log; exit 1; }; done
-	.venv/bin/twine check --strict dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
+	.venv/bin/twine check --strict dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl $(WHEEL_MACOS)
 
 # `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.py); here
 # against the venv's own Mitsuba (no build isolation), then installed into the venv.
@@ -81,3 +84,9 @@ $(WHEEL): $(SOURCES) setup/requirements.txt
 $(WHEEL_AARCH64): $(SOURCES) setup/requirements.txt | venv
 	@rm -f dist/matte_mitsuba-*linux_aarch64.whl
 	MATTE_PLATFORM=linux-aarch64 $(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
+
+# The same build for macOS arm64, cross-built with Zig (ziglang and cargo-zigbuild from the
+# venv): every layer linked with undefined symbols an error.
+$(WHEEL_MACOS): $(SOURCES) setup/requirements.txt | venv
+	@rm -f dist/matte_mitsuba-*macosx*.whl
+	MATTE_PLATFORM=macos-arm64 PATH="$(CURDIR)/.venv/bin:$$PATH" $(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check

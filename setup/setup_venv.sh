@@ -7,7 +7,8 @@
 #      to its own BVH without it), and clang-format (`make test` checks cpp/'s style);
 #      for the Linux aarch64 wheel (`make dist`), the cross compiler g++-aarch64-linux-gnu, Rust's
 #      aarch64-unknown-linux-gnu target, and qemu-user-static, which runs it under emulation
-#      (tests/plugin/test_aarch64.py);
+#      (tests/plugin/test_aarch64.py); for the macOS arm64 wheel, Rust's aarch64-apple-darwin
+#      target (Zig, the C++ compiler and linker, comes from PyPI with the venv);
 #   2. <repo>/.venv with setup/requirements.txt installed, re-installed
 #      only when that file changed since the last successful install.
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
@@ -21,7 +22,7 @@ LIBEMBREE=/usr/lib/x86_64-linux-gnu/libembree3.so.3 # provided by libembree3-3
 CLANG_FORMAT=/usr/bin/clang-format                  # provided by clang-format (`make test` checks cpp/)
 CROSS_CXX=/usr/bin/aarch64-linux-gnu-g++            # provided by g++-aarch64-linux-gnu
 QEMU=/usr/bin/qemu-aarch64-static                   # provided by qemu-user-static
-RUST_AARCH64=aarch64-unknown-linux-gnu
+RUST_TARGETS=(aarch64-unknown-linux-gnu aarch64-apple-darwin)  # the cross-built wheels' Rust targets
 VENV=.venv
 REQ=setup/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
@@ -64,11 +65,13 @@ if [ ${#packages[@]} -gt 0 ]; then
     did+=("installed ${packages[*]}")
 fi
 
-if ! rustup target list --installed 2>/dev/null | grep -qx "$RUST_AARCH64"; then
-    quiet rustup target add "$RUST_AARCH64" ||
-        { echo "setup_venv: rustup could not add Rust's $RUST_AARCH64 target, which the aarch64 wheel needs (rustup target add $RUST_AARCH64)" >&2; exit 1; }
-    did+=("added Rust's $RUST_AARCH64 target")
-fi
+for target in "${RUST_TARGETS[@]}"; do
+    if ! rustup target list --installed 2>/dev/null | grep -qx "$target"; then
+        quiet rustup target add "$target" ||
+            { echo "setup_venv: rustup could not add Rust's $target target, which a cross-built wheel needs (rustup target add $target)" >&2; exit 1; }
+        did+=("added Rust's $target target")
+    fi
+done
 
 # --- 2. virtualenv -----------------------------------------------------------
 if [ ! -x "$VENV/bin/python" ] || ! "$VENV/bin/python" -c '' 2>/dev/null; then
@@ -94,7 +97,7 @@ if [ -e "$PTH" ]; then
 fi
 
 if [ ${#did[@]} -eq 0 ]; then
-    echo "setup_venv: up to date (libllvm19, libembree3-3, clang-format, the aarch64 cross toolchain and qemu present, $VENV matches $REQ)"
+    echo "setup_venv: up to date (libllvm19, libembree3-3, clang-format, the aarch64 cross toolchain, qemu and Rust's cross targets present, $VENV matches $REQ)"
 else
     msg=$(IFS=';'; echo "${did[*]}")
     echo "setup_venv: ${msg//;/, }"

@@ -5,11 +5,12 @@
     mi.set_variant('llvm_ad_rgb')
     mi.load_file('scene.xml')       # <bsdf type="wolff"/> etc. now load
 
-Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` through its process-wide file
-resolver (the same for every variant). The package holds one plugin folder per supported Mitsuba
-release (``releases/<release>/plugins/``: one small ``NAME.so`` per type and the release's C++
-layer they share, ``libmatte_bsdfs.so``) and the Rust kernels every layer calls, once
-(``lib/libmatte_kernels.so``). Importing it prepends the folder of the running release
+Mitsuba resolves ``<bsdf type="NAME">`` to ``plugins/NAME.so`` (``.dylib`` on macOS, ``.dll`` on
+Windows) through its process-wide file resolver (the same for every variant). The package holds
+one plugin folder per supported Mitsuba release (``releases/<release>/plugins/``: one small
+``NAME.so`` per type and the release's C++ layer they share, ``libmatte_bsdfs.so``) and the Rust
+kernels every layer calls, once (``lib/libmatte_kernels.so``; on Windows they are inside each
+layer). Importing it prepends the folder of the running release
 (:data:`PLUGIN_ROOT`) to the resolver. For the ``mitsuba`` command-line tool use ``-a``:
 ``mitsuba -a "$(python -m matte_mitsuba)" scene.xml``.
 
@@ -39,7 +40,12 @@ import os as _os
 #: (``bin/``) and the plugins of every release (``releases/``).
 PACKAGE_ROOT = _os.path.dirname(_os.path.abspath(__file__))
 
-_LIBRARY = "libmatte_bsdfs.so"
+import sys as _sys
+
+#: What Mitsuba appends to a plugin's name on this platform (its src/core/plugin.cpp).
+PLUGIN_SUFFIX = {"darwin": ".dylib", "win32": ".dll"}.get(_sys.platform, ".so")
+# The layer the plugin files share, in each release's plugins/.
+_LIBRARY = ("matte_bsdfs" if _sys.platform == "win32" else "libmatte_bsdfs") + PLUGIN_SUFFIX
 
 
 def _releases():
@@ -103,8 +109,19 @@ PLUGIN_ROOT = _release_root(_mitsuba_version())
 
 #: The ``<bsdf type=...>`` names this package provides (the plugin files the build wrote).
 BSDF_TYPES = tuple(
-    sorted(f[:-3] for f in _os.listdir(_os.path.join(PLUGIN_ROOT, "plugins")) if f.endswith(".so") and f != _LIBRARY)
+    sorted(
+        f[: -len(PLUGIN_SUFFIX)]
+        for f in _os.listdir(_os.path.join(PLUGIN_ROOT, "plugins"))
+        if f.endswith(PLUGIN_SUFFIX) and f != _LIBRARY
+    )
 )
+
+if _sys.platform == "win32":
+    # Mitsuba loads a plugin file with LoadLibraryW, which looks for the layer it imports
+    # (matte_bsdfs.dll) among the modules already loaded, not in the plugin's own folder.
+    import ctypes as _ctypes
+
+    _ctypes.WinDLL(_os.path.join(PLUGIN_ROOT, "plugins", _LIBRARY))
 
 #: Folder of the simulated microsurfaces' BRDF tables, files for ``tabulated_brdf``
 #: (``v_cavities_sigma<σ>.json``, ``height_field_m<m>.json``; matte's docs/microgeometry.md).

@@ -75,19 +75,14 @@ def timed_wall_cpu(s, spp):
     """Wall time and CPU time (all threads of this process: user + system) of one render. On a
     machine shared with other work the CPU time depends much less on the load than the wall
     time does."""
-    import resource
-
     import drjit as dr
     import mitsuba as mi
 
-    r0 = resource.getrusage(resource.RUSAGE_SELF)
-    t = time.perf_counter()
+    c0, t = time.process_time(), time.perf_counter()
     img = mi.render(s, spp=spp, seed=0)
     dr.eval(img)
     dr.sync_thread()
-    wall = time.perf_counter() - t
-    r1 = resource.getrusage(resource.RUSAGE_SELF)
-    return wall, (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return time.perf_counter() - t, time.process_time() - c0
 
 
 def timed(s, spp):
@@ -103,7 +98,8 @@ def set_llvm_lanes(lanes=None):
 
     import drjit as dr
 
-    lib = ctypes.CDLL(os.path.join(os.path.dirname(dr.__file__), "libdrjit-core.so"))
+    name = {"darwin": "libdrjit-core.dylib", "win32": "drjit-core.dll"}.get(sys.platform, "libdrjit-core.so")
+    lib = ctypes.CDLL(os.path.join(os.path.dirname(dr.__file__), name))
     try:
         set_target = lib._Z19jit_llvm_set_targetPKcS0_j
         features, width = lib._Z24jit_llvm_target_featuresv, lib._Z21jit_llvm_vector_widthv
