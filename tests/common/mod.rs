@@ -80,8 +80,10 @@ pub fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
 
 /// Environment variables for a `matte` run whose Python side is the checkout's source package
 /// (`python/matte_mitsuba`, which holds the ground-truth tables), found through the documented
-/// rule (`MATTE_PYTHON`): the machine's `python3` with `python/` on its path. That Python has
-/// no Mitsuba, so the commands run matte's side only and say that Mitsuba was not run.
+/// rule (`MATTE_PYTHON`): the machine's `python3` (on Windows `python`) with `python/` on its
+/// path. That Python has no Mitsuba, so the commands run matte's side only and say that Mitsuba
+/// was not run.
 pub fn source_package_env() -> [(&'static str, String); 2] {
-    [("MATTE_PYTHON", "python3".into()), ("PYTHONPATH", repo().join("python").display().to_string())]
+    let python = if cfg!(windows) { "python" } else { "python3" };
+    [("MATTE_PYTHON", python.into()), ("PYTHONPATH", repo().join("python").display().to_string())]
 }

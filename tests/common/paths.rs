@@ -12,9 +12,11 @@ pub fn repo() -> PathBuf {
 
 /// The project's `.venv` Python (Mitsuba 3.9.1, as `make venv` installs it), if this checkout
 /// has one; checks against Mitsuba itself are skipped (with a note) where it does not. `make
-/// test` builds the venv first, so the suite always runs them.
+/// test` builds the venv first, so the suite always runs them. A venv keeps it in `bin/python`,
+/// on Windows in `Scripts\python.exe`.
 pub fn mitsuba_python() -> Option<std::path::PathBuf> {
-    let python = repo().join(".venv/bin/python");
+    let venv = repo().join(".venv");
+    let python = if cfg!(windows) { venv.join("Scripts").join("python.exe") } else { venv.join("bin/python") };
     if python.exists() {
         Some(python)
     } else {

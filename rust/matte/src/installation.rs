@@ -20,6 +20,12 @@
 //!    installed as `<prefix>/lib/pythonX.Y/site-packages/matte_mitsuba/bin/matte`;
 //! 4. `python3` on `PATH`.
 //!
+//! Those are the names on Linux, macOS and the other Unix systems. On Windows ([`Platform`])
+//! the interpreter is `python.exe`, beside `matte.exe` and on `PATH`, and an environment laid
+//! out as `<prefix>\Lib\site-packages\matte_mitsuba\bin\matte.exe` has it as
+//! `<prefix>\Scripts\python.exe` (a venv) or `<prefix>\python.exe` (an installation, a conda
+//! environment).
+//!
 //! An explicit choice (1, 2) is used as given, and is an error when it cannot import
 //! `matte_mitsuba`; the others are candidates, skipped when they cannot. When none works, the
 //! error is one line naming what was tried and how to fix it.
@@ -29,6 +35,7 @@
 //! with `--python .venv/bin/python`). Nothing is looked up in the tree the binary was built
 //! from.
 
+use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::{Mutex, OnceLock};
@@ -154,22 +161,125 @@ pub fn scene_arguments(args: &[PathBuf], folder: &str) -> Vec<PathBuf> {
 
 /// `<package>` when `binary` is `<package>/bin/matte` inside a `matte_mitsuba` package.
 pub fn package_of_binary(binary: &Path) -> Option<PathBuf> {
-    let binary = binary.canonicalize().ok()?;
+    let binary = canonical(binary, Platform::HOST)?;
     let package = binary.parent()?.parent()?;
     (package.file_name()? == "matte_mitsuba" && package.join("__init__.py").is_file()).then(|| package.to_path_buf())
 }
 
-/// `<prefix>` when `binary` is `<prefix>/lib/pythonX.Y/{site,dist}-packages/matte_mitsuba/bin/matte`.
-fn installed_prefix(binary: &Path) -> Option<PathBuf> {
-    let package = package_of_binary(binary)?;
-    let packages = package.parent()?;
-    let python = packages.parent()?;
-    let lib = python.parent()?;
-    let named = |p: &Path, ok: &dyn Fn(&str) -> bool| p.file_name().and_then(|n| n.to_str()).is_some_and(ok);
-    let laid_out = named(packages, &|n| n == "site-packages" || n == "dist-packages")
-        && named(python, &|n| n.starts_with("python"))
-        && named(lib, &|n| n == "lib" || n == "lib64");
-    laid_out.then(|| lib.parent().map(Path::to_path_buf)).flatten()
+/// `<prefix>` when `binary` is `<prefix>/lib/pythonX.Y/{site,dist}-packages/matte_mitsuba/bin/matte`
+/// (on Windows `<prefix>\Lib\site-packages\matte_mitsuba\bin\matte.exe`), with the layout
+/// of `platform`.
+fn installed_prefix_on(binary: &Path, platform: Platform) -> Option<PathBuf> {
+    platform.prefix_of_packages(package_of_binary(binary)?.parent()?)
+}
+
+/// `path` made absolute with every link resolved, in the form the platform's other calls take
+/// ([`Platform::plain_path`]).
+fn canonical(path: &Path, platform: Platform) -> Option<PathBuf> {
+    path.canonicalize().ok().map(|p| platform.plain_path(p))
+}
+
+/// The conventions of a platform that the rule depends on: the interpreter's file name and
+/// where an environment keeps it and its packages. The program follows [`Platform::HOST`];
+/// the tests name each platform, so that every platform's rule is checked on any.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Platform {
+    /// Linux, macOS and the other Unix systems: `python3`; an environment at `<prefix>` has
+    /// `<prefix>/bin/python3` and its packages in `<prefix>/lib/pythonX.Y/site-packages`
+    /// (Debian's system Python: `dist-packages`; some systems: `lib64`).
+    Unix,
+    /// Windows: `python.exe`; an environment at `<prefix>` has its packages in
+    /// `<prefix>\Lib\site-packages` and its interpreter in `<prefix>\Scripts` (a venv) or
+    /// `<prefix>` itself (an installation, a conda environment).
+    Windows,
+}
+
+impl Platform {
+    /// The platform this program was built for.
+    pub const HOST: Platform = if cfg!(windows) { Platform::Windows } else { Platform::Unix };
+
+    /// The interpreter's file name, as looked for beside `matte` and on `PATH`.
+    pub fn python(self) -> &'static str {
+        match self {
+            Platform::Unix => "python3",
+            Platform::Windows => "python.exe",
+        }
+    }
+
+    /// The interpreters of the environment at `prefix`, in the order they are tried.
+    pub fn environment_pythons(self, prefix: &Path) -> Vec<PathBuf> {
+        match self {
+            Platform::Unix => vec![prefix.join("bin").join("python3")],
+            Platform::Windows => vec![prefix.join("Scripts").join("python.exe"), prefix.join("python.exe")],
+        }
+    }
+
+    /// `<prefix>` when `packages` is the packages folder of an environment at `<prefix>`
+    /// (folder names only; Windows's are compared without case, as its file system does).
+    pub fn prefix_of_packages(self, packages: &Path) -> Option<PathBuf> {
+        let named = |p: &Path, ok: &dyn Fn(&str) -> bool| p.file_name().and_then(|n| n.to_str()).is_some_and(ok);
+        let lib = match self {
+            Platform::Unix => {
+                let python = packages.parent()?;
+                let lib = python.parent()?;
+                let laid_out = named(packages, &|n| n == "site-packages" || n == "dist-packages")
+                    && named(python, &|n| n.starts_with("python"))
+                    && named(lib, &|n| n == "lib" || n == "lib64");
+                laid_out.then_some(lib)?
+            }
+            Platform::Windows => {
+                let lib = packages.parent()?;
+                let laid_out = named(packages, &|n| n.eq_ignore_ascii_case("site-packages"))
+                    && named(lib, &|n| n.eq_ignore_ascii_case("lib"));
+                laid_out.then_some(lib)?
+            }
+        };
+        lib.parent().map(Path::to_path_buf)
+    }
+
+    /// The file that a command runs as `command` (its first argument): as given on Unix; on
+    /// Windows with `.exe` when it has no extension (`matte` runs `matte.exe`).
+    pub fn executable(self, command: &Path) -> PathBuf {
+        match self {
+            Platform::Windows if command.extension().is_none() => command.with_extension("exe"),
+            _ => command.to_path_buf(),
+        }
+    }
+
+    /// `path` (a canonical path) in the form that other paths can be joined to. On Windows,
+    /// `canonicalize` gives a verbatim path (`\\?\C:\…`, `\\?\UNC\server\share\…`), in
+    /// which `/` is no separator, so that a scene's `meshes/bunny.ply` joined to it would name
+    /// no file: the prefix is dropped where the plain path names the same file (shorter than
+    /// 260 characters, no component that Windows would rewrite: a trailing dot or space, a
+    /// device name such as `NUL`). On Unix, and for any other path, `path` as it is.
+    pub fn plain_path(self, path: PathBuf) -> PathBuf {
+        if self != Platform::Windows {
+            return path;
+        }
+        let Some(text) = path.to_str() else { return path };
+        let plain = if let Some(rest) = text.strip_prefix(r"\\?\UNC\") {
+            format!(r"\\{rest}")
+        } else if let Some(rest) = text.strip_prefix(r"\\?\")
+            && let [drive, b':', b'\\', ..] = rest.as_bytes()
+            && drive.is_ascii_alphabetic()
+        {
+            rest.to_string()
+        } else {
+            return path;
+        };
+        let keeps_its_meaning = |c: &str| {
+            let stem = c.split('.').next().unwrap_or(c).trim_end();
+            let device = ["CON", "PRN", "AUX", "NUL"].iter().any(|d| stem.eq_ignore_ascii_case(d))
+                || ["COM", "LPT"].iter().any(|d| {
+                    stem.len() == 4
+                        && stem.is_char_boundary(3)
+                        && stem[..3].eq_ignore_ascii_case(d)
+                        && stem.as_bytes()[3].is_ascii_digit()
+                });
+            !c.ends_with(['.', ' ']) && !c.contains('/') && !device
+        };
+        if plain.len() < 260 && plain.split('\\').skip(1).all(keeps_its_meaning) { PathBuf::from(plain) } else { path }
+    }
 }
 
 /// What the rule reads from the process: the variables and where the executable is.
@@ -181,7 +291,7 @@ pub struct Environment {
     pub launcher_python: Option<PathBuf>,
     /// The `matte` that was run (`argv[0]` found on `PATH` when it is a bare name).
     pub invoked_as: Option<PathBuf>,
-    /// This executable (`/proc/self/exe`).
+    /// This executable ([`std::env::current_exe`]).
     pub executable: Option<PathBuf>,
     /// `PATH`.
     pub path: Option<std::ffi::OsString>,
@@ -193,7 +303,7 @@ impl Environment {
         let path = std::env::var_os("PATH");
         let invoked_as = std::env::args_os()
             .next()
-            .map(PathBuf::from)
+            .map(|a| Platform::HOST.executable(Path::new(&a)))
             .and_then(|a| if a.components().count() > 1 { Some(a) } else { on_path(path.as_deref(), a.as_os_str()) });
         Environment {
             matte_python: nonempty("MATTE_PYTHON"),
@@ -206,7 +316,7 @@ impl Environment {
 }
 
 /// The first `name` on `path` that is a file.
-fn on_path(path: Option<&std::ffi::OsStr>, name: &std::ffi::OsStr) -> Option<PathBuf> {
+fn on_path(path: Option<&OsStr>, name: &OsStr) -> Option<PathBuf> {
     std::env::split_paths(path?).map(|d| d.join(name)).find(|p| p.is_file())
 }
 
@@ -218,30 +328,8 @@ pub fn find_python_side(flag: Option<&Path>, env: &Environment) -> Result<Python
     if let Some(p) = &env.matte_python {
         return probe(p, "MATTE_PYTHON").map_err(|e| format!("MATTE_PYTHON={}: {e}", p.display()));
     }
-    let mut candidates: Vec<(PathBuf, String)> = Vec::new();
-    if let Some(p) = &env.launcher_python {
-        candidates.push((p.clone(), "the matte command's Python".into()));
-    }
-    if let Some(matte) = &env.invoked_as {
-        // Beside the `matte` that was run, and beside the file a symlink to it points at (pipx).
-        let mut dirs: Vec<PathBuf> = matte.parent().map(Path::to_path_buf).into_iter().collect();
-        if let Some(d) = matte.canonicalize().ok().and_then(|r| r.parent().map(Path::to_path_buf))
-            && !dirs.contains(&d)
-        {
-            dirs.push(d);
-        }
-        for d in dirs {
-            candidates.push((d.join("python3"), "beside the matte executable".into()));
-        }
-    }
-    if let Some(prefix) = env.executable.as_deref().and_then(installed_prefix) {
-        candidates.push((prefix.join("bin/python3"), "the environment matte is installed in".into()));
-    }
-    if let Some(p) = on_path(env.path.as_deref(), "python3".as_ref()) {
-        candidates.push((p, "python3 on PATH".into()));
-    }
     let mut tried = Vec::new();
-    for (python, how) in candidates {
+    for (python, how) in candidates(env, Platform::HOST) {
         if !python.is_file() {
             continue;
         }
@@ -251,7 +339,7 @@ pub fn find_python_side(flag: Option<&Path>, env: &Environment) -> Result<Python
         }
     }
     let tried = if tried.is_empty() {
-        "no --python, no MATTE_PYTHON, no python3 beside matte or on PATH".to_string()
+        format!("no --python, no MATTE_PYTHON, no {} beside matte or on PATH", Platform::HOST.python())
     } else {
         format!("no --python, no MATTE_PYTHON; tried {}", tried.join("; "))
     };
@@ -259,6 +347,37 @@ pub fn find_python_side(flag: Option<&Path>, env: &Environment) -> Result<Python
         "no Python with matte_mitsuba found ({tried}); install matte-mitsuba into a Python environment (pip install \
          matte-mitsuba) and run its matte, or name the interpreter with --python PATH or MATTE_PYTHON"
     ))
+}
+
+/// The interpreters that step 3 and 4 of the rule try, in order, each with how it was found
+/// (the files need not exist) on `platform`.
+fn candidates(env: &Environment, platform: Platform) -> Vec<(PathBuf, String)> {
+    let python = platform.python();
+    let mut candidates: Vec<(PathBuf, String)> = Vec::new();
+    if let Some(p) = &env.launcher_python {
+        candidates.push((p.clone(), "the matte command's Python".into()));
+    }
+    if let Some(matte) = &env.invoked_as {
+        // Beside the `matte` that was run, and beside the file a symlink to it points at (pipx).
+        let mut dirs: Vec<PathBuf> = matte.parent().map(Path::to_path_buf).into_iter().collect();
+        if let Some(d) = canonical(matte, platform).and_then(|r| r.parent().map(Path::to_path_buf))
+            && !dirs.contains(&d)
+        {
+            dirs.push(d);
+        }
+        for d in dirs {
+            candidates.push((d.join(python), "beside the matte executable".into()));
+        }
+    }
+    if let Some(prefix) = env.executable.as_deref().and_then(|e| installed_prefix_on(e, platform)) {
+        for p in platform.environment_pythons(&prefix) {
+            candidates.push((p, "the environment matte is installed in".into()));
+        }
+    }
+    if let Some(p) = on_path(env.path.as_deref(), python.as_ref()) {
+        candidates.push((p, format!("{python} on PATH")));
+    }
+    candidates
 }
 
 /// What the probe prints: the package folder, then Mitsuba's version (empty line: none).
@@ -306,21 +425,23 @@ mod tests {
     fn a_binary_in_an_installed_package_knows_its_package_and_environment() {
         let root = std::env::temp_dir().join(format!("matte_installation_{}", std::process::id()));
         let binary = fake_install(&root);
-        let root = root.canonicalize().unwrap();
+        let root = canonical(&root, Platform::HOST).unwrap();
         let package = root.join("lib/python3.11/site-packages/matte_mitsuba");
         assert_eq!(package_of_binary(&binary), Some(package.clone()));
-        assert_eq!(installed_prefix(&binary), Some(root.clone()));
+        assert_eq!(installed_prefix_on(&binary, Platform::Unix), Some(root.clone()));
         // Not a package: no `__init__.py`, or another folder name.
         std::fs::remove_file(package.join("__init__.py")).unwrap();
         assert_eq!(package_of_binary(&binary), None);
-        assert_eq!(installed_prefix(&binary), None);
+        assert_eq!(installed_prefix_on(&binary, Platform::Unix), None);
         let _ = std::fs::remove_dir_all(&root);
     }
 
     #[test]
     fn with_nothing_to_try_the_error_names_every_step_and_the_fix() {
         let e = find_python_side(None, &Environment::default()).unwrap_err();
-        assert!(e.starts_with("no Python with matte_mitsuba found (no --python, no MATTE_PYTHON, no python3"), "{e}");
+        let start =
+            format!("no Python with matte_mitsuba found (no --python, no MATTE_PYTHON, no {}", Platform::HOST.python());
+        assert!(e.starts_with(&start), "{e}");
         assert!(e.contains("--python PATH or MATTE_PYTHON") && !e.contains('\n'), "{e}");
     }
 
@@ -332,5 +453,109 @@ mod tests {
         assert!(e.starts_with("--python /nonexistent/python3: cannot run it"), "{e}");
         let e = find_python_side(None, &env).unwrap_err();
         assert!(e.starts_with("MATTE_PYTHON=/also/missing: cannot run it"), "{e}");
+    }
+
+    /// Each platform's names and layouts, checked on any platform.
+    #[test]
+    fn each_platform_names_its_interpreter_and_where_an_environment_keeps_it() {
+        assert_eq!(Platform::Unix.python(), "python3");
+        assert_eq!(Platform::Windows.python(), "python.exe");
+        assert_eq!(Platform::HOST, if cfg!(windows) { Platform::Windows } else { Platform::Unix });
+        let prefix = Path::new("env");
+        assert_eq!(Platform::Unix.environment_pythons(prefix), [prefix.join("bin").join("python3")]);
+        assert_eq!(
+            Platform::Windows.environment_pythons(prefix),
+            [prefix.join("Scripts").join("python.exe"), prefix.join("python.exe")]
+        );
+        // `matte` runs `matte.exe` on Windows; a name with an extension, and any name on Unix, as given.
+        assert_eq!(Platform::Windows.executable(Path::new("matte")), Path::new("matte.exe"));
+        assert_eq!(Platform::Windows.executable(&Path::new("bin").join("matte")), Path::new("bin").join("matte.exe"));
+        assert_eq!(Platform::Windows.executable(Path::new("matte.exe")), Path::new("matte.exe"));
+        assert_eq!(Platform::Unix.executable(Path::new("matte")), Path::new("matte"));
+    }
+
+    #[test]
+    fn an_environments_prefix_is_found_from_its_packages_folder_by_each_platforms_layout() {
+        let at = |parts: &[&str]| parts.iter().fold(PathBuf::from("root"), |p, c| p.join(c));
+        let unix = at(&["env", "lib", "python3.11", "site-packages"]);
+        let windows = at(&["env", "Lib", "site-packages"]);
+        assert_eq!(Platform::Unix.prefix_of_packages(&unix), Some(at(&["env"])));
+        assert_eq!(
+            Platform::Unix.prefix_of_packages(&at(&["env", "lib64", "python3.12", "dist-packages"])),
+            Some(at(&["env"]))
+        );
+        assert_eq!(Platform::Unix.prefix_of_packages(&windows), None);
+        assert_eq!(Platform::Unix.prefix_of_packages(&at(&["env", "share", "python3.11", "site-packages"])), None);
+        assert_eq!(Platform::Windows.prefix_of_packages(&windows), Some(at(&["env"])));
+        assert_eq!(Platform::Windows.prefix_of_packages(&at(&["env", "lib", "Site-Packages"])), Some(at(&["env"])));
+        assert_eq!(Platform::Windows.prefix_of_packages(&unix), None);
+        assert_eq!(Platform::Windows.prefix_of_packages(&at(&["env", "Lib", "packages"])), None);
+    }
+
+    #[test]
+    fn a_verbatim_windows_path_is_made_plain_only_where_it_names_the_same_file() {
+        let plain = |p: &str| Platform::Windows.plain_path(PathBuf::from(p));
+        assert_eq!(
+            plain(r"\\?\C:\Users\me\venv\Lib\site-packages\matte_mitsuba"),
+            Path::new(r"C:\Users\me\venv\Lib\site-packages\matte_mitsuba")
+        );
+        assert_eq!(plain(r"\\?\UNC\server\share\venv\Scripts"), Path::new(r"\\server\share\venv\Scripts"));
+        // Already plain, or not a drive path: as it is.
+        assert_eq!(plain(r"C:\venv"), Path::new(r"C:\venv"));
+        assert_eq!(plain(r"\\?\Volume{0a1b}\venv"), Path::new(r"\\?\Volume{0a1b}\venv"));
+        // Names that Windows would read otherwise without the prefix keep it.
+        for kept in [r"\\?\C:\venv\NUL", r"\\?\C:\venv\com1.txt", r"\\?\C:\venv\dir.", r"\\?\C:\venv\dir \x"] {
+            assert_eq!(plain(kept), Path::new(kept));
+        }
+        let long = format!(r"\\?\C:\{}", "d\\".repeat(200));
+        assert_eq!(plain(&long), Path::new(&long));
+        assert_eq!(plain(r"\\?\C:\venv\console\auxiliary"), Path::new(r"C:\venv\console\auxiliary"));
+        // Unix paths are never rewritten.
+        assert_eq!(Platform::Unix.plain_path(PathBuf::from(r"\\?\C:\venv")), Path::new(r"\\?\C:\venv"));
+        assert_eq!(Platform::Unix.plain_path(PathBuf::from("/usr/bin")), Path::new("/usr/bin"));
+    }
+
+    /// The candidates of steps 3 and 4 for a binary installed in an environment of each
+    /// platform's layout, made in a temporary folder (of whichever platform runs the test).
+    #[test]
+    fn the_candidates_are_each_platforms_interpreters_of_the_environment_matte_is_in() {
+        let root = std::env::temp_dir().join(format!("matte_candidates_{}", std::process::id()));
+        for (platform, packages, binary, on_path) in [
+            (Platform::Unix, &["unix", "lib", "python3.11", "site-packages"][..], "matte", "python3"),
+            (Platform::Windows, &["windows", "Lib", "site-packages"][..], "matte.exe", "python.exe"),
+        ] {
+            let env_dir = root.join(packages[0]);
+            let package = packages[1..].iter().fold(env_dir.clone(), |p, c| p.join(c)).join("matte_mitsuba");
+            std::fs::create_dir_all(package.join("bin")).unwrap();
+            std::fs::write(package.join("__init__.py"), "").unwrap();
+            let matte = package.join("bin").join(binary);
+            std::fs::write(&matte, "").unwrap();
+            let path_dir = root.join(format!("{}_path", packages[0]));
+            std::fs::create_dir_all(&path_dir).unwrap();
+            std::fs::write(path_dir.join(on_path), "").unwrap();
+
+            let env = Environment {
+                launcher_python: Some(PathBuf::from("launcher")),
+                invoked_as: Some(matte.clone()),
+                executable: Some(matte.clone()),
+                path: Some(std::env::join_paths([&path_dir]).unwrap()),
+                ..Default::default()
+            };
+            let prefix = canonical(&env_dir, Platform::HOST).unwrap();
+            let bin_dir = canonical(&package.join("bin"), Platform::HOST).unwrap();
+            let mut expected = vec![
+                (PathBuf::from("launcher"), "the matte command's Python".to_string()),
+                (package.join("bin").join(platform.python()), "beside the matte executable".into()),
+            ];
+            if bin_dir != package.join("bin") {
+                expected.push((bin_dir.join(platform.python()), "beside the matte executable".into()));
+            }
+            for p in platform.environment_pythons(&prefix) {
+                expected.push((p, "the environment matte is installed in".into()));
+            }
+            expected.push((path_dir.join(on_path), format!("{on_path} on PATH")));
+            assert_eq!(candidates(&env, platform), expected, "{platform:?}");
+        }
+        let _ = std::fs::remove_dir_all(&root);
     }
 }

@@ -7,9 +7,12 @@ unsafe extern "C" {
 
 /// Rust ignores SIGPIPE, so `println!` into a closed pipe (`matte … | head`) would panic.
 /// Restore the default action: the process ends quietly, as other command-line tools do.
+/// Windows has no SIGPIPE: there this does nothing, and a closed pipe still ends the command
+/// with `println!`'s panic.
 fn reset_sigpipe() {
     #[cfg(unix)]
-    // SAFETY: setting SIGPIPE (13 on Linux) to SIG_DFL (0) before any thread starts.
+    // SAFETY: setting SIGPIPE (13 on Linux, macOS and the BSDs) to SIG_DFL (0) before any
+    // thread starts.
     unsafe {
         signal(13, 0);
     }

@@ -77,16 +77,38 @@ fn plugin_limit(kind: &str) -> f64 {
 
 /// CPU model and core count, for the record.
 pub fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .and_then(|l| l.split(':').nth(1))
-                .map(|s| s.trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
+    let cpu = cpu_model().unwrap_or_else(|| "unknown CPU".into());
     format!("{cpu}, {} threads", rayon::current_num_threads())
+}
+
+/// The CPU's model name: Linux's `/proc/cpuinfo` (and any other system that has one).
+#[cfg(not(any(target_os = "macos", windows)))]
+fn cpu_model() -> Option<String> {
+    model_name(&std::fs::read_to_string("/proc/cpuinfo").ok()?)
+}
+
+/// The CPU's model name: macOS's `sysctl machdep.cpu.brand_string` ("Apple M2", "Intel(R) …").
+#[cfg(target_os = "macos")]
+fn cpu_model() -> Option<String> {
+    let out = std::process::Command::new("/usr/sbin/sysctl").args(["-n", "machdep.cpu.brand_string"]).output().ok()?;
+    let name = String::from_utf8_lossy(&out.stdout).trim().to_string();
+    (out.status.success() && !name.is_empty()).then_some(name)
+}
+
+/// The CPU's model: Windows's `PROCESSOR_IDENTIFIER` ("Intel64 Family 6 Model 158 …").
+#[cfg(windows)]
+fn cpu_model() -> Option<String> {
+    std::env::var("PROCESSOR_IDENTIFIER").ok().map(|s| s.trim().to_string()).filter(|s| !s.is_empty())
+}
+
+/// The `model name` of a `/proc/cpuinfo`.
+#[cfg_attr(any(target_os = "macos", windows), allow(dead_code))]
+fn model_name(cpuinfo: &str) -> Option<String> {
+    cpuinfo
+        .lines()
+        .find(|l| l.starts_with("model name"))
+        .and_then(|l| l.split(':').nth(1))
+        .map(|s| s.trim().to_string())
 }
 
 /// The human-readable table (also what docs/performance.md shows).
@@ -338,5 +360,20 @@ pub fn json(m: &Measurements) -> BenchJson {
                 at_least: t.at_least,
             })
             .collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_model_name_is_cpuinfos_first() {
+        let cpuinfo = "processor\t: 0\nvendor_id\t: GenuineIntel\nmodel name\t: Intel(R) Xeon(R) CPU @ 2.20GHz\n\
+                       processor\t: 1\nmodel name\t: Intel(R) Xeon(R) CPU @ 2.20GHz\n";
+        assert_eq!(model_name(cpuinfo).as_deref(), Some("Intel(R) Xeon(R) CPU @ 2.20GHz"));
+        // aarch64 Linux has no model name.
+        assert_eq!(model_name("processor\t: 0\nBogoMIPS\t: 50.00\nCPU implementer\t: 0x41\n"), None);
+        assert!(machine().ends_with(&format!(", {} threads", rayon::current_num_threads())));
     }
 }

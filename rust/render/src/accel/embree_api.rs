@@ -1,16 +1,23 @@
-//! The few Embree 3 calls the renderer needs, loaded at run time from `libembree3.so.3`
-//! (Debian 12's `libembree3-3`, Embree 3.13) with `dlopen`.
+//! The few Embree 3 calls the renderer needs, loaded at run time with `libloading`: Embree
+//! 3.13's shared library as each platform names it ([`library_name`]): `libembree3.so.3` on
+//! Linux (Debian 12's `libembree3-3`) and other Unix, `libembree3.dylib` on macOS (Homebrew's
+//! `embree@3`; Mitsuba's macOS wheel ships `mitsuba/libembree3.dylib`), `embree3.dll` on
+//! Windows (Embree's release archive). The platform's loader looks the name up as usual:
+//! `LD_LIBRARY_PATH` and the system folders on Linux, `DYLD_LIBRARY_PATH` and
+//! `DYLD_FALLBACK_LIBRARY_PATH` on macOS, the executable's folder and `PATH` on Windows.
 //!
 //! Why a hand-written FFI and not a binding crate: the Rust bindings for Embree 3 on crates.io
 //! (`embree` 0.3, `embree3-sys` 0.1) are unmaintained and link `-lembree3` at build time. A
 //! link-time dependency would make every build of matte fail on a machine without Embree, and
 //! would put `rtc*` references into the crate's staticlib, which the Mitsuba plugin links into
-//! a process whose `libmitsuba` carries its own Embree. Loading the library at run time with
-//! `RTLD_LOCAL` and looking the functions up by handle keeps both apart: a build never needs
+//! a process whose `libmitsuba` carries its own Embree. Loading the library at run time (on
+//! Unix with `RTLD_NOW | RTLD_LOCAL`; a Windows DLL's exports are only ever reached through its
+//! handle) and looking the functions up by handle keeps both apart: a build never needs
 //! Embree, a machine without it renders with the CWBVH (`super::cwbvh`), and the symbols can
 //! never bind to another Embree. The declarations mirror `embree3/rtcore_*.h` of 3.13.5
 //! (`RTC_MAX_INSTANCE_LEVEL_COUNT` = 1, `RTC_MIN_WIDTH` = 0), and only what is used here.
 
+use std::error::Error as _;
 use std::ffi::{CStr, c_char, c_int, c_uint, c_void};
 use std::sync::OnceLock;
 
@@ -175,6 +182,9 @@ pub struct Api {
     pub occluded8: unsafe extern "C" fn(*const ValidMask8, RTCScene, *mut IntersectContext, *mut RtcRay8),
     /// One device for the process (Embree's thread pool is per device); never released.
     pub device: RTCDevice,
+    /// The loaded library, which the entry points above live in: kept as long as they are
+    /// (the process, [`api`]'s `static`).
+    _library: libloading::Library,
 }
 
 // SAFETY: the device handle is only used to create scenes and geometries, which Embree allows
@@ -182,8 +192,20 @@ pub struct Api {
 unsafe impl Send for Api {}
 unsafe impl Sync for Api {}
 
-/// The shared library's name (Debian's `libembree3-3`).
-pub const LIBRARY: &str = "libembree3.so.3";
+/// The shared library's file name on the platform `os` (as [`std::env::consts::OS`] names it).
+pub fn library_name(os: &str) -> &'static str {
+    match os {
+        "macos" => "libembree3.dylib",
+        "windows" => "embree3.dll",
+        // Linux (Debian's `libembree3-3`) and the other Unix systems: the ELF soname.
+        _ => "libembree3.so.3",
+    }
+}
+
+/// The shared library's file name on this platform ([`library_name`]).
+pub fn library() -> &'static str {
+    library_name(std::env::consts::OS)
+}
 
 static API: OnceLock<Result<Api, String>> = OnceLock::new();
 
@@ -192,20 +214,38 @@ pub fn api() -> Result<&'static Api, &'static str> {
     API.get_or_init(load).as_ref().map_err(String::as_str)
 }
 
-fn load() -> Result<Api, String> {
-    let name = std::ffi::CString::new(LIBRARY).expect("no NUL in the library name");
-    // SAFETY: dlopen with a valid C string; RTLD_LOCAL keeps its symbols out of the global scope.
-    let handle = unsafe { libc::dlopen(name.as_ptr(), libc::RTLD_NOW | libc::RTLD_LOCAL) };
-    if handle.is_null() {
-        // SAFETY: dlerror returns a thread-local C string or null.
-        let why = unsafe { libc::dlerror() };
-        let why = if why.is_null() { "unknown".into() } else { unsafe { CStr::from_ptr(why) }.to_string_lossy() };
-        return Err(format!("cannot load {LIBRARY} ({why})"));
+/// Opens `name` with the platform's loader: on Unix `dlopen(name, RTLD_NOW | RTLD_LOCAL)`,
+/// which keeps its symbols out of the global scope; on Windows `LoadLibraryExW`.
+fn open(name: &str) -> Result<libloading::Library, libloading::Error> {
+    #[cfg(unix)]
+    {
+        use libloading::os::unix::{Library, RTLD_LOCAL, RTLD_NOW};
+        // SAFETY: loading Embree runs only its initialisers (no requirements on the caller);
+        // it is never unloaded once its device exists (the library lives in `API`).
+        unsafe { Library::open(Some(name), RTLD_NOW | RTLD_LOCAL) }.map(Into::into)
     }
+    #[cfg(not(unix))]
+    {
+        // SAFETY: as above.
+        unsafe { libloading::Library::new(name) }
+    }
+}
+
+/// Why the loader failed: the system's own message (`dlerror`, or the Windows error) where it
+/// gave one.
+fn reason(e: &libloading::Error) -> String {
+    e.source().map_or_else(|| e.to_string(), ToString::to_string)
+}
+
+fn load() -> Result<Api, String> {
+    let name = library();
+    let library = open(name).map_err(|e| format!("cannot load {name} ({})", reason(&e)))?;
     let sym = |s: &CStr| -> Result<*mut c_void, String> {
-        // SAFETY: handle is a live dlopen handle, s a C string.
-        let p = unsafe { libc::dlsym(handle, s.as_ptr()) };
-        if p.is_null() { Err(format!("{LIBRARY} has no symbol {}", s.to_string_lossy())) } else { Ok(p) }
+        // SAFETY: the symbol is only read as an address here (its type is `F` in `fn_pointer`).
+        let p = unsafe { library.get::<*mut c_void>(s) }
+            .map(|p| *p)
+            .map_err(|e| format!("{name} has no symbol {} ({})", s.to_string_lossy(), reason(&e)))?;
+        if p.is_null() { Err(format!("{name} has no symbol {}", s.to_string_lossy())) } else { Ok(p) }
     };
     macro_rules! f {
         ($name:literal) => {
@@ -214,16 +254,10 @@ fn load() -> Result<Api, String> {
             unsafe { fn_pointer(sym($name)?) }
         };
     }
-    let new_device: unsafe extern "C" fn(*const c_char) -> RTCDevice = f!(c"rtcNewDevice");
-    let get_device_error: unsafe extern "C" fn(RTCDevice) -> c_int = f!(c"rtcGetDeviceError");
-    // SAFETY: a null config string selects Embree's defaults.
-    let device = unsafe { new_device(std::ptr::null()) };
-    if device.is_null() {
-        return Err(format!("{LIBRARY}: rtcNewDevice failed (is the CPU supported?)"));
-    }
-    Ok(Api {
-        new_device,
-        get_device_error,
+    // Every entry point first, so that no device is made in a library that is then unloaded.
+    let mut api = Api {
+        new_device: f!(c"rtcNewDevice"),
+        get_device_error: f!(c"rtcGetDeviceError"),
         new_scene: f!(c"rtcNewScene"),
         release_scene: f!(c"rtcReleaseScene"),
         set_scene_build_quality: f!(c"rtcSetSceneBuildQuality"),
@@ -243,8 +277,17 @@ fn load() -> Result<Api, String> {
         occluded1: f!(c"rtcOccluded1"),
         intersect8: f!(c"rtcIntersect8"),
         occluded8: f!(c"rtcOccluded8"),
-        device,
-    })
+        device: std::ptr::null_mut(),
+        _library: library,
+    };
+    // SAFETY: a null config string selects Embree's defaults.
+    api.device = unsafe { (api.new_device)(std::ptr::null()) };
+    if api.device.is_null() {
+        // Embree may have started threads before it failed: the library stays loaded.
+        std::mem::forget(api);
+        return Err(format!("{name}: rtcNewDevice failed (is the CPU supported?)"));
+    }
+    Ok(api)
 }
 
 /// The function pointer of type `F` at `p`.
@@ -275,5 +318,30 @@ mod tests {
         assert_eq!(std::mem::align_of::<RtcRay8>(), 32);
         assert_eq!(std::mem::size_of::<BoundsArgs>(), 24);
         assert_eq!(std::mem::size_of::<UserQueryArgs>(), 48);
+    }
+
+    /// Each platform's file name for Embree 3, whichever platform runs the test.
+    #[test]
+    fn the_library_is_named_as_each_platform_ships_it() {
+        assert_eq!(library_name("linux"), "libembree3.so.3");
+        assert_eq!(library_name("freebsd"), "libembree3.so.3");
+        assert_eq!(library_name("macos"), "libembree3.dylib");
+        assert_eq!(library_name("windows"), "embree3.dll");
+        assert_eq!(library(), library_name(std::env::consts::OS));
+        if cfg!(target_os = "linux") {
+            assert_eq!(library(), "libembree3.so.3");
+        }
+    }
+
+    /// Without the library (a name no system has), the loader's reason is one line (on Linux,
+    /// `dlerror`'s, which names the file).
+    #[test]
+    fn a_missing_library_is_reported_with_the_loaders_reason() {
+        let e = open("libmatte_no_such_library.so.0").map(|_| ()).unwrap_err();
+        let why = reason(&e);
+        assert!(!why.is_empty() && !why.contains('\n'), "{why}");
+        if cfg!(target_os = "linux") {
+            assert!(why.contains("libmatte_no_such_library.so.0"), "{why}");
+        }
     }
 }
