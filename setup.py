@@ -3,8 +3,8 @@
 there, and one for the installed Mitsuba when the table lacks its release) and the `matte`
 binary with cpp/build_plugin.py, straight into the wheel's package; put in what the `matte`
 tool reads at run time besides the ground-truth tables it already holds (the bundled scenes of
-mitsuba_scenes/ as `scenes/`, the study report's BRDF slices of docs/microgeometry/ as
-`truth_slices/`); require the Mitsuba releases it has layers for; and tag the wheel for the
+mitsuba_scenes/ as `scenes/`, with `all_types.xml` written there from the model registry just
+built, the study report's BRDF slices of docs/microgeometry/ as `truth_slices/`); require the Mitsuba releases it has layers for; and tag the wheel for the
 platform (it holds native code, but no Python extension: any Python 3 that runs Mitsuba can
 load it). MATTE_PLATFORM=linux-aarch64 cross-builds the aarch64 wheel on x86-64."""
 
@@ -45,6 +45,9 @@ class BuildPlugins(build_py):
             scenes,
             ignore=shutil.ignore_patterns("__pycache__", "*.pyc", "make_assets.py"),
         )
+        # Every registered type in one scene, from the registry of this build (its _build.py),
+        # so that no list of models is kept by hand (python/matte_mitsuba/all_types_scene.py).
+        subprocess.check_call([sys.executable, os.path.join(package, "all_types_scene.py"), scenes])
         slices = os.path.join(package, "truth_slices")
         os.makedirs(slices)
         for pattern in SLICES:

@@ -46,8 +46,12 @@ SHAPE_PARAMETER = {
     if p
 }
 
-#: Properties a type needs beyond its defaults: the table `tabulated_brdf` reads.
-REQUIRED = {"tabulated_brdf": lambda: {"filename": matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")}}
+
+def required(kind):
+    """Properties a type needs beyond its defaults: each file parameter (the table
+    `tabulated_brdf` reads) given the packaged V-cavity table."""
+    table = matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")
+    return {p["name"]: table for p in registry.file_parameters(kind)}
 
 
 def constant_bitmap(mi, value, folder):
@@ -64,7 +68,7 @@ def scene(mi, kind, res, bitmap_folder=None):
     d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = res
     for name in ("white", "red", "green"):
         d[name]["type"] = kind
-        d[name].update(REQUIRED.get(kind, dict)())
+        d[name].update(required(kind))
         if bitmap_folder is not None:
             param, value = SHAPE_PARAMETER[kind]
             d[name][param] = constant_bitmap(mi, value, bitmap_folder)

@@ -51,7 +51,7 @@ def gradient_cases(models):
         numeric = registry.numeric_parameters(m)
         if not numeric:
             # The properties a type needs beyond its defaults (tabulated_brdf's table).
-            required = bench_plugin.REQUIRED.get(m["name"], dict)()
+            required = bench_plugin.required(m)
             cases.append((m["name"], required, "reflectance.value", 1e-2))
             continue
         fixed, h = GRADIENT_OVERRIDES.get(m["name"], ({}, 1e-2))

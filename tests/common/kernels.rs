@@ -8,6 +8,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use glam::{Vec2, Vec3};
+use matte_brdf::registry::{ModelSpec, ParamSpec};
 use matte_brdf::tabulated::{BrdfTable, TABLE_DELTA_PHI, TABLE_REFLECTANCE, TABLE_THETA};
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use statrs::distribution::{ChiSquared, ContinuousCDF};
@@ -60,7 +61,7 @@ pub fn model(kind: &str, params: &[(&str, &str)]) -> DiffuseModel {
 pub fn catalogue() -> Vec<(String, DiffuseModel)> {
     let mut cfgs: Vec<(&str, &[(&str, &str)])> = Vec::new();
     // Every model that builds from its defaults (`tabulated_brdf` needs a table: its own tests).
-    for spec in matte_brdf::MODELS.iter().filter(|s| s.builds_from_defaults()) {
+    for spec in models_from_defaults() {
         cfgs.push((spec.name, &[]));
         cfgs.extend(spec.examples.iter().map(|e| (spec.name, *e)));
     }
@@ -76,6 +77,28 @@ pub fn catalogue() -> Vec<(String, DiffuseModel)> {
         ("ginneken", &[("roughness", "0.8"), ("shadowing", "height_correlated")]),
     ]);
     cfgs.iter().map(|(k, p)| (format!("{k} {p:?}"), model(k, p))).collect()
+}
+
+/// Where the registry-wide sweeps put a numeric parameter: the ends of its lane clamp (the
+/// values a kernel can see), an infinite end replaced by that of its fit range (where `matte
+/// fit` searches it, within its valid range).
+pub fn sweep_bounds(p: &ParamSpec) -> (f64, f64) {
+    let (lo, hi) = p.lane_clamp;
+    (if lo.is_finite() { lo } else { p.fit.0 }, if hi.is_finite() { hi } else { p.fit.1 })
+}
+
+/// Values of a numeric parameter strictly inside [`sweep_bounds`]: 10 %, 35 %, 60 % and 85 % of
+/// the way from the lower end. A sweep keeps those its model accepts with the other parameters
+/// (Wolff's `ext_ior` must not exceed `int_ior`).
+pub fn inner_values(p: &ParamSpec) -> [f64; 4] {
+    let (lo, hi) = sweep_bounds(p);
+    [0.1, 0.35, 0.6, 0.85].map(|t| lo + t * (hi - lo))
+}
+
+/// Every registered model that builds from its defaults (a model with a file parameter,
+/// `tabulated_brdf`, has its own tests).
+pub fn models_from_defaults() -> impl Iterator<Item = &'static ModelSpec> {
+    matte_brdf::MODELS.iter().copied().filter(|m| m.builds_from_defaults())
 }
 
 /// Mitsuba's `SphericalDomain`: (φ, −cos θ) ∈ [−π, π] × [−1, 1] to a direction.

@@ -67,6 +67,67 @@ pub fn assert_err_at<T>(r: Result<T, SceneError>, file: &Path, line: u32, needle
     assert_error_at(&e, file, line, needle);
 }
 
+/// Every registered model in one scene, from the registry: a sphere per configuration, each
+/// model at its defaults and at each example it declares, a file parameter given the packaged
+/// V-cavity table (`ground_truth/…`, found through a `<path>` to `python/matte_mitsuba`), in
+/// rows in front of a white wall above a white floor, lit by an area light and a dim
+/// environment; `$res`, `$spp`. (The wheel's `all_types.xml` is the same idea in Mitsuba's
+/// Cornell box, written from the registry when the package is built:
+/// `python/matte_mitsuba/all_types_scene.py`.)
+pub fn all_types_scene() -> String {
+    use matte_brdf::registry::ParamKind;
+    const COLOURS: [&str; 5] = ["0.8, 0.8, 0.5", "0.2, 0.5, 0.8", "0.8, 0.6, 0.3", "0.5, 0.8, 0.7", "0.6, 0.6, 0.8"];
+    const COLUMNS: usize = 6;
+    let mut configurations: Vec<(&str, Vec<(&str, &str)>)> = Vec::new();
+    for spec in matte_brdf::MODELS {
+        let files = spec.params.iter().filter(|p| p.kind == ParamKind::File);
+        configurations.push((spec.name, files.map(|p| (p.name, "ground_truth/v_cavities_sigma0.3.json")).collect()));
+        configurations.extend(spec.examples.iter().map(|e| (spec.name, e.to_vec())));
+    }
+    let mut body = String::new();
+    for (i, (kind, params)) in configurations.iter().enumerate() {
+        let spec = matte_brdf::spec(kind).expect("a registered model");
+        let mut bsdf =
+            format!(r#"<bsdf type="{kind}"><rgb name="reflectance" value="{}"/>"#, COLOURS[i % COLOURS.len()]);
+        for (name, value) in params {
+            let p = spec.param(name).expect("a declared parameter");
+            let tag = match p.kind {
+                ParamKind::Flag { .. } => "boolean",
+                _ if p.is_numeric() && value.parse::<f64>().is_ok() => "float",
+                _ => "string",
+            };
+            bsdf += &format!(r#"<{tag} name="{name}" value="{value}"/>"#);
+        }
+        let (x, y) = (-0.75 + 0.3 * (i % COLUMNS) as f64, -0.75 + 0.3 * (i / COLUMNS) as f64);
+        body += &format!(
+            "    <shape type=\"sphere\"><point name=\"center\" x=\"{x}\" y=\"{y}\" z=\"0.3\"/><float name=\"radius\" value=\"0.12\"/>{bsdf}</bsdf></shape>\n"
+        );
+    }
+    format!(
+        r#"<scene version="3.0.0">
+    <default name="spp" value="64"/>
+    <default name="res" value="128"/>
+    <path value="{package}"/>
+    <integrator type="path"><integer name="max_depth" value="8"/></integrator>
+    <sensor type="perspective">
+        <float name="fov" value="39.3077"/>
+        <transform name="to_world"><lookat origin="0, 0, 3.9" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"><integer name="sample_count" value="$spp"/></sampler>
+        <film type="hdrfilm"><integer name="width" value="$res"/><integer name="height" value="$res"/><rfilter type="box"/></film>
+    </sensor>
+    <shape type="rectangle"><transform name="to_world"><rotate x="1" angle="-90"/><translate y="-1"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.885809, 0.698859, 0.666422"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><translate z="-1"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.885809, 0.698859, 0.666422"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><scale x="0.5" y="0.5"/><rotate x="1" angle="90"/><translate y="1.2" z="1"/></transform>
+        <emitter type="area"><rgb name="radiance" value="18.387, 13.9873, 6.75357"/></emitter></shape>
+    <emitter type="constant"><rgb name="radiance" value="0.05"/></emitter>
+{body}</scene>
+"#,
+        package = repo().join("python/matte_mitsuba").display()
+    )
+}
+
 /// Writes a W×H EXR whose texel (i, j) is `f(i, j)`.
 pub fn write_exr(path: &Path, w: u32, h: u32, f: impl Fn(u32, u32) -> Vec3) {
     let mut img = matte_render::film::Image::new(w, h);

@@ -68,17 +68,19 @@ fn boundary_values_are_accepted() {
 #[test]
 fn magnitudes_beyond_the_limit_are_rejected_by_every_model() {
     // One limit for every front end (CLI, renderer, plugin): `matte_brdf::params::MAX_MAGNITUDE`.
-    for (kind, name) in [
-        ("oren_nayar", "sigma"),
-        ("wolff", "int_ior"),
-        ("wolff", "ext_ior"),
-        ("ginneken", "roughness"),
-        ("roughdiffuse", "alpha"),
-    ] {
-        let mut p = Params::new();
-        p.push(name, N(1e7));
-        let e = DiffuseModel::from_params(kind, p).expect_err(kind);
-        assert_eq!(e.param, name);
-        assert!(e.to_string().contains("up to 1e6"), "{kind}: {e}");
+    // Every numeric parameter of every registered model (one with a required file, `tabulated_brdf`,
+    // has none).
+    let mut checked = 0;
+    for m in crate::common::models_from_defaults() {
+        for p in m.numeric() {
+            for v in [1e7, -1e7] {
+                let e = DiffuseModel::from_params(m.name, Params::new().with(p.name, N(v)))
+                    .expect_err(&format!("{}.{} = {v}", m.name, p.name));
+                assert_eq!(e.param, p.name, "{}: {e}", m.name);
+                assert!(e.to_string().contains("up to 1e6"), "{}.{} = {v}: {e}", m.name, p.name);
+            }
+            checked += 1;
+        }
     }
+    assert!(checked >= 5, "only {checked} numeric parameters");
 }

@@ -6,9 +6,9 @@
 //! the traced one) computes `0 · cos θo` = −0 for a negative cosine. The oracle is the f32 instantiation of the same generic
 //! code, which the other kernel tests check against closed forms and references.
 
+use crate::common::{models_from_defaults, sweep_bounds};
 use glam::{Vec2, Vec3};
 use matte_brdf::LaneKernel;
-use matte_brdf::MODELS;
 use matte_brdf::kernel;
 use matte_brdf::real::Real;
 use matte_brdf::simd::F32x8;
@@ -99,42 +99,45 @@ fn check_model(name: &str, scalar: &LaneKernel<'_, f32>, wide: &LaneKernel<'_, F
 fn every_model_evaluates_lane_by_lane_as_f32() {
     let pairs = test_pairs();
     // Every model at its defaults (`tabulated_brdf` needs a table: tabulated_brdf.rs checks its kernel).
-    for model in MODELS.iter().filter(|m| m.builds_from_defaults()).map(|m| m.name) {
+    for model in models_from_defaults().map(|m| m.name) {
         let pair = ModelPair::new(model).expect("every model has a wide kernel");
         check_model(model, &pair.scalar(), &pair.wide(), &pairs);
     }
 }
 
-/// Parameters that differ per lane (textured σ, r, n): lane i of the wide kernel built from
-/// eight parameters is the f32 kernel built from parameter i.
+/// Parameters that differ per lane (textured σ, r, n, …): lane i of the wide kernel built from
+/// eight values of one numeric parameter (the others at their defaults) is the f32 kernel built
+/// from value i. Every numeric parameter of every registered model, at eight values across
+/// [`sweep_bounds`]: its lower end, just above it, and on to its upper end.
 #[test]
 fn per_lane_parameters_match_one_f32_kernel_per_lane() {
     let pairs = test_pairs();
-    let params: [[f32; 8]; 3] = [
-        [0.0, 0.05, 0.2, 0.3, 0.5, 0.8, 1.2, 2.0],   // Oren–Nayar σ, roughdiffuse α
-        [0.0, 1e-4, 0.1, 0.3, 0.5, 0.7, 0.95, 1.0],  // EON r
-        [1.0, 1.0001, 1.2, 1.4, 1.5, 1.8, 2.4, 3.5], // Wolff n
-    ];
-    for (model, p) in [("oren_nayar", params[0]), ("roughdiffuse", params[0]), ("eon", params[1]), ("wolff", params[2])]
-    {
-        let pair = ModelPair::new(model).unwrap();
-        // The first numeric parameter per lane (Wolff: int_ior, so n with ext_ior = 1).
-        let wide = pair.kernel_with(|k, d| if k == 0 { F32x8::new(p) } else { F32x8::splat(d) });
-        let scalars: Vec<LaneKernel<'_, f32>> =
-            (0..8).map(|i| pair.kernel_with(|k, d| if k == 0 { p[i] } else { d })).collect();
-        let rho8 = RHO.map(F32x8::splat);
-        for (chunk, (wi8, wo8)) in
-            pairs.chunks_exact(8).zip(to_lanes(&pairs.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>()))
-        {
-            let f8 = kernel::eval(&wide, wi8, wo8, rho8);
-            for (i, &(wi, wo, _)) in chunk.iter().enumerate() {
-                let f = kernel::eval(&scalars[i], wi.into(), wo.into(), RHO);
-                for c in 0..3 {
-                    assert_same(&format!("{model} param {} wi={wi:?} wo={wo:?}", p[i]), i, f8[c].lane(i), f[c]);
+    let mut checked = 0;
+    for spec in models_from_defaults() {
+        let pair = ModelPair::new(spec.name).expect("every model has a wide kernel");
+        for (k, param) in spec.numeric().enumerate() {
+            let (lo, hi) = sweep_bounds(param);
+            let p: [f32; 8] = [0.0, 1e-4, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0].map(|t: f64| (lo + t * (hi - lo)) as f32);
+            let wide = pair.kernel_with(|j, d| if j == k { F32x8::new(p) } else { F32x8::splat(d) });
+            let scalars: Vec<LaneKernel<'_, f32>> =
+                (0..8).map(|i| pair.kernel_with(|j, d| if j == k { p[i] } else { d })).collect();
+            let rho8 = RHO.map(F32x8::splat);
+            for (chunk, (wi8, wo8)) in
+                pairs.chunks_exact(8).zip(to_lanes(&pairs.iter().map(|p| (p.0, p.1)).collect::<Vec<_>>()))
+            {
+                let f8 = kernel::eval(&wide, wi8, wo8, rho8);
+                for (i, &(wi, wo, _)) in chunk.iter().enumerate() {
+                    let f = kernel::eval(&scalars[i], wi.into(), wo.into(), RHO);
+                    for c in 0..3 {
+                        let what = format!("{} {} = {} wi={wi:?} wo={wo:?}", spec.name, param.name, p[i]);
+                        assert_same(&what, i, f8[c].lane(i), f[c]);
+                    }
                 }
             }
+            checked += 1;
         }
     }
+    assert!(checked >= 5, "only {checked} numeric parameters");
 }
 
 /// Each primitive on special values (NaN, ±0, ±∞, ties, denormals) as f32 computes it.

@@ -3,6 +3,7 @@ construction, and bad values set through `mi.traverse` (checked again by the ker
 
 import pytest
 from conftest import CONFIGS  # noqa: F401  (conftest sets up the import path)
+from matte_mitsuba import registry
 
 BAD = [
     ({"type": "oren_nayar", "sigma": -0.1}, "sigma"),
@@ -20,6 +21,15 @@ BAD = [
     # matte's one magnitude limit (1e6), the same in the renderer and the CLI.
     ({"type": "oren_nayar", "sigma": 1e7}, "sigma"),
     ({"type": "roughdiffuse", "alpha": 1e7}, "alpha"),
+]
+# The magnitude limit for every other numeric parameter of every registered type (a new model's
+# too; one with a required file, tabulated_brdf, has none).
+BAD += [
+    ({"type": m["name"], p["name"]: 1e7}, p["name"])
+    for m in registry.MODELS
+    if registry.builds_from_defaults(m)
+    for p in registry.numeric_parameters(m)
+    if {"type": m["name"], p["name"]: 1e7} not in [props for props, _ in BAD]
 ]
 
 

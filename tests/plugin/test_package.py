@@ -23,6 +23,7 @@ import zipfile
 
 import pytest
 from conftest import CHECKOUT_MITSUBA, REPO, releases
+from matte_mitsuba.all_types_scene import NAME as ALL_TYPES
 
 
 def run_python(code, env=None, cwd=None):
@@ -258,7 +259,8 @@ def test_the_installed_package_works_with_the_checkout_hidden(tmp_path):
     assert r.returncode == 0, r.stderr
     shown = subprocess.run([py, "-m", "pip", "show", "-f", "matte-mitsuba"], capture_output=True, text=True).stdout
     assert "Version: 0.1.0" in shown
-    bundled = sorted(f for f in os.listdir(os.path.join(REPO, "mitsuba_scenes")) if f.endswith(".xml"))
+    # The bundled scenes: mitsuba_scenes/ and the one the build writes from the registry.
+    bundled = sorted([f for f in os.listdir(os.path.join(REPO, "mitsuba_scenes")) if f.endswith(".xml")] + [ALL_TYPES])
     checks = tmp_path / "wheel_checks.py"
     shutil.copy(os.path.join(REPO, "tests", "plugin", "wheel_checks.py"), checks)
     work = tmp_path / "work"

@@ -43,11 +43,8 @@ def test_readme_example(monkeypatch, tmp_path):
     assert np.isfinite(np.array(image)).all()
 
     params = mi.traverse(scene)
-    keys = [
-        k
-        for k in params.keys()
-        if k.endswith((".sigma", ".roughness", ".alpha", ".int_ior", ".ext_ior", "reflectance.value"))
-    ]
+    numeric = {p["name"] for m in registry.MODELS for p in registry.numeric_parameters(m)}
+    keys = [k for k in params.keys() if k.endswith(".reflectance.value") or k.rsplit(".", 1)[-1] in numeric]
     for k in keys:
         dr.enable_grad(params[k])
     params.update()

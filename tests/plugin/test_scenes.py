@@ -1,18 +1,22 @@
-"""Scenes as a user writes them: `mitsuba_scenes/all_types.xml` (every registered matte type,
-at its defaults and its examples; generated from the registry, and the committed file is the
-generator's) loads with `import matte_mitsuba` and renders without NaN and without any warning
-in every CPU variant of the wheel (Dr.Jit's default symbolic mode), also with the `mitsuba`
-command-line tool and its defaults; `reflectance` as a bitmap texture renders and shows the
-texture."""
+"""Scenes as a user writes them: the packaged `all_types.xml` (every registered matte type, at
+its defaults and its examples; written from the registry when the package is built, by
+`matte_mitsuba.all_types_scene`, and not kept in the repository) loads with `import
+matte_mitsuba` and renders without NaN and without any warning in every CPU variant of the
+wheel (Dr.Jit's default symbolic mode), also with the `mitsuba` command-line tool and its
+defaults; `reflectance` as a bitmap texture renders and shows the texture."""
 
 import os
 import re
 import sys
 
+import matte_mitsuba
 import numpy as np
 import pytest
-from conftest import REPO, SCENES
-from matte_mitsuba import registry
+from conftest import REPO
+from matte_mitsuba import all_types_scene, registry
+
+#: The installed package's scene of every registered type.
+ALL_TYPES = os.path.join(matte_mitsuba.SCENES, all_types_scene.NAME)
 
 
 class Capture:
@@ -57,7 +61,7 @@ ALL_CPU_VARIANTS = [
 def test_all_types_scene_renders_cleanly(mi_variant):
     mi = mi_variant
     with Capture(mi) as log:
-        scene = mi.load_file(os.path.join(SCENES, "all_types.xml"), spp=8, res=48)
+        scene = mi.load_file(ALL_TYPES, spp=8, res=48)
         img = np.array(mi.render(scene, seed=1))
     assert np.isfinite(img).all(), "NaN or Inf in the image"
     assert img.mean() > 0.02, img.mean()
@@ -69,16 +73,14 @@ def test_all_types_scene_renders_cleanly(mi_variant):
 
 
 def test_all_types_scene_is_the_one_the_registry_generates():
-    """The committed `all_types.xml` (it ships in the wheel, the README renders it) is what its
-    generator writes from the installed registry: a registered type, parameter or example
-    that the scene lacks fails here until the generator is rerun."""
-    from validation.generators import all_types_scene
-
-    committed = open(os.path.join(SCENES, "all_types.xml")).read()
-    assert committed == all_types_scene.scene_text(registry), (
-        "mitsuba_scenes/all_types.xml differs from the registry's: run .venv/bin/python "
-        "validation/generators/all_types_scene.py"
+    """The packaged `all_types.xml` (the README renders it) is what its generator writes from the
+    installed registry: the build wrote it from the registry it built, and no copy of it is kept
+    in the repository, where it could fall behind the registry."""
+    packaged = open(ALL_TYPES).read()
+    assert packaged == all_types_scene.scene_text(registry), (
+        f"{ALL_TYPES} differs from the installed registry's scene: rebuild the wheel (make plugin)"
     )
+    assert not os.path.exists(os.path.join(REPO, "mitsuba_scenes", all_types_scene.NAME))
 
 
 @pytest.mark.parametrize("mi_variant", ["scalar_rgb", "llvm_ad_rgb"], indirect=True)
@@ -125,7 +127,7 @@ def test_mitsuba_command_line_tool_with_its_defaults(tmp_path):
     out = str(tmp_path / "all_types.exr")
     tool = os.path.join(os.path.dirname(sys.executable), "mitsuba")
     run = subprocess.run(
-        [tool, "-a", root, "-D", "spp=4", "-D", "res=32", "-o", out, os.path.join(SCENES, "all_types.xml")],
+        [tool, "-a", root, "-D", "spp=4", "-D", "res=32", "-o", out, ALL_TYPES],
         capture_output=True,
         text=True,
     )

@@ -16,7 +16,8 @@ from matte_mitsuba import registry
 from matte_mitsuba.gradient_check import adjoint_gradient, image_mean
 
 N = 4000
-# (type, textured parameter, value, fixed parameters, relative tolerance against the float form)
+# (type, textured parameter, value, fixed parameters, relative tolerance against the float form):
+# the values and options chosen for each model here, then every other one from the registry.
 CASES = [
     ("oren_nayar", "sigma", 0.4, {}, 1e-5),
     ("oren_nayar", "sigma", 0.7, {"model": "full"}, 1e-5),
@@ -27,6 +28,24 @@ CASES = [
     ("wolff", "ext_ior", 1.2, {"int_ior": 1.9, "normalization": "normal"}, 2e-4),
     # tables over m (Hermite in m) against the table built for m = 0.35
     ("ginneken", "roughness", 0.35, {}, 5e-3),
+]
+
+
+def _other_value(m, p):
+    """A value of a numeric parameter away from its default, for a model with no case above: a
+    quarter of the way from the default to the upper end of its fit range (where `matte fit`
+    searches it, within its valid range)."""
+    default = float(registry.default(p))
+    return default + 0.25 * (registry.fit_range(m, p["name"])[1] - default)
+
+
+# Every other numeric parameter of every registered type (a new model's too), the other
+# parameters at their defaults, to the float form's precision.
+CASES += [
+    (m["name"], p["name"], _other_value(m, p), {}, 1e-5)
+    for m in registry.MODELS
+    for p in registry.numeric_parameters(m)
+    if (m["name"], p["name"]) not in {(kind, name) for kind, name, _, _, _ in CASES}
 ]
 # The float's gradient against the constant texture's: the same function except Wolff's F_dr
 # (fit: its n-derivative is within 0.11 % for n in [1.1, 4]) and van Ginneken (its first-order

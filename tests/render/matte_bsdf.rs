@@ -6,7 +6,7 @@
 //! checkerboard a parameter reads, Mitsuba's `eval_1`, is checked with the other checkerboard
 //! tests in `tests/render/load/texture.rs`.)
 
-use crate::common::{direction, model, table_of};
+use crate::common::{direction, inner_values, model, models_from_defaults, table_of};
 use glam::{Vec2, Vec3};
 use matte_brdf::{DiffuseBrdf, DiffuseModel, ParamValue};
 use matte_render::bsdf::{Bsdf, Bxdf, Matte};
@@ -40,28 +40,41 @@ fn eval_at(xml: &str, uv: Vec2) -> Vec3 {
 }
 
 /// A texture whose value is the same everywhere gives the number's BSDF (the per-hit path is
-/// the same kernel), and the scene then holds a `Matte` with textured parameters.
+/// the same kernel), and the scene then holds a `Matte` with textured parameters. Every numeric
+/// parameter of every registered model, at the first of `common::inner_values` that the model
+/// accepts with its other defaults and that is not its default.
 #[test]
 fn constant_texture_equals_the_number() {
-    let cases = [
-        ("oren_nayar", "sigma", 0.5, "1e-5"),
-        ("eon", "roughness", 0.4, "1e-5"),
-        ("roughdiffuse", "alpha", 0.3, "1e-5"),
-        ("wolff", "int_ior", 1.7, "2e-4"),
-        // the roughness axis (Hermite in m) against the table built for m = 0.35
-        ("ginneken", "roughness", 0.35, "2e-3"),
-    ];
-    for (kind, name, v, tol) in cases {
-        let number = scene(&format!(r#"<bsdf type="{kind}"><float name="{name}" value="{v}"/></bsdf>"#));
-        let textured = scene(&format!(
-            r#"<bsdf type="{kind}"><texture type="checkerboard" name="{name}"><float name="color0" value="{v}"/><float name="color1" value="{v}"/></texture></bsdf>"#
-        ));
-        let s = load_str(&textured, Path::new(FILE), &[]).unwrap();
-        assert!(matches!(&s.scene.bsdfs[0], Bsdf::Matte(m) if m.is_textured()), "{kind}: not a textured Matte");
-        let (a, b) = (eval_at(&number, Vec2::new(0.3, 0.6)), eval_at(&textured, Vec2::new(0.3, 0.6)));
-        let tol: f32 = tol.parse().unwrap();
-        assert!(((a - b).abs() / a).max_element() <= tol, "{kind}: {a} vs {b}");
+    let mut checked = 0;
+    for spec in models_from_defaults() {
+        for p in spec.numeric() {
+            let default = p.default_value();
+            let v = inner_values(p)
+                .into_iter()
+                .find(|&x| {
+                    Some(ParamValue::Number(x)) != default && DiffuseModel::with(spec.name, &[(p.name, x)]).is_ok()
+                })
+                .unwrap_or_else(|| panic!("{}.{}: no value to texture", spec.name, p.name));
+            let tol: f32 = match spec.name {
+                // Wolff's per-lane F_dr is its fitted average.
+                "wolff" => 2e-4,
+                // van Ginneken: the roughness axis (Hermite in m) against the table built for m = v.
+                "ginneken" => 2e-3,
+                _ => 1e-5,
+            };
+            let (kind, name) = (spec.name, p.name);
+            let number = scene(&format!(r#"<bsdf type="{kind}"><float name="{name}" value="{v}"/></bsdf>"#));
+            let textured = scene(&format!(
+                r#"<bsdf type="{kind}"><texture type="checkerboard" name="{name}"><float name="color0" value="{v}"/><float name="color1" value="{v}"/></texture></bsdf>"#
+            ));
+            let s = load_str(&textured, Path::new(FILE), &[]).unwrap();
+            assert!(matches!(&s.scene.bsdfs[0], Bsdf::Matte(m) if m.is_textured()), "{kind}: not a textured Matte");
+            let (a, b) = (eval_at(&number, Vec2::new(0.3, 0.6)), eval_at(&textured, Vec2::new(0.3, 0.6)));
+            assert!(((a - b).abs() / a).max_element() <= tol, "{kind} {name} = {v}: {a} vs {b}");
+            checked += 1;
+        }
     }
+    assert!(checked >= 5, "only {checked} numeric parameters");
 }
 
 #[test]

@@ -15,14 +15,19 @@ use matte_render::renderer::render_with;
 /// (here the source tree's `python/matte_mitsuba`, which holds `ground_truth/`) on the file
 /// resolver, as `<path>` folders of a copy beside the scene's own folder.
 fn load(file: &str, defines: &[(&str, &str)]) -> LoadedScene {
-    let root = crate::common::repo();
-    let scenes = root.join("mitsuba_scenes");
+    let scenes = crate::common::repo().join("mitsuba_scenes");
     let text = std::fs::read_to_string(scenes.join(file)).unwrap();
+    load_text(file, &text, scenes.join(file).parent().unwrap(), defines)
+}
+
+/// The scene `text` under the name `file`, with `folder` and the package folder on the file
+/// resolver (see [`load`]).
+fn load_text(file: &str, text: &str, folder: &std::path::Path, defines: &[(&str, &str)]) -> LoadedScene {
     let open = text.find("<scene").and_then(|i| text[i..].find('>').map(|j| i + j + 1)).expect("<scene ...>");
     let paths = format!(
         "<path value=\"{}\"/><path value=\"{}\"/>",
-        scenes.join(file).parent().unwrap().display(),
-        root.join("python/matte_mitsuba").display()
+        folder.display(),
+        crate::common::repo().join("python/matte_mitsuba").display()
     );
     let path = std::env::temp_dir().join(format!("matte_render_drivers_{}", std::process::id())).join(file);
     std::fs::create_dir_all(path.parent().unwrap()).unwrap();
@@ -77,7 +82,10 @@ fn assert_same_image(name: &str, loaded: &LoadedScene, spp: u32) {
 fn path_integrator_scenes() {
     assert_same_image("cornell", &load("cornell_box.xml", &[("res", "48"), ("max_depth", "-1")]), 8);
     assert_same_image("envmap", &load("envmap_sky.xml", &[("res", "32")]), 4);
-    assert_same_image("all_types", &load("all_types.xml", &[("res", "32")]), 4);
+    // Every registered model (the registry's scene; the wheel's all_types.xml is written at build time).
+    let all_types = crate::common::all_types_scene();
+    let scenes = crate::common::repo().join("mitsuba_scenes");
+    assert_same_image("all_types", &load_text("all_types.xml", &all_types, &scenes, &[("res", "32")]), 4);
     assert_same_image("textured", &load("textured_parameters.xml", &[("res", "32")]), 4);
     assert_same_image("room", &load("study/room.xml", &[("res", "32"), ("bsdf", "ginneken")]), 4);
 }

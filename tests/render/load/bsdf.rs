@@ -1,5 +1,5 @@
 //! `<bsdf>` (§2, §10; docs/models.md): `diffuse` colours, matte's models with their documented
-//! defaults, `null`, `twosided`, `mask`, `blendbsdf` and `bumpmap` defaults, dielectrics,
+//! and declared defaults, `null`, `twosided`, `mask`, `blendbsdf` and `bumpmap` defaults, dielectrics,
 //! conductors and `roughconductor`, and the BSDFs' errors.
 
 use std::path::Path;
@@ -18,7 +18,7 @@ use super::references::{
 use super::{
     FILE, assert_body_err, assert_vec, close3, constant_reflectance, hit, load, ok, shape_bsdf, temp_dir, with_sensor,
 };
-use crate::common::{SENSOR, assert_err_at, scene, write_exr};
+use crate::common::{SENSOR, assert_err_at, models_from_defaults, scene, write_exr};
 
 /// The only BSDF of a scene with one top-level `<bsdf>` (`xml` is that element).
 fn one_bsdf(xml: &str) -> Bsdf {
@@ -94,6 +94,31 @@ fn matte_models_with_documented_defaults() {
     }
     let b = one_bsdf("<bsdf type=\"lambert\"><rgb name=\"reflectance\" value=\"0.8 0.3 0.2\"/></bsdf>");
     assert_eq!(constant_reflectance(&b), Vec3::new(0.8, 0.3, 0.2));
+}
+
+/// Every registered model loads from `<bsdf type="…"/>` with the defaults its declaration gives
+/// (the registry's; the documented numbers of the paper's models are pinned above) and
+/// reflectance 0.5. (A model with a required file, `tabulated_brdf`, is tested with its table in
+/// `tests/render/matte_bsdf.rs`.)
+#[test]
+fn every_registered_model_loads_with_its_declared_defaults() {
+    for spec in models_from_defaults() {
+        let b = one_bsdf(&format!("<bsdf type=\"{}\"/>", spec.name));
+        let Bsdf::Matte(Matte { model, reflectance: Texture::Constant(rho), .. }) = &b else {
+            panic!("{}: {b:?}", spec.name)
+        };
+        assert_eq!(model.kind(), spec.name);
+        let want: Vec<(&str, ParamValue)> = spec
+            .params
+            .iter()
+            .map(|p| match p.default_value().expect("a default") {
+                ParamValue::Number(x) => (p.name, ParamValue::Number(x as f32 as f64)),
+                v => (p.name, v),
+            })
+            .collect();
+        assert_eq!(model.parameters(), want, "{}", spec.name);
+        assert_eq!(*rho, Vec3::splat(0.5), "{}", spec.name);
+    }
 }
 
 /// `src/bsdfs/null.cpp`, checked against Mitsuba 3.9.1 (`scalar_rgb`): `sample` at
@@ -320,7 +345,7 @@ fn bsdf_errors() {
     assert_body_err("<bsdf type=\"oren_nayar\">\n<rgb name=\"sigma\" value=\"0.1 0.2 0.3\"/>\n</bsdf>", 2, "sigma");
     assert_body_err("<bsdf type=\"eon\">\n<boolean name=\"roughness\" value=\"true\"/>\n</bsdf>", 2, "roughness");
     // Reflectance above 1 or below 0 (§2: "Invalid RGB reflectance value").
-    for kind in ["diffuse", "lambert", "wolff"] {
+    for kind in std::iter::once("diffuse").chain(models_from_defaults().map(|m| m.name)) {
         assert_body_err(
             &format!("<bsdf type=\"{kind}\">\n<rgb name=\"reflectance\" value=\"1.2 0.5 0.5\"/>\n</bsdf>"),
             2,

@@ -4,9 +4,10 @@
 use glam::Vec2;
 
 use super::{FILE, load};
-use crate::common::scene;
+use crate::common::{models_from_defaults, scene};
 
 /// One numeric property (or attribute) set to `{v}` per template; the rest is a small scene.
+/// matte's models are in [`templates`], from the registry; here only their combinations.
 const ODD_VALUE_TEMPLATES: &[&str] = &[
     r#"<sensor type="perspective"><float name="fov" value="{v}"/></sensor>"#,
     r#"<sensor type="perspective"><string name="focal_length" value="{v}mm"/></sensor>"#,
@@ -36,12 +37,7 @@ const ODD_VALUE_TEMPLATES: &[&str] = &[
     r#"<emitter type="directional"><vector name="direction" value="{v} 0 -1"/></emitter>"#,
     r#"<emitter type="constant"><float name="radiance" value="{v}"/></emitter>"#,
     r#"<shape type="sphere"><bsdf type="diffuse"><float name="reflectance" value="{v}"/></bsdf></shape>"#,
-    r#"<shape type="sphere"><bsdf type="lambert"><rgb name="reflectance" value="{v} 0.5 0.5"/></bsdf></shape>"#,
-    r#"<shape type="sphere"><bsdf type="oren_nayar"><float name="sigma" value="{v}"/></bsdf></shape>"#,
     r#"<shape type="sphere"><bsdf type="oren_nayar"><float name="sigma" value="{v}"/><string name="model" value="full"/></bsdf></shape>"#,
-    r#"<shape type="sphere"><bsdf type="eon"><float name="roughness" value="{v}"/></bsdf></shape>"#,
-    r#"<shape type="sphere"><bsdf type="wolff"><float name="int_ior" value="{v}"/></bsdf></shape>"#,
-    r#"<shape type="sphere"><bsdf type="ginneken"><float name="roughness" value="{v}"/></bsdf></shape>"#,
     r#"<shape type="sphere"><bsdf type="dielectric"><float name="int_ior" value="{v}"/></bsdf></shape>"#,
     r#"<shape type="sphere"><bsdf type="dielectric"><float name="ext_ior" value="{v}"/></bsdf></shape>"#,
     r#"<shape type="sphere"><bsdf type="conductor"><float name="eta" value="{v}"/><float name="k" value="{v}"/></bsdf></shape>"#,
@@ -54,13 +50,33 @@ const ODD_VALUE_TEMPLATES: &[&str] = &[
     r#"<shape type="sphere"><bsdf type="wolff"><float name="ext_ior" value="{v}"/><float name="int_ior" value="1e31"/></bsdf></shape>"#,
 ];
 
+/// [`ODD_VALUE_TEMPLATES`] and, for every registered model, its reflectance and each of its
+/// numeric parameters (the others at their defaults).
+fn templates() -> Vec<String> {
+    let mut out: Vec<String> = ODD_VALUE_TEMPLATES.iter().map(|t| t.to_string()).collect();
+    for spec in models_from_defaults() {
+        let kind = spec.name;
+        out.push(format!(
+            r#"<shape type="sphere"><bsdf type="{kind}"><rgb name="reflectance" value="{{v}} 0.5 0.5"/></bsdf></shape>"#
+        ));
+        for p in spec.numeric() {
+            out.push(format!(
+                r#"<shape type="sphere"><bsdf type="{kind}"><float name="{}" value="{{v}}"/></bsdf></shape>"#,
+                p.name
+            ));
+        }
+    }
+    out
+}
+
 const ODD_VALUES: &[&str] = &["0", "-1", "2", "1e-30", "1e30", "nan", "inf", "-inf", "179.99", "1e9", "1e15"];
 
 #[test]
 fn odd_values_never_panic_and_accepted_scenes_render_finite() {
     let mut accepted = 0;
     let mut failures = Vec::new();
-    for template in ODD_VALUE_TEMPLATES {
+    let templates = templates();
+    for template in &templates {
         for v in ODD_VALUES {
             let element = template.replace("{v}", v);
             // Every scene has a camera on +z looking at the origin, a 4×2 film and an environment,
@@ -116,5 +132,5 @@ fn odd_values_never_panic_and_accepted_scenes_render_finite() {
     }
     assert!(failures.is_empty(), "accepted, but rendered NaN/Inf:\n{}", failures.join("\n"));
     // Most of the grid is valid input (e.g. fov 0.5, radius 1e30, alpha 0).
-    assert!(accepted > ODD_VALUE_TEMPLATES.len() * 3, "{accepted}");
+    assert!(accepted > templates.len() * 3, "{accepted}");
 }
