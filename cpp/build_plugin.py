@@ -569,7 +569,9 @@ class Build:
         for release in releases:
             d = os.path.join(self.out, "releases", release.version, "plugins")
             os.makedirs(d)
-            {"linux": self.link_elf, "macos": self.link_macho, "windows": self.link_pe}[self.target.os](release, d, types)
+            {"linux": self.link_elf, "macos": self.link_macho, "windows": self.link_pe}[self.target.os](
+                release, d, types
+            )
 
     def link_elf(self, release, d, types):
         cpp = os.path.join(ROOT, "cpp")
