@@ -35,12 +35,11 @@ defaults, examples and fit ranges; :data:`MODELS` and :func:`numeric_parameters`
 """
 
 import os as _os
+import sys as _sys
 
 #: The package's folder: its data (``ground_truth/``, ``scenes/``), the ``matte`` binary
 #: (``bin/``) and the plugins of every release (``releases/``).
 PACKAGE_ROOT = _os.path.dirname(_os.path.abspath(__file__))
-
-import sys as _sys
 
 #: What Mitsuba appends to a plugin's name on this platform (its src/core/plugin.cpp).
 PLUGIN_SUFFIX = {"darwin": ".dylib", "win32": ".dll"}.get(_sys.platform, ".so")
