@@ -9,7 +9,7 @@
 #               wheel (cross-built with Zig, its links checked)
 # and one that recomputes data the repository holds:
 #   make ground-truth  the simulated microsurfaces' BRDF tables in python/matte_mitsuba/ground_truth/
-.PHONY: main test bench venv plugin dist ground-truth
+.PHONY: main test test-rust test-python bench venv plugin dist ground-truth
 
 PY     := .venv/bin/python
 # The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv, and
@@ -33,17 +33,26 @@ main: plugin
 bench: plugin
 	$(MATTE) bench -o bench_out
 
-# The fast tier first (the kernels' tests: matte-brdf alone, no venv, no wheel), then what needs
-# the venv and the wheel.
+# The fast tier first (the kernels' tests: matte-brdf alone, no venv, no wheel), then the venv
+# and the installed wheel, then two chains side by side (make -j2; each line of output whole):
+# the Rust lint and tests, and the release files with the Python and C++ checks and the plugin's
+# pytest suite. They share no build folder (target/debug against target/release and the
+# cross targets), so neither waits for the other's cargo lock, and each uses the core the other
+# leaves idle (pytest's single-threaded stretches, qemu, downloads, links).
 test:
 	cargo fmt --check
 	cargo test --quiet -p matte-brdf
-	$(MAKE) --no-print-directory plugin dist
+	$(MAKE) --no-print-directory plugin
+	$(MAKE) --no-print-directory -j2 --output-sync=line test-rust test-python
+
+test-rust:
 	cargo clippy --quiet --workspace --all-targets -- -D warnings
+	cargo test --quiet --workspace --exclude matte-brdf
+
+test-python: dist
 	.venv/bin/ruff check --quiet .
 	.venv/bin/ruff format --check --quiet .
 	clang-format --dry-run --Werror cpp/*.h cpp/*.cpp
-	cargo test --quiet --workspace --exclude matte-brdf
 	$(PY) -m pytest -q tests/plugin tests/harness
 
 # Every table with its fixed seed and photon count (docs/microgeometry.md, "The tabulated

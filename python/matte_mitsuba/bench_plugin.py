@@ -49,7 +49,10 @@ SHAPE_PARAMETER = {
 
 def required(kind):
     """Properties a type needs beyond its defaults: each file parameter (the table
-    `tabulated_brdf` reads) given the packaged V-cavity table."""
+    `tabulated_brdf` reads) given the packaged V-cavity table; none for Mitsuba's own types
+    (`diffuse`, the reference)."""
+    if kind not in registry.NAMES:
+        return {}
     table = matte_mitsuba.ground_truth_path("v_cavities_sigma0.3")
     return {p["name"]: table for p in registry.file_parameters(kind)}
 
