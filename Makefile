@@ -38,22 +38,24 @@ bench: plugin
 # the Rust lint and tests, and the release files with the Python and C++ checks and the plugin's
 # pytest suite. They share no build folder (target/debug against target/release and the
 # cross targets), so neither waits for the other's cargo lock, and each uses the core the other
-# leaves idle (pytest's single-threaded stretches, qemu, downloads, links).
+# leaves idle (qemu, downloads, links). pytest runs in two worker processes, each taking whole
+# files (a module's set-up, such as the release matrix's environments, runs once).
 test:
 	cargo fmt --check
 	cargo test --quiet -p matte-brdf
 	$(MAKE) --no-print-directory plugin
 	$(MAKE) --no-print-directory -j2 --output-sync=line test-rust test-python
 
+# (cargo is kept off make's jobserver, whose two slots the chains hold: it runs its own jobs.)
 test-rust:
-	cargo clippy --quiet --workspace --all-targets -- -D warnings
-	cargo test --quiet --workspace --exclude matte-brdf
+	env -u MAKEFLAGS cargo clippy --quiet --workspace --all-targets -- -D warnings
+	env -u MAKEFLAGS cargo test --quiet --workspace --exclude matte-brdf
 
 test-python: dist
 	.venv/bin/ruff check --quiet .
 	.venv/bin/ruff format --check --quiet .
 	clang-format --dry-run --Werror cpp/*.h cpp/*.cpp
-	$(PY) -m pytest -q tests/plugin tests/harness
+	$(PY) -m pytest -q -n 2 --dist loadfile tests/plugin tests/harness
 
 # Every table with its fixed seed and photon count (docs/microgeometry.md, "The tabulated
 # ground-truth BRDF"; about 22 min on 2 shared cores).

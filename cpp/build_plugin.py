@@ -341,7 +341,9 @@ class Build:
 
     def build_rust(self):
         cmd = ["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"]
-        env = dict(os.environ)
+        # Not make's jobserver (make test runs this beside other jobs, without passing it on).
+        native = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "CARGO_MAKEFLAGS")}
+        env = dict(native)
         if self.target.os == "macos":
             env["MACOSX_DEPLOYMENT_TARGET"] = MACOS_MIN
         if self.cross:
@@ -367,7 +369,7 @@ class Build:
         if self.cross:
             # The type list and the registry come from a matte that runs here: the native build's
             # (the same packages, so the same features: nothing to build after a native build).
-            run(["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"], cwd=ROOT)
+            run(["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"], cwd=ROOT, env=native)
         # The generated bridge header includes "matte/cpp/arena.h" (build.rs sets the prefix `matte`).
         inc = os.path.join(self.cargo_target, "inc")
         os.makedirs(inc, exist_ok=True)

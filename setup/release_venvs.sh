@@ -10,6 +10,11 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
+# One at a time: pytest's workers (make test runs it with -n 2) may reach here together.
+mkdir -p .venvs
+exec 9>.venvs/.lock
+flock 9
+
 WHEEL=${1:-$(ls dist/matte_mitsuba-*manylinux*_"$(uname -m)".whl 2>/dev/null | head -1)}
 [ -f "$WHEEL" ] || { echo "release_venvs: no wheel (run make dist, or name one)" >&2; exit 1; }
 NUMPY=$(grep '^numpy==' setup/requirements.txt)
