@@ -33,7 +33,8 @@ main: plugin
 bench: plugin
 	$(MATTE) bench -o bench_out
 
-# The fast tier first (the kernels' tests: matte-brdf alone, no venv, no wheel), then the venv
+# The fast tier first (the kernels' tests: matte-brdf alone, no venv, no wheel; its thorough
+# statistical sweeps, #[ignore]d there, run first in test-rust), then the venv
 # and the installed wheel, then two chains side by side (make -j2; each line of output whole):
 # the Rust lint and tests, and the release files with the Python and C++ checks and the plugin's
 # pytest suite. They share no build folder (target/debug against target/release and the
@@ -48,6 +49,7 @@ test:
 
 # (cargo is kept off make's jobserver, whose two slots the chains hold: it runs its own jobs.)
 test-rust:
+	env -u MAKEFLAGS cargo test --quiet -p matte-brdf -- --ignored
 	env -u MAKEFLAGS cargo clippy --quiet --workspace --all-targets -- -D warnings
 	env -u MAKEFLAGS cargo test --quiet --workspace --exclude matte-brdf
 

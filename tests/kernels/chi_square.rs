@@ -5,6 +5,7 @@ use crate::common::{self, catalogue, chi2_sampling, sidak};
 use glam::Vec3;
 
 #[test]
+#[ignore = "thorough tier: `make test` runs it (cargo test -p matte-brdf -- --ignored)"]
 fn sampling_matches_pdf() {
     let models = catalogue();
     let angles = [0.0f32, 45.0, 80.0];

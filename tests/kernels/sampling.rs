@@ -41,6 +41,7 @@ fn eon_pdf_matches_the_float64_implementation() {
 /// `∫ pdf dω = 1` by a 1000 × 2000 midpoint rule in (cos θ, φ), for every model of the
 /// catalogue (their own samplers or the cosine) at six incidences down to 89°.
 #[test]
+#[ignore = "thorough tier: `make test` runs it (cargo test -p matte-brdf -- --ignored)"]
 fn every_density_integrates_to_one() {
     let (nz, nphi) = (1000usize, 2000usize);
     for (label, bsdf) in catalogue() {
@@ -108,6 +109,7 @@ fn every_model_that_declares_its_own_sampler_draws_with_it() {
 /// `∫ pdf dω = 1` (1000 × 2000 midpoint rule) for every own sampler at every roughness of
 /// [`own_samplers`] and θi down to 89° (the catalogue's configurations are checked above).
 #[test]
+#[ignore = "thorough tier: `make test` runs it (cargo test -p matte-brdf -- --ignored)"]
 fn every_own_sampler_integrates_to_one_at_every_roughness() {
     let (nz, nphi) = (500usize, 1000usize);
     for (label, bsdf) in own_samplers() {
@@ -130,6 +132,7 @@ fn every_own_sampler_integrates_to_one_at_every_roughness() {
 }
 
 #[test]
+#[ignore = "thorough tier: `make test` runs it (cargo test -p matte-brdf -- --ignored)"]
 fn every_own_sampler_passes_chi_square_at_every_roughness_and_down_to_89_degrees() {
     let angles = [0.0f32, 30.0, 60.0, 85.0, 89.0];
     let cases = own_samplers();
