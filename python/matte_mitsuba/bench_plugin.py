@@ -23,7 +23,8 @@ interleaved (machine load drifts), best over all, as wall time and as the proces
 type are interleaved the same way and each type's ratio to `diffuse` is given per round.
 ``--lanes 8`` runs Dr.Jit's LLVM backend at 8 lanes (AVX2's width, target CPU `haswell`) on a
 machine whose own width is 16 (AVX-512), so that one machine measures both CPU classes' lane
-widths.
+widths. ``--lanes 16`` on an 8-wide (AVX2) machine runs Dr.Jit's 16-lane kernels as pairs of
+8-wide instructions: the code an AVX-512 machine runs, not its timing (measure that on one).
 """
 
 import argparse
@@ -110,15 +111,19 @@ def set_llvm_lanes(lanes=None):
     try:
         set_target = lib._Z19jit_llvm_set_targetPKcS0_j
         features, width = lib._Z24jit_llvm_target_featuresv, lib._Z21jit_llvm_vector_widthv
+        cpu = lib._Z19jit_llvm_target_cpuv
     except AttributeError:
         raise SystemExit(f"--lanes: Dr.Jit {dr.__version__} has no jit_llvm_set_target") from None
     set_target.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_uint32]
-    features.restype, width.restype = ctypes.c_char_p, ctypes.c_uint32
+    features.restype, width.restype, cpu.restype = ctypes.c_char_p, ctypes.c_uint32, ctypes.c_char_p
     if lanes and lanes != width():
-        if lanes != 8:
-            raise SystemExit(f"--lanes {lanes}: this CPU runs {width()} lanes; only 8 can be chosen instead")
-        kept = ",".join(f for f in features().decode().split(",") if "avx512" not in f)
-        set_target(b"haswell", kept.encode(), 8)
+        if lanes == 8:
+            kept = ",".join(f for f in features().decode().split(",") if "avx512" not in f)
+            set_target(b"haswell", kept.encode(), 8)
+        else:
+            # 16 lanes on an 8-wide CPU: Dr.Jit's 16-lane code, which LLVM runs as pairs of
+            # 8-wide instructions (the shape of AVX-512's kernels, not its timing).
+            set_target(cpu(), features(), lanes)
     return width()
 
 

@@ -276,29 +276,22 @@ impl DiffuseBrdf for BrdfTable {
 }
 
 /// One axis of the table as the kernel locates a coordinate on it: the cells' lower nodes and
-/// inverse widths (f64, rounded to the kernel's type when used), the last cell index and the
-/// stride of the axis in the value layout.
+/// inverse widths (f64, rounded to the kernel's type when used).
 #[derive(Clone, Debug, PartialEq)]
 struct Axis {
     lower: Vec<f64>,
     inv_width: Vec<f64>,
-    /// The stride of the axis in [`BrdfTable::f_over_reflectance`].
-    stride: u32,
 }
 
 impl Axis {
-    fn new(nodes: &[f64], scale: f64, stride: usize) -> Self {
+    fn new(nodes: &[f64], scale: f64) -> Self {
         let n: Vec<f64> = nodes.iter().map(|x| x * scale).collect();
-        Axis {
-            lower: n.windows(2).map(|w| w[0]).collect(),
-            inv_width: n.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect(),
-            stride: stride as u32,
-        }
+        Axis { lower: n.windows(2).map(|w| w[0]).collect(), inv_width: n.windows(2).map(|w| 1.0 / (w[1] - w[0])).collect() }
     }
 
-    /// The offset of a cell's upper node (0 for a single-node axis, whose weight is 0).
-    fn upper(&self) -> u32 {
-        if self.lower.is_empty() { 0 } else { self.stride }
+    /// The number of cells (one for a single-node axis, whose upper node is its only node).
+    fn cells(&self) -> usize {
+        self.lower.len().max(1)
     }
 
     /// `(k, w)`: the cell of `x` and the weight of its upper node, clamped to the first and
@@ -320,6 +313,34 @@ impl Axis {
     }
 }
 
+/// The corners of every (θi, θo, Δφ) cell at every reflectance node, eight consecutive values
+/// (one packet gather) per cell and node: packet `((i·Cθ + o)·CΔφ + p)·Nρ + r` for cell
+/// `(i, o, p)` (`Cθ`, `CΔφ` the axes' cell counts) at reflectance node `r` holds the corner
+/// `(a, b, c)` ∈ {0, 1}³ (the cell's lower or upper θi, θo, Δφ node) at `4a + 2b + c`. A
+/// single-node axis has one cell whose upper node is its lower one (weight 0).
+fn corner_packets(table: &BrdfTable) -> Vec<f32> {
+    let (nt, np, nr) = (table.theta_deg.len(), table.delta_phi_deg.len(), table.reflectance.len());
+    let (ct, cp) = ((nt - 1).max(1), (np - 1).max(1));
+    let upper = |k: usize, n: usize| (k + 1).min(n - 1);
+    let mut out = Vec::with_capacity(ct * ct * cp * nr * 8);
+    for i in 0..ct {
+        for o in 0..ct {
+            for p in 0..cp {
+                for r in 0..nr {
+                    for a in [i, upper(i, nt)] {
+                        for b in [o, upper(o, nt)] {
+                            for c in [p, upper(p, np)] {
+                                out.push(table.f_over_reflectance[table.index(r, a, b, c)]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
 /// A table ready for evaluation: the values and the kernel's view of the nodes. `tabulated_brdf`
 /// in `matte render` and in the Mitsuba plugin.
 ///
@@ -332,6 +353,8 @@ pub struct Tabulated(Arc<TabulatedData>);
 #[derive(Debug)]
 pub struct TabulatedData {
     table: BrdfTable,
+    /// The kernel's view of the values ([`corner_packets`]).
+    packets: Vec<f32>,
     /// The file it was read from (empty for a table built in memory).
     path: std::path::PathBuf,
     theta: Axis,
@@ -346,12 +369,12 @@ impl Tabulated {
     }
 
     fn with_path(table: BrdfTable, path: std::path::PathBuf) -> Self {
-        let (nt, np) = (table.theta_deg.len(), table.delta_phi_deg.len());
         let rad = PI / 180.0;
         Tabulated(Arc::new(TabulatedData {
-            theta: Axis::new(&table.theta_deg, rad, np),
-            delta_phi: Axis::new(&table.delta_phi_deg, rad, 1),
-            reflectance: Axis::new(&table.reflectance, 1.0, nt * nt * np),
+            theta: Axis::new(&table.theta_deg, rad),
+            delta_phi: Axis::new(&table.delta_phi_deg, rad),
+            reflectance: Axis::new(&table.reflectance, 1.0),
+            packets: corner_packets(&table),
             table,
             path,
         }))
@@ -371,9 +394,10 @@ impl Tabulated {
         &self.table
     }
 
-    /// The values the kernel gathers from: [`BrdfTable::f_over_reflectance`].
+    /// The values the kernel gathers from: [`BrdfTable::f_over_reflectance`] as the corners
+    /// of each interpolation cell, eight per cell and reflectance node ([`corner_packets`]).
     pub fn table_values(&self) -> &[f32] {
-        &self.table.f_over_reflectance
+        &self.packets
     }
 
     /// The kernel reading `values` (the CPU's slice of [`Self::table_values`], or the plugin's
@@ -457,8 +481,8 @@ impl KernelBrdf for Tabulated {
 
 /// The interpolation over [`Real`]: θi, θo and Δφ from the directions (`acos` and `atan2` by
 /// the polynomials of [`crate::approx`]), the cells located on the nodes ([`Axis::locate`]),
-/// the eight corners of the (θi, θo, Δφ) cell gathered at the two reflectance nodes around
-/// each channel's ρ: 16 gathers per channel.
+/// the eight corners of the (θi, θo, Δφ) cell gathered as one packet at each of the two
+/// reflectance nodes around each channel's ρ: two packet gathers per channel.
 #[derive(Clone, Copy)]
 pub struct TableKernel<'t, T: Real + 't> {
     model: &'t Tabulated,
@@ -474,28 +498,26 @@ impl<'t, T: Real + 't> Kernel<T> for TableKernel<'t, T> {
         // Δφ = atan2(|wi × wo|_z, wi·wo in the plane): 0 when either direction is the normal.
         let cross = wi.x * wo.y - wi.y * wo.x;
         let (p, wp) = m.delta_phi.locate(angle(cross.abs(), wi.x * wo.x + wi.y * wo.y));
-        let (st, sp) = (T::c(m.theta.stride as f64), T::c(m.delta_phi.stride as f64));
-        // The (θi, θo, Δφ) cell's lower corner at reflectance node 0.
-        let base = i * T::c((m.theta.stride as usize * m.table.theta_deg.len()) as f64) + o * st + p * sp;
-        let (ui, uo, up) = (m.theta.upper() * m.table.theta_deg.len() as u32, m.theta.upper(), m.delta_phi.upper());
+        // The cell's first packet (reflectance node 0), in `corner_packets`' order.
+        let nr = m.table.reflectance.len();
+        let cell = (i.scale(m.theta.cells() as f64) + o).fma(T::c(m.delta_phi.cells() as f64), p);
+        let base = cell.scale(nr as f64);
         let one = T::c(1.0);
-        let corners = [(one - wti, 0), (wti, ui)].map(|(a, da)| {
-            [(one - wto, 0), (wto, uo)]
-                .map(|(b, db)| [(one - wp, 0), (wp, up)].map(|(c, dc)| (a * b * c, da + db + dc)))
-        });
-        let ur = m.reflectance.upper();
-        let sr = T::c(m.reflectance.stride as f64);
+        // The corners' weights, in the packet's order (corner (a, b, c) at 4a + 2b + c).
+        let weights = [one - wti, wti].map(|a| [one - wto, wto].map(|b| [one - wp, wp].map(|c| a * b * c)));
+        let at = |packet: T| {
+            let v = T::gather8(self.values, packet);
+            let mut sum = T::c(0.0);
+            for (w, v) in weights.iter().flatten().flatten().zip(v) {
+                sum = w.fma(v, sum);
+            }
+            sum
+        };
+        let upper = if nr > 1 { one } else { T::c(0.0) };
         rho.map(|x| {
             let (r, wr) = m.reflectance.locate(x);
-            let idx = r.fma(sr, base);
-            let at = |dr: u32| {
-                let mut sum = T::c(0.0);
-                for (w, off) in corners.iter().flatten().flatten() {
-                    sum = w.fma(T::gather(self.values, idx, off + dr), sum);
-                }
-                sum
-            };
-            let f_over_rho = (one - wr) * at(0) + wr * at(ur);
+            let packet = base + r;
+            let f_over_rho = (one - wr) * at(packet) + wr * at(packet + upper);
             x * f_over_rho * T::c(PI)
         })
     }
