@@ -295,21 +295,23 @@ impl Axis {
     }
 
     /// `(k, w)`: the cell of `x` and the weight of its upper node, clamped to the first and
-    /// last node (NaN gives the first). The fractional node index is the sum over cells of
-    /// `clamp((x − xₖ)/(xₖ₊₁ − xₖ), 0, 1)`: exactly 1 below the cell of `x`, 0 above it.
-    /// Branch-free, and differentiable in `x` (the reflectance axis) through the active cell.
+    /// last node (NaN gives the first). Branch-free: each interior node `x` reaches moves the
+    /// cell up one (a compare and three selects of constants), and the weight is
+    /// `clamp((x − xₖ)/(xₖ₊₁ − xₖ), 0, 1)`, differentiable in `x` (the reflectance axis).
     #[inline(always)]
     fn locate<T: Real>(&self, x: T) -> (T, T) {
         let zero = T::c(0.0);
-        if self.lower.is_empty() {
+        let Some((&first, &first_inv)) = self.lower.first().zip(self.inv_width.first()) else {
             return (zero, zero);
+        };
+        let (mut k, mut lower, mut inv) = (zero, T::c(first), T::c(first_inv));
+        for (j, (&a, &w)) in self.lower.iter().zip(&self.inv_width).enumerate().skip(1) {
+            let reached = x.ge(T::c(a));
+            k = T::select(reached, T::c(j as f64), k);
+            lower = T::select(reached, T::c(a), lower);
+            inv = T::select(reached, T::c(w), inv);
         }
-        let mut u = zero;
-        for (&a, &inv) in self.lower.iter().zip(&self.inv_width) {
-            u = u + ((x - T::c(a)) * T::c(inv)).clamp_to(0.0, 1.0);
-        }
-        let k = u.floor().min(T::c((self.lower.len() - 1) as f64));
-        (k, u - k)
+        (k, ((x - lower) * inv).clamp_to(0.0, 1.0))
     }
 }
 
