@@ -1,0 +1,48 @@
+"""The debug and test builds' optimisation list (Cargo.toml, `[profile.dev.package]`): every
+dependency at opt-level 3 except the crates that only run while building (proc macros, build
+scripts and what they use), which are named at opt-level 0. A crate named there that the
+program also links would run unoptimised; a build-time crate left out would be compiled at
+opt-level 3 for nothing. Both sets come from `cargo tree`: the build-time crates are those
+reached only through build or proc-macro edges."""
+
+import subprocess
+from pathlib import Path
+
+import tomllib
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def crates(*edges):
+    out = subprocess.run(
+        [
+            "cargo",
+            "tree",
+            "--workspace",
+            "--target",
+            "all",
+            "--prefix",
+            "none",
+            "--format",
+            "{p}",
+            "-e",
+            ",".join(edges),
+        ],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    return {line.split()[0] for line in out.splitlines() if line.strip()}
+
+
+def test_build_time_crates_are_exactly_those_at_opt_level_0():
+    profile = tomllib.loads((ROOT / "Cargo.toml").read_text())["profile"]["dev"]["package"]
+    assert profile.pop("*") == {"opt-level": 3}
+    named = {name for name, settings in profile.items() if settings == {"opt-level": 0}}
+    assert named == set(profile), "every named package is at opt-level 0"
+    run_time = crates("normal", "dev", "no-proc-macro")
+    build_only = crates("all") - run_time
+    assert len(build_only) > 10 and "syn" in build_only and "glam" in run_time
+    assert sorted(named - build_only) == [], "linked into the program, so optimised"
+    assert sorted(build_only - named) == [], "only run while building: add at opt-level 0"
