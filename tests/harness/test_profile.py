@@ -46,3 +46,15 @@ def test_build_time_crates_are_exactly_those_at_opt_level_0():
     assert len(build_only) > 10 and "syn" in build_only and "glam" in run_time
     assert sorted(named - build_only) == [], "linked into the program, so optimised"
     assert sorted(build_only - named) == [], "only run while building: add at opt-level 0"
+
+
+def test_a_library_without_a_test_harness_has_no_tests():
+    """`test = false` (Cargo.toml's [lib]) saves compiling a crate a second time for a harness
+    it does not need: only while its sources hold no #[test] and no doctest."""
+    manifest = tomllib.loads((ROOT / "Cargo.toml").read_text())
+    lib = manifest["lib"]
+    assert lib.get("test") is False and lib.get("doctest") is False
+    src = (ROOT / lib["path"]).parent
+    sources = [p.read_text() for p in src.rglob("*.rs")]
+    assert len(sources) > 2
+    assert not [s for s in sources if "#[test]" in s or "```" in s]
