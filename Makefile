@@ -49,9 +49,9 @@ test:
 
 # (cargo is kept off make's jobserver, whose two slots the chains hold: it runs its own jobs.)
 test-rust:
-	env -u MAKEFLAGS cargo test --quiet -p matte-brdf -- --ignored
-	env -u MAKEFLAGS cargo clippy --quiet --workspace --all-targets -- -D warnings
-	env -u MAKEFLAGS cargo test --quiet --workspace --exclude matte-brdf
+	env -u MAKEFLAGS -u MFLAGS cargo test --quiet -p matte-brdf -- --ignored
+	env -u MAKEFLAGS -u MFLAGS cargo clippy --quiet --workspace --all-targets -- -D warnings
+	env -u MAKEFLAGS -u MFLAGS cargo test --quiet --workspace --exclude matte-brdf
 
 test-python: dist
 	.venv/bin/ruff check --quiet .
