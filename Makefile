@@ -9,7 +9,7 @@
 #               wheel (cross-built with Zig, its links checked)
 # and one that recomputes data the repository holds:
 #   make ground-truth  the simulated microsurfaces' BRDF tables in python/matte_mitsuba/ground_truth/
-.PHONY: main test test-rust test-python bench venv plugin dist ground-truth
+.PHONY: main test test-rust test-python bench venv plugin rust-release dist ground-truth
 
 PY     := .venv/bin/python
 # The matte-mitsuba wheel (plugins, matte_mitsuba, the matte tool), installed into .venv, and
@@ -69,7 +69,15 @@ ground-truth:
 venv:
 	@setup/setup_venv.sh
 
-plugin: venv $(WHEEL)
+# The venv and the Rust half of the wheel (cargo's release build of the kernels and the `matte`
+# command, which needs no venv) side by side, then the wheel, whose build finds the Rust built.
+plugin:
+	@$(MAKE) --no-print-directory -j2 venv rust-release
+	@$(MAKE) --no-print-directory $(WHEEL)
+
+# (cargo off make's jobserver: it runs its own jobs.)
+rust-release:
+	@env -u MAKEFLAGS -u MFLAGS cargo build --release --quiet -p matte-plugin -p matte
 
 # The libraries the plugin loads from the mitsuba and drjit wheels it requires: not copied in.
 PROVIDED := libmitsuba.so libdrjit-core.so libdrjit-extra.so libnanothread.so
@@ -77,7 +85,7 @@ PROVIDED := libmitsuba.so libdrjit-core.so libdrjit-extra.so libnanothread.so
 # The sdist (python -m build, the PEP 517 front end; MANIFEST.in says what goes in), both Linux
 # wheels repaired by auditwheel to the lowest manylinux tag their symbols allow, and the macOS
 # wheel (nothing to repair: it links only the system's and Mitsuba's libraries); twine checks all.
-dist: plugin $(WHEEL_AARCH64) $(WHEEL_MACOS)
+dist: $(WHEEL) $(WHEEL_AARCH64) $(WHEEL_MACOS)
 	@rm -f dist/matte_mitsuba-*.tar.gz dist/matte_mitsuba-*manylinux*.whl
 	@mkdir -p target
 	@$(PY) -m build --sdist --no-isolation --outdir dist . > target/sdist.log 2>&1 || (cat target/sdist.log; false)
@@ -88,7 +96,7 @@ dist: plugin $(WHEEL_AARCH64) $(WHEEL_MACOS)
 
 # `pip wheel .` is the standard build (pyproject.toml, setup.py -> cpp/build_plugin.py); here
 # against the venv's own Mitsuba (no build isolation), then installed into the venv.
-$(WHEEL): $(SOURCES) setup/requirements.txt
+$(WHEEL): $(SOURCES) setup/requirements.txt | venv
 	@rm -f dist/matte_mitsuba-*linux_x86_64.whl
 	$(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
 	$(PY) -m pip install --force-reinstall --no-deps -q --disable-pip-version-check $(WHEEL)

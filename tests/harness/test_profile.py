@@ -46,6 +46,10 @@ def test_build_time_crates_are_exactly_those_at_opt_level_0():
     assert len(build_only) > 10 and "syn" in build_only and "glam" in run_time
     assert sorted(named - build_only) == [], "linked into the program, so optimised"
     assert sorted(build_only - named) == [], "only run while building: add at opt-level 0"
+    # The test build lowers only the crates above the kernels: the kernels' statistical sweeps
+    # and every dependency stay optimised.
+    lowered = tomllib.loads((ROOT / "Cargo.toml").read_text())["profile"]["test"].get("package", {})
+    assert "matte-brdf" not in lowered and "*" not in lowered, lowered
 
 
 def test_a_library_without_a_test_harness_has_no_tests():
