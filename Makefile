@@ -47,11 +47,14 @@ test:
 	$(MAKE) --no-print-directory plugin
 	$(MAKE) --no-print-directory -j2 --output-sync=line test-rust test-python
 
-# (cargo is kept off make's jobserver, whose two slots the chains hold: it runs its own jobs.)
+# (cargo is kept off make's jobserver, whose two slots the chains hold: it runs its own jobs.
+# test-rust ends first, while test-python still builds the release files: it then makes the
+# release matrix's environments, which pytest would otherwise make first.)
 test-rust:
 	env -u MAKEFLAGS -u MFLAGS cargo test --quiet -p matte-brdf -- --ignored
 	env -u MAKEFLAGS -u MFLAGS cargo clippy --quiet --workspace --all-targets -- -D warnings
 	env -u MAKEFLAGS -u MFLAGS cargo test --quiet --workspace --exclude matte-brdf
+	setup/release_venvs.sh --environments
 
 test-python: dist
 	.venv/bin/ruff check --quiet .

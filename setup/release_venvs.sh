@@ -6,6 +6,7 @@
 # without its dependencies, as a user adds matte to an environment that has Mitsuba. Also
 # .venvs/mitsuba-3.6.4, the release before the oldest supported one, where the import must fail.
 #     setup/release_venvs.sh [WHEEL]
+#     setup/release_venvs.sh --environments    (only make the environments: no wheel needed)
 # Prints one line saying what it did. Safe to run any number of times.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -15,8 +16,11 @@ mkdir -p .venvs
 exec 9>.venvs/.lock
 flock 9
 
-WHEEL=${1:-$(ls dist/matte_mitsuba-*manylinux*_"$(uname -m)".whl 2>/dev/null | head -1)}
-[ -f "$WHEEL" ] || { echo "release_venvs: no wheel (run make dist, or name one)" >&2; exit 1; }
+WHEEL=
+if [ "${1:-}" != --environments ]; then
+    WHEEL=${1:-$(ls dist/matte_mitsuba-*manylinux*_"$(uname -m)".whl 2>/dev/null | head -1)}
+    [ -f "$WHEEL" ] || { echo "release_venvs: no wheel (run make dist, or name one)" >&2; exit 1; }
+fi
 NUMPY=$(grep '^numpy==' setup/requirements.txt)
 created=()
 for release in $(grep -v '^#' cpp/mitsuba_releases.txt | awk 'NF {print $1}') 3.6.4; do
@@ -29,6 +33,12 @@ for release in $(grep -v '^#' cpp/mitsuba_releases.txt | awk 'NF {print $1}') 3.
         echo "mitsuba==$release $NUMPY" >"$stamp"
         created+=("$release")
     fi
-    "$venv/bin/python" -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$WHEEL"
+    if [ -n "$WHEEL" ]; then
+        "$venv/bin/python" -m pip install -q --disable-pip-version-check --no-deps --force-reinstall "$WHEEL"
+    fi
 done
-echo "release_venvs: $(basename "$WHEEL") installed into .venvs/mitsuba-*${created:+ (created for ${created[*]})}"
+if [ -n "$WHEEL" ]; then
+    echo "release_venvs: $(basename "$WHEEL") installed into .venvs/mitsuba-*${created:+ (created for ${created[*]})}"
+else
+    echo "release_venvs: .venvs/mitsuba-* ${created:+created for ${created[*]}}${created:-up to date}"
+fi
