@@ -231,6 +231,9 @@ def main():
     ap.add_argument("--lanes", type=int, choices=[8, 16], help="Dr.Jit's LLVM vector width (default: the CPU's)")
     ap.add_argument("--json", metavar="FILE", help="with --float-fast-path: write the times here")
     a = ap.parse_args()
+    if a.one and a.plugin_root:
+        # --one times in this process, whose matte_mitsuba is already imported.
+        ap.error(f"--plugin-root applies to the timed processes, not to --one; run PYTHONPATH={a.plugin_root} instead")
     if a.one:
         if a.bitmap and a.one not in SHAPE_PARAMETER:
             ap.error(f"--bitmap: {a.one} has no numeric parameter")
