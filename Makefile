@@ -78,7 +78,8 @@ plugin:
 	@$(MAKE) --no-print-directory -j2 venv rust-release
 	@$(MAKE) --no-print-directory $(WHEEL)
 
-# (cargo off make's jobserver: it runs its own jobs.)
+# (cpp/build_plugin.py's RUST_BUILD, which the wheel's build then finds done; cargo off make's
+# jobserver: it runs its own jobs.)
 rust-release:
 	@env -u MAKEFLAGS -u MFLAGS cargo build --release --quiet -p matte-plugin -p matte
 

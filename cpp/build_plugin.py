@@ -274,6 +274,11 @@ class Release:
     root: str | None  # the cache folder of a downloaded release (macOS: its libc++ stub)
 
 
+# The Rust half of a layer: the kernels' static library and the `matte` command, in release.
+# (The Makefile's rust-release target runs the same command for this machine ahead of the wheel.)
+RUST_BUILD = ["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"]
+
+
 class Build:
     def __init__(self, target, out):
         self.target = target
@@ -340,7 +345,7 @@ class Build:
         return os.path.join(self.rust_dir(), name)
 
     def build_rust(self):
-        cmd = ["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"]
+        cmd = list(RUST_BUILD)
         # Not make's jobserver (make test runs this beside other jobs, without passing it on).
         native = {k: v for k, v in os.environ.items() if k not in ("MAKEFLAGS", "MFLAGS", "CARGO_MAKEFLAGS")}
         env = dict(native)
@@ -369,7 +374,7 @@ class Build:
         if self.cross:
             # The type list and the registry come from a matte that runs here: the native build's
             # (the same packages, so the same features: nothing to build after a native build).
-            run(["cargo", "build", "--release", "--quiet", "-p", "matte-plugin", "-p", "matte"], cwd=ROOT, env=native)
+            run(RUST_BUILD, cwd=ROOT, env=native)
         # The generated bridge header includes "matte/cpp/arena.h" (build.rs sets the prefix `matte`).
         inc = os.path.join(self.cargo_target, "inc")
         os.makedirs(inc, exist_ok=True)
