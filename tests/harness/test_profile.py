@@ -3,7 +3,10 @@ dependency at opt-level 3 except the crates that only run while building (proc m
 scripts and what they use), which are named at opt-level 0. A crate named there that the
 program also links would run unoptimised; a build-time crate left out would be compiled at
 opt-level 3 for nothing. Both sets come from `cargo tree`: the build-time crates are those
-reached only through build or proc-macro edges."""
+reached only through build or proc-macro edges.
+
+The release build (`[profile.release.package]`) lowers a few linked crates that never run on a
+render's path; none of them may be a dependency of the kernels' crate."""
 
 import subprocess
 from pathlib import Path
@@ -13,12 +16,12 @@ import tomllib
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def crates(*edges):
+def crates(*edges, package=None):
     out = subprocess.run(
         [
             "cargo",
             "tree",
-            "--workspace",
+            *(["-p", package] if package else ["--workspace"]),
             "--target",
             "all",
             "--prefix",
@@ -62,3 +65,13 @@ def test_a_library_without_a_test_harness_has_no_tests():
     sources = [p.read_text() for p in src.rglob("*.rs")]
     assert len(sources) > 2
     assert not [s for s in sources if "#[test]" in s or "```" in s]
+
+
+def test_the_release_builds_unoptimised_crates_are_linked_and_not_the_kernels():
+    lowered = tomllib.loads((ROOT / "Cargo.toml").read_text())["profile"]["release"]["package"]
+    assert all(settings == {"opt-level": 0} for settings in lowered.values()), lowered
+    run_time = crates("normal", "no-proc-macro")
+    kernels = crates("normal", "no-proc-macro", package="matte-brdf")
+    assert "glam" in kernels and "moxcms" in run_time
+    assert sorted(set(lowered) - run_time) == [], "not linked: nothing to lower"
+    assert sorted(set(lowered) & kernels) == [], "the kernels' dependencies stay optimised"

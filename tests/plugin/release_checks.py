@@ -8,9 +8,15 @@ its last line of stdout:
     python release_checks.py render VARIANT   # the Cornell box in wolff, ginneken and eon
     python release_checks.py gradient [TYPE]  # d(image mean)/d(parameter): AD and central differences
     python release_checks.py chi2             # mitsuba.chi2 for ginneken at 45°
+    python release_checks.py platform         # the machine and the plugin root matte_mitsuba chose
 
 VARIANT is scalar_rgb or llvm_ad_rgb; llvm runs in Dr.Jit's default (symbolic) mode, `values`
-inside a symbolic loop.
+inside a symbolic loop. Several checks of one variant may share a process, each written
+CHECK[:ARGUMENT] after --many, the last line then a JSON list of their results in order:
+
+    python release_checks.py --many values:llvm_ad_rgb render:llvm_ad_rgb gradient:ginneken chi2
+
+(where each process costs seconds to start, as under emulation).
 """
 
 import json
@@ -134,20 +140,44 @@ def chi2():
     return {"passed": bool(test.run()), "messages": test.messages}
 
 
-def main():
-    check, arg = sys.argv[1], (sys.argv[2] if len(sys.argv) > 2 else None)
-    variant = arg if arg and check != "gradient" else "llvm_ad_rgb"
-    mi.set_variant(variant)
-    import matte_mitsuba  # noqa: F401  (registers the plugins of the running release)
+def variant_of(check, arg):
+    """The variant a check runs in: its argument for values and render, else llvm_ad_rgb."""
+    return arg if arg and check in ("values", "render") else "llvm_ad_rgb"
 
-    run = {
+
+def platform_check():
+    import platform
+
+    import matte_mitsuba
+
+    return {"machine": platform.machine(), "plugin_root": matte_mitsuba.PLUGIN_ROOT}
+
+
+def run(check, arg, variant):
+    checks = {
         "values": lambda: values(variant),
         "render": render,
         "gradient": lambda: {"types": gradient(arg)},
         "chi2": chi2,
+        "platform": platform_check,
     }
-    result = {"check": check, "variant": variant, "mitsuba": mi.__version__, **run[check]()}
-    print("\n" + json.dumps(result))  # the last line (Mitsuba's chi2 prints to stdout)
+    return {"check": check, "variant": variant, "mitsuba": mi.__version__, **checks[check]()}
+
+
+def main():
+    many = None
+    if sys.argv[1] == "--many":
+        many = [(word.partition(":")[0], word.partition(":")[2] or None) for word in sys.argv[2:]]
+    todo = many or [(sys.argv[1], sys.argv[2] if len(sys.argv) > 2 else None)]
+    variants = {variant_of(check, arg) for check, arg in todo}
+    if len(variants) != 1:
+        sys.exit(f"release_checks: one variant per process (Mitsuba 3.8.0 cannot switch), got {sorted(variants)}")
+    (variant,) = variants
+    mi.set_variant(variant)
+    import matte_mitsuba  # noqa: F401  (registers the plugins of the running release)
+
+    results = [run(check, arg, variant) for check, arg in todo]
+    print("\n" + json.dumps(results if many else results[0]))  # the last line (Mitsuba's chi2 prints to stdout)
 
 
 if __name__ == "__main__":

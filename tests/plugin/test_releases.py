@@ -59,6 +59,18 @@ def release_check(python, release, check, *args):
     return result
 
 
+def release_checks(python, release, checks):
+    """Several of release_checks.py's checks, each (check, *args), of one variant in one process
+    run by `python` (where a process costs seconds to start): {(check, *args): result}."""
+    script = os.path.join(REPO, "tests", "plugin", "release_checks.py")
+    words = [":".join(c) for c in checks]
+    r = subprocess.run([python, script, "--many", *words], capture_output=True, text=True, cwd=os.path.dirname(script))
+    assert r.returncode == 0, f"Mitsuba {release}, {' '.join(words)}:\n{r.stderr[-3000:]}"
+    results = json.loads(r.stdout.strip().splitlines()[-1])
+    assert [x["mitsuba"] for x in results] == [release] * len(checks), results
+    return dict(zip(checks, results))
+
+
 @functools.lru_cache(maxsize=None)
 def run_check(release, check, *args):
     return release_check(python_of(release), release, check, *args)
