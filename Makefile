@@ -105,13 +105,15 @@ $(WHEEL): $(SOURCES) setup/requirements.txt | venv
 	$(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
 	$(PY) -m pip install --force-reinstall --no-deps -q --disable-pip-version-check $(WHEEL)
 
-# The same build for Linux aarch64, with the cross toolchain setup_venv.sh installs.
-$(WHEEL_AARCH64): $(SOURCES) setup/requirements.txt | venv
+# The same build for Linux aarch64, with the cross toolchain setup_venv.sh installs. The three
+# wheels are built one after the other (order-only prerequisites), also under make -j: each
+# `pip wheel .` of a checkout writes the same build/ and egg-info folders.
+$(WHEEL_AARCH64): $(SOURCES) setup/requirements.txt | venv $(WHEEL)
 	@rm -f dist/matte_mitsuba-*linux_aarch64.whl
 	MATTE_PLATFORM=linux-aarch64 $(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check
 
 # The same build for macOS arm64, cross-built with Zig (ziglang and cargo-zigbuild from the
 # venv): every layer linked with undefined symbols an error.
-$(WHEEL_MACOS): $(SOURCES) setup/requirements.txt | venv
+$(WHEEL_MACOS): $(SOURCES) setup/requirements.txt | venv $(WHEEL_AARCH64)
 	@rm -f dist/matte_mitsuba-*macosx*.whl
 	MATTE_PLATFORM=macos-arm64 PATH="$(CURDIR)/.venv/bin:$$PATH" $(PY) -m pip wheel . --no-deps --no-build-isolation -w dist -q --disable-pip-version-check

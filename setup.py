@@ -69,12 +69,6 @@ class PlatformWheel(bdist_wheel):
 
 
 setup(
-    # Each platform's build in its own folder: `make -j2 dist` builds the three wheels of one
-    # checkout at once, and build_py starts its package folder afresh.
-    options={
-        "build": {"build_base": os.path.join("build", TARGET.name)},
-        "egg_info": {"egg_base": os.path.join("build", TARGET.name)},
-    },
     distclass=BinaryDistribution,
     cmdclass={"build_py": BuildPlugins, "bdist_wheel": PlatformWheel},
     install_requires=[build_plugin.requirement(TARGET), "numpy", "flip-evaluator"],

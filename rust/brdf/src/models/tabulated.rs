@@ -313,7 +313,29 @@ impl Axis {
         }
         (k, ((x - lower) * inv).clamp_to(0.0, 1.0))
     }
+
+    /// `v` (one value per node) interpolated at `x`: `(1 − w)·v[k] + w·v[k + 1]` with `(k, w)`
+    /// of [`Axis::locate`] (the same compares and weight), the two values picked by selects.
+    #[inline(always)]
+    fn interpolate<T: Real>(&self, x: T, v: &[T]) -> T {
+        let Some((&first, &first_inv)) = self.lower.first().zip(self.inv_width.first()) else {
+            return v[0];
+        };
+        let (mut lower, mut inv, mut lo, mut hi) = (T::c(first), T::c(first_inv), v[0], v[1]);
+        for (j, (&a, &w)) in self.lower.iter().zip(&self.inv_width).enumerate().skip(1) {
+            let reached = x.ge(T::c(a));
+            lower = T::select(reached, T::c(a), lower);
+            inv = T::select(reached, T::c(w), inv);
+            lo = T::select(reached, v[j], lo);
+            hi = T::select(reached, v[j + 1], hi);
+        }
+        let w = ((x - lower) * inv).clamp_to(0.0, 1.0);
+        (T::c(1.0) - w) * lo + w * hi
+    }
 }
+
+/// The most reflectance nodes whose packets [`TableKernel`] gathers once for all channels.
+const SHARED_NODES: usize = 8;
 
 /// The corners of every (θi, θo, Δφ) cell at every reflectance node, eight consecutive values
 /// (one packet gather) per cell and node: packet `((i·Cθ + o)·CΔφ + p)·Nρ + r` for cell
@@ -483,8 +505,11 @@ impl KernelBrdf for Tabulated {
 
 /// The interpolation over [`Real`]: θi, θo and Δφ from the directions (`acos` and `atan2` by
 /// the polynomials of [`crate::approx`]), the cells located on the nodes ([`Axis::locate`]),
-/// the eight corners of the (θi, θo, Δφ) cell gathered as one packet at each of the two
-/// reflectance nodes around each channel's ρ: two packet gathers per channel.
+/// the eight corners of the (θi, θo, Δφ) cell gathered as one packet per reflectance node:
+/// at the two nodes around each channel's ρ (two packet gathers per channel), or at every
+/// node once for all channels when the table has fewer nodes than that (RGB with the
+/// ground-truth tables' five: five packet gathers). Either way an RGB lookup needs up to 40
+/// values (8 corners × 5 nodes) and a packet holds 8, Dr.Jit's largest.
 #[derive(Clone, Copy)]
 pub struct TableKernel<'t, T: Real + 't> {
     model: &'t Tabulated,
@@ -515,6 +540,15 @@ impl<'t, T: Real + 't> Kernel<T> for TableKernel<'t, T> {
             }
             sum
         };
+        // Every reflectance node's packet once, shared by the channels, when that is fewer
+        // gathers than two per channel (RGB and a table's five nodes: five instead of six).
+        if nr < 2 * N && nr <= SHARED_NODES {
+            let mut at_node = [T::c(0.0); SHARED_NODES];
+            for (r, a) in at_node.iter_mut().enumerate().take(nr) {
+                *a = at(base + T::c(r as f64));
+            }
+            return rho.map(|x| x * m.reflectance.interpolate(x, &at_node[..nr]) * T::c(PI));
+        }
         let upper = if nr > 1 { one } else { T::c(0.0) };
         rho.map(|x| {
             let (r, wr) = m.reflectance.locate(x);
