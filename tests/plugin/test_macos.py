@@ -92,6 +92,8 @@ def test_the_wheel_is_tagged_and_laid_out_as_the_linux_one(macos_wheel):
     )[:10]
     build = files["matte_mitsuba/_build.py"].decode()
     assert 'PLATFORM = "macos-arm64"' in build, build[:200]
+    # Zig's c++, asked for --version by build.rs's cc, writes an empty a.o where it runs.
+    assert not os.path.exists(os.path.join(REPO, "a.o")), "the macOS build left a.o in the checkout"
 
 
 def test_every_binary_is_arm64_macos_11_signed_with_relative_names(macos_wheel):
