@@ -25,6 +25,7 @@ import sys
 import numpy as np
 import pytest
 from conftest import REPO, releases
+from release_checks import variant_of
 from test_releases import release_check, release_checks
 
 RELEASES = [releases("linux-aarch64")[0], releases("linux-aarch64")[-1]]
@@ -64,8 +65,7 @@ def emulated_batch(release, variant):
 
 
 def emulated(release, check, *args):
-    variant = args[0] if check in ("values", "render") else "llvm_ad_rgb"
-    return emulated_batch(release, variant)[(check, *args)]
+    return emulated_batch(release, variant_of(check, args[0] if args else None))[(check, *args)]
 
 
 @functools.lru_cache(maxsize=None)

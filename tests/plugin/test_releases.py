@@ -51,12 +51,7 @@ def python_of(release):
 
 def release_check(python, release, check, *args):
     """release_checks.py's `check` (with its arguments) run by `python`, under Mitsuba `release`."""
-    script = os.path.join(REPO, "tests", "plugin", "release_checks.py")
-    r = subprocess.run([python, script, check, *args], capture_output=True, text=True, cwd=os.path.dirname(script))
-    assert r.returncode == 0, f"Mitsuba {release}, {check} {' '.join(args)}:\n{r.stderr[-3000:]}"
-    result = json.loads(r.stdout.strip().splitlines()[-1])
-    assert result["mitsuba"] == release, result["mitsuba"]
-    return result
+    return release_checks(python, release, [(check, *args)])[(check, *args)]
 
 
 def release_checks(python, release, checks):

@@ -300,37 +300,39 @@ impl Axis {
     /// `clamp((x − xₖ)/(xₖ₊₁ − xₖ), 0, 1)`, differentiable in `x` (the reflectance axis).
     #[inline(always)]
     fn locate<T: Real>(&self, x: T) -> (T, T) {
-        let zero = T::c(0.0);
-        let Some((&first, &first_inv)) = self.lower.first().zip(self.inv_width.first()) else {
-            return (zero, zero);
-        };
-        let (mut k, mut lower, mut inv) = (zero, T::c(first), T::c(first_inv));
-        for (j, (&a, &w)) in self.lower.iter().zip(&self.inv_width).enumerate().skip(1) {
-            let reached = x.ge(T::c(a));
-            k = T::select(reached, T::c(j as f64), k);
-            lower = T::select(reached, T::c(a), lower);
-            inv = T::select(reached, T::c(w), inv);
-        }
-        (k, ((x - lower) * inv).clamp_to(0.0, 1.0))
+        let mut k = T::c(0.0);
+        let w = self.weight(x, |reached, j| k = T::select(reached, T::c(j as f64), k));
+        (k, w)
     }
 
     /// `v` (one value per node) interpolated at `x`: `(1 − w)·v[k] + w·v[k + 1]` with `(k, w)`
     /// of [`Axis::locate`] (the same compares and weight), the two values picked by selects.
     #[inline(always)]
     fn interpolate<T: Real>(&self, x: T, v: &[T]) -> T {
-        let Some((&first, &first_inv)) = self.lower.first().zip(self.inv_width.first()) else {
-            return v[0];
-        };
-        let (mut lower, mut inv, mut lo, mut hi) = (T::c(first), T::c(first_inv), v[0], v[1]);
-        for (j, (&a, &w)) in self.lower.iter().zip(&self.inv_width).enumerate().skip(1) {
-            let reached = x.ge(T::c(a));
-            lower = T::select(reached, T::c(a), lower);
-            inv = T::select(reached, T::c(w), inv);
+        let (mut lo, mut hi) = (v[0], v[v.len().min(2) - 1]);
+        let w = self.weight(x, |reached, j| {
             lo = T::select(reached, v[j], lo);
             hi = T::select(reached, v[j + 1], hi);
-        }
-        let w = ((x - lower) * inv).clamp_to(0.0, 1.0);
+        });
         (T::c(1.0) - w) * lo + w * hi
+    }
+
+    /// The weight of the upper node of `x`'s cell; `reached(mask, j)` is called for each
+    /// interior node `j` with the lanes whose `x` reaches it (the cell is the last reached).
+    /// Zero on a single-node axis.
+    #[inline(always)]
+    fn weight<T: Real>(&self, x: T, mut reached: impl FnMut(T::Mask, usize)) -> T {
+        let Some((&first, &first_inv)) = self.lower.first().zip(self.inv_width.first()) else {
+            return T::c(0.0);
+        };
+        let (mut lower, mut inv) = (T::c(first), T::c(first_inv));
+        for (j, (&a, &w)) in self.lower.iter().zip(&self.inv_width).enumerate().skip(1) {
+            let at = x.ge(T::c(a));
+            reached(at, j);
+            lower = T::select(at, T::c(a), lower);
+            inv = T::select(at, T::c(w), inv);
+        }
+        ((x - lower) * inv).clamp_to(0.0, 1.0)
     }
 }
 
