@@ -16,6 +16,7 @@
 # reused; the wheel is installed anew each call. Prints the environment's folder.
 #     setup/aarch64_env.sh WHEEL RELEASE...
 set -euo pipefail
+trap 'echo "aarch64_env: line $LINENO: \`$BASH_COMMAND\` failed" >&2' ERR
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 WHEEL=$(realpath "$1")
@@ -50,11 +51,13 @@ if [ "$(cat "$SYSROOT/.complete" 2>/dev/null)" != "$ROOTS" ]; then
     if ! dpkg --print-foreign-architectures | grep -qx arm64; then
         dpkg --add-architecture arm64
     fi
+    # (None before apt has fetched the arm64 lists: an empty answer, not a failure.)
     apt_depends() {
         # shellcheck disable=SC2046
-        apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts --no-breaks \
-            --no-replaces --no-enhances --no-pre-depends $(printf '%s:arm64 ' $ROOTS) 2>/dev/null |
-            grep -E '^[a-z0-9.+-]+:arm64$' | grep -vE '^(dpkg|tar|install-info|gcc-12-base):' | sort -u
+        { apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts --no-breaks \
+            --no-replaces --no-enhances --no-pre-depends $(printf '%s:arm64 ' $ROOTS) 2>/dev/null || true; } |
+            { grep -E '^[a-z0-9.+-]+:arm64$' || true; } | { grep -vE '^(dpkg|tar|install-info|gcc-12-base):' || true; } |
+            sort -u
     }
     packages=$(apt_depends)
     if ! grep -qx 'libllvm19:arm64' <<<"$packages"; then

@@ -14,6 +14,7 @@
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
 # Prints one line saying what it did. Safe to run from anywhere, any number of times.
 set -euo pipefail
+trap 'echo "setup_venv: line $LINENO: \`$BASH_COMMAND\` failed" >&2' ERR
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
