@@ -54,10 +54,9 @@ if [ "$(cat "$SYSROOT/.complete" 2>/dev/null)" != "$ROOTS" ]; then
     # (None before apt has fetched the arm64 lists: an empty answer, not a failure.)
     apt_depends() {
         # shellcheck disable=SC2046
-        { apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts --no-breaks \
-            --no-replaces --no-enhances --no-pre-depends $(printf '%s:arm64 ' $ROOTS) 2>/dev/null || true; } |
-            { grep -E '^[a-z0-9.+-]+:arm64$' || true; } | { grep -vE '^(dpkg|tar|install-info|gcc-12-base):' || true; } |
-            sort -u
+        apt-cache depends --recurse --no-recommends --no-suggests --no-conflicts --no-breaks \
+            --no-replaces --no-enhances --no-pre-depends $(printf '%s:arm64 ' $ROOTS) 2>/dev/null |
+            grep -E '^[a-z0-9.+-]+:arm64$' | grep -vE '^(dpkg|tar|install-info|gcc-12-base):' | sort -u || true
     }
     packages=$(apt_depends)
     if ! grep -qx 'libllvm19:arm64' <<<"$packages"; then
