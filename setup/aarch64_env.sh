@@ -16,7 +16,7 @@
 # reused; the wheel is installed anew each call. Prints the environment's folder.
 #     setup/aarch64_env.sh WHEEL RELEASE...
 set -euo pipefail
-trap 'echo "aarch64_env: line $LINENO: \`$BASH_COMMAND\` failed" >&2' ERR
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 WHEEL=$(realpath "$1")
@@ -28,15 +28,6 @@ NUMPY=$(grep '^numpy==' setup/requirements.txt)
 # What Python and libLLVM need of Debian's arm64 packages, resolved by apt (see below).
 ROOTS="python3.11-minimal libpython3.11-stdlib libllvm19 libstdc++6 libgcc-s1 libatomic1"
 QEMU=/usr/bin/qemu-aarch64-static
-
-quiet() {
-    local log rc=0
-    log=$(mktemp)
-    "$@" >"$log" 2>&1 || rc=$?
-    if [ "$rc" -ne 0 ]; then cat "$log" >&2; fi
-    rm -f "$log"
-    return "$rc"
-}
 
 # --- 1. qemu ---------------------------------------------------------------------------------
 if [ ! -x "$QEMU" ]; then

@@ -9,7 +9,7 @@
 #     setup/release_venvs.sh --environments    (only make the environments: no wheel needed)
 # Prints one line saying what it did. Safe to run any number of times.
 set -euo pipefail
-trap 'echo "release_venvs: line $LINENO: \`$BASH_COMMAND\` failed" >&2' ERR
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # One at a time: pytest's workers (make test runs it with -n 2) may reach here together.

@@ -14,7 +14,7 @@
 # matte_mitsuba itself is installed into the venv as the wheel `make plugin` builds.
 # Prints one line saying what it did. Safe to run from anywhere, any number of times.
 set -euo pipefail
-trap 'echo "setup_venv: line $LINENO: \`$BASH_COMMAND\` failed" >&2' ERR
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -29,15 +29,6 @@ REQ=setup/requirements.txt
 STAMP="$VENV/.matte-requirements.sha256"
 did=()
 
-# Run a command quietly; show its output only if it fails.
-quiet() {
-    local log rc=0
-    log=$(mktemp)
-    "$@" >"$log" 2>&1 || rc=$?
-    if [ "$rc" -ne 0 ]; then cat "$log" >&2; fi
-    rm -f "$log"
-    return "$rc"
-}
 
 # --- 1. libLLVM 19 and Embree 3 ----------------------------------------------
 packages=()
